@@ -1,0 +1,70 @@
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "aaf/core/aaf_filter.h"
+#include "aaf/core/error.h"
+#include "aaf/io/exr_io.h"
+#include "commands.h"
+#include "input_guard.h"
+#include "threads.h"
+
+namespace aaf::cli {
+
+namespace {
+
+ChannelMap channel_map_from(const std::vector<std::string> &specs) {
+    ChannelMap map;
+    for (const std::string &spec : specs) map.set_override(spec);
+    return map;
+}
+
+void add_aaf_method(CLI::App &filter) {
+    struct Options {
+        std::string input, output;
+        AafParams params;
+        std::vector<std::string> maps;
+        int threads = 0;
+    };
+    auto options = std::make_shared<Options>();
+    CLI::App *cmd = filter.add_subcommand("aaf", "Axis-Aligned Filtering of soft shadows (Mehta et al. 2012)");
+    cmd->add_option("input", options->input, "Input EXR with the AAF AOVs")->required();
+    cmd->add_option("-o,--output", options->output, "Output EXR")->required();
+    AafParams &p = options->params;
+    cmd->add_option("--mu", p.mu, "Filter scale for consistency, beta ~ 1/mu (Sec. 5.2)")->capture_default_str();
+    cmd->add_option("--k", p.k, "Gaussian spread factor of Eq. 13")->capture_default_str();
+    cmd->add_option("--alpha", p.alpha, "Occluder bandlimit over pixel bandlimit, (0,1] (Eq. 5)")
+        ->capture_default_str();
+    cmd->add_option("--normal-threshold", p.normal_threshold_deg, "Reject taps whose normal turns more, degrees")
+        ->capture_default_str();
+    cmd->add_option("--fill-radius", p.fill_radius_px, "Radius to borrow occluder distances, pixels")
+        ->capture_default_str();
+    cmd->add_option("--max-radius", p.max_radius_px, "Largest filter radius, pixels")->capture_default_str();
+    cmd->add_option("--map", options->maps, "Override a channel name: role=channel[,channel...]");
+    cmd->add_option("--threads", options->threads, "Worker threads, 0 = all (output is identical)")
+        ->capture_default_str();
+    cmd->callback([options] {
+        const ChannelMap channels = channel_map_from(options->maps);
+        check_not_same_file(options->input, options->output);
+        AovSet input = io::read_aovs(options->input);
+        AovSet output;
+        run_with_threads(options->threads, [&] {
+            try {
+                output = aaf_filter_aovs(input, channels, options->params);
+            } catch (const Error &e) {
+                throw Error(options->input + ": " + e.what());
+            }
+        });
+        io::write_aovs(output, options->output);
+    });
+}
+
+}  // namespace
+
+void add_filter_command(CLI::App &app) {
+    CLI::App *filter = app.add_subcommand("filter", "Filter noisy AOVs with one of the methods");
+    filter->require_subcommand(1);
+    add_aaf_method(*filter);
+}
+
+}  // namespace aaf::cli

@@ -1,0 +1,61 @@
+#include <algorithm>
+#include <cstdio>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "aaf/core/aov_contract.h"
+#include "aaf/io/exr_io.h"
+#include "commands.h"
+
+namespace aaf::cli {
+
+namespace {
+
+std::string format_attribute(const AttributeValue &value) {
+    char buffer[128];
+    if (const int *i = std::get_if<int>(&value)) return std::to_string(*i);
+    if (const float *f = std::get_if<float>(&value)) {
+        std::snprintf(buffer, sizeof buffer, "%g", *f);
+        return buffer;
+    }
+    if (const std::string *s = std::get_if<std::string>(&value)) return "\"" + *s + "\"";
+    const Vec3 &v = std::get<Vec3>(value);
+    std::snprintf(buffer, sizeof buffer, "(%g, %g, %g)", v.x, v.y, v.z);
+    return buffer;
+}
+
+}  // namespace
+
+void add_info_command(CLI::App &app) {
+    struct Options {
+        std::string input;
+    };
+    auto options = std::make_shared<Options>();
+    CLI::App *cmd = app.add_subcommand("info", "List channels, attributes and which methods a file can feed");
+    cmd->add_option("input", options->input, "Image to describe")->required();
+    cmd->callback([options] {
+        const AovSet aovs = io::read_aovs(options->input);
+        std::printf("%s: %d x %d, %zu channels\n", options->input.c_str(), aovs.width(), aovs.height(),
+                    aovs.channel_names().size());
+        std::printf("channels:\n");
+        for (std::size_t c = 0; c < aovs.channel_names().size(); ++c) {
+            const std::vector<float> &plane = aovs.plane(c);
+            auto [lo, hi] = std::minmax_element(plane.begin(), plane.end());
+            std::printf("  %-20s min %-12g max %g\n", aovs.channel_names()[c].c_str(), *lo, *hi);
+        }
+        std::printf("attributes:\n");
+        for (const auto &[name, value] : aovs.attributes)
+            std::printf("  %-24s %s\n", name.c_str(), format_attribute(value).c_str());
+        std::printf("methods:\n");
+        const ChannelMap channels;
+        for (const MethodInputs &method : method_table()) {
+            std::vector<Role> missing = channels.missing_inputs(method, aovs);
+            std::string line = missing.empty() ? "ready" : "missing";
+            for (Role role : missing) line += std::string(" ") + role_info(role).key;
+            std::printf("  %-8s %s\n", method.name, line.c_str());
+        }
+    });
+}
+
+}  // namespace aaf::cli

@@ -1,0 +1,26 @@
+#include <exception>
+#include <iostream>
+
+#include "aaf/core/error.h"
+#include "commands.h"
+
+int main(int argc, char **argv) {
+    CLI::App app{"aaf: image-space reconstruction of ray-traced distribution effects"};
+    app.require_subcommand(1);
+    app.set_version_flag("--version", "aaf 0.1.0");
+    aaf::cli::add_render_command(app);
+    aaf::cli::add_filter_command(app);
+    aaf::cli::add_compare_command(app);
+    aaf::cli::add_info_command(app);
+    aaf::cli::add_preview_command(app);
+    try {
+        app.parse(argc, argv);
+    } catch (const CLI::ParseError &e) {
+        // Help and version exit 0; usage errors exit 2.
+        return app.exit(e) == 0 ? 0 : 2;
+    } catch (const std::exception &e) {
+        std::cerr << "aaf: error: " << e.what() << "\n";
+        return 1;
+    }
+    return 0;
+}

@@ -1,0 +1,162 @@
+#include "aaf/core/aov_contract.h"
+
+#include <type_traits>
+
+#include "aaf/core/error.h"
+
+namespace aaf {
+
+const std::vector<RoleInfo> &role_table() {
+    static const std::vector<RoleInfo> table = {
+        {Role::Beauty, "beauty", {"R", "G", "B"}, "linear radiance",
+         "final noisy image, r(x) times the noisy visibility"},
+        {Role::Visibility, "visibility", {"shadow.V"}, "[0,1]",
+         "noisy light-weighted visibility: sum of l(y) f(x,y) over samples / sum of l(y)"},
+        {Role::D1, "d1", {"shadow.d1"}, "metres",
+         "distance of the receiver from the light's plane, along the light normal"},
+        {Role::D2Min, "d2min", {"shadow.d2min"}, "metres, 0 = no occluder",
+         "smallest light-plane distance of an occluder hit by the pixel's shadow rays"},
+        {Role::D2Max, "d2max", {"shadow.d2max"}, "metres, 0 = no occluder",
+         "largest light-plane distance of an occluder hit by the pixel's shadow rays"},
+        {Role::Position, "position", {"P.X", "P.Y", "P.Z"}, "world metres",
+         "world position of the primary hit"},
+        {Role::Normal, "normal", {"N.X", "N.Y", "N.Z"}, "unit vector",
+         "shading normal, facing the camera"},
+        {Role::ObjectId, "object_id", {"id.object"}, "integer stored as float, 0 = background",
+         "identifier of the object hit by the primary ray"},
+        {Role::SamplesPerPixel, "spp", {"pixel.spp"}, "samples",
+         "light samples taken at the pixel"},
+        {Role::PixelSize, "pixel_size", {"pixel.size"}, "metres",
+         "world length one pixel covers at the receiver, with foreshortening (d of AAF Eq. 6)"},
+        {Role::Unshadowed, "unshadowed", {"unshadowed.R", "unshadowed.G", "unshadowed.B"},
+         "linear radiance", "r(x) of AAF Eq. 1: shading with the light's irradiance at its centre, "
+                            "without visibility"},
+        {Role::FilteredVisibility, "filtered_visibility", {"aaf.V"}, "[0,1]",
+         "output of `aaf filter aaf`: filtered visibility"},
+        {Role::FilterWidth, "beta", {"aaf.beta"}, "metres, 0 = not filtered",
+         "output of `aaf filter aaf`: filter standard deviation beta (AAF Eq. 13)"},
+        {Role::NoisyBeauty, "noisy_beauty", {"noisy.R", "noisy.G", "noisy.B"}, "linear radiance",
+         "output of a filter: the input beauty, kept"},
+    };
+    return table;
+}
+
+const RoleInfo &role_info(Role role) {
+    for (const RoleInfo &info : role_table())
+        if (info.role == role) return info;
+    throw Error("internal: role missing from the role table");
+}
+
+const std::vector<MethodInputs> &method_table() {
+    static const std::vector<MethodInputs> table = {
+        {"aaf",
+         {Role::Visibility, Role::D1, Role::D2Min, Role::D2Max, Role::Position, Role::Normal,
+          Role::ObjectId, Role::PixelSize, Role::Unshadowed}},
+    };
+    return table;
+}
+
+void write_light_attributes(const LightPlane &light, AovSet &aovs) {
+    aovs.attributes[attr::kLightCenter] = light.center;
+    aovs.attributes[attr::kLightNormal] = light.normal;
+    aovs.attributes[attr::kLightAxisU] = light.axis_u;
+    aovs.attributes[attr::kLightAxisV] = light.axis_v;
+    aovs.attributes[attr::kLightWidth] = light.width_m;
+    aovs.attributes[attr::kLightHeight] = light.height_m;
+    aovs.attributes[attr::kLightSigma] = light.sigma_m;
+    aovs.attributes[attr::kLightKind] = std::string(to_string(light.profile));
+}
+
+namespace {
+
+template <typename T>
+T get_attribute(const AovSet &aovs, const char *name) {
+    auto it = aovs.attributes.find(name);
+    if (it == aovs.attributes.end()) throw Error("missing header attribute '" + std::string(name) + "'");
+    if (const T *value = std::get_if<T>(&it->second)) return *value;
+    if constexpr (std::is_same_v<T, float>)
+        if (const int *value = std::get_if<int>(&it->second)) return float(*value);
+    throw Error("header attribute '" + std::string(name) + "' has the wrong type");
+}
+
+}  // namespace
+
+LightPlane read_light_attributes(const AovSet &aovs) {
+    LightPlane light;
+    light.center = get_attribute<Vec3>(aovs, attr::kLightCenter);
+    light.normal = get_attribute<Vec3>(aovs, attr::kLightNormal);
+    light.axis_u = get_attribute<Vec3>(aovs, attr::kLightAxisU);
+    light.axis_v = get_attribute<Vec3>(aovs, attr::kLightAxisV);
+    light.width_m = get_attribute<float>(aovs, attr::kLightWidth);
+    light.height_m = get_attribute<float>(aovs, attr::kLightHeight);
+    light.sigma_m = get_attribute<float>(aovs, attr::kLightSigma);
+    light.profile = light_profile_from_string(get_attribute<std::string>(aovs, attr::kLightKind));
+    light.validate();
+    return light;
+}
+
+ChannelMap::ChannelMap() {
+    for (const RoleInfo &info : role_table()) names_[info.role] = info.channels;
+}
+
+void ChannelMap::set_override(const std::string &spec) {
+    std::size_t eq = spec.find('=');
+    if (eq == std::string::npos || eq == 0 || eq + 1 == spec.size())
+        throw Error("bad channel mapping '" + spec + "' (expected role=channel[,channel...])");
+    std::string key = spec.substr(0, eq);
+    const RoleInfo *info = nullptr;
+    for (const RoleInfo &candidate : role_table())
+        if (key == candidate.key) info = &candidate;
+    if (!info) {
+        std::string known;
+        for (const RoleInfo &candidate : role_table())
+            known += std::string(known.empty() ? "" : ", ") + candidate.key;
+        throw Error("unknown role '" + key + "' in mapping '" + spec + "' (roles: " + known + ")");
+    }
+
+    std::vector<std::string> names;
+    std::string rest = spec.substr(eq + 1);
+    for (std::size_t start = 0;;) {
+        std::size_t comma = rest.find(',', start);
+        names.push_back(rest.substr(start, comma - start));
+        if (comma == std::string::npos) break;
+        start = comma + 1;
+    }
+    const std::vector<std::string> &defaults = info->channels;
+    if (names.size() == 1 && defaults.size() > 1 && names[0].find('.') == std::string::npos) {
+        // A layer name: keep each default channel's suffix (P.X -> Pw.X).
+        std::string layer = names[0];
+        names.clear();
+        for (const std::string &name : defaults) {
+            std::size_t dot = name.find('.');
+            names.push_back(layer + (dot == std::string::npos ? "." + name : name.substr(dot)));
+        }
+    }
+    if (names.size() != defaults.size())
+        throw Error("mapping '" + spec + "' names " + std::to_string(names.size()) +
+                    " channels, role '" + key + "' needs " + std::to_string(defaults.size()));
+    for (const std::string &name : names)
+        if (name.empty()) throw Error("empty channel name in mapping '" + spec + "'");
+    names_[info->role] = names;
+}
+
+const std::vector<std::string> &ChannelMap::channels(Role role) const { return names_.at(role); }
+
+const std::string &ChannelMap::channel(Role role) const {
+    const std::vector<std::string> &names = channels(role);
+    if (names.size() != 1) throw Error(std::string("internal: role '") + role_info(role).key + "' has several channels");
+    return names.front();
+}
+
+std::vector<Role> ChannelMap::missing_inputs(const MethodInputs &method, const AovSet &aovs) const {
+    std::vector<Role> missing;
+    for (Role role : method.required)
+        for (const std::string &name : channels(role))
+            if (!aovs.has_channel(name)) {
+                missing.push_back(role);
+                break;
+            }
+    return missing;
+}
+
+}  // namespace aaf

@@ -1,0 +1,46 @@
+#include "aaf/core/aov_set.h"
+
+#include "aaf/core/error.h"
+
+namespace aaf {
+
+AovSet::AovSet(int width, int height) : width_(width), height_(height) {
+    if (width <= 0 || height <= 0)
+        throw Error("image size must be positive, got " + std::to_string(width) + "x" +
+                    std::to_string(height));
+}
+
+std::size_t AovSet::index_of(const std::string &name) const {
+    for (std::size_t i = 0; i < names_.size(); ++i)
+        if (names_[i] == name) return i;
+    return std::string::npos;
+}
+
+bool AovSet::has_channel(const std::string &name) const {
+    return index_of(name) != std::string::npos;
+}
+
+PlaneView AovSet::add_channel(const std::string &name, float fill) {
+    if (has_channel(name)) throw Error("channel '" + name + "' already exists");
+    names_.push_back(name);
+    planes_.emplace_back(pixel_count(), fill);
+    return plane_view(planes_.back().data(), width_, height_);
+}
+
+PlaneView AovSet::ensure_channel(const std::string &name, float fill) {
+    return has_channel(name) ? channel(name) : add_channel(name, fill);
+}
+
+PlaneView AovSet::channel(const std::string &name) {
+    std::size_t i = index_of(name);
+    if (i == std::string::npos) throw Error("missing channel '" + name + "'");
+    return plane_view(planes_[i].data(), width_, height_);
+}
+
+ConstPlaneView AovSet::channel(const std::string &name) const {
+    std::size_t i = index_of(name);
+    if (i == std::string::npos) throw Error("missing channel '" + name + "'");
+    return plane_view(planes_[i].data(), width_, height_);
+}
+
+}  // namespace aaf

@@ -1,0 +1,49 @@
+#pragma once
+
+#include <array>
+
+#include "aaf/core/aaf_params.h"
+#include "aaf/core/aov_contract.h"
+#include "aaf/core/light_plane.h"
+#include "aaf/core/plane_view.h"
+
+namespace aaf {
+
+/// Per-pixel inputs of the AAF filter, all of one size (see aov_contract.h for
+/// meanings and units). d2_min/d2_max hold 0 where no occluder was hit.
+struct AafInputs {
+    ConstPlaneView visibility;
+    ConstPlaneView d1;
+    ConstPlaneView d2_min;
+    ConstPlaneView d2_max;
+    std::array<ConstPlaneView, 3> position;
+    std::array<ConstPlaneView, 3> normal;
+    ConstPlaneView object_id;
+    ConstPlaneView pixel_size;
+};
+
+/// Caller-owned outputs, same size as the inputs. `beta_m` may be left empty.
+struct AafOutputs {
+    PlaneView filtered_visibility;
+    PlaneView beta_m;
+};
+
+/// Axis-Aligned Filtering of soft-shadow visibility (Mehta et al. 2012):
+/// beta per pixel from AAF Eq. 13 (unoccluded pixels borrow occluder distances
+/// from their neighbours, Sec. 6), then the world-space Gaussian of Eq. 10-12
+/// as a vertical and a horizontal pass (Sec. 6), rejecting taps of another
+/// object or with a normal beyond the threshold. Pixels with beta = 0 (no
+/// occluder nearby, background) keep their input value. Runs on the current
+/// oneTBB arena; the result does not depend on the thread count.
+/// Throws aaf::Error on mismatched sizes or bad parameters.
+void aaf_filter(const AafInputs &inputs, const LightPlane &light, const AafParams &params,
+                const AafOutputs &outputs);
+
+/// Filters an AOV set that follows the contract: returns every input channel,
+/// with the beauty replaced by r(x) times the filtered visibility (AAF Eq. 1),
+/// the input beauty kept as the NoisyBeauty role, and the filtered visibility
+/// and beta added as their own layers. The light comes from the header
+/// attributes. Throws aaf::Error naming the first missing channel.
+AovSet aaf_filter_aovs(const AovSet &input, const ChannelMap &channels, const AafParams &params);
+
+}  // namespace aaf

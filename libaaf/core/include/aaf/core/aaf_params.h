@@ -1,0 +1,28 @@
+#pragma once
+
+namespace aaf {
+
+/// Parameters of Axis-Aligned Filtering (Mehta et al. 2012). The defaults are
+/// the paper's (Sec. 6: k = 3, alpha = 1, mu = 2).
+struct AafParams {
+    /// Scale of the critical filter's frequency width, Omega_x^f = mu Omega_x0^f
+    /// (Sec. 5.2): beta shrinks as 1/mu, the sampling rate grows with mu.
+    float mu = 2.0f;
+    /// Gaussian energy spread, beta = 1 / (k Omega_x^f) (Eq. 13, footnote 4).
+    float k = 3.0f;
+    /// Occluder bandlimit relative to the pixel bandlimit, in (0, 1] (Eq. 5).
+    float alpha = 1.0f;
+    /// Taps whose normal turns by more than this from the centre's are rejected
+    /// (Sec. 6 "check on normal variation"); degrees.
+    float normal_threshold_deg = 25.0f;
+    /// Unoccluded pixels borrow occluder distances from occluded pixels of the
+    /// same object within this radius (Sec. 6: 5 pixels); pixels.
+    int fill_radius_px = 5;
+    /// The Gaussian is cut at 3 beta; the tap radius is also capped here; pixels.
+    int max_radius_px = 64;
+
+    /// Throws aaf::Error naming the first parameter out of range.
+    void validate() const;
+};
+
+}  // namespace aaf

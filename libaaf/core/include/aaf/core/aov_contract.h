@@ -1,0 +1,91 @@
+#pragma once
+
+#include <map>
+#include <string>
+#include <vector>
+
+#include "aaf/core/aov_set.h"
+#include "aaf/core/light_plane.h"
+
+namespace aaf {
+
+/// What a channel (or group of channels) means to the filters. The one table
+/// of names, units and meanings is `role_table()`; docs/AOVS.md documents it.
+enum class Role {
+    Beauty,              ///< noisy final image
+    Visibility,          ///< noisy light-weighted visibility
+    D1,                  ///< light-plane distance of the receiver
+    D2Min,               ///< smallest light-plane distance of an occluder
+    D2Max,               ///< largest light-plane distance of an occluder
+    Position,            ///< world position of the primary hit
+    Normal,              ///< shading normal
+    ObjectId,            ///< object identifier
+    SamplesPerPixel,     ///< light samples taken at the pixel
+    PixelSize,           ///< world length one pixel covers at the receiver
+    Unshadowed,          ///< r(x) of AAF Eq. 1
+    FilteredVisibility,  ///< output: filtered visibility
+    FilterWidth,         ///< output: AAF beta
+    NoisyBeauty,         ///< output: the input beauty kept beside the filtered one
+};
+
+struct RoleInfo {
+    Role role;
+    const char *key;                        ///< spelling on the command line (--map key=...)
+    std::vector<std::string> channels;      ///< default EXR channel names
+    const char *units;
+    const char *meaning;
+};
+
+/// Every role, with its default channels. Read by the I/O layer, the tracer,
+/// the filters and `aaf info`; documented in docs/AOVS.md.
+const std::vector<RoleInfo> &role_table();
+const RoleInfo &role_info(Role role);
+
+/// A filter method and the roles it cannot run without.
+struct MethodInputs {
+    const char *name;
+    std::vector<Role> required;
+};
+const std::vector<MethodInputs> &method_table();
+
+/// Per-image attributes, stored as EXR header attributes with the prefix "aaf:".
+namespace attr {
+inline constexpr const char *kLightCenter = "aaf:light:center";   // Vec3, world metres
+inline constexpr const char *kLightNormal = "aaf:light:normal";   // Vec3, unit, emitting side
+inline constexpr const char *kLightAxisU = "aaf:light:axis_u";    // Vec3, unit tangent
+inline constexpr const char *kLightAxisV = "aaf:light:axis_v";    // Vec3, unit tangent
+inline constexpr const char *kLightWidth = "aaf:light:width_m";   // float, extent along axis_u
+inline constexpr const char *kLightHeight = "aaf:light:height_m"; // float, extent along axis_v
+inline constexpr const char *kLightSigma = "aaf:light:sigma_m";   // float, profile std. dev.
+inline constexpr const char *kLightKind = "aaf:light:kind";       // "gaussian" or "uniform"
+inline constexpr const char *kScene = "aaf:scene";                // string
+inline constexpr const char *kSeed = "aaf:seed";                  // int
+inline constexpr const char *kSpp = "aaf:spp";                    // int, requested samples
+}  // namespace attr
+
+void write_light_attributes(const LightPlane &light, AovSet &aovs);
+/// Throws aaf::Error naming the first missing or mistyped attribute.
+LightPlane read_light_attributes(const AovSet &aovs);
+
+/// Role -> channel names, the defaults overridden by `--map role=channels`.
+class ChannelMap {
+  public:
+    ChannelMap();
+
+    /// Parses "role=name[,name...]". For a multi-channel role a single name
+    /// without a dot is a layer and gets the default suffixes
+    /// (`position=Pw` -> Pw.X, Pw.Y, Pw.Z). Throws aaf::Error on a bad spec.
+    void set_override(const std::string &spec);
+
+    const std::vector<std::string> &channels(Role role) const;
+    /// The single channel of a one-channel role.
+    const std::string &channel(Role role) const;
+
+    /// Roles of `method` whose channels are not all present in `aovs`.
+    std::vector<Role> missing_inputs(const MethodInputs &method, const AovSet &aovs) const;
+
+  private:
+    std::map<Role, std::vector<std::string>> names_;
+};
+
+}  // namespace aaf

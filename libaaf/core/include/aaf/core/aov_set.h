@@ -1,0 +1,55 @@
+#pragma once
+
+#include <map>
+#include <string>
+#include <variant>
+#include <vector>
+
+#include "aaf/core/plane_view.h"
+#include "aaf/core/vec3.h"
+
+namespace aaf {
+
+/// Value of a per-image (not per-pixel) attribute, e.g. the light's centre.
+using AttributeValue = std::variant<int, float, std::string, Vec3>;
+
+/// An in-memory set of named float channels of one size, plus per-image
+/// attributes: what a renderer produces and what the filters consume.
+/// Channel names follow the EXR `layer.channel` convention (see aov_contract.h).
+/// Channel order is insertion order; storage is planar and stable, so views
+/// stay valid while channels are added.
+class AovSet {
+  public:
+    AovSet() = default;
+    AovSet(int width, int height);
+
+    int width() const { return width_; }
+    int height() const { return height_; }
+    std::size_t pixel_count() const { return std::size_t(width_) * std::size_t(height_); }
+
+    /// Adds a channel filled with `fill`; throws aaf::Error if the name exists.
+    PlaneView add_channel(const std::string &name, float fill = 0.0f);
+    /// The channel called `name`, added (filled with `fill`) if absent.
+    PlaneView ensure_channel(const std::string &name, float fill = 0.0f);
+
+    bool has_channel(const std::string &name) const;
+    /// Throws aaf::Error naming the channel when it is missing.
+    PlaneView channel(const std::string &name);
+    ConstPlaneView channel(const std::string &name) const;
+
+    const std::vector<std::string> &channel_names() const { return names_; }
+    /// Contiguous storage of the i-th channel (width * height floats, row-major).
+    const std::vector<float> &plane(std::size_t index) const { return planes_[index]; }
+
+    std::map<std::string, AttributeValue> attributes;
+
+  private:
+    std::size_t index_of(const std::string &name) const;  // npos when absent
+
+    int width_ = 0;
+    int height_ = 0;
+    std::vector<std::string> names_;
+    std::vector<std::vector<float>> planes_;
+};
+
+}  // namespace aaf

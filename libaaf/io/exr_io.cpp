@@ -1,0 +1,115 @@
+#include "aaf/io/exr_io.h"
+
+#include <OpenImageIO/imageio.h>
+
+#include <cstdio>
+#include <memory>
+#include <vector>
+
+#include "aaf/core/error.h"
+#include "aaf/io/atomic_file.h"
+
+namespace aaf::io {
+
+namespace {
+
+using OIIO::TypeDesc;
+
+bool is_vec3(TypeDesc type) {
+    return type.basetype == TypeDesc::FLOAT && type.aggregate == TypeDesc::VEC3 && type.arraylen == 0;
+}
+
+void read_attributes(const OIIO::ImageSpec &spec, AovSet &aovs) {
+    for (const OIIO::ParamValue &param : spec.extra_attribs) {
+        const std::string name = param.name().string();
+        const TypeDesc type = param.type();
+        if (type == OIIO::TypeInt)
+            aovs.attributes[name] = param.get_int();
+        else if (type == OIIO::TypeFloat)
+            aovs.attributes[name] = param.get_float();
+        else if (type == OIIO::TypeString)
+            aovs.attributes[name] = param.get_string();
+        else if (is_vec3(type)) {
+            const float *v = static_cast<const float *>(param.data());
+            aovs.attributes[name] = Vec3{v[0], v[1], v[2]};
+        }
+    }
+}
+
+void write_attributes(const AovSet &aovs, OIIO::ImageSpec &spec) {
+    for (const auto &[name, value] : aovs.attributes) {
+        if (const int *i = std::get_if<int>(&value))
+            spec.attribute(name, *i);
+        else if (const float *f = std::get_if<float>(&value))
+            spec.attribute(name, *f);
+        else if (const std::string *s = std::get_if<std::string>(&value))
+            spec.attribute(name, *s);
+        else if (const Vec3 *v = std::get_if<Vec3>(&value)) {
+            const float data[3] = {v->x, v->y, v->z};
+            spec.attribute(name, OIIO::TypeVector, data);
+        }
+    }
+}
+
+}  // namespace
+
+AovSet read_aovs(const std::string &path) {
+    std::unique_ptr<OIIO::ImageInput> input = OIIO::ImageInput::open(path);
+    if (!input) {
+        std::string message = OIIO::geterror();
+        throw Error(path + ": cannot read image" + (message.empty() ? "" : ": " + message));
+    }
+    const OIIO::ImageSpec &spec = input->spec();
+    if (spec.deep) throw Error(path + ": deep images are not supported");
+    if (spec.depth > 1) throw Error(path + ": volume images are not supported");
+    const int channels = spec.nchannels;
+    AovSet aovs;
+    try {
+        aovs = AovSet(spec.width, spec.height);
+    } catch (const Error &e) {
+        throw Error(path + ": " + e.what());
+    }
+
+    std::vector<float> pixels(aovs.pixel_count() * std::size_t(channels));
+    if (!input->read_image(0, 0, 0, channels, TypeDesc::FLOAT, pixels.data()))
+        throw Error(path + ": cannot read pixels: " + input->geterror());
+
+    for (int c = 0; c < channels; ++c) {
+        const std::string &name = spec.channelnames[c];
+        if (aovs.has_channel(name)) throw Error(path + ": duplicate channel '" + name + "'");
+        PlaneView plane = aovs.add_channel(name);
+        for (std::size_t i = 0; i < aovs.pixel_count(); ++i) plane.data[i] = pixels[i * channels + c];
+    }
+    read_attributes(spec, aovs);
+    return aovs;
+}
+
+void write_aovs(const AovSet &aovs, const std::string &path) {
+    const int channels = int(aovs.channel_names().size());
+    if (channels == 0) throw Error(path + ": nothing to write (no channels)");
+    OIIO::ImageSpec spec(aovs.width(), aovs.height(), channels, TypeDesc::FLOAT);
+    spec.channelnames = aovs.channel_names();
+    spec.alpha_channel = -1;
+    spec.attribute("compression", "zip");
+    write_attributes(aovs, spec);
+
+    std::vector<float> pixels(aovs.pixel_count() * std::size_t(channels));
+    for (int c = 0; c < channels; ++c) {
+        const std::vector<float> &plane = aovs.plane(std::size_t(c));
+        for (std::size_t i = 0; i < aovs.pixel_count(); ++i) pixels[i * channels + c] = plane[i];
+    }
+
+    const std::string temporary = temporary_path_for(path);
+    std::unique_ptr<OIIO::ImageOutput> output = OIIO::ImageOutput::create("openexr");
+    if (!output) throw Error(path + ": OpenEXR writer unavailable: " + OIIO::geterror());
+    bool ok = output->open(temporary, spec) && output->write_image(TypeDesc::FLOAT, pixels.data());
+    ok = output->close() && ok;
+    if (!ok) {
+        std::string message = output->geterror();
+        std::remove(temporary.c_str());
+        throw Error(path + ": cannot write image: " + message);
+    }
+    commit_temporary(temporary, path);
+}
+
+}  // namespace aaf::io

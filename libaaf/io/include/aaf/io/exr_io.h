@@ -1,0 +1,22 @@
+#pragma once
+
+#include <string>
+
+#include "aaf/core/aov_set.h"
+
+namespace aaf::io {
+
+/// Reads every channel of the first subimage of an image file (OpenEXR and any
+/// other format OpenImageIO reads) as float, with its header attributes: the
+/// "aaf:" attributes and every other int, float, string or 3-vector attribute.
+/// Throws aaf::Error "<path>: <problem>" when the file is missing, unreadable,
+/// or has duplicate channel names.
+AovSet read_aovs(const std::string &path);
+
+/// Writes all channels as 32-bit float OpenEXR with ZIP compression, and the
+/// attributes as header attributes. The file is written under a temporary
+/// name in the same directory and renamed into place, so `path` never holds a
+/// half-written image. Throws aaf::Error "<path>: <problem>".
+void write_aovs(const AovSet &aovs, const std::string &path);
+
+}  // namespace aaf::io

@@ -1,0 +1,74 @@
+#include "aaf/io/preview.h"
+
+#include <OpenColorIO/OpenColorIO.h>
+#include <OpenImageIO/imageio.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <memory>
+
+#include "aaf/core/error.h"
+#include "aaf/io/atomic_file.h"
+
+namespace OCIO = OCIO_NAMESPACE;
+
+namespace aaf::io {
+
+namespace {
+
+/// Linear -> sRGB-encoded. OCIO 2.1 ships no built-in config, so the transform
+/// is built directly: the inverse of the sRGB decoding curve, a power 2.4 with
+/// offset 0.055 and a linear toe.
+OCIO::ConstCPUProcessorRcPtr srgb_encoder() {
+    OCIO::ExponentWithLinearTransformRcPtr curve = OCIO::ExponentWithLinearTransform::Create();
+    const double gamma[4] = {2.4, 2.4, 2.4, 1.0};
+    const double offset[4] = {0.055, 0.055, 0.055, 0.0};
+    curve->setGamma(gamma);
+    curve->setOffset(offset);
+    curve->setDirection(OCIO::TRANSFORM_DIR_INVERSE);
+    return OCIO::Config::CreateRaw()->getProcessor(curve)->getDefaultCPUProcessor();
+}
+
+}  // namespace
+
+void write_preview_png(const AovSet &aovs, const std::vector<std::string> &channels,
+                       const std::string &path, float exposure_stops) {
+    if (channels.size() != 1 && channels.size() != 3)
+        throw Error(path + ": a preview needs one or three channels");
+    std::vector<ConstPlaneView> planes;
+    for (const std::string &name : channels) {
+        if (!aovs.has_channel(name)) throw Error(path + ": no channel '" + name + "' to preview");
+        planes.push_back(aovs.channel(name));
+    }
+    const float scale = std::exp2(exposure_stops);
+    const int width = aovs.width(), height = aovs.height();
+    std::vector<float> rgb(aovs.pixel_count() * 3);
+    for (int y = 0; y < height; ++y)
+        for (int x = 0; x < width; ++x)
+            for (int c = 0; c < 3; ++c) {
+                float value = planes[planes.size() == 3 ? c : 0](x, y) * scale;
+                rgb[(std::size_t(y) * width + x) * 3 + c] = std::isfinite(value) ? std::max(0.0f, value) : 0.0f;
+            }
+    try {
+        OCIO::PackedImageDesc image(rgb.data(), width, height, 3);
+        srgb_encoder()->apply(image);
+    } catch (const OCIO::Exception &e) {
+        throw Error(path + ": colour conversion failed: " + e.what());
+    }
+
+    OIIO::ImageSpec spec(width, height, 3, OIIO::TypeDesc::UINT8);
+    const std::string temporary = temporary_path_for(path);
+    std::unique_ptr<OIIO::ImageOutput> output = OIIO::ImageOutput::create("png");
+    if (!output) throw Error(path + ": PNG writer unavailable: " + OIIO::geterror());
+    bool ok = output->open(temporary, spec) && output->write_image(OIIO::TypeDesc::FLOAT, rgb.data());
+    ok = output->close() && ok;
+    if (!ok) {
+        std::string message = output->geterror();
+        std::remove(temporary.c_str());
+        throw Error(path + ": cannot write preview: " + message);
+    }
+    commit_temporary(temporary, path);
+}
+
+}  // namespace aaf::io

@@ -1,0 +1,22 @@
+#!/usr/bin/env bash
+# Installs the Debian packages the project needs; skips apt when all are present.
+set -euo pipefail
+packages=(
+  cmake ninja-build g++ pkg-config
+  libopenimageio-dev openimageio-tools libopenexr-dev libimath-dev
+  libopencv-dev          # OpenImageIO's CMake target names /usr/include/opencv4
+  libopencolorio-dev libcli11-dev catch2 libembree-dev libtbb-dev
+  libtinyobjloader-dev nlohmann-json3-dev libbenchmark-dev
+)
+missing=()
+for p in "${packages[@]}"; do
+  dpkg -s "$p" >/dev/null 2>&1 || missing+=("$p")
+done
+if [ ${#missing[@]} -eq 0 ]; then
+  exit 0
+fi
+echo "deps: installing ${missing[*]}" >&2
+sudo=""
+[ "$(id -u)" -eq 0 ] || sudo="sudo"
+$sudo apt-get update -q
+DEBIAN_FRONTEND=noninteractive $sudo apt-get install -y -q --no-install-recommends "${missing[@]}"

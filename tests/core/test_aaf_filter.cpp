@@ -1,0 +1,192 @@
+#include <catch2/catch.hpp>
+
+#include <cmath>
+#include <random>
+#include <tbb/task_arena.h>
+#include <vector>
+
+#include "aaf/core/aaf_bandlimits.h"
+#include "aaf/core/aaf_filter.h"
+#include "aaf/core/error.h"
+
+using namespace aaf;
+
+namespace {
+
+/// A flat receiver at y = 0 seen straight from above: pixel (x, y) sits at
+/// world (x, 0, y) * spacing, under a light at height 2 m facing down.
+struct FlatScene {
+    int width, height;
+    float spacing_m = 0.01f;
+    std::vector<float> visibility, d1, d2_min, d2_max, object_id, pixel_size;
+    std::vector<float> px, py, pz, nx, ny, nz;
+    LightPlane light = LightPlane::square({0, 2, 0}, {0, -1, 0}, 1.0f);
+
+    FlatScene(int w, int h, float d2_m) : width(w), height(h) {
+        const std::size_t n = std::size_t(w) * h;
+        visibility.assign(n, 1.0f);
+        d1.assign(n, 2.0f);
+        d2_min.assign(n, d2_m);
+        d2_max.assign(n, d2_m);
+        object_id.assign(n, 1.0f);
+        pixel_size.assign(n, spacing_m);
+        px.resize(n);
+        py.assign(n, 0.0f);
+        pz.resize(n);
+        nx.assign(n, 0.0f);
+        ny.assign(n, 1.0f);
+        nz.assign(n, 0.0f);
+        for (int y = 0; y < h; ++y)
+            for (int x = 0; x < w; ++x) {
+                px[index(x, y)] = x * spacing_m;
+                pz[index(x, y)] = y * spacing_m;
+            }
+    }
+    std::size_t index(int x, int y) const { return std::size_t(y) * width + x; }
+    ConstPlaneView view(const std::vector<float> &v) const { return plane_view(v.data(), width, height); }
+
+    AafInputs inputs() const {
+        AafInputs in;
+        in.visibility = view(visibility);
+        in.d1 = view(d1);
+        in.d2_min = view(d2_min);
+        in.d2_max = view(d2_max);
+        in.position = {view(px), view(py), view(pz)};
+        in.normal = {view(nx), view(ny), view(nz)};
+        in.object_id = view(object_id);
+        in.pixel_size = view(pixel_size);
+        return in;
+    }
+
+    void fill_noise(unsigned seed) {
+        std::mt19937 rng(seed);
+        std::uniform_real_distribution<float> u(0.0f, 1.0f);
+        for (float &v : visibility) v = u(rng);
+    }
+
+    std::vector<float> run(const AafParams &params, std::vector<float> *beta = nullptr) const {
+        std::vector<float> out(visibility.size(), -1.0f), beta_out(visibility.size(), -1.0f);
+        AafOutputs outputs{plane_view(out.data(), width, height), plane_view(beta_out.data(), width, height)};
+        aaf_filter(inputs(), light, params, outputs);
+        if (beta) *beta = beta_out;
+        return out;
+    }
+};
+
+}  // namespace
+
+TEST_CASE("Separable AAF equals the brute-force 2D Gaussian when beta is constant", "[aaf][filter]") {
+    FlatScene scene(40, 30, 1.0f);  // s2 = 1: beta = sigma s2 / (k mu) = 0.5 / 6 m
+    scene.fill_noise(7);
+    AafParams params;
+    params.max_radius_px = 12;
+    std::vector<float> beta;
+    const std::vector<float> separable = scene.run(params, &beta);
+
+    const float expected_beta = 0.5f / 6.0f;
+    const int radius = std::min(params.max_radius_px, int(std::ceil(3 * expected_beta / scene.spacing_m)));
+    REQUIRE(radius == 12);
+    double max_diff = 0;
+    for (int y = 0; y < scene.height; ++y)
+        for (int x = 0; x < scene.width; ++x) {
+            REQUIRE(beta[scene.index(x, y)] == Approx(expected_beta));
+            // AAF Eq. 10-12 evaluated directly over the square window of the separable passes.
+            double sum = 0, weight_sum = 0;
+            for (int ty = std::max(0, y - radius); ty <= std::min(scene.height - 1, y + radius); ++ty)
+                for (int tx = std::max(0, x - radius); tx <= std::min(scene.width - 1, x + radius); ++tx) {
+                    const double dx = (tx - x) * scene.spacing_m, dz = (ty - y) * scene.spacing_m;
+                    const double w = std::exp(-(dx * dx + dz * dz) / (2.0 * expected_beta * expected_beta));
+                    sum += w * scene.visibility[scene.index(tx, ty)];
+                    weight_sum += w;
+                }
+            max_diff = std::max(max_diff, std::abs(sum / weight_sum - separable[scene.index(x, y)]));
+        }
+    CHECK(max_diff < 2e-6);
+}
+
+TEST_CASE("A fully lit region passes through unchanged", "[aaf][filter]") {
+    FlatScene scene(32, 16, 1.0f);
+    // Left half: penumbra with occluders and noisy visibility; right half: lit, no occluder.
+    scene.fill_noise(3);
+    for (int y = 0; y < scene.height; ++y)
+        for (int x = 16; x < scene.width; ++x) {
+            scene.visibility[scene.index(x, y)] = 1.0f;
+            scene.d2_min[scene.index(x, y)] = scene.d2_max[scene.index(x, y)] = 0.0f;
+        }
+    std::vector<float> beta;
+    const std::vector<float> out = scene.run(AafParams{}, &beta);
+    // Beyond the 5-pixel fill radius nothing is borrowed: not filtered, value kept exactly.
+    for (int y = 0; y < scene.height; ++y)
+        for (int x = 21; x < scene.width; ++x) {
+            CHECK(beta[scene.index(x, y)] == 0.0f);
+            CHECK(out[scene.index(x, y)] == 1.0f);
+        }
+    // Occluders everywhere, yet every sample unoccluded: filtered, and still exactly 1.
+    FlatScene lit(24, 24, 1.0f);
+    std::vector<float> lit_beta;
+    const std::vector<float> lit_out = lit.run(AafParams{}, &lit_beta);
+    CHECK(lit_beta[lit.index(12, 12)] > 0.0f);
+    for (float v : lit_out) REQUIRE(v == 1.0f);
+}
+
+TEST_CASE("Unoccluded pixels borrow occluder distances within the fill radius only", "[aaf][filter]") {
+    FlatScene scene(30, 1, 1.0f);
+    for (int x = 1; x < scene.width; ++x) scene.d2_min[x] = scene.d2_max[x] = 0.0f;  // only x = 0 occluded
+    std::vector<float> beta;
+    scene.run(AafParams{}, &beta);
+    const float expected = aaf_bandlimits(2.0f, 1.0f, 1.0f, 0.01f, 0.5f, AafParams{}).beta_m;
+    for (int x = 0; x <= 5; ++x) CHECK(beta[x] == Approx(expected));
+    for (int x = 6; x < scene.width; ++x) CHECK(beta[x] == 0.0f);
+}
+
+TEST_CASE("Taps of other objects and turned normals are rejected", "[aaf][filter]") {
+    FlatScene scene(20, 20, 1.0f);
+    for (int y = 0; y < scene.height; ++y)
+        for (int x = 0; x < scene.width; ++x) {
+            const bool left = x < 10;
+            scene.visibility[scene.index(x, y)] = left ? 0.2f : 0.9f;
+            // Left and right differ by object id in the top half, by normal in the bottom half.
+            if (y < 10) scene.object_id[scene.index(x, y)] = left ? 1.0f : 2.0f;
+            else if (!left) {
+                scene.nx[scene.index(x, y)] = 1.0f;
+                scene.ny[scene.index(x, y)] = 0.0f;
+            }
+        }
+    const std::vector<float> out = scene.run(AafParams{});
+    for (int y = 0; y < scene.height; ++y)
+        for (int x = 0; x < scene.width; ++x)
+            CHECK(out[scene.index(x, y)] == Approx(x < 10 ? 0.2f : 0.9f));
+}
+
+TEST_CASE("A NaN or zero normal never rejects the centre tap", "[aaf][filter]") {
+    FlatScene scene(9, 9, 1.0f);
+    scene.fill_noise(11);
+    const std::size_t centre = scene.index(4, 4);
+    scene.nx[centre] = std::nanf("");
+    scene.ny[centre] = 0.0f;
+    const std::vector<float> out = scene.run(AafParams{});
+    CHECK(out[centre] == scene.visibility[centre]);
+    for (float v : out) CHECK(std::isfinite(v));
+}
+
+TEST_CASE("AAF output does not depend on the thread count", "[aaf][filter]") {
+    FlatScene scene(64, 48, 0.8f);
+    scene.fill_noise(5);
+    for (int i = 0; i < 64 * 48; i += 7) scene.d2_max[i] = 0.0f;
+    std::vector<float> one, four;
+    tbb::task_arena(1).execute([&] { one = scene.run(AafParams{}); });
+    tbb::task_arena(4).execute([&] { four = scene.run(AafParams{}); });
+    CHECK(one == four);
+}
+
+TEST_CASE("AAF rejects mismatched inputs and bad parameters", "[aaf][filter]") {
+    FlatScene scene(8, 8, 1.0f);
+    AafParams bad;
+    bad.alpha = 1.5f;
+    CHECK_THROWS_AS(scene.run(bad), Error);
+    AafInputs in = scene.inputs();
+    in.d1.width = 7;
+    std::vector<float> out(64);
+    CHECK_THROWS_WITH(aaf_filter(in, scene.light, AafParams{}, {plane_view(out.data(), 8, 8), {}}),
+                      Catch::Contains("d1"));
+}

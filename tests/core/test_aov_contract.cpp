@@ -1,0 +1,57 @@
+#include <catch2/catch.hpp>
+
+#include <set>
+
+#include "aaf/core/aov_contract.h"
+#include "aaf/core/error.h"
+
+using namespace aaf;
+
+TEST_CASE("Role table has unique keys and channel names", "[contract]") {
+    std::set<std::string> keys, channels;
+    for (const RoleInfo &info : role_table()) {
+        CHECK(keys.insert(info.key).second);
+        for (const std::string &name : info.channels) CHECK(channels.insert(name).second);
+    }
+}
+
+TEST_CASE("Channel overrides accept layers, lists, and reject bad specs", "[contract]") {
+    ChannelMap map;
+    CHECK(map.channel(Role::Visibility) == "shadow.V");
+    map.set_override("position=Pw");
+    CHECK(map.channels(Role::Position) == std::vector<std::string>{"Pw.X", "Pw.Y", "Pw.Z"});
+    map.set_override("normal=n.x,n.y,n.z");
+    CHECK(map.channels(Role::Normal) == std::vector<std::string>{"n.x", "n.y", "n.z"});
+    map.set_override("beauty=rgb");
+    CHECK(map.channels(Role::Beauty) == std::vector<std::string>{"rgb.R", "rgb.G", "rgb.B"});
+    map.set_override("d1=dist.light");
+    CHECK(map.channel(Role::D1) == "dist.light");
+
+    CHECK_THROWS_WITH(map.set_override("nonsense=x"), Catch::Contains("unknown role 'nonsense'"));
+    CHECK_THROWS_AS(map.set_override("position=a,b"), Error);
+    CHECK_THROWS_AS(map.set_override("d1="), Error);
+    CHECK_THROWS_AS(map.set_override("d1"), Error);
+}
+
+TEST_CASE("Light attributes round-trip and missing ones are named", "[contract]") {
+    AovSet aovs(2, 2);
+    LightPlane light = LightPlane::square({1, 4, 2}, {0, -1, 0}, 0.8f);
+    light.profile = LightProfile::Uniform;
+    write_light_attributes(light, aovs);
+    const LightPlane back = read_light_attributes(aovs);
+    CHECK(back.center.y == light.center.y);
+    CHECK(back.sigma_m == light.sigma_m);
+    CHECK(back.profile == LightProfile::Uniform);
+    aovs.attributes.erase(attr::kLightSigma);
+    CHECK_THROWS_WITH(read_light_attributes(aovs), Catch::Contains(attr::kLightSigma));
+}
+
+TEST_CASE("Missing method inputs are reported by role", "[contract]") {
+    AovSet aovs(2, 2);
+    const ChannelMap map;
+    const MethodInputs &aaf_method = method_table().front();
+    CHECK(map.missing_inputs(aaf_method, aovs).size() == aaf_method.required.size());
+    for (Role role : aaf_method.required)
+        for (const std::string &name : map.channels(role)) aovs.add_channel(name);
+    CHECK(map.missing_inputs(aaf_method, aovs).empty());
+}
