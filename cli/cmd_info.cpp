@@ -1,6 +1,7 @@
 #include <algorithm>
 #include <cstdio>
 #include <memory>
+#include <numeric>
 #include <string>
 #include <vector>
 
@@ -42,7 +43,8 @@ void add_info_command(CLI::App &app) {
         for (std::size_t c = 0; c < aovs.channel_names().size(); ++c) {
             const std::vector<float> &plane = aovs.plane(c);
             auto [lo, hi] = std::minmax_element(plane.begin(), plane.end());
-            std::printf("  %-20s min %-12g max %g\n", aovs.channel_names()[c].c_str(), *lo, *hi);
+            const double mean = std::accumulate(plane.begin(), plane.end(), 0.0) / double(plane.size());
+            std::printf("  %-20s min %-12g max %-12g mean %g\n", aovs.channel_names()[c].c_str(), *lo, *hi, mean);
         }
         std::printf("attributes:\n");
         for (const auto &[name, value] : aovs.attributes)

@@ -6,6 +6,7 @@
 
 #include "aaf/core/aaf_bandlimits.h"
 #include "aaf/core/error.h"
+#include "aaf/core/occluder_fill.h"
 #include "aaf/core/parallel.h"
 
 namespace aaf {
@@ -15,8 +16,6 @@ namespace {
 constexpr float kPi = 3.14159265358979323846f;
 /// The Gaussian is cut where its weight falls below exp(-4.5), at 3 beta.
 constexpr float kCutoffSigmas = 3.0f;
-
-bool has_occluder(float d2_max) { return d2_max > 0 && std::isfinite(d2_max); }
 
 Vec3 read3(const std::array<ConstPlaneView, 3> &planes, int x, int y) {
     return {planes[0](x, y), planes[1](x, y), planes[2](x, y)};
@@ -38,34 +37,6 @@ struct PixelFrame {
 
     std::size_t index(int x, int y) const { return std::size_t(y) * width + x; }
 };
-
-/// Occluder distances of one pixel, borrowed from occluded neighbours of the
-/// same object when the pixel's own shadow rays hit nothing (AAF Sec. 6).
-/// d1 is known everywhere, so only d2 is borrowed. Returns false when no
-/// occluded neighbour lies within the radius (the pixel is then not filtered).
-bool occluder_distances(const AafInputs &in, const PixelFrame &frame, int x, int y,
-                        int fill_radius_px, float &d2_min, float &d2_max) {
-    d2_min = in.d2_min(x, y);
-    d2_max = in.d2_max(x, y);
-    if (has_occluder(d2_max)) return true;
-    const float id = frame.object_id[frame.index(x, y)];
-    double sum_min = 0, sum_max = 0;
-    int count = 0;
-    const int r = fill_radius_px;
-    for (int ny = std::max(0, y - r); ny <= std::min(frame.height - 1, y + r); ++ny)
-        for (int nx = std::max(0, x - r); nx <= std::min(frame.width - 1, x + r); ++nx) {
-            if ((nx - x) * (nx - x) + (ny - y) * (ny - y) > r * r) continue;
-            if (frame.object_id[frame.index(nx, ny)] != id || !has_occluder(in.d2_max(nx, ny)))
-                continue;
-            sum_min += in.d2_min(nx, ny);
-            sum_max += in.d2_max(nx, ny);
-            ++count;
-        }
-    if (count == 0) return false;
-    d2_min = float(sum_min / count);
-    d2_max = float(sum_max / count);
-    return true;
-}
 
 PixelFrame build_frame(const AafInputs &in, const LightPlane &light, const AafParams &params) {
     PixelFrame frame;
@@ -89,6 +60,10 @@ PixelFrame build_frame(const AafInputs &in, const LightPlane &light, const AafPa
         }
     });
 
+    // AAF Sec. 6: unoccluded pixels take the occluder distances of their neighbours.
+    const FilledOccluders occluders =
+        fill_occluder_distances(in.d2_min, in.d2_max, in.object_id, params.fill_radius_px);
+
     parallel_for_rows(frame.height, [&](int y) {
         for (int x = 0; x < frame.width; ++x) {
             const std::size_t i = frame.index(x, y);
@@ -96,8 +71,8 @@ PixelFrame build_frame(const AafInputs &in, const LightPlane &light, const AafPa
             const float pixel_size = in.pixel_size(x, y);
             if (frame.object_id[i] == 0 || !(d1 > 0) || !(pixel_size > 0) || !std::isfinite(pixel_size))
                 continue;
-            float d2_min, d2_max;
-            if (!occluder_distances(in, frame, x, y, params.fill_radius_px, d2_min, d2_max)) continue;
+            const float d2_min = occluders.d2_min_m[i], d2_max = occluders.d2_max_m[i];
+            if (!has_occluder(d2_max)) continue;
             const float beta = aaf_bandlimits(d1, d2_min, d2_max, pixel_size, light.sigma_m, params).beta_m;
             if (!(beta > 0) || !std::isfinite(beta)) continue;
             // beta is in world metres; the pixel radius follows from the pixel's footprint.

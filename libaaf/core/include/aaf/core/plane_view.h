@@ -1,6 +1,7 @@
 #pragma once
 
 #include <cstddef>
+#include <type_traits>
 
 namespace aaf {
 
@@ -14,6 +15,14 @@ struct BasicPlaneView {
     int height = 0;
     std::ptrdiff_t pixel_stride = 1;
     std::ptrdiff_t row_stride = 0;
+
+    BasicPlaneView() = default;
+    BasicPlaneView(T *data_, int width_, int height_, std::ptrdiff_t pixel_stride_, std::ptrdiff_t row_stride_)
+        : data(data_), width(width_), height(height_), pixel_stride(pixel_stride_), row_stride(row_stride_) {}
+    /// A mutable view converts to a read-only one.
+    template <typename U, typename = std::enable_if_t<std::is_same_v<T, const U>>>
+    BasicPlaneView(const BasicPlaneView<U> &other)
+        : BasicPlaneView(other.data, other.width, other.height, other.pixel_stride, other.row_stride) {}
 
     bool valid() const { return data != nullptr; }
     T &operator()(int x, int y) const { return data[y * row_stride + x * pixel_stride]; }

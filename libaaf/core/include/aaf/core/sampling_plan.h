@@ -1,0 +1,33 @@
+#pragma once
+
+#include "aaf/core/aaf_params.h"
+#include "aaf/core/plane_view.h"
+
+namespace aaf {
+
+/// First-pass AOVs the sampling plan reads (see aov_contract.h), one size.
+struct SamplingPlanInputs {
+    ConstPlaneView d1;
+    ConstPlaneView d2_min;
+    ConstPlaneView d2_max;
+    ConstPlaneView object_id;
+    ConstPlaneView pixel_size;
+};
+
+struct SamplingPlanParams {
+    int first_pass_spp = 9;  ///< samples already taken everywhere (AAF Sec. 6: 9, stratified)
+    int max_spp = 100;       ///< cap on the total per pixel
+};
+
+/// AAF's adaptive sampling rate (Sec. 5.1, 6): for every pixel the total
+/// light samples n of Eq. 15 (packing (a) of Fig. 4, A_p = pixel_size^2,
+/// A_l = (2 sigma)^2; Eq. 21 when nothing clips), rounded up and clamped to
+/// [first_pass_spp, max_spp]. Unoccluded pixels first borrow occluder
+/// distances within `aaf.fill_radius_px` (Sec. 6); with none, or on the
+/// background, n = first_pass_spp. Uses aaf.mu and aaf.alpha. Writes totals
+/// (not the remainder) into `spp_out`. Runs on the current oneTBB arena.
+/// Throws aaf::Error on mismatched sizes or bad parameters.
+void plan_samples(const SamplingPlanInputs &inputs, float light_sigma_m, const AafParams &aaf,
+                  const SamplingPlanParams &params, PlaneView spp_out);
+
+}  // namespace aaf

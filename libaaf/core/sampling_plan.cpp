@@ -1,0 +1,45 @@
+#include "aaf/core/sampling_plan.h"
+
+#include <algorithm>
+#include <cmath>
+#include <string>
+
+#include "aaf/core/aaf_bandlimits.h"
+#include "aaf/core/error.h"
+#include "aaf/core/occluder_fill.h"
+#include "aaf/core/parallel.h"
+
+namespace aaf {
+
+void plan_samples(const SamplingPlanInputs &in, float light_sigma_m, const AafParams &aaf,
+                  const SamplingPlanParams &params, PlaneView spp_out) {
+    aaf.validate();
+    if (params.first_pass_spp < 1 || params.max_spp < params.first_pass_spp)
+        throw Error("sampling plan needs 1 <= first-pass spp <= max spp");
+    if (!(light_sigma_m > 0)) throw Error("sampling plan needs a positive light sigma");
+    const int width = in.d1.width, height = in.d1.height;
+    for (ConstPlaneView view : {in.d2_min, in.d2_max, in.object_id, in.pixel_size, ConstPlaneView(spp_out)})
+        if (!view.valid() || view.width != width || view.height != height)
+            throw Error("sampling plan inputs and output must all be " + std::to_string(width) + "x" +
+                        std::to_string(height));
+
+    const FilledOccluders occluders = fill_occluder_distances(in.d2_min, in.d2_max, in.object_id, aaf.fill_radius_px);
+    parallel_for_rows(height, [&](int y) {
+        for (int x = 0; x < width; ++x) {
+            const std::size_t i = std::size_t(y) * width + x;
+            const float d1 = in.d1(x, y), pixel_size = in.pixel_size(x, y);
+            float n = float(params.first_pass_spp);
+            if (in.object_id(x, y) != 0 && d1 > 0 && pixel_size > 0 && std::isfinite(pixel_size) &&
+                has_occluder(occluders.d2_max_m[i])) {
+                const float rate = aaf_bandlimits(d1, occluders.d2_min_m[i], occluders.d2_max_m[i], pixel_size,
+                                                  light_sigma_m, aaf)
+                                       .samples_per_pixel;
+                if (std::isfinite(rate)) n = std::ceil(rate);
+                else n = float(params.max_spp);
+            }
+            spp_out(x, y) = std::clamp(n, float(params.first_pass_spp), float(params.max_spp));
+        }
+    });
+}
+
+}  // namespace aaf

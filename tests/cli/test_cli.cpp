@@ -1,0 +1,101 @@
+#include <catch2/catch.hpp>
+
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <sys/wait.h>
+
+#include "aaf/io/exr_io.h"
+
+namespace fs = std::filesystem;
+
+namespace {
+
+struct RunResult {
+    int exit_code;
+    std::string output;  // stdout and stderr
+};
+
+/// Runs the aaf executable with `args` (a shell-quoted string).
+RunResult run_aaf(const std::string &args) {
+    const fs::path log = fs::path(AAF_TEST_BINARY_DIR) / "scratch" / "cli_output.txt";
+    fs::create_directories(log.parent_path());
+    const std::string command = std::string(AAF_EXECUTABLE) + " " + args + " >" + log.string() + " 2>&1";
+    const int status = std::system(command.c_str());
+    std::stringstream text;
+    text << std::ifstream(log).rdbuf();
+    return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, text.str()};
+}
+
+fs::path scratch_dir(const std::string &name) {
+    fs::path dir = fs::path(AAF_TEST_BINARY_DIR) / "scratch" / name;
+    fs::remove_all(dir);
+    fs::create_directories(dir);
+    return dir;
+}
+
+}  // namespace
+
+TEST_CASE("CLI: render, info, filter and compare chain together", "[cli]") {
+    const fs::path dir = scratch_dir("cli_chain");
+    const std::string noisy = (dir / "noisy.exr").string(), out = (dir / "filtered.exr").string();
+    REQUIRE(run_aaf("render grids -o " + noisy + " --width 32 --height 24 --spp 4").exit_code == 0);
+
+    const RunResult info = run_aaf("info " + noisy);
+    CHECK(info.exit_code == 0);
+    CHECK_THAT(info.output, Catch::Contains("aaf:light:sigma_m") && Catch::Contains("aaf      ready"));
+
+    REQUIRE(run_aaf("filter aaf " + noisy + " -o " + out).exit_code == 0);
+    const aaf::AovSet filtered = aaf::io::read_aovs(out);
+    for (const char *name : {"R", "noisy.R", "aaf.V", "aaf.beta", "shadow.d2max", "P.X", "pixel.spp"})
+        CHECK(filtered.has_channel(name));
+
+    const RunResult same = run_aaf("compare " + noisy + " " + noisy + " --json");
+    CHECK(same.exit_code == 0);
+    CHECK_THAT(same.output, Catch::Contains("\"rmse\":0.0"));
+    const RunResult differ = run_aaf("compare " + out + " " + noisy + " --channels shadow.V");
+    CHECK(differ.exit_code == 0);
+    CHECK_THAT(differ.output, Catch::Contains("RMSE"));
+}
+
+TEST_CASE("CLI: bad input is one clear line, exit 1, no output written", "[cli]") {
+    const fs::path dir = scratch_dir("cli_errors");
+    const std::string missing = (dir / "missing.exr").string(), out = (dir / "out.exr").string();
+
+    RunResult r = run_aaf("filter aaf " + missing + " -o " + out);
+    CHECK(r.exit_code == 1);
+    CHECK_THAT(r.output, Catch::StartsWith("aaf: error: ") && Catch::Contains("missing.exr"));
+    CHECK(!fs::exists(out));
+
+    // An EXR without the AAF AOVs: the missing role and the file are named.
+    const std::string plain = (dir / "plain.exr").string();
+    aaf::AovSet aovs(4, 4);
+    aovs.add_channel("R");
+    aaf::io::write_aovs(aovs, plain);
+    r = run_aaf("filter aaf " + plain + " -o " + out);
+    CHECK(r.exit_code == 1);
+    CHECK_THAT(r.output, Catch::Contains("plain.exr") && Catch::Contains("shadow.V"));
+    CHECK(!fs::exists(out));
+
+    // Mismatched sizes in compare.
+    const std::string small = (dir / "small.exr").string();
+    aaf::AovSet tiny(2, 2);
+    tiny.add_channel("R");
+    aaf::io::write_aovs(tiny, small);
+    r = run_aaf("compare " + small + " " + plain + " --channels R");
+    CHECK(r.exit_code == 1);
+    CHECK_THAT(r.output, Catch::Contains("sizes differ"));
+
+    // The input is never overwritten.
+    r = run_aaf("filter aaf " + plain + " -o " + plain);
+    CHECK(r.exit_code == 1);
+    CHECK(aaf::io::read_aovs(plain).has_channel("R"));
+}
+
+TEST_CASE("CLI: usage errors exit 2", "[cli]") {
+    CHECK(run_aaf("filter aaf").exit_code == 2);
+    CHECK(run_aaf("render grids --spp notanumber -o x.exr").exit_code == 2);
+    CHECK(run_aaf("frobnicate").exit_code == 2);
+    CHECK(run_aaf("--help").exit_code == 0);
+}

@@ -1,0 +1,111 @@
+#include <catch2/catch.hpp>
+
+#include <filesystem>
+#include <fstream>
+
+#include "aaf/core/error.h"
+#include "aaf/io/exr_io.h"
+#include "aaf/io/preview.h"
+
+using namespace aaf;
+namespace fs = std::filesystem;
+
+namespace {
+
+/// A fresh, empty directory under the test build tree.
+fs::path scratch_dir(const std::string &name) {
+    fs::path dir = fs::path(AAF_TEST_BINARY_DIR) / "scratch" / name;
+    fs::remove_all(dir);
+    fs::create_directories(dir);
+    return dir;
+}
+
+std::size_t file_count(const fs::path &dir) {
+    return std::size_t(std::distance(fs::directory_iterator(dir), fs::directory_iterator()));
+}
+
+}  // namespace
+
+TEST_CASE("EXR round-trip keeps every channel bit-exact and the attributes", "[io]") {
+    const fs::path dir = scratch_dir("roundtrip");
+    AovSet aovs(5, 3);
+    PlaneView a = aovs.add_channel("shadow.V");
+    PlaneView b = aovs.add_channel("P.X");
+    for (int y = 0; y < 3; ++y)
+        for (int x = 0; x < 5; ++x) {
+            a(x, y) = 0.1f * x + 0.01f * y;
+            b(x, y) = -1e-7f * (x + 1) * (y + 3);
+        }
+    aovs.add_channel("R", 0.25f);
+    aovs.attributes["aaf:light:center"] = Vec3{1.5f, -2.0f, 3.25f};
+    aovs.attributes["aaf:light:sigma_m"] = 0.5f;
+    aovs.attributes["aaf:seed"] = 42;
+    aovs.attributes["aaf:light:kind"] = std::string("gaussian");
+
+    const std::string path = (dir / "aovs.exr").string();
+    io::write_aovs(aovs, path);
+    CHECK(file_count(dir) == 1);  // no temporary left behind
+    const AovSet back = io::read_aovs(path);
+    REQUIRE(back.width() == 5);
+    REQUIRE(back.height() == 3);
+    for (const std::string &name : aovs.channel_names()) {
+        REQUIRE(back.has_channel(name));
+        for (int y = 0; y < 3; ++y)
+            for (int x = 0; x < 5; ++x) CHECK(back.channel(name)(x, y) == aovs.channel(name)(x, y));
+    }
+    const Vec3 centre = std::get<Vec3>(back.attributes.at("aaf:light:center"));
+    CHECK(centre.x == 1.5f);
+    CHECK(centre.z == 3.25f);
+    CHECK(std::get<float>(back.attributes.at("aaf:light:sigma_m")) == 0.5f);
+    CHECK(std::get<int>(back.attributes.at("aaf:seed")) == 42);
+    CHECK(std::get<std::string>(back.attributes.at("aaf:light:kind")) == "gaussian");
+}
+
+TEST_CASE("Unreadable inputs give an error naming the file", "[io]") {
+    const fs::path dir = scratch_dir("bad_input");
+    CHECK_THROWS_WITH(io::read_aovs((dir / "missing.exr").string()), Catch::Contains("missing.exr"));
+    const fs::path garbage = dir / "garbage.exr";
+    std::ofstream(garbage) << "not an image";
+    CHECK_THROWS_WITH(io::read_aovs(garbage.string()), Catch::Contains("garbage.exr"));
+}
+
+TEST_CASE("A failed write leaves nothing behind and names the file", "[io]") {
+    const fs::path dir = scratch_dir("bad_output");
+    AovSet aovs(2, 2);
+    aovs.add_channel("R");
+    const std::string path = (dir / "no_such_dir" / "out.exr").string();
+    CHECK_THROWS_WITH(io::write_aovs(aovs, path), Catch::Contains("out.exr"));
+    CHECK(file_count(dir) == 0);
+}
+
+TEST_CASE("Rewriting an existing file replaces it whole", "[io]") {
+    const fs::path dir = scratch_dir("replace");
+    const std::string path = (dir / "img.exr").string();
+    AovSet first(4, 4), second(2, 2);
+    first.add_channel("R", 1.0f);
+    second.add_channel("G", 2.0f);
+    io::write_aovs(first, path);
+    io::write_aovs(second, path);
+    const AovSet back = io::read_aovs(path);
+    CHECK(back.width() == 2);
+    CHECK(!back.has_channel("R"));
+    CHECK(back.channel("G")(1, 1) == 2.0f);
+    CHECK(file_count(dir) == 1);
+}
+
+TEST_CASE("PNG preview encodes linear values with the sRGB curve", "[io][preview]") {
+    const fs::path dir = scratch_dir("preview");
+    AovSet aovs(3, 1);
+    PlaneView grey = aovs.add_channel("V");
+    grey(0, 0) = 0.0f;
+    grey(1, 0) = 0.2140f;  // sRGB encodes 0.214 as ~0.5 (127.5 / 255)
+    grey(2, 0) = 4.0f;     // clipped to white
+    const std::string path = (dir / "v.png").string();
+    io::write_preview_png(aovs, {"V"}, path);
+    const AovSet back = io::read_aovs(path);
+    REQUIRE(back.has_channel("R"));
+    CHECK(back.channel("R")(0, 0) == 0.0f);
+    CHECK(back.channel("G")(1, 0) == Approx(0.5f).margin(1.5f / 255));
+    CHECK(back.channel("B")(2, 0) == 1.0f);
+    CHECK_THROWS_WITH(io::write_preview_png(aovs, {"nope"}, path), Catch::Contains("nope"));
+}
