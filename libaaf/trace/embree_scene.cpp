@@ -1,0 +1,97 @@
+#include "embree_scene.h"
+
+#include <cstring>
+#include <limits>
+#include <string>
+
+#include "aaf/core/error.h"
+
+namespace aaf::trace {
+
+namespace {
+
+const char *embree_error_name(RTCError code) {
+    switch (code) {
+        case RTC_ERROR_NONE: return "no error";
+        case RTC_ERROR_INVALID_ARGUMENT: return "invalid argument";
+        case RTC_ERROR_INVALID_OPERATION: return "invalid operation";
+        case RTC_ERROR_OUT_OF_MEMORY: return "out of memory";
+        case RTC_ERROR_UNSUPPORTED_CPU: return "unsupported CPU";
+        case RTC_ERROR_CANCELLED: return "cancelled";
+        default: return "unknown error";
+    }
+}
+
+void check_device(RTCDevice device, const char *what) {
+    const RTCError code = rtcGetDeviceError(device);
+    if (code != RTC_ERROR_NONE) throw Error(std::string("Embree: ") + what + ": " + embree_error_name(code));
+}
+
+}  // namespace
+
+EmbreeScene::EmbreeScene(const SceneDescription &description) {
+    device_ = rtcNewDevice(nullptr);
+    if (!device_) throw Error("Embree: cannot create a device");
+    try {
+        scene_ = rtcNewScene(device_);
+        for (const Mesh &mesh : description.meshes) {
+            RTCGeometry geometry = rtcNewGeometry(device_, RTC_GEOMETRY_TYPE_TRIANGLE);
+            auto *vertices = static_cast<float *>(rtcSetNewGeometryBuffer(
+                geometry, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3, 3 * sizeof(float), mesh.positions.size()));
+            auto *indices = static_cast<unsigned *>(rtcSetNewGeometryBuffer(
+                geometry, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3, 3 * sizeof(unsigned), mesh.indices.size() / 3));
+            check_device(device_, "allocating geometry buffers");
+            for (std::size_t i = 0; i < mesh.positions.size(); ++i) {
+                vertices[3 * i + 0] = mesh.positions[i].x;
+                vertices[3 * i + 1] = mesh.positions[i].y;
+                vertices[3 * i + 2] = mesh.positions[i].z;
+            }
+            std::memcpy(indices, mesh.indices.data(), mesh.indices.size() * sizeof(unsigned));
+            rtcCommitGeometry(geometry);
+            rtcAttachGeometry(scene_, geometry);  // geometry ids follow mesh order
+            rtcReleaseGeometry(geometry);
+        }
+        rtcCommitScene(scene_);
+        check_device(device_, "building the BVH");
+    } catch (...) {
+        if (scene_) rtcReleaseScene(scene_);
+        rtcReleaseDevice(device_);
+        throw;
+    }
+}
+
+EmbreeScene::~EmbreeScene() {
+    rtcReleaseScene(scene_);
+    rtcReleaseDevice(device_);
+}
+
+Hit EmbreeScene::intersect(Vec3 origin, Vec3 direction, float t_near, float t_far) const {
+    RTCIntersectContext context;
+    rtcInitIntersectContext(&context);
+    RTCRayHit query;
+    query.ray.org_x = origin.x;
+    query.ray.org_y = origin.y;
+    query.ray.org_z = origin.z;
+    query.ray.dir_x = direction.x;
+    query.ray.dir_y = direction.y;
+    query.ray.dir_z = direction.z;
+    query.ray.tnear = t_near;
+    query.ray.tfar = t_far;
+    query.ray.time = 0;
+    query.ray.mask = std::numeric_limits<unsigned>::max();
+    query.ray.id = 0;
+    query.ray.flags = 0;
+    query.hit.geomID = RTC_INVALID_GEOMETRY_ID;
+    query.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
+    rtcIntersect1(scene_, &context, &query);
+
+    Hit hit;
+    if (query.hit.geomID == RTC_INVALID_GEOMETRY_ID) return hit;
+    hit.found = true;
+    hit.distance = query.ray.tfar;
+    hit.geometric_normal = {query.hit.Ng_x, query.hit.Ng_y, query.hit.Ng_z};
+    hit.mesh_index = query.hit.geomID;
+    return hit;
+}
+
+}  // namespace aaf::trace

@@ -1,0 +1,34 @@
+#pragma once
+
+#include <embree3/rtcore.h>
+
+#include "scene_description.h"
+
+namespace aaf::trace {
+
+/// The closest hit of a ray, or none.
+struct Hit {
+    bool found = false;
+    float distance = 0;   ///< along the (unnormalised) ray direction, in units of its length
+    Vec3 geometric_normal;  ///< unnormalised, as Embree reports it
+    unsigned mesh_index = 0;
+};
+
+/// The scene's meshes in an Embree 3 BVH (owns the device and the scene).
+/// Thread-safe for concurrent `intersect` calls once built.
+class EmbreeScene {
+  public:
+    explicit EmbreeScene(const SceneDescription &scene);
+    ~EmbreeScene();
+    EmbreeScene(const EmbreeScene &) = delete;
+    EmbreeScene &operator=(const EmbreeScene &) = delete;
+
+    /// Closest hit of origin + t direction for t in [t_near, t_far].
+    Hit intersect(Vec3 origin, Vec3 direction, float t_near, float t_far) const;
+
+  private:
+    RTCDevice device_ = nullptr;
+    RTCScene scene_ = nullptr;
+};
+
+}  // namespace aaf::trace
