@@ -73,8 +73,10 @@ TEST_CASE("Render writes every AAF AOV with consistent values", "[trace]") {
 }
 
 TEST_CASE("Pixel size on the ground matches the pinhole camera's footprint", "[trace]") {
-    // Camera: eye (0, 4.2, 5.2), 45 degree vertical field of view, 480 rows. At a ground
-    // point P the footprint is (pixel angle * distance)^2 / cos(incidence) in area.
+    // Camera: eye (0, 4.2, 5.2) looking at (0, 0.2, 0), 45 degree vertical field of view, 480 rows.
+    // A pixel spans s = 2 tan(22.5 deg) / 480 at unit depth; seen at angle theta off the axis it
+    // subtends a solid angle s^2 cos^3(theta), which lands on the ground at distance r with
+    // incidence cosine cos_i as an area s^2 cos^3(theta) r^2 / cos_i; d is its square root.
     trace::RenderSettings settings;
     settings.width = 640;
     settings.height = 480;
@@ -86,14 +88,11 @@ TEST_CASE("Pixel size on the ground matches the pinhole camera's footprint", "[t
     const Vec3 p{aovs.channel("P.X")(x, y), aovs.channel("P.Y")(x, y), aovs.channel("P.Z")(x, y)};
     const Vec3 forward = normalize(Vec3{0, 0.2f, 0} - eye);
     const Vec3 to_p = p - eye;
-    const float distance = length(to_p);
-    // Raster-space pixel spacing on the image plane at unit depth, projected at this ray's depth.
-    const float pixel_at_unit_depth = 2.0f * std::tan(22.5f * 3.14159265f / 180.0f) / 480.0f;
-    const float depth = dot(to_p, forward);
-    const float cos_off_axis = depth / distance;
-    const float across = pixel_at_unit_depth * depth / cos_off_axis;       // perpendicular to the ray
-    const float cos_incidence = std::fabs(to_p.y) / distance;
-    const float expected = std::sqrt(across * across * cos_off_axis / cos_incidence);
+    const float r = length(to_p);
+    const float s = 2.0f * std::tan(22.5f * 3.14159265f / 180.0f) / 480.0f;
+    const float cos_theta = dot(to_p, forward) / r;
+    const float cos_incidence = std::fabs(to_p.y) / r;
+    const float expected = std::sqrt(s * s * cos_theta * cos_theta * cos_theta * r * r / cos_incidence);
     CHECK(aovs.channel("pixel.size")(x, y) == Approx(expected).epsilon(0.03));
 }
 
