@@ -26,6 +26,11 @@ std::string format_attribute(const AttributeValue &value) {
     return buffer;
 }
 
+std::size_t channel_index(const AovSet &aovs, const std::string &name) {
+    const std::vector<std::string> &names = aovs.channel_names();
+    return std::size_t(std::find(names.begin(), names.end(), name) - names.begin());
+}
+
 }  // namespace
 
 void add_info_command(CLI::App &app) {
@@ -46,11 +51,27 @@ void add_info_command(CLI::App &app) {
             const double mean = std::accumulate(plane.begin(), plane.end(), 0.0) / double(plane.size());
             std::printf("  %-20s min %-12g max %-12g mean %g\n", aovs.channel_names()[c].c_str(), *lo, *hi, mean);
         }
+        const ChannelMap channels;
+        const std::string &spp_name = channels.channel(Role::SamplesPerPixel);
+        const std::string &id_name = channels.channel(Role::ObjectId);
+        if (aovs.has_channel(spp_name) && aovs.has_channel(id_name)) {
+            // Background pixels take no shadow samples; the mean that matters is over shaded ones.
+            const std::vector<float> &spp = aovs.plane(channel_index(aovs, spp_name));
+            const std::vector<float> &id = aovs.plane(channel_index(aovs, id_name));
+            double sum = 0;
+            std::size_t shaded = 0;
+            for (std::size_t i = 0; i < spp.size(); ++i)
+                if (id[i] != 0) {
+                    sum += spp[i];
+                    ++shaded;
+                }
+            std::printf("mean spp over shaded pixels: %g (%zu pixels)\n", shaded ? sum / double(shaded) : 0.0,
+                        shaded);
+        }
         std::printf("attributes:\n");
         for (const auto &[name, value] : aovs.attributes)
             std::printf("  %-24s %s\n", name.c_str(), format_attribute(value).c_str());
         std::printf("methods:\n");
-        const ChannelMap channels;
         for (const MethodInputs &method : method_table()) {
             std::vector<Role> missing = channels.missing_inputs(method, aovs);
             std::string line = missing.empty() ? "ready" : "missing";

@@ -32,7 +32,7 @@ t4=$(now)
 rmse_noisy=$("$aaf" compare "$out/grids_noisy.exr" "$reference" | awk '{print $2}')
 rmse_aaf=$("$aaf" compare "$out/grids_aaf.exr" "$reference" | awk '{print $2}')
 t5=$(now)
-avg_spp=$("$aaf" info "$out/grids_noisy.exr" | awk '$1 == "pixel.spp" {print $7}')
+avg_spp=$("$aaf" info "$out/grids_noisy.exr" | awk '/^mean spp over shaded pixels/ {print $6}')
 
 "$aaf" preview "$out/grids_noisy.exr" -o "$out/grids_noisy.png"
 "$aaf" preview "$out/grids_aaf.exr" -o "$out/grids_aaf.png"
