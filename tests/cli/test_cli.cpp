@@ -5,6 +5,7 @@
 #include <fstream>
 #include <sstream>
 #include <sys/wait.h>
+#include <unistd.h>
 
 #include "aaf/io/exr_io.h"
 
@@ -19,7 +20,10 @@ struct RunResult {
 
 /// Runs the aaf executable with `args` (a shell-quoted string).
 RunResult run_aaf(const std::string &args) {
-    const fs::path log = fs::path(AAF_TEST_BINARY_DIR) / "scratch" / "cli_output.txt";
+    // ctest runs test cases as parallel processes: one log per process and call.
+    static int call = 0;
+    const fs::path log = fs::path(AAF_TEST_BINARY_DIR) / "scratch" /
+                         ("cli_output_" + std::to_string(::getpid()) + "_" + std::to_string(call++) + ".txt");
     fs::create_directories(log.parent_path());
     const std::string command = std::string(AAF_EXECUTABLE) + " " + args + " >" + log.string() + " 2>&1";
     const int status = std::system(command.c_str());
