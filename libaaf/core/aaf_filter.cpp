@@ -6,6 +6,7 @@
 
 #include "aaf/core/aaf_bandlimits.h"
 #include "aaf/core/error.h"
+#include "aaf/core/fast_exp.h"
 #include "aaf/core/occluder_fill.h"
 #include "aaf/core/parallel.h"
 
@@ -14,26 +15,25 @@ namespace aaf {
 namespace {
 
 constexpr float kPi = 3.14159265358979323846f;
-/// The Gaussian is cut where its weight falls below exp(-4.5), at 3 beta.
+/// Taps stop at 3 beta, where the Gaussian weight has fallen to exp(-4.5).
 constexpr float kCutoffSigmas = 3.0f;
-
-Vec3 read3(const std::array<ConstPlaneView, 3> &planes, int x, int y) {
-    return {planes[0](x, y), planes[1](x, y), planes[2](x, y)};
-}
 
 void check_size(ConstPlaneView view, int width, int height, const char *what) {
     if (!view.valid() || view.width != width || view.height != height)
         throw Error(std::string("AAF input '") + what + "' is missing or has another size");
 }
 
-/// Per-pixel state shared by the two passes.
+/// Per-pixel state shared by the passes, as planar arrays so the tap loops vectorise.
 struct PixelFrame {
     int width = 0, height = 0;
-    std::vector<Vec3> position;
-    std::vector<Vec3> normal;        // unit, or zero where unusable
+    // Position in the light's plane: coordinates along its two tangent axes, so
+    // du^2 + dv^2 = |x - x'|^2 - [n . (x - x')]^2 (AAF Eq. 12) for the orthonormal frame.
+    std::vector<float> plane_u, plane_v;
+    std::vector<float> normal_x, normal_y, normal_z;  // unit, or zero where unusable
     std::vector<float> object_id;
-    std::vector<float> beta_m;       // 0 = not filtered
-    std::vector<int> radius_px;      // 0 = not filtered
+    std::vector<float> beta_m;               // 0 = not filtered
+    std::vector<float> inv_two_beta_sq;      // 1 / (2 beta^2), metres^-2
+    std::vector<int> radius_px;              // 0 = not filtered
 
     std::size_t index(int x, int y) const { return std::size_t(y) * width + x; }
 };
@@ -43,22 +43,10 @@ PixelFrame build_frame(const AafInputs &in, const LightPlane &light, const AafPa
     frame.width = in.visibility.width;
     frame.height = in.visibility.height;
     const std::size_t count = std::size_t(frame.width) * frame.height;
-    frame.position.resize(count);
-    frame.normal.resize(count);
-    frame.object_id.resize(count);
-    frame.beta_m.assign(count, 0.0f);
+    for (std::vector<float> *plane : {&frame.plane_u, &frame.plane_v, &frame.normal_x, &frame.normal_y,
+                                      &frame.normal_z, &frame.object_id, &frame.beta_m, &frame.inv_two_beta_sq})
+        plane->assign(count, 0.0f);
     frame.radius_px.assign(count, 0);
-
-    parallel_for_rows(frame.height, [&](int y) {
-        for (int x = 0; x < frame.width; ++x) {
-            const std::size_t i = frame.index(x, y);
-            frame.position[i] = read3(in.position, x, y);
-            Vec3 n = read3(in.normal, x, y);
-            float len = length(n);
-            frame.normal[i] = (len > 0 && std::isfinite(len)) ? n / len : Vec3{};
-            frame.object_id[i] = in.object_id(x, y);
-        }
-    });
 
     // AAF Sec. 6: unoccluded pixels take the occluder distances of their neighbours.
     const FilledOccluders occluders =
@@ -67,59 +55,125 @@ PixelFrame build_frame(const AafInputs &in, const LightPlane &light, const AafPa
     parallel_for_rows(frame.height, [&](int y) {
         for (int x = 0; x < frame.width; ++x) {
             const std::size_t i = frame.index(x, y);
-            const float d1 = in.d1(x, y);
-            const float pixel_size = in.pixel_size(x, y);
-            if (frame.object_id[i] == 0 || !(d1 > 0) || !(pixel_size > 0) || !std::isfinite(pixel_size))
-                continue;
+            const Vec3 p{in.position[0](x, y), in.position[1](x, y), in.position[2](x, y)};
+            frame.plane_u[i] = dot(light.axis_u, p - light.center);
+            frame.plane_v[i] = dot(light.axis_v, p - light.center);
+            const Vec3 n{in.normal[0](x, y), in.normal[1](x, y), in.normal[2](x, y)};
+            const float len = length(n);
+            const Vec3 unit = (len > 0 && std::isfinite(len)) ? n / len : Vec3{};
+            frame.normal_x[i] = unit.x;
+            frame.normal_y[i] = unit.y;
+            frame.normal_z[i] = unit.z;
+            frame.object_id[i] = in.object_id(x, y);
+
+            const float d1 = in.d1(x, y), pixel_size = in.pixel_size(x, y);
             const float d2_min = occluders.d2_min_m[i], d2_max = occluders.d2_max_m[i];
-            if (!has_occluder(d2_max)) continue;
+            if (frame.object_id[i] == 0 || !(d1 > 0) || !(pixel_size > 0) || !std::isfinite(pixel_size) ||
+                !has_occluder(d2_max) || !std::isfinite(frame.plane_u[i] + frame.plane_v[i]))
+                continue;
             const float beta = aaf_bandlimits(d1, d2_min, d2_max, pixel_size, light.sigma_m, params).beta_m;
             if (!(beta > 0) || !std::isfinite(beta)) continue;
-            // beta is in world metres; the pixel radius follows from the pixel's footprint.
-            const float radius = std::ceil(kCutoffSigmas * beta / pixel_size);
+            // beta is in world metres; the reach in pixels follows from the pixel's footprint.
+            const float radius = std::min(std::ceil(kCutoffSigmas * beta / pixel_size), float(params.max_radius_px));
             frame.beta_m[i] = beta;
-            frame.radius_px[i] = int(std::min(radius, float(params.max_radius_px)));
+            frame.inv_two_beta_sq[i] = 1.0f / (2.0f * beta * beta);
+            frame.radius_px[i] = int(radius);
         }
     });
     return frame;
 }
 
-/// One 1D pass of the separable filter (AAF Sec. 6): out(x, y) is the
-/// normalised Gaussian average of `source` along the direction (step_x, step_y)
-/// with weight w(x - x'; beta(x)) of Eq. 11, distances from Eq. 12.
-void filter_pass(const PixelFrame &frame, const LightPlane &light, float cos_threshold,
-                 const std::vector<float> &source, int step_x, int step_y, std::vector<float> &out) {
-    parallel_for_rows(frame.height, [&](int y) {
-        for (int x = 0; x < frame.width; ++x) {
-            const std::size_t centre = frame.index(x, y);
-            const int radius = frame.radius_px[centre];
-            if (radius == 0) {
-                out[centre] = source[centre];
-                continue;
-            }
-            const float inv_two_beta_sq = 1.0f / (2.0f * frame.beta_m[centre] * frame.beta_m[centre]);
-            const Vec3 p = frame.position[centre];
-            const Vec3 n = frame.normal[centre];
-            const float id = frame.object_id[centre];
-            // The centre tap is always taken; rejection tests apply to the others only.
-            double weighted_sum = source[centre];
-            double weight_sum = 1.0;
-            for (int offset = -radius; offset <= radius; ++offset) {
-                if (offset == 0) continue;
-                const int tx = x + offset * step_x, ty = y + offset * step_y;
-                if (tx < 0 || ty < 0 || tx >= frame.width || ty >= frame.height) continue;
-                const std::size_t tap = frame.index(tx, ty);
-                if (frame.object_id[tap] != id) continue;
-                // Normals are unit or zero; clamp before comparing so rounding cannot reject.
-                const float cos_angle = std::clamp(dot(n, frame.normal[tap]), -1.0f, 1.0f);
-                if (!(cos_angle >= cos_threshold)) continue;
-                const float dist_sq = light.in_plane_distance_sq(p, frame.position[tap]);  // Eq. 12
-                if (!std::isfinite(dist_sq)) continue;
-                const float weight = std::exp(-dist_sq * inv_two_beta_sq);  // Eq. 11, unnormalised
-                weighted_sum += double(weight) * source[tap];
-                weight_sum += weight;
-            }
-            out[centre] = float(weighted_sum / weight_sum);
+/// The same frame with rows and columns swapped, so a vertical pass runs as a
+/// horizontal one over contiguous memory.
+PixelFrame transposed(const PixelFrame &f) {
+    PixelFrame t;
+    t.width = f.height;
+    t.height = f.width;
+    auto swap_axes = [&](const auto &plane, auto &out) {
+        out.resize(plane.size());
+        for (int y = 0; y < f.height; ++y)
+            for (int x = 0; x < f.width; ++x) out[std::size_t(x) * f.height + y] = plane[f.index(x, y)];
+    };
+    swap_axes(f.plane_u, t.plane_u);
+    swap_axes(f.plane_v, t.plane_v);
+    swap_axes(f.normal_x, t.normal_x);
+    swap_axes(f.normal_y, t.normal_y);
+    swap_axes(f.normal_z, t.normal_z);
+    swap_axes(f.object_id, t.object_id);
+    swap_axes(f.beta_m, t.beta_m);
+    swap_axes(f.inv_two_beta_sq, t.inv_two_beta_sq);
+    swap_axes(f.radius_px, t.radius_px);
+    return t;
+}
+
+std::vector<float> transposed(const std::vector<float> &plane, int width, int height) {
+    std::vector<float> out(plane.size());
+    for (int y = 0; y < height; ++y)
+        for (int x = 0; x < width; ++x) out[std::size_t(x) * height + y] = plane[std::size_t(y) * width + x];
+    return out;
+}
+
+/// Taps accumulated in kLanes interleaved partial sums: a fixed summation
+/// order (so results do not depend on threads or build flags) that the
+/// compiler can still map onto SIMD lanes.
+constexpr int kLanes = 8;
+
+/// Gathers one pixel over the taps at offsets (ox, oy), |ox| <= reach_x,
+/// |oy| <= reach_y: the normalised sum of `source` weighted by the Gaussian of
+/// AAF Eq. 11 (its normalisation cancels) of the light-plane distance of
+/// Eq. 12. A tap counts when it lies on the same object and its normal is
+/// within the threshold. The centre always counts: if its own test fails (a
+/// NaN or zero normal), it is added back with weight 1.
+float gather_pixel(const PixelFrame &f, float cos_threshold, const float *source, int x, int y, int reach_x,
+                   int reach_y) {
+    const std::size_t c = f.index(x, y);
+    const float u = f.plane_u[c], v = f.plane_v[c], id = f.object_id[c];
+    const float nx = f.normal_x[c], ny = f.normal_y[c], nz = f.normal_z[c];
+    const float inv_two_beta_sq = f.inv_two_beta_sq[c];
+    const int x_begin = std::max(0, x - reach_x), x_end = std::min(f.width, x + reach_x + 1);
+    const int y_begin = std::max(0, y - reach_y), y_end = std::min(f.height, y + reach_y + 1);
+
+    float sum[kLanes] = {}, weight_sum[kLanes] = {};
+    auto accumulate = [&](std::size_t t, int lane) {
+        const float cos_angle = nx * f.normal_x[t] + ny * f.normal_y[t] + nz * f.normal_z[t];
+        const float accepted = float(f.object_id[t] == id) * float(cos_angle >= cos_threshold);
+        const float du = f.plane_u[t] - u, dv = f.plane_v[t] - v;
+        const float weight = accepted * fast_exp_nonpositive(-(du * du + dv * dv) * inv_two_beta_sq);  // Eq. 11
+        sum[lane] += weight * source[t];
+        weight_sum[lane] += weight;
+    };
+    for (int ty = y_begin; ty < y_end; ++ty) {
+        const std::size_t row = std::size_t(ty) * f.width;
+        int tx = x_begin;
+        for (; tx + kLanes <= x_end; tx += kLanes)
+            for (int lane = 0; lane < kLanes; ++lane) accumulate(row + tx + lane, lane);
+        for (int lane = 0; tx < x_end; ++tx, ++lane) accumulate(row + tx, lane);
+    }
+    float total = 0, total_weight = 0;
+    for (int lane = 0; lane < kLanes; ++lane) {
+        total += sum[lane];
+        total_weight += weight_sum[lane];
+    }
+    const bool centre_counted = (nx * nx + ny * ny + nz * nz) >= cos_threshold && id == id;
+    if (!centre_counted) {
+        total += source[c];
+        total_weight += 1.0f;
+    }
+    return total / total_weight;
+}
+
+/// One gather over the image along the enabled axes, each pixel within its
+/// own radius. Pixels with radius 0 keep their value. Rows run in parallel;
+/// every pixel's sum has a fixed order, so threads cannot change the result.
+void gather(const PixelFrame &f, float cos_threshold, const std::vector<float> &source, bool along_x,
+            bool along_y, std::vector<float> &out) {
+    parallel_for_rows(f.height, [&](int y) {
+        for (int x = 0; x < f.width; ++x) {
+            const std::size_t c = f.index(x, y);
+            const int radius = f.radius_px[c];
+            out[c] = radius == 0 ? source[c]
+                                 : gather_pixel(f, cos_threshold, source.data(), x, y, along_x ? radius : 0,
+                                                along_y ? radius : 0);
         }
     });
 }
@@ -148,17 +202,28 @@ void aaf_filter(const AafInputs &in, const LightPlane &light, const AafParams &p
         throw Error("AAF output 'beta' has another size");
 
     const PixelFrame frame = build_frame(in, light, params);
+    // Normals are unit, so their dot product is the cosine; no acos is needed.
     const float cos_threshold = std::cos(params.normal_threshold_deg * kPi / 180.0f);
 
-    std::vector<float> visibility(frame.position.size()), vertical(visibility.size()),
-        filtered(visibility.size());
+    // Non-finite visibility (a renderer's NaN) is read as 0, so it cannot spread through the filter.
+    std::vector<float> visibility(std::size_t(width) * height), filtered(visibility.size());
     for (int y = 0; y < height; ++y)
-        for (int x = 0; x < width; ++x) visibility[frame.index(x, y)] = in.visibility(x, y);
+        for (int x = 0; x < width; ++x) {
+            const float v = in.visibility(x, y);
+            visibility[frame.index(x, y)] = std::isfinite(v) ? v : 0.0f;
+        }
 
-    // w(x_ij - x_kl) = w(x_ij - x_kj) w(x_kj - x_kl) (Sec. 6): gather along
-    // columns into (k, j), then along the row into (i, j).
-    filter_pass(frame, light, cos_threshold, visibility, 0, 1, vertical);
-    filter_pass(frame, light, cos_threshold, vertical, 1, 0, filtered);
+    if (params.mode == AafFilterMode::Separable) {
+        // w(x_ij - x_kl) = w(x_ij - x_kj) w(x_kj - x_kl) (Sec. 6): gather along
+        // columns into (k, j), then along the row into (i, j).
+        // The vertical pass runs on the transposed image, over contiguous taps.
+        const PixelFrame frame_t = transposed(frame);
+        std::vector<float> vertical_t(visibility.size());
+        gather(frame_t, cos_threshold, transposed(visibility, width, height), true, false, vertical_t);
+        gather(frame, cos_threshold, transposed(vertical_t, height, width), true, false, filtered);
+    } else {
+        gather(frame, cos_threshold, visibility, true, true, filtered);  // Eq. 10 directly
+    }
 
     for (int y = 0; y < height; ++y)
         for (int x = 0; x < width; ++x) {

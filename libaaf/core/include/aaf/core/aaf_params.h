@@ -2,6 +2,12 @@
 
 namespace aaf {
 
+/// How the spatially varying Gaussian of AAF Eq. 10-12 is evaluated.
+enum class AafFilterMode {
+    Separable,  ///< a vertical then a horizontal 1D pass (Sec. 6); exact where beta is locally constant
+    Exact2D,    ///< the full 2D gather of Eq. 10 over the square window; slower, for measuring Sec. 6's approximation
+};
+
 /// Parameters of Axis-Aligned Filtering (Mehta et al. 2012). The defaults are
 /// the paper's (Sec. 6: k = 3, alpha = 1, mu = 2).
 struct AafParams {
@@ -18,8 +24,10 @@ struct AafParams {
     /// Unoccluded pixels borrow occluder distances from occluded pixels of the
     /// same object within this radius (Sec. 6: 5 pixels); pixels.
     int fill_radius_px = 5;
-    /// The Gaussian is cut at 3 beta; the tap radius is also capped here; pixels.
+    /// Taps stop at 3 beta (weights below exp(-4.5) = 1.1% are dropped), i.e. at
+    /// ceil(3 beta / pixel_size) pixels, and never beyond this bound; pixels.
     int max_radius_px = 64;
+    AafFilterMode mode = AafFilterMode::Separable;
 
     /// Throws aaf::Error naming the first parameter out of range.
     void validate() const;
