@@ -102,6 +102,11 @@ TEST_CASE("Separable AAF equals the brute-force 2D Gaussian when beta is constan
             max_diff = std::max(max_diff, std::abs(sum / weight_sum - separable[scene.index(x, y)]));
         }
     CHECK(max_diff < 2e-6);
+
+    // The library's exact 2D mode agrees as well.
+    params.mode = AafFilterMode::Exact2D;
+    const std::vector<float> exact = scene.run(params);
+    for (std::size_t i = 0; i < exact.size(); ++i) REQUIRE(exact[i] == Approx(separable[i]).margin(2e-6));
 }
 
 TEST_CASE("A fully lit region passes through unchanged", "[aaf][filter]") {
