@@ -1,4 +1,7 @@
+#include <cstdio>
 #include <iostream>
+
+#include "aaf/core/aov_contract.h"
 #include <memory>
 
 #include "aaf/io/exr_io.h"
@@ -13,6 +16,7 @@ void add_render_command(CLI::App &app) {
         std::string output;
         trace::RenderSettings settings;
         bool list = false;
+        std::string light;
     };
     auto options = std::make_shared<Options>();
     CLI::App *cmd = app.add_subcommand("render", "Render a built-in scene to a multi-layer EXR of AOVs");
@@ -25,6 +29,16 @@ void add_render_command(CLI::App &app) {
     cmd->add_option("--seed", options->settings.seed, "Random seed")->capture_default_str();
     cmd->add_option("--threads", options->settings.threads, "Worker threads, 0 = all (output is identical)")
         ->capture_default_str();
+    cmd->add_flag("--adaptive", options->settings.adaptive,
+                  "Two-pass adaptive sampling (AAF Sec. 6): --spp first, then Eq. 21 per pixel");
+    cmd->add_option("--mu", options->settings.adaptive_mu, "mu of the adaptive sampling rate (Eq. 21)")
+        ->capture_default_str();
+    cmd->add_option("--max-spp", options->settings.max_spp, "Cap on the adaptive samples per pixel")
+        ->capture_default_str();
+    cmd->add_option("--light", options->light, "Override the light's profile: gaussian or uniform")
+        ->check(CLI::IsMember({"gaussian", "uniform"}));
+    cmd->add_flag("--falloff", options->settings.cosine_falloff,
+                  "Include the cosine falloff in the light function (AAF Sec. 7)");
     cmd->add_flag("--list", options->list, "List the built-in scenes and exit");
     cmd->callback([options] {
         if (options->list) {
@@ -33,8 +47,24 @@ void add_render_command(CLI::App &app) {
         }
         if (options->scene.empty()) throw CLI::RequiredError("scene");
         if (options->output.empty()) throw CLI::RequiredError("--output");
+        if (!options->light.empty()) options->settings.light_profile = light_profile_from_string(options->light);
         AovSet aovs = trace::render_builtin(options->scene, options->settings);
         io::write_aovs(aovs, options->output);
+        if (options->settings.adaptive) {
+            // Mean spp over shaded pixels: the figure AAF Table 1 reports.
+            const ConstPlaneView spp = aovs.channel(role_info(Role::SamplesPerPixel).channels[0]);
+            const ConstPlaneView id = aovs.channel(role_info(Role::ObjectId).channels[0]);
+            double sum = 0;
+            std::size_t shaded = 0;
+            for (int y = 0; y < aovs.height(); ++y)
+                for (int x = 0; x < aovs.width(); ++x)
+                    if (id(x, y) != 0) {
+                        sum += spp(x, y);
+                        ++shaded;
+                    }
+            std::printf("adaptive sampling: average %.2f spp over %zu shaded pixels\n",
+                        shaded ? sum / double(shaded) : 0.0, shaded);
+        }
     });
 }
 

@@ -4,27 +4,6 @@
 
 namespace aaf::trace {
 
-void Mesh::add_quad(Vec3 a, Vec3 b, Vec3 c, Vec3 d) {
-    const auto base = std::uint32_t(positions.size());
-    positions.insert(positions.end(), {a, b, c, d});
-    indices.insert(indices.end(), {base, base + 1, base + 2, base, base + 2, base + 3});
-}
-
-void Mesh::add_box(Vec3 lo, Vec3 hi, float angle_rad) {
-    const float c = std::cos(angle_rad), s = std::sin(angle_rad);
-    auto corner = [&](int i) {
-        const Vec3 p{(i & 1) ? hi.x : lo.x, (i & 2) ? hi.y : lo.y, (i & 4) ? hi.z : lo.z};
-        return Vec3{c * p.x + s * p.z, p.y, -s * p.x + c * p.z};
-    };
-    // Corner i has x from bit 0, y from bit 1, z from bit 2.
-    add_quad(corner(0), corner(1), corner(3), corner(2));  // z = lo
-    add_quad(corner(4), corner(6), corner(7), corner(5));  // z = hi
-    add_quad(corner(0), corner(2), corner(6), corner(4));  // x = lo
-    add_quad(corner(1), corner(5), corner(7), corner(3));  // x = hi
-    add_quad(corner(0), corner(4), corner(5), corner(1));  // y = lo
-    add_quad(corner(2), corner(3), corner(7), corner(6));  // y = hi
-}
-
 namespace {
 
 /// A square lattice: bars along x and along z crossing at one height.

@@ -60,7 +60,10 @@ inline constexpr const char *kLightSigma = "aaf:light:sigma_m";   // float, prof
 inline constexpr const char *kLightKind = "aaf:light:kind";       // "gaussian" or "uniform"
 inline constexpr const char *kScene = "aaf:scene";                // string
 inline constexpr const char *kSeed = "aaf:seed";                  // int
-inline constexpr const char *kSpp = "aaf:spp";                    // int, requested samples
+inline constexpr const char *kSpp = "aaf:spp";                    // int, (first-pass) samples
+inline constexpr const char *kAdaptiveMu = "aaf:adaptive_mu";     // float, mu of the sampling plan
+inline constexpr const char *kMaxSpp = "aaf:max_spp";             // int, adaptive cap
+inline constexpr const char *kCosineFalloff = "aaf:cosine_falloff";  // int 0/1, falloff in l(y)
 }  // namespace attr
 
 void write_light_attributes(const LightPlane &light, AovSet &aovs);

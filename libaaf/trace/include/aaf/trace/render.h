@@ -1,10 +1,12 @@
 #pragma once
 
 #include <cstdint>
+#include <optional>
 #include <string>
 #include <vector>
 
 #include "aaf/core/aov_set.h"
+#include "aaf/core/light_plane.h"
 
 namespace aaf::trace {
 
@@ -12,12 +14,27 @@ namespace aaf::trace {
 struct RenderSettings {
     int width = 640;
     int height = 480;
-    int spp = 9;             ///< light samples per pixel, stratified over the light
+    /// Light samples per pixel, stratified over the light. With `adaptive`,
+    /// the first pass (AAF Sec. 6 uses 9).
+    int spp = 9;
     std::uint64_t seed = 1;  ///< with pixel index and pass, fixes every random number
     int threads = 0;         ///< 0 = all hardware threads; the result does not depend on it
+
+    /// AAF's two-pass adaptive sampling (Sec. 5.1, 6): after the first pass,
+    /// each pixel gets the total of Eq. 21 (aaf::plan_samples), capped at max_spp.
+    bool adaptive = false;
+    float adaptive_mu = 2.0f;  ///< mu of Eq. 21
+    int max_spp = 100;         ///< cap of the adaptive total per pixel
+
+    /// Overrides the scene light's emission profile (AAF Sec. 7: uniform lights).
+    std::optional<LightProfile> light_profile;
+    /// Includes the cosine falloff in the light function l(y) (AAF Sec. 7):
+    /// shadow samples are weighted by cos(receiver) cos(light) / r^2 relative to
+    /// the light's centre, and r(x) becomes the exact unshadowed irradiance.
+    bool cosine_falloff = false;
 };
 
-/// Names of the built-in procedural scenes (`grids`, ...).
+/// Names of the built-in procedural scenes.
 std::vector<std::string> builtin_scene_names();
 
 /// Renders the built-in scene `scene_name` with Embree and returns every AAF
