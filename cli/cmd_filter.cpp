@@ -5,6 +5,7 @@
 #include "aaf/core/aaf_filter.h"
 #include "aaf/core/error.h"
 #include "aaf/io/exr_io.h"
+#include "channel_options.h"
 #include "commands.h"
 #include "input_guard.h"
 #include "threads.h"
@@ -13,18 +14,13 @@ namespace aaf::cli {
 
 namespace {
 
-ChannelMap channel_map_from(const std::vector<std::string> &specs) {
-    ChannelMap map;
-    for (const std::string &spec : specs) map.set_override(spec);
-    return map;
-}
-
 void add_aaf_method(CLI::App &filter) {
     struct Options {
         std::string input, output;
         AafParams params;
         std::vector<std::string> maps;
         int threads = 0;
+        std::string mode = "separable";
     };
     auto options = std::make_shared<Options>();
     CLI::App *cmd = filter.add_subcommand("aaf", "Axis-Aligned Filtering of soft shadows (Mehta et al. 2012)");
@@ -40,11 +36,16 @@ void add_aaf_method(CLI::App &filter) {
     cmd->add_option("--fill-radius", p.fill_radius_px, "Radius to borrow occluder distances, pixels")
         ->capture_default_str();
     cmd->add_option("--max-radius", p.max_radius_px, "Largest filter radius, pixels")->capture_default_str();
+    cmd->add_option("--filter", options->mode,
+                    "separable: two 1D passes (Sec. 6); 2d: exact 2D gather of Eq. 10, to measure the approximation")
+        ->check(CLI::IsMember({"separable", "2d"}))
+        ->capture_default_str();
     cmd->add_option("--map", options->maps, "Override a channel name: role=channel[,channel...]");
     cmd->add_option("--threads", options->threads, "Worker threads, 0 = all (output is identical)")
         ->capture_default_str();
     cmd->callback([options] {
         const ChannelMap channels = channel_map_from(options->maps);
+        options->params.mode = options->mode == "2d" ? AafFilterMode::Exact2D : AafFilterMode::Separable;
         check_not_same_file(options->input, options->output);
         AovSet input = io::read_aovs(options->input);
         AovSet output;

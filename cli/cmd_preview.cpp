@@ -2,6 +2,7 @@
 #include <string>
 #include <vector>
 
+#include "aaf/core/error.h"
 #include "aaf/io/exr_io.h"
 #include "aaf/io/preview.h"
 #include "commands.h"
@@ -14,6 +15,8 @@ void add_preview_command(CLI::App &app) {
         std::string input, output;
         std::vector<std::string> channels{"R", "G", "B"};
         float exposure = 0;
+        std::vector<float> range;
+        bool false_colour = false;
     };
     auto options = std::make_shared<Options>();
     CLI::App *cmd = app.add_subcommand("preview", "Write an sRGB PNG preview of an EXR's channels");
@@ -23,10 +26,22 @@ void add_preview_command(CLI::App &app) {
         ->delimiter(',')
         ->capture_default_str();
     cmd->add_option("--exposure", options->exposure, "Exposure, stops")->capture_default_str();
+    cmd->add_flag("--false-colour", options->false_colour,
+                  "One channel in false colour, 0 in black (AAF Fig. 7 style for aaf.beta, plan.spp)");
+    cmd->add_option("--range", options->range, "Value range LOW,HIGH of the false colours (default: data range)")
+        ->delimiter(',')
+        ->expected(2);
     cmd->callback([options] {
         check_not_same_file(options->input, options->output);
-        io::write_preview_png(io::read_aovs(options->input), options->channels, options->output,
-                              options->exposure);
+        const AovSet aovs = io::read_aovs(options->input);
+        if (options->false_colour) {
+            if (options->channels.size() != 1) throw Error(options->output + ": --false-colour takes one channel");
+            const float low = options->range.empty() ? 0.0f : options->range[0];
+            const float high = options->range.empty() ? 0.0f : options->range[1];
+            io::write_false_colour_png(aovs, options->channels[0], options->output, low, high);
+            return;
+        }
+        io::write_preview_png(aovs, options->channels, options->output, options->exposure);
     });
 }
 

@@ -9,6 +9,7 @@ int main(int argc, char **argv) {
     app.require_subcommand(1);
     app.set_version_flag("--version", "aaf 0.1.0");
     aaf::cli::add_render_command(app);
+    aaf::cli::add_plan_command(app);
     aaf::cli::add_filter_command(app);
     aaf::cli::add_compare_command(app);
     aaf::cli::add_info_command(app);

@@ -37,6 +37,8 @@ const std::vector<RoleInfo> &role_table() {
          "output of `aaf filter aaf`: filter standard deviation beta (AAF Eq. 13)"},
         {Role::NoisyBeauty, "noisy_beauty", {"noisy.R", "noisy.G", "noisy.B"}, "linear radiance",
          "output of a filter: the input beauty, kept"},
+        {Role::PlannedSpp, "planned_spp", {"plan.spp"}, "samples",
+         "output of `aaf plan`: total light samples per pixel from AAF Eq. 21"},
     };
     return table;
 }

@@ -42,4 +42,25 @@ void plan_samples(const SamplingPlanInputs &in, float light_sigma_m, const AafPa
     });
 }
 
+AovSet plan_samples_aovs(const AovSet &first_pass, const ChannelMap &channels, const AafParams &aaf,
+                         const SamplingPlanParams &params) {
+    for (Role role : {Role::D1, Role::D2Min, Role::D2Max, Role::ObjectId, Role::PixelSize})
+        if (!first_pass.has_channel(channels.channel(role)))
+            throw Error("missing sampling-plan input '" + std::string(role_info(role).key) + "' (channel " +
+                        channels.channel(role) + ")");
+    SamplingPlanInputs inputs;
+    inputs.d1 = first_pass.channel(channels.channel(Role::D1));
+    inputs.d2_min = first_pass.channel(channels.channel(Role::D2Min));
+    inputs.d2_max = first_pass.channel(channels.channel(Role::D2Max));
+    inputs.object_id = first_pass.channel(channels.channel(Role::ObjectId));
+    inputs.pixel_size = first_pass.channel(channels.channel(Role::PixelSize));
+    AovSet plan(first_pass.width(), first_pass.height());
+    plan.attributes = first_pass.attributes;
+    plan.attributes[attr::kAdaptiveMu] = aaf.mu;
+    plan.attributes[attr::kMaxSpp] = params.max_spp;
+    plan_samples(inputs, read_light_attributes(first_pass).sigma_m, aaf, params,
+                 plan.add_channel(channels.channel(Role::PlannedSpp)));
+    return plan;
+}
+
 }  // namespace aaf

@@ -91,26 +91,6 @@ void write_aovs(const std::vector<PrimaryHit> &primaries, const std::vector<Shad
         }
 }
 
-/// AAF Sec. 6: the per-pixel totals from the first pass's distances.
-std::vector<float> plan_second_pass(const AovSet &first_pass, const LightPlane &light,
-                                    const RenderSettings &settings) {
-    const ChannelMap channels;
-    SamplingPlanInputs inputs;
-    inputs.d1 = first_pass.channel(channels.channel(Role::D1));
-    inputs.d2_min = first_pass.channel(channels.channel(Role::D2Min));
-    inputs.d2_max = first_pass.channel(channels.channel(Role::D2Max));
-    inputs.object_id = first_pass.channel(channels.channel(Role::ObjectId));
-    inputs.pixel_size = first_pass.channel(channels.channel(Role::PixelSize));
-    AafParams aaf;
-    aaf.mu = settings.adaptive_mu;
-    SamplingPlanParams params;
-    params.first_pass_spp = settings.spp;
-    params.max_spp = settings.max_spp;
-    std::vector<float> totals(first_pass.pixel_count());
-    plan_samples(inputs, light.sigma_m, aaf, params, plane_view(totals.data(), first_pass.width(), first_pass.height()));
-    return totals;
-}
-
 }  // namespace
 
 AovSet render_builtin(const std::string &scene_name, const RenderSettings &settings) {
@@ -132,12 +112,21 @@ AovSet render_builtin(const std::string &scene_name, const RenderSettings &setti
             if (primaries[i].found) renderer.trace_shadows(primaries[i], i, 0, std::uint32_t(settings.spp), stats[i]);
         });
         if (settings.adaptive) {
+            // AAF Sec. 6: the per-pixel totals from the first pass's distances.
             AovSet first_pass(settings.width, settings.height);
             write_aovs(primaries, stats, scene.light, first_pass);
-            const std::vector<float> totals = plan_second_pass(first_pass, scene.light, settings);
+            write_light_attributes(scene.light, first_pass);
+            AafParams aaf;
+            aaf.mu = settings.adaptive_mu;
+            SamplingPlanParams params;
+            params.first_pass_spp = settings.spp;
+            params.max_spp = settings.max_spp;
+            const ChannelMap channels;
+            const AovSet plan = plan_samples_aovs(first_pass, channels, aaf, params);
+            const ConstPlaneView totals = plan.channel(channels.channel(Role::PlannedSpp));
             for_each_pixel_tiled(settings.width, settings.height, [&](int x, int y) {
                 const std::size_t i = std::size_t(y) * settings.width + x;
-                const auto remaining = std::uint32_t(totals[i]) - std::uint32_t(settings.spp);
+                const auto remaining = std::uint32_t(totals(x, y)) - std::uint32_t(settings.spp);
                 if (primaries[i].found && remaining > 0) renderer.trace_shadows(primaries[i], i, 1, remaining, stats[i]);
             });
         }

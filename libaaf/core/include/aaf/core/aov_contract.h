@@ -26,6 +26,7 @@ enum class Role {
     FilteredVisibility,  ///< output: filtered visibility
     FilterWidth,         ///< output: AAF beta
     NoisyBeauty,         ///< output: the input beauty kept beside the filtered one
+    PlannedSpp,          ///< output of the sampling plan: total samples per pixel (AAF Eq. 21)
 };
 
 struct RoleInfo {

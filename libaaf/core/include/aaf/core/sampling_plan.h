@@ -1,6 +1,7 @@
 #pragma once
 
 #include "aaf/core/aaf_params.h"
+#include "aaf/core/aov_contract.h"
 #include "aaf/core/plane_view.h"
 
 namespace aaf {
@@ -29,5 +30,12 @@ struct SamplingPlanParams {
 /// Throws aaf::Error on mismatched sizes or bad parameters.
 void plan_samples(const SamplingPlanInputs &inputs, float light_sigma_m, const AafParams &aaf,
                   const SamplingPlanParams &params, PlaneView spp_out);
+
+/// The plan for a first-pass AOV set that follows the contract (any
+/// renderer's): returns a set holding the PlannedSpp channel and the input's
+/// attributes. The light's sigma comes from the header. Throws aaf::Error
+/// naming the first missing channel or attribute.
+AovSet plan_samples_aovs(const AovSet &first_pass, const ChannelMap &channels, const AafParams &aaf,
+                         const SamplingPlanParams &params);
 
 }  // namespace aaf

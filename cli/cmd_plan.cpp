@@ -1,0 +1,56 @@
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "aaf/core/error.h"
+#include "aaf/core/sampling_plan.h"
+#include "aaf/io/exr_io.h"
+#include "channel_options.h"
+#include "commands.h"
+#include "input_guard.h"
+#include "threads.h"
+
+namespace aaf::cli {
+
+void add_plan_command(CLI::App &app) {
+    struct Options {
+        std::string input, output;
+        AafParams aaf;
+        SamplingPlanParams plan;
+        std::vector<std::string> maps;
+        int threads = 0;
+    };
+    auto options = std::make_shared<Options>();
+    CLI::App *cmd = app.add_subcommand(
+        "plan", "Per-pixel sample counts (AAF Eq. 21) for a first-pass EXR from any renderer");
+    cmd->add_option("input", options->input, "First-pass EXR with d1, d2min, d2max, object id, pixel size")
+        ->required();
+    cmd->add_option("-o,--output", options->output, "Output EXR with the plan.spp channel")->required();
+    cmd->add_option("--mu", options->aaf.mu, "mu of Eq. 21 (use the filter's)")->capture_default_str();
+    cmd->add_option("--alpha", options->aaf.alpha, "Occluder bandlimit over pixel bandlimit, (0,1] (Eq. 5)")
+        ->capture_default_str();
+    cmd->add_option("--first-pass", options->plan.first_pass_spp, "Samples the first pass took per pixel")
+        ->capture_default_str();
+    cmd->add_option("--max-spp", options->plan.max_spp, "Cap on the total per pixel")->capture_default_str();
+    cmd->add_option("--fill-radius", options->aaf.fill_radius_px, "Radius to borrow occluder distances, pixels")
+        ->capture_default_str();
+    cmd->add_option("--map", options->maps, "Override a channel name: role=channel[,channel...]");
+    cmd->add_option("--threads", options->threads, "Worker threads, 0 = all (output is identical)")
+        ->capture_default_str();
+    cmd->callback([options] {
+        const ChannelMap channels = channel_map_from(options->maps);
+        check_not_same_file(options->input, options->output);
+        const AovSet input = io::read_aovs(options->input);
+        AovSet plan;
+        run_with_threads(options->threads, [&] {
+            try {
+                plan = plan_samples_aovs(input, channels, options->aaf, options->plan);
+            } catch (const Error &e) {
+                throw Error(options->input + ": " + e.what());
+            }
+        });
+        io::write_aovs(plan, options->output);
+    });
+}
+
+}  // namespace aaf::cli
