@@ -28,6 +28,8 @@ void add_aaf_method(CLI::App &filter) {
     cmd->add_option("-o,--output", options->output, "Output EXR")->required();
     AafParams &p = options->params;
     cmd->add_option("--mu", p.mu, "Filter scale for consistency, beta ~ 1/mu (Sec. 5.2)")->capture_default_str();
+    cmd->add_flag("--mu-from-spp", p.mu_from_spp,
+                  "Per pixel, raise mu until Eq. 21's rate equals the samples taken (consistency, Sec. 5.2)");
     cmd->add_option("--k", p.k, "Gaussian spread factor of Eq. 13")->capture_default_str();
     cmd->add_option("--alpha", p.alpha, "Occluder bandlimit over pixel bandlimit, (0,1] (Eq. 5)")
         ->capture_default_str();

@@ -45,4 +45,22 @@ AafBandlimits aaf_bandlimits(float d1_m, float d2_min_m, float d2_max_m, float p
     return b;
 }
 
+float mu_for_samples(float samples, float d1_m, float d2_min_m, float d2_max_m, float pixel_size_m, float sigma_m,
+                     const AafParams &params) {
+    constexpr float kMaxMu = 1e4f;
+    AafParams trial = params;
+    auto rate = [&](float mu) {
+        trial.mu = mu;
+        return aaf_bandlimits(d1_m, d2_min_m, d2_max_m, pixel_size_m, sigma_m, trial).samples_per_pixel;
+    };
+    if (!(rate(params.mu) < samples)) return params.mu;
+    if (rate(kMaxMu) <= samples) return kMaxMu;
+    float low = params.mu, high = kMaxMu;
+    while (high - low > 1e-4f * low) {
+        const float mid = std::sqrt(low * high);  // geometric: mu spans decades
+        (rate(mid) < samples ? low : high) = mid;
+    }
+    return low;
+}
+
 }  // namespace aaf

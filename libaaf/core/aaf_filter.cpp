@@ -71,7 +71,10 @@ PixelFrame build_frame(const AafInputs &in, const LightPlane &light, const AafPa
             if (frame.object_id[i] == 0 || !(d1 > 0) || !(pixel_size > 0) || !std::isfinite(pixel_size) ||
                 !has_occluder(d2_max) || !std::isfinite(frame.plane_u[i] + frame.plane_v[i]))
                 continue;
-            const float beta = aaf_bandlimits(d1, d2_min, d2_max, pixel_size, light.sigma_m, params).beta_m;
+            AafParams pixel_params = params;
+            if (params.mu_from_spp)  // Sec. 5.2: the filter follows the samples actually taken
+                pixel_params.mu = mu_for_samples(in.spp(x, y), d1, d2_min, d2_max, pixel_size, light.sigma_m, params);
+            const float beta = aaf_bandlimits(d1, d2_min, d2_max, pixel_size, light.sigma_m, pixel_params).beta_m;
             if (!(beta > 0) || !std::isfinite(beta)) continue;
             // beta is in world metres; the reach in pixels follows from the pixel's footprint.
             const float radius = std::min(std::ceil(kCutoffSigmas * beta / pixel_size), float(params.max_radius_px));
@@ -195,6 +198,7 @@ void aaf_filter(const AafInputs &in, const LightPlane &light, const AafParams &p
     }
     check_size(in.object_id, width, height, "object_id");
     check_size(in.pixel_size, width, height, "pixel_size");
+    if (params.mu_from_spp) check_size(in.spp, width, height, "spp");
     if (!out.filtered_visibility.valid() || out.filtered_visibility.width != width ||
         out.filtered_visibility.height != height)
         throw Error("AAF output 'filtered visibility' is missing or has another size");

@@ -49,6 +49,11 @@ AovSet aaf_filter_aovs(const AovSet &input, const ChannelMap &channels, const Aa
     in.normal = channels3(input, channels.channels(Role::Normal));
     in.object_id = input.channel(channels.channel(Role::ObjectId));
     in.pixel_size = input.channel(channels.channel(Role::PixelSize));
+    if (params.mu_from_spp) {
+        const std::string &spp = channels.channel(Role::SamplesPerPixel);
+        if (!input.has_channel(spp)) throw Error("mu from spp needs the 'spp' input (channel " + spp + ")");
+        in.spp = input.channel(spp);
+    }
 
     // Outputs replace earlier filter outputs rather than piling up beside them.
     const std::vector<std::string> &beauty = channels.channels(Role::Beauty);

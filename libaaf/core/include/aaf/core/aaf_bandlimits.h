@@ -27,4 +27,11 @@ struct AafBandlimits {
 AafBandlimits aaf_bandlimits(float d1_m, float d2_min_m, float d2_max_m, float pixel_size_m,
                              float sigma_m, const AafParams &params);
 
+/// The mu (>= params.mu) at which the sampling rate of Eq. 15 reaches
+/// `samples`: n grows monotonically with mu, so bisection finds it to 1e-4
+/// relative; returns params.mu when even that rate exceeds `samples`, and at
+/// most 1e4 (a filter far below one pixel).
+float mu_for_samples(float samples, float d1_m, float d2_min_m, float d2_max_m, float pixel_size_m, float sigma_m,
+                     const AafParams &params);
+
 }  // namespace aaf

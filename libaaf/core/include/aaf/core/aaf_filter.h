@@ -20,6 +20,7 @@ struct AafInputs {
     std::array<ConstPlaneView, 3> normal;
     ConstPlaneView object_id;
     ConstPlaneView pixel_size;
+    ConstPlaneView spp;  ///< samples per pixel; read only with AafParams::mu_from_spp
 };
 
 /// Caller-owned outputs, same size as the inputs. `beta_m` may be left empty.

@@ -14,6 +14,11 @@ struct AafParams {
     /// Scale of the critical filter's frequency width, Omega_x^f = mu Omega_x0^f
     /// (Sec. 5.2): beta shrinks as 1/mu, the sampling rate grows with mu.
     float mu = 2.0f;
+    /// Consistency (Sec. 5.2): when set, each pixel's mu is raised to the value
+    /// whose sampling rate (Eq. 15/21) equals the samples the pixel actually
+    /// took, so the filter narrows as samples are added and the result
+    /// converges to the reference; `mu` is then the floor. Needs the spp AOV.
+    bool mu_from_spp = false;
     /// Gaussian energy spread, beta = 1 / (k Omega_x^f) (Eq. 13, footnote 4).
     float k = 3.0f;
     /// Occluder bandlimit relative to the pixel bandlimit, in (0, 1] (Eq. 5).
