@@ -17,6 +17,7 @@ void AafParams::validate() const {
         throw Error("AAF normal threshold must lie in [0, 180] degrees");
     if (fill_radius_px < 0) throw Error("AAF fill radius must be >= 0 pixels");
     if (max_radius_px < 0) throw Error("AAF maximum filter radius must be >= 0 pixels");
+    if (!(fixed_beta_m >= 0)) throw Error("AAF fixed beta must be >= 0 metres");
 }
 
 AafBandlimits aaf_bandlimits(float d1_m, float d2_min_m, float d2_max_m, float pixel_size_m,

@@ -74,7 +74,9 @@ PixelFrame build_frame(const AafInputs &in, const LightPlane &light, const AafPa
             AafParams pixel_params = params;
             if (params.mu_from_spp)  // Sec. 5.2: the filter follows the samples actually taken
                 pixel_params.mu = mu_for_samples(in.spp(x, y), d1, d2_min, d2_max, pixel_size, light.sigma_m, params);
-            const float beta = aaf_bandlimits(d1, d2_min, d2_max, pixel_size, light.sigma_m, pixel_params).beta_m;
+            const float beta = params.fixed_beta_m > 0
+                                   ? params.fixed_beta_m
+                                   : aaf_bandlimits(d1, d2_min, d2_max, pixel_size, light.sigma_m, pixel_params).beta_m;
             if (!(beta > 0) || !std::isfinite(beta)) continue;
             // beta is in world metres; the reach in pixels follows from the pixel's footprint.
             const float radius = std::min(std::ceil(kCutoffSigmas * beta / pixel_size), float(params.max_radius_px));

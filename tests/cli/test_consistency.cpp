@@ -5,30 +5,14 @@
 
 #include "aaf/core/aaf_filter.h"
 #include "aaf/core/error_metrics.h"
-#include "aaf/core/fixed_gaussian.h"
 #include "aaf/trace/render.h"
 
 using namespace aaf;
 
-namespace {
-
-/// RMSE of the beauty r(x) * `visibility` against the reference's R,G,B.
-double beauty_rmse(const AovSet &noisy, const std::vector<float> &visibility, const AovSet &reference) {
-    AovSet test(noisy.width(), noisy.height());
-    for (const char *c : {"R", "G", "B"}) {
-        ConstPlaneView r = noisy.channel(std::string("unshadowed.") + c);
-        PlaneView out = test.add_channel(c);
-        for (int y = 0; y < noisy.height(); ++y)
-            for (int x = 0; x < noisy.width(); ++x) out(x, y) = r(x, y) * visibility[std::size_t(y) * noisy.width() + x];
-    }
-    return compare_channels(test, reference, {"R", "G", "B"}).rmse;
-}
-
-}  // namespace
 
 // AAF Sec. 5.2 and Fig. 6(c): with mu following the samples taken, the filtered
 // error keeps falling as spp grows (the filter narrows towards one pixel); a
-// fixed-width Gaussian's error flattens out at its blurring bias.
+// fixed-width filter's error flattens out at its blurring bias.
 TEST_CASE("AAF error decreases monotonically with spp; a fixed-width filter's stalls", "[integration][consistency]") {
     trace::RenderSettings settings;
     settings.width = 160;
@@ -47,10 +31,10 @@ TEST_CASE("AAF error decreases monotonically with spp; a fixed-width filter's st
         const AovSet filtered = aaf_filter_aovs(noisy, ChannelMap{}, params);
         aaf_error.push_back(compare_channels(filtered, reference, {"R", "G", "B"}).rmse);
         unfiltered_error.push_back(compare_channels(noisy, reference, {"R", "G", "B"}).rmse);
-        std::vector<float> blurred(noisy.pixel_count());
-        fixed_gaussian_filter(noisy.channel("shadow.V"), 1.5f,
-                              plane_view(blurred.data(), noisy.width(), noisy.height()));
-        fixed_error.push_back(beauty_rmse(noisy, blurred, reference));
+        AafParams fixed;  // the non-adaptive filter (NAF) of Fig. 6: one beta everywhere
+        fixed.fixed_beta_m = 0.03f;
+        fixed_error.push_back(
+            compare_channels(aaf_filter_aovs(noisy, ChannelMap{}, fixed), reference, {"R", "G", "B"}).rmse);
     }
     std::ostringstream table;
     for (std::size_t i = 0; i < aaf_error.size(); ++i)
@@ -59,7 +43,9 @@ TEST_CASE("AAF error decreases monotonically with spp; a fixed-width filter's st
     INFO(table.str());
     for (std::size_t i = 1; i < aaf_error.size(); ++i) CHECK(aaf_error[i] < aaf_error[i - 1]);
     for (std::size_t i = 0; i < aaf_error.size(); ++i) CHECK(aaf_error[i] <= unfiltered_error[i]);
-    // The fixed filter gains less than 10% from 144 to 576 spp while AAF keeps improving.
-    CHECK(fixed_error[3] > 0.9 * fixed_error[2]);
+    // 4x the samples halves an unbiased error. From 144 to 576 spp AAF keeps
+    // (at least nearly) that rate; the fixed filter, dominated by its blur, gains under 25%.
+    CHECK(aaf_error[2] / aaf_error[3] > 1.8);
+    CHECK(fixed_error[3] > 0.75 * fixed_error[2]);
     CHECK(aaf_error[3] < fixed_error[3]);
 }

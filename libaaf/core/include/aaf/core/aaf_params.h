@@ -19,6 +19,10 @@ struct AafParams {
     /// took, so the filter narrows as samples are added and the result
     /// converges to the reference; `mu` is then the floor. Needs the spp AOV.
     bool mu_from_spp = false;
+    /// Baseline "non-adaptive filter" of AAF Fig. 6 (NAF): when > 0, every pixel
+    /// AAF would filter uses this beta (world metres) instead of Eq. 13, with
+    /// the same taps, rejection and cut-off. 0 = AAF proper.
+    float fixed_beta_m = 0.0f;
     /// Gaussian energy spread, beta = 1 / (k Omega_x^f) (Eq. 13, footnote 4).
     float k = 3.0f;
     /// Occluder bandlimit relative to the pixel bandlimit, in (0, 1] (Eq. 5).
