@@ -105,3 +105,45 @@ TEST_CASE("Render rejects bad settings and unknown scenes", "[trace]") {
     CHECK_THROWS_AS(trace::render_builtin("grids", settings), Error);
     CHECK_THROWS_WITH(trace::render_builtin("nope", trace::RenderSettings{}), Catch::Contains("grids"));
 }
+
+TEST_CASE("Adaptive sampling follows the plan, capped, and is thread-count independent", "[trace][adaptive]") {
+    trace::RenderSettings settings;
+    settings.width = 64;
+    settings.height = 48;
+    settings.adaptive = true;
+    settings.max_spp = 60;
+    settings.threads = 1;
+    const AovSet one = trace::render_builtin("grids", settings);
+    settings.threads = 2;
+    const AovSet two = trace::render_builtin("grids", settings);
+    for (std::size_t c = 0; c < one.channel_names().size(); ++c) CHECK(one.plane(c) == two.plane(c));
+
+    int above_first_pass = 0;
+    for (int y = 0; y < one.height(); ++y)
+        for (int x = 0; x < one.width(); ++x) {
+            if (one.channel("id.object")(x, y) == 0) continue;
+            const float spp = one.channel("pixel.spp")(x, y);
+            REQUIRE(spp >= 9.0f);
+            REQUIRE(spp <= 60.0f);
+            if (spp > 9.0f) ++above_first_pass;
+            // Pixels with no occluder anywhere near keep the first pass only.
+            if (spp > 9.0f) CHECK(one.channel("shadow.d1")(x, y) > 0.0f);
+        }
+    CHECK(above_first_pass > 100);
+}
+
+TEST_CASE("Cosine falloff keeps visibility in [0, 1] and exactly 1 when unoccluded", "[trace][falloff]") {
+    trace::RenderSettings settings;
+    settings.width = 48;
+    settings.height = 36;
+    settings.spp = 16;
+    settings.cosine_falloff = true;
+    const AovSet aovs = trace::render_builtin("grids", settings);
+    for (int y = 0; y < aovs.height(); ++y)
+        for (int x = 0; x < aovs.width(); ++x) {
+            const float v = aovs.channel("shadow.V")(x, y);
+            REQUIRE(v >= 0.0f);
+            REQUIRE(v <= 1.0f);
+            if (aovs.channel("shadow.d2max")(x, y) == 0) CHECK(v == 1.0f);
+        }
+}
