@@ -34,19 +34,33 @@ rmse_aaf=$("$aaf" compare "$out/grids_aaf.exr" "$reference" | awk '{print $2}')
 t5=$(now)
 avg_spp=$("$aaf" info "$out/grids_noisy.exr" | awk '/^mean spp over shaded pixels/ {print $6}')
 
+# The paper's full pipeline: 9 spp first pass, per-pixel rate of Eq. 21 (mu 2, cap 100), filter.
+t6=$(now)
+"$aaf" render grids -o "$out/grids_adaptive.exr" --width $width --height $height --spp $spp --seed $seed \
+  --adaptive --mu 2 --max-spp 100 >/dev/null
+t7=$(now)
+"$aaf" filter aaf "$out/grids_adaptive.exr" -o "$out/grids_adaptive_aaf.exr" --mu 2
+t8=$(now)
+adaptive_spp=$("$aaf" info "$out/grids_adaptive.exr" | awk '/^mean spp over shaded pixels/ {print $6}')
+rmse_adaptive=$("$aaf" compare "$out/grids_adaptive.exr" "$reference" | awk '{print $2}')
+rmse_adaptive_aaf=$("$aaf" compare "$out/grids_adaptive_aaf.exr" "$reference" | awk '{print $2}')
+"$aaf" plan "$out/grids_noisy.exr" -o "$out/grids_plan.exr" --mu 2 --max-spp 100
+
 "$aaf" preview "$out/grids_noisy.exr" -o "$out/grids_noisy.png"
 "$aaf" preview "$out/grids_aaf.exr" -o "$out/grids_aaf.png"
 "$aaf" preview "$reference" -o "$out/grids_ref.png"
-"$aaf" preview "$out/grids_aaf.exr" -o "$out/grids_beta.png" --channels aaf.beta --exposure 3
+"$aaf" preview "$out/grids_adaptive_aaf.exr" -o "$out/grids_adaptive_aaf.png"
+# AAF Fig. 7: filter width beta and samples per pixel n, unfiltered pixels in black.
+"$aaf" preview "$out/grids_aaf.exr" -o "$out/grids_beta.png" --channels aaf.beta --false-colour
+"$aaf" preview "$out/grids_plan.exr" -o "$out/grids_n.png" --channels plan.spp --false-colour
 
 echo
 echo "grids ${width}x${height}, AAF (mu 2, k 3, alpha 1), reference ${ref_spp} spp"
-printf '%-28s %s\n' "avg spp" "$avg_spp"
-printf '%-28s %s\n' "RMSE unfiltered" "$rmse_noisy"
-printf '%-28s %s\n' "RMSE AAF filtered" "$rmse_aaf"
-printf '%-28s %s\n' "error ratio (unfilt/filt)" "$(awk -v a="$rmse_noisy" -v b="$rmse_aaf" 'BEGIN { printf "%.2f", a / b }')"
-printf '%-28s %s s\n' "time render ${spp} spp" "$(elapsed "$t0" "$t1")"
-printf '%-28s %s s\n' "time AAF filter (w/ I/O)" "$(elapsed "$t1" "$t2")"
-printf '%-28s %s\n' "time reference" "$ref_time"
-printf '%-28s %s s\n' "time compare (2x)" "$(elapsed "$t4" "$t5")"
-echo "images: $out/grids_{noisy,aaf,ref,beta}.png and .exr"
+ratio() { awk -v a="$1" -v b="$2" 'BEGIN { printf "%.2f", a / b }'; }
+printf '%-22s %8s %16s %16s %8s %10s %10s\n' "sampling" "avg spp" "RMSE unfiltered" "RMSE AAF" "ratio" "render s" "filter s"
+printf '%-22s %8s %16s %16s %8s %10s %10s\n' "uniform ${spp} spp" "$avg_spp" "$rmse_noisy" "$rmse_aaf" \
+  "$(ratio "$rmse_noisy" "$rmse_aaf")" "$(elapsed "$t0" "$t1")" "$(elapsed "$t1" "$t2")"
+printf '%-22s %8s %16s %16s %8s %10s %10s\n' "adaptive (Eq. 21)" "$adaptive_spp" "$rmse_adaptive" \
+  "$rmse_adaptive_aaf" "$(ratio "$rmse_adaptive" "$rmse_adaptive_aaf")" "$(elapsed "$t6" "$t7")" "$(elapsed "$t7" "$t8")"
+echo "reference: $ref_time; compare (2x): $(elapsed "$t4" "$t5") s; times include EXR I/O"
+echo "images: $out/grids_{noisy,aaf,adaptive_aaf,ref,beta,n}.png and the EXRs beside them"

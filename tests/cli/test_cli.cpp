@@ -55,6 +55,18 @@ TEST_CASE("CLI: render, info, filter and compare chain together", "[cli]") {
     for (const char *name : {"R", "noisy.R", "aaf.V", "aaf.beta", "shadow.d2max", "P.X", "pixel.spp"})
         CHECK(filtered.has_channel(name));
 
+    const std::string plan = (dir / "plan.exr").string(), exact = (dir / "exact.exr").string();
+    REQUIRE(run_aaf("plan " + noisy + " -o " + plan + " --max-spp 50").exit_code == 0);
+    const aaf::AovSet planned = aaf::io::read_aovs(plan);
+    REQUIRE(planned.has_channel("plan.spp"));
+    for (int y = 0; y < planned.height(); ++y)
+        for (int x = 0; x < planned.width(); ++x) {
+            CHECK(planned.channel("plan.spp")(x, y) >= 9.0f);
+            CHECK(planned.channel("plan.spp")(x, y) <= 50.0f);
+        }
+    REQUIRE(run_aaf("filter aaf " + noisy + " -o " + exact + " --filter 2d").exit_code == 0);
+    CHECK(run_aaf("filter aaf " + noisy + " -o " + exact + " --filter 3d").exit_code == 2);
+
     const RunResult same = run_aaf("compare " + noisy + " " + noisy + " --json");
     CHECK(same.exit_code == 0);
     CHECK_THAT(same.output, Catch::Contains("\"rmse\":0.0"));
@@ -80,6 +92,11 @@ TEST_CASE("CLI: bad input is one clear line, exit 1, no output written", "[cli]"
     r = run_aaf("filter aaf " + plain + " -o " + out);
     CHECK(r.exit_code == 1);
     CHECK_THAT(r.output, Catch::Contains("plain.exr") && Catch::Contains("shadow.V"));
+    CHECK(!fs::exists(out));
+
+    r = run_aaf("plan " + plain + " -o " + out);
+    CHECK(r.exit_code == 1);
+    CHECK_THAT(r.output, Catch::Contains("plain.exr") && Catch::Contains("shadow.d1"));
     CHECK(!fs::exists(out));
 
     // Mismatched sizes in compare.
