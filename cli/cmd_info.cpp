@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "aaf/core/aov_contract.h"
+#include "aaf/core/sample_statistics.h"
 #include "aaf/io/exr_io.h"
 #include "commands.h"
 
@@ -24,11 +25,6 @@ std::string format_attribute(const AttributeValue &value) {
     const Vec3 &v = std::get<Vec3>(value);
     std::snprintf(buffer, sizeof buffer, "(%g, %g, %g)", v.x, v.y, v.z);
     return buffer;
-}
-
-std::size_t channel_index(const AovSet &aovs, const std::string &name) {
-    const std::vector<std::string> &names = aovs.channel_names();
-    return std::size_t(std::find(names.begin(), names.end(), name) - names.begin());
 }
 
 }  // namespace
@@ -54,20 +50,9 @@ void add_info_command(CLI::App &app) {
         const ChannelMap channels;
         const std::string &spp_name = channels.channel(Role::SamplesPerPixel);
         const std::string &id_name = channels.channel(Role::ObjectId);
-        if (aovs.has_channel(spp_name) && aovs.has_channel(id_name)) {
-            // Background pixels take no shadow samples; the mean that matters is over shaded ones.
-            const std::vector<float> &spp = aovs.plane(channel_index(aovs, spp_name));
-            const std::vector<float> &id = aovs.plane(channel_index(aovs, id_name));
-            double sum = 0;
-            std::size_t shaded = 0;
-            for (std::size_t i = 0; i < spp.size(); ++i)
-                if (id[i] != 0) {
-                    sum += spp[i];
-                    ++shaded;
-                }
-            std::printf("mean spp over shaded pixels: %g (%zu pixels)\n", shaded ? sum / double(shaded) : 0.0,
-                        shaded);
-        }
+        if (aovs.has_channel(spp_name) && aovs.has_channel(id_name))
+            std::printf("mean spp over shaded pixels: %g\n",
+                        mean_spp_over_shaded(aovs.channel(spp_name), aovs.channel(id_name)));
         std::printf("attributes:\n");
         for (const auto &[name, value] : aovs.attributes)
             std::printf("  %-24s %s\n", name.c_str(), format_attribute(value).c_str());

@@ -2,6 +2,7 @@
 #include <iostream>
 
 #include "aaf/core/aov_contract.h"
+#include "aaf/core/sample_statistics.h"
 #include <memory>
 
 #include "aaf/io/exr_io.h"
@@ -51,19 +52,10 @@ void add_render_command(CLI::App &app) {
         AovSet aovs = trace::render_builtin(options->scene, options->settings);
         io::write_aovs(aovs, options->output);
         if (options->settings.adaptive) {
-            // Mean spp over shaded pixels: the figure AAF Table 1 reports.
-            const ConstPlaneView spp = aovs.channel(role_info(Role::SamplesPerPixel).channels[0]);
-            const ConstPlaneView id = aovs.channel(role_info(Role::ObjectId).channels[0]);
-            double sum = 0;
-            std::size_t shaded = 0;
-            for (int y = 0; y < aovs.height(); ++y)
-                for (int x = 0; x < aovs.width(); ++x)
-                    if (id(x, y) != 0) {
-                        sum += spp(x, y);
-                        ++shaded;
-                    }
-            std::printf("adaptive sampling: average %.2f spp over %zu shaded pixels\n",
-                        shaded ? sum / double(shaded) : 0.0, shaded);
+            const ChannelMap channels;
+            std::printf("adaptive sampling: average %.2f spp over shaded pixels\n",
+                        mean_spp_over_shaded(aovs.channel(channels.channel(Role::SamplesPerPixel)),
+                                             aovs.channel(channels.channel(Role::ObjectId))));
         }
     });
 }

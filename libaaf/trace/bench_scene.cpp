@@ -8,13 +8,7 @@ SceneDescription make_bench_scene(int width, int height) {
     SceneDescription scene;
     scene.name = "bench";
 
-    Mesh ground;
-    ground.object_id = 1;
-    ground.albedo = {0.70f, 0.70f, 0.68f};
-    constexpr float kGroundHalf = 8.0f;
-    ground.add_quad({-kGroundHalf, 0, -kGroundHalf}, {-kGroundHalf, 0, kGroundHalf},
-                    {kGroundHalf, 0, kGroundHalf}, {kGroundHalf, 0, -kGroundHalf});
-    scene.meshes.push_back(ground);
+    scene.meshes.push_back(ground_plane(8.0f, 1, {0.70f, 0.70f, 0.68f}));
 
     // Seat and backrest slats (thin boards with gaps), legs down to the ground.
     const float angle = 25.0f * 3.14159265f / 180.0f;

@@ -34,13 +34,7 @@ SceneDescription make_grids_scene(int width, int height) {
     SceneDescription scene;
     scene.name = "grids";
 
-    Mesh ground;
-    ground.object_id = 1;
-    ground.albedo = {0.75f, 0.75f, 0.75f};
-    constexpr float kGroundHalf = 8.0f;
-    ground.add_quad({-kGroundHalf, 0, -kGroundHalf}, {-kGroundHalf, 0, kGroundHalf},
-                    {kGroundHalf, 0, kGroundHalf}, {kGroundHalf, 0, -kGroundHalf});
-    scene.meshes.push_back(ground);
+    scene.meshes.push_back(ground_plane(8.0f, 1, {0.75f, 0.75f, 0.75f}));
     scene.meshes.push_back(make_lattice(0.35f, 0.0f, 2, {0.80f, 0.30f, 0.25f}));
     scene.meshes.push_back(make_lattice(0.80f, 20.0f, 3, {0.30f, 0.70f, 0.30f}));
     scene.meshes.push_back(make_lattice(1.30f, 40.0f, 4, {0.30f, 0.40f, 0.85f}));

@@ -26,6 +26,15 @@ void Mesh::add_box(Vec3 lo, Vec3 hi, float angle_rad) {
     add_quad(corner(2), corner(3), corner(7), corner(6));  // y = hi
 }
 
+Mesh ground_plane(float half_extent_m, int object_id, Vec3 albedo) {
+    Mesh ground;
+    ground.object_id = object_id;
+    ground.albedo = albedo;
+    const float h = half_extent_m;
+    ground.add_quad({-h, 0, -h}, {-h, 0, h}, {h, 0, h}, {h, 0, -h});
+    return ground;
+}
+
 void Mesh::add_sphere(Vec3 center, float radius_m, int segments) {
     constexpr float kPi = 3.14159265358979f;
     const int rings = segments / 2;

@@ -49,6 +49,9 @@ void Mesh::add_heightfield(float half_extent_m, int resolution, const HeightFn &
         }
 }
 
+/// A flat square ground at y = 0, centred on the origin.
+Mesh ground_plane(float half_extent_m, int object_id, Vec3 albedo);
+
 /// Everything the tracer needs to render one frame.
 struct SceneDescription {
     std::string name;

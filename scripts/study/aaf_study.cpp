@@ -14,6 +14,7 @@
 #include "aaf/core/aaf_filter.h"
 #include "aaf/core/error.h"
 #include "aaf/core/error_metrics.h"
+#include "aaf/core/sample_statistics.h"
 #include "aaf/io/atomic_file.h"
 #include "aaf/trace/render.h"
 
@@ -22,19 +23,6 @@ namespace {
 using namespace aaf;
 
 const std::vector<std::string> kRgb{"R", "G", "B"};
-
-double mean_spp_over_shaded(const AovSet &aovs) {
-    const ConstPlaneView spp = aovs.channel("pixel.spp"), id = aovs.channel("id.object");
-    double sum = 0;
-    std::size_t shaded = 0;
-    for (int y = 0; y < aovs.height(); ++y)
-        for (int x = 0; x < aovs.width(); ++x)
-            if (id(x, y) != 0) {
-                sum += spp(x, y);
-                ++shaded;
-            }
-    return shaded ? sum / double(shaded) : 0.0;
-}
 
 /// The non-adaptive filter (NAF): AAF's gather with one world-space beta for
 /// every pixel, the width that best matches the reference (an oracle choice,
@@ -61,7 +49,7 @@ struct Row {
 
 void evaluate(const std::string &scene, const std::string &sampling, double setting, const AovSet &noisy,
               const AovSet &reference, float filter_mu, std::vector<Row> &rows) {
-    const double spp = mean_spp_over_shaded(noisy);
+    const double spp = mean_spp_over_shaded(noisy.channel("pixel.spp"), noisy.channel("id.object"));
     rows.push_back({scene, sampling, "UF", setting, spp, compare_channels(noisy, reference, kRgb).rmse, 0});
     const auto [fixed_rmse, beta_m] = best_fixed_filter(noisy, reference);
     rows.push_back({scene, sampling, "NAF", setting, spp, fixed_rmse, beta_m});
