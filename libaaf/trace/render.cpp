@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <array>
+#include <chrono>
 #include <cmath>
 
 #include "aaf/core/aov_contract.h"
@@ -93,7 +94,7 @@ void write_aovs(const std::vector<PrimaryHit> &primaries, const std::vector<Shad
 
 }  // namespace
 
-AovSet render_builtin(const std::string &scene_name, const RenderSettings &settings) {
+AovSet render_builtin(const std::string &scene_name, const RenderSettings &settings, RenderTimings *timings) {
     validate(settings);
     SceneDescription scene = make_builtin_scene(scene_name, settings.width, settings.height);
     if (settings.light_profile) scene.light.profile = *settings.light_profile;
@@ -104,14 +105,22 @@ AovSet render_builtin(const std::string &scene_name, const RenderSettings &setti
     const Renderer renderer(scene, settings);
     AovSet aovs(settings.width, settings.height);
 
+    using Clock = std::chrono::steady_clock;
+    auto seconds_since = [](Clock::time_point start) {
+        return std::chrono::duration<double>(Clock::now() - start).count();
+    };
+    RenderTimings measured;
     tbb::task_arena arena(settings.threads == 0 ? tbb::task_arena::automatic : settings.threads);
     arena.execute([&] {
+        auto start = Clock::now();
         for_each_pixel_tiled(settings.width, settings.height, [&](int x, int y) {
             const std::size_t i = std::size_t(y) * settings.width + x;
             primaries[i] = renderer.trace_primary(x, y);
             if (primaries[i].found) renderer.trace_shadows(primaries[i], i, 0, std::uint32_t(settings.spp), stats[i]);
         });
+        measured.first_pass_s = seconds_since(start);
         if (settings.adaptive) {
+            start = Clock::now();
             // AAF Sec. 6: the per-pixel totals from the first pass's distances.
             AovSet first_pass(settings.width, settings.height);
             write_aovs(primaries, stats, scene.light, first_pass);
@@ -124,14 +133,18 @@ AovSet render_builtin(const std::string &scene_name, const RenderSettings &setti
             const ChannelMap channels;
             const AovSet plan = plan_samples_aovs(first_pass, channels, aaf, params);
             const ConstPlaneView totals = plan.channel(channels.channel(Role::PlannedSpp));
+            measured.plan_s = seconds_since(start);
+            start = Clock::now();
             for_each_pixel_tiled(settings.width, settings.height, [&](int x, int y) {
                 const std::size_t i = std::size_t(y) * settings.width + x;
                 const auto remaining = std::uint32_t(totals(x, y)) - std::uint32_t(settings.spp);
                 if (primaries[i].found && remaining > 0) renderer.trace_shadows(primaries[i], i, 1, remaining, stats[i]);
             });
+            measured.second_pass_s = seconds_since(start);
         }
     });
 
+    if (timings) *timings = measured;
     write_aovs(primaries, stats, scene.light, aovs);
     write_light_attributes(scene.light, aovs);
     aovs.attributes[attr::kScene] = scene_name;

@@ -34,6 +34,13 @@ struct RenderSettings {
     bool cosine_falloff = false;
 };
 
+/// Wall-clock seconds of a render's stages (AAF Table 1's columns).
+struct RenderTimings {
+    double first_pass_s = 0;   ///< primary rays and the first (or only) shadow pass
+    double plan_s = 0;         ///< the sampling plan between the passes (adaptive only)
+    double second_pass_s = 0;  ///< the remaining shadow samples (adaptive only)
+};
+
 /// Names of the built-in procedural scenes.
 std::vector<std::string> builtin_scene_names();
 
@@ -41,6 +48,8 @@ std::vector<std::string> builtin_scene_names();
 /// AOV of the contract (aov_contract.h) plus the beauty, with the light and
 /// render settings as header attributes. Throws aaf::Error on an unknown scene
 /// or bad settings.
-AovSet render_builtin(const std::string &scene_name, const RenderSettings &settings);
+/// When `timings` is given it receives the stages' durations.
+AovSet render_builtin(const std::string &scene_name, const RenderSettings &settings,
+                      RenderTimings *timings = nullptr);
 
 }  // namespace aaf::trace
