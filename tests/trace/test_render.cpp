@@ -147,3 +147,24 @@ TEST_CASE("Cosine falloff keeps visibility in [0, 1] and exactly 1 when unocclud
             if (aovs.channel("shadow.d2max")(x, y) == 0) CHECK(v == 1.0f);
         }
 }
+
+TEST_CASE("Shadow rays from the ground never hit the ground itself (no acne)", "[trace]") {
+    // Every occluder of a ground pixel is a lattice bar, the lowest of whose
+    // undersides lies 0.335 m above the ground: d2 <= d1 - 0.335. A self-hit
+    // would report d2 close to d1.
+    trace::RenderSettings settings;
+    settings.width = 80;
+    settings.height = 60;
+    settings.spp = 64;
+    const AovSet aovs = trace::render_builtin("grids", settings);
+    int ground = 0;
+    for (int y = 0; y < aovs.height(); ++y)
+        for (int x = 0; x < aovs.width(); ++x) {
+            if (aovs.channel("id.object")(x, y) != 1.0f) continue;
+            ++ground;
+            const float d2_max = aovs.channel("shadow.d2max")(x, y);
+            if (d2_max > 0) REQUIRE(d2_max <= aovs.channel("shadow.d1")(x, y) - 0.33f);
+            else REQUIRE(aovs.channel("shadow.V")(x, y) == 1.0f);
+        }
+    CHECK(ground > 1000);
+}
