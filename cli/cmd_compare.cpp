@@ -37,8 +37,10 @@ void add_compare_command(CLI::App &app) {
             throw Error(options->test + " vs " + options->reference + ": " + e.what());
         }
         if (options->json) {
-            nlohmann::json out = {{"test", options->test},     {"reference", options->reference},
-                                  {"channels", options->channels}, {"rmse", metrics.rmse},
+            nlohmann::json out = {{"test", options->test},
+                                  {"reference", options->reference},
+                                  {"channels", options->channels},
+                                  {"rmse", metrics.rmse},
                                   {"mse", metrics.mse}};
             // JSON has no infinity: identical images report a null PSNR.
             out["psnr"] = std::isfinite(metrics.psnr) ? nlohmann::json(metrics.psnr) : nlohmann::json();

@@ -23,23 +23,27 @@ void add_aaf_method(CLI::App &filter) {
         std::string mode = "separable";
     };
     auto options = std::make_shared<Options>();
-    CLI::App *cmd = filter.add_subcommand("aaf", "Axis-Aligned Filtering of soft shadows (Mehta et al. 2012)");
+    CLI::App *cmd =
+        filter.add_subcommand("aaf", "Axis-Aligned Filtering of soft shadows (Mehta et al. 2012)");
     cmd->add_option("input", options->input, "Input EXR with the AAF AOVs")->required();
     cmd->add_option("-o,--output", options->output, "Output EXR")->required();
     AafParams &p = options->params;
-    cmd->add_option("--mu", p.mu, "Filter scale for consistency, beta ~ 1/mu (Sec. 5.2)")->capture_default_str();
+    cmd->add_option("--mu", p.mu, "Filter scale for consistency, beta ~ 1/mu (Sec. 5.2)")
+        ->capture_default_str();
     cmd->add_flag("--mu-from-spp", p.mu_from_spp,
                   "Per pixel, raise mu until Eq. 21's rate equals the samples taken (consistency, Sec. 5.2)");
     cmd->add_option("--k", p.k, "Gaussian spread factor of Eq. 13")->capture_default_str();
     cmd->add_option("--alpha", p.alpha, "Occluder bandlimit over pixel bandlimit, (0,1] (Eq. 5)")
         ->capture_default_str();
-    cmd->add_option("--normal-threshold", p.normal_threshold_deg, "Reject taps whose normal turns more, degrees")
+    cmd->add_option("--normal-threshold", p.normal_threshold_deg,
+                    "Reject taps whose normal turns more, degrees")
         ->capture_default_str();
     cmd->add_option("--fill-radius", p.fill_radius_px, "Radius to borrow occluder distances, pixels")
         ->capture_default_str();
     cmd->add_option("--max-radius", p.max_radius_px, "Largest filter radius, pixels")->capture_default_str();
-    cmd->add_option("--filter", options->mode,
-                    "separable: two 1D passes (Sec. 6); 2d: exact 2D gather of Eq. 10, to measure the approximation")
+    cmd->add_option(
+           "--filter", options->mode,
+           "separable: two 1D passes (Sec. 6); 2d: exact 2D gather of Eq. 10, to measure the approximation")
         ->check(CLI::IsMember({"separable", "2d"}))
         ->capture_default_str();
     cmd->add_option("--map", options->maps, "Override a channel name: role=channel[,channel...]");

@@ -45,7 +45,8 @@ void add_info_command(CLI::App &app) {
             const std::vector<float> &plane = aovs.plane(c);
             auto [lo, hi] = std::minmax_element(plane.begin(), plane.end());
             const double mean = std::accumulate(plane.begin(), plane.end(), 0.0) / double(plane.size());
-            std::printf("  %-20s min %-12g max %-12g mean %g\n", aovs.channel_names()[c].c_str(), *lo, *hi, mean);
+            std::printf("  %-20s min %-12g max %-12g mean %g\n", aovs.channel_names()[c].c_str(), *lo, *hi,
+                        mean);
         }
         const ChannelMap channels;
         const std::string &spp_name = channels.channel(Role::SamplesPerPixel);

@@ -32,7 +32,8 @@ void add_plan_command(CLI::App &app) {
     cmd->add_option("--first-pass", options->plan.first_pass_spp, "Samples the first pass took per pixel")
         ->capture_default_str();
     cmd->add_option("--max-spp", options->plan.max_spp, "Cap on the total per pixel")->capture_default_str();
-    cmd->add_option("--fill-radius", options->aaf.fill_radius_px, "Radius to borrow occluder distances, pixels")
+    cmd->add_option("--fill-radius", options->aaf.fill_radius_px,
+                    "Radius to borrow occluder distances, pixels")
         ->capture_default_str();
     cmd->add_option("--map", options->maps, "Override a channel name: role=channel[,channel...]");
     cmd->add_option("--threads", options->threads, "Worker threads, 0 = all (output is identical)")

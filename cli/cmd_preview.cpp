@@ -28,14 +28,16 @@ void add_preview_command(CLI::App &app) {
     cmd->add_option("--exposure", options->exposure, "Exposure, stops")->capture_default_str();
     cmd->add_flag("--false-colour", options->false_colour,
                   "One channel in false colour, 0 in black (AAF Fig. 7 style for aaf.beta, plan.spp)");
-    cmd->add_option("--range", options->range, "Value range LOW,HIGH of the false colours (default: data range)")
+    cmd->add_option("--range", options->range,
+                    "Value range LOW,HIGH of the false colours (default: data range)")
         ->delimiter(',')
         ->expected(2);
     cmd->callback([options] {
         check_not_same_file(options->input, options->output);
         const AovSet aovs = io::read_aovs(options->input);
         if (options->false_colour) {
-            if (options->channels.size() != 1) throw Error(options->output + ": --false-colour takes one channel");
+            if (options->channels.size() != 1)
+                throw Error(options->output + ": --false-colour takes one channel");
             const float low = options->range.empty() ? 0.0f : options->range[0];
             const float high = options->range.empty() ? 0.0f : options->range[1];
             io::write_false_colour_png(aovs, options->channels[0], options->output, low, high);

@@ -1,9 +1,9 @@
 #include <cstdio>
 #include <iostream>
 
+#include <memory>
 #include "aaf/core/aov_contract.h"
 #include "aaf/core/sample_statistics.h"
-#include <memory>
 
 #include "aaf/io/exr_io.h"
 #include "aaf/trace/render.h"
@@ -48,17 +48,19 @@ void add_render_command(CLI::App &app) {
         }
         if (options->scene.empty()) throw CLI::RequiredError("scene");
         if (options->output.empty()) throw CLI::RequiredError("--output");
-        if (!options->light.empty()) options->settings.light_profile = light_profile_from_string(options->light);
+        if (!options->light.empty())
+            options->settings.light_profile = light_profile_from_string(options->light);
         trace::RenderTimings timings;
         AovSet aovs = trace::render_builtin(options->scene, options->settings, &timings);
         io::write_aovs(aovs, options->output);
         if (options->settings.adaptive) {
             const ChannelMap channels;
-            std::printf("adaptive sampling: average %.2f spp over shaded pixels; first pass %.3f s, "
-                        "plan %.3f s, second pass %.3f s\n",
-                        mean_spp_over_shaded(aovs.channel(channels.channel(Role::SamplesPerPixel)),
-                                             aovs.channel(channels.channel(Role::ObjectId))),
-                        timings.first_pass_s, timings.plan_s, timings.second_pass_s);
+            std::printf(
+                "adaptive sampling: average %.2f spp over shaded pixels; first pass %.3f s, "
+                "plan %.3f s, second pass %.3f s\n",
+                mean_spp_over_shaded(aovs.channel(channels.channel(Role::SamplesPerPixel)),
+                                     aovs.channel(channels.channel(Role::ObjectId))),
+                timings.first_pass_s, timings.plan_s, timings.second_pass_s);
         }
     });
 }

@@ -20,14 +20,14 @@ void AafParams::validate() const {
     if (!(fixed_beta_m >= 0)) throw Error("AAF fixed beta must be >= 0 metres");
 }
 
-AafBandlimits aaf_bandlimits(float d1_m, float d2_min_m, float d2_max_m, float pixel_size_m,
-                             float sigma_m, const AafParams &params) {
+AafBandlimits aaf_bandlimits(float d1_m, float d2_min_m, float d2_max_m, float pixel_size_m, float sigma_m,
+                             const AafParams &params) {
     AafBandlimits b;
-    b.s1 = std::max(0.0f, d1_m / d2_min_m - 1.0f);  // Eq. 4
-    b.s2 = std::max(0.0f, d1_m / d2_max_m - 1.0f);  // Eq. 4
-    b.omega_light = 1.0f / sigma_m;                   // Sec. 4.1: Omega_L^max = 1/sigma
-    const float omega_pixel = 1.0f / pixel_size_m;    // Sec. 4.1: Omega_pix^max = 1/d
-    b.omega_x_max = params.alpha / (1.0f + b.s2) * omega_pixel;                    // Eq. 6
+    b.s1 = std::max(0.0f, d1_m / d2_min_m - 1.0f);               // Eq. 4
+    b.s2 = std::max(0.0f, d1_m / d2_max_m - 1.0f);               // Eq. 4
+    b.omega_light = 1.0f / sigma_m;                              // Sec. 4.1: Omega_L^max = 1/sigma
+    const float omega_pixel = 1.0f / pixel_size_m;               // Sec. 4.1: Omega_pix^max = 1/d
+    b.omega_x_max = params.alpha / (1.0f + b.s2) * omega_pixel;  // Eq. 6
     b.omega_y_max = params.alpha * std::max(0.0f, 1.0f - d2_min_m / d1_m) * omega_pixel;  // Eq. 7
 
     // Eq. 8: Omega_L / s2 is unbounded as s2 -> 0; the clip to Omega_x^max takes over.
@@ -46,8 +46,8 @@ AafBandlimits aaf_bandlimits(float d1_m, float d2_min_m, float d2_max_m, float p
     return b;
 }
 
-float mu_for_samples(float samples, float d1_m, float d2_min_m, float d2_max_m, float pixel_size_m, float sigma_m,
-                     const AafParams &params) {
+float mu_for_samples(float samples, float d1_m, float d2_min_m, float d2_max_m, float pixel_size_m,
+                     float sigma_m, const AafParams &params) {
     constexpr float kMaxMu = 1e4f;
     AafParams trial = params;
     auto rate = [&](float mu) {

@@ -31,9 +31,9 @@ struct PixelFrame {
     std::vector<float> plane_u, plane_v;
     std::vector<float> normal_x, normal_y, normal_z;  // unit, or zero where unusable
     std::vector<float> object_id;
-    std::vector<float> beta_m;               // 0 = not filtered
-    std::vector<float> inv_two_beta_sq;      // 1 / (2 beta^2), metres^-2
-    std::vector<int> radius_px;              // 0 = not filtered
+    std::vector<float> beta_m;           // 0 = not filtered
+    std::vector<float> inv_two_beta_sq;  // 1 / (2 beta^2), metres^-2
+    std::vector<int> radius_px;          // 0 = not filtered
 
     std::size_t index(int x, int y) const { return std::size_t(y) * width + x; }
 };
@@ -43,8 +43,9 @@ PixelFrame build_frame(const AafInputs &in, const LightPlane &light, const AafPa
     frame.width = in.visibility.width;
     frame.height = in.visibility.height;
     const std::size_t count = std::size_t(frame.width) * frame.height;
-    for (std::vector<float> *plane : {&frame.plane_u, &frame.plane_v, &frame.normal_x, &frame.normal_y,
-                                      &frame.normal_z, &frame.object_id, &frame.beta_m, &frame.inv_two_beta_sq})
+    for (std::vector<float> *plane :
+         {&frame.plane_u, &frame.plane_v, &frame.normal_x, &frame.normal_y, &frame.normal_z, &frame.object_id,
+          &frame.beta_m, &frame.inv_two_beta_sq})
         plane->assign(count, 0.0f);
     frame.radius_px.assign(count, 0);
 
@@ -73,13 +74,16 @@ PixelFrame build_frame(const AafInputs &in, const LightPlane &light, const AafPa
                 continue;
             AafParams pixel_params = params;
             if (params.mu_from_spp)  // Sec. 5.2: the filter follows the samples actually taken
-                pixel_params.mu = mu_for_samples(in.spp(x, y), d1, d2_min, d2_max, pixel_size, light.sigma_m, params);
-            const float beta = params.fixed_beta_m > 0
-                                   ? params.fixed_beta_m
-                                   : aaf_bandlimits(d1, d2_min, d2_max, pixel_size, light.sigma_m, pixel_params).beta_m;
+                pixel_params.mu =
+                    mu_for_samples(in.spp(x, y), d1, d2_min, d2_max, pixel_size, light.sigma_m, params);
+            const float beta =
+                params.fixed_beta_m > 0
+                    ? params.fixed_beta_m
+                    : aaf_bandlimits(d1, d2_min, d2_max, pixel_size, light.sigma_m, pixel_params).beta_m;
             if (!(beta > 0) || !std::isfinite(beta)) continue;
             // beta is in world metres; the reach in pixels follows from the pixel's footprint.
-            const float radius = std::min(std::ceil(kCutoffSigmas * beta / pixel_size), float(params.max_radius_px));
+            const float radius =
+                std::min(std::ceil(kCutoffSigmas * beta / pixel_size), float(params.max_radius_px));
             frame.beta_m[i] = beta;
             frame.inv_two_beta_sq[i] = 1.0f / (2.0f * beta * beta);
             frame.radius_px[i] = int(radius);
@@ -143,7 +147,8 @@ float gather_pixel(const PixelFrame &f, float cos_threshold, const float *source
         const float cos_angle = nx * f.normal_x[t] + ny * f.normal_y[t] + nz * f.normal_z[t];
         const float accepted = float(f.object_id[t] == id) * float(cos_angle >= cos_threshold);
         const float du = f.plane_u[t] - u, dv = f.plane_v[t] - v;
-        const float weight = accepted * fast_exp_nonpositive(-(du * du + dv * dv) * inv_two_beta_sq);  // Eq. 11
+        const float weight =
+            accepted * fast_exp_nonpositive(-(du * du + dv * dv) * inv_two_beta_sq);  // Eq. 11
         sum[lane] += weight * source[t];
         weight_sum[lane] += weight;
     };

@@ -35,7 +35,8 @@ AovSet aaf_filter_aovs(const AovSet &input, const ChannelMap &channels, const Aa
     if (!missing.empty()) {
         const RoleInfo &info = role_info(missing.front());
         std::string names;
-        for (const std::string &name : channels.channels(info.role)) names += (names.empty() ? "" : ",") + name;
+        for (const std::string &name : channels.channels(info.role))
+            names += (names.empty() ? "" : ",") + name;
         throw Error("missing AAF input '" + std::string(info.key) + "' (channels " + names + ")");
     }
     const LightPlane light = read_light_attributes(input);

@@ -8,36 +8,73 @@ namespace aaf {
 
 const std::vector<RoleInfo> &role_table() {
     static const std::vector<RoleInfo> table = {
-        {Role::Beauty, "beauty", {"R", "G", "B"}, "linear radiance",
+        {Role::Beauty,
+         "beauty",
+         {"R", "G", "B"},
+         "linear radiance",
          "final noisy image, r(x) times the noisy visibility"},
-        {Role::Visibility, "visibility", {"shadow.V"}, "[0,1]",
+        {Role::Visibility,
+         "visibility",
+         {"shadow.V"},
+         "[0,1]",
          "noisy light-weighted visibility: sum of l(y) f(x,y) over samples / sum of l(y)"},
-        {Role::D1, "d1", {"shadow.d1"}, "metres",
+        {Role::D1,
+         "d1",
+         {"shadow.d1"},
+         "metres",
          "distance of the receiver from the light's plane, along the light normal"},
-        {Role::D2Min, "d2min", {"shadow.d2min"}, "metres, 0 = no occluder",
+        {Role::D2Min,
+         "d2min",
+         {"shadow.d2min"},
+         "metres, 0 = no occluder",
          "smallest light-plane distance of an occluder hit by the pixel's shadow rays"},
-        {Role::D2Max, "d2max", {"shadow.d2max"}, "metres, 0 = no occluder",
+        {Role::D2Max,
+         "d2max",
+         {"shadow.d2max"},
+         "metres, 0 = no occluder",
          "largest light-plane distance of an occluder hit by the pixel's shadow rays"},
-        {Role::Position, "position", {"P.X", "P.Y", "P.Z"}, "world metres",
+        {Role::Position,
+         "position",
+         {"P.X", "P.Y", "P.Z"},
+         "world metres",
          "world position of the primary hit"},
-        {Role::Normal, "normal", {"N.X", "N.Y", "N.Z"}, "unit vector",
-         "shading normal, facing the camera"},
-        {Role::ObjectId, "object_id", {"id.object"}, "integer stored as float, 0 = background",
+        {Role::Normal, "normal", {"N.X", "N.Y", "N.Z"}, "unit vector", "shading normal, facing the camera"},
+        {Role::ObjectId,
+         "object_id",
+         {"id.object"},
+         "integer stored as float, 0 = background",
          "identifier of the object hit by the primary ray"},
-        {Role::SamplesPerPixel, "spp", {"pixel.spp"}, "samples",
-         "light samples taken at the pixel"},
-        {Role::PixelSize, "pixel_size", {"pixel.size"}, "metres",
+        {Role::SamplesPerPixel, "spp", {"pixel.spp"}, "samples", "light samples taken at the pixel"},
+        {Role::PixelSize,
+         "pixel_size",
+         {"pixel.size"},
+         "metres",
          "world length one pixel covers at the receiver, with foreshortening (d of AAF Eq. 6)"},
-        {Role::Unshadowed, "unshadowed", {"unshadowed.R", "unshadowed.G", "unshadowed.B"},
-         "linear radiance", "r(x) of AAF Eq. 1: shading with the light's irradiance at its centre, "
-                            "without visibility"},
-        {Role::FilteredVisibility, "filtered_visibility", {"aaf.V"}, "[0,1]",
+        {Role::Unshadowed,
+         "unshadowed",
+         {"unshadowed.R", "unshadowed.G", "unshadowed.B"},
+         "linear radiance",
+         "r(x) of AAF Eq. 1: shading with the light's irradiance at its centre, "
+         "without visibility"},
+        {Role::FilteredVisibility,
+         "filtered_visibility",
+         {"aaf.V"},
+         "[0,1]",
          "output of `aaf filter aaf`: filtered visibility"},
-        {Role::FilterWidth, "beta", {"aaf.beta"}, "metres, 0 = not filtered",
+        {Role::FilterWidth,
+         "beta",
+         {"aaf.beta"},
+         "metres, 0 = not filtered",
          "output of `aaf filter aaf`: filter standard deviation beta (AAF Eq. 13)"},
-        {Role::NoisyBeauty, "noisy_beauty", {"noisy.R", "noisy.G", "noisy.B"}, "linear radiance",
+        {Role::NoisyBeauty,
+         "noisy_beauty",
+         {"noisy.R", "noisy.G", "noisy.B"},
+         "linear radiance",
          "output of a filter: the input beauty, kept"},
-        {Role::PlannedSpp, "planned_spp", {"plan.spp"}, "samples",
+        {Role::PlannedSpp,
+         "planned_spp",
+         {"plan.spp"},
+         "samples",
          "output of `aaf plan`: total light samples per pixel from AAF Eq. 21"},
     };
     return table;
@@ -52,8 +89,8 @@ const RoleInfo &role_info(Role role) {
 const std::vector<MethodInputs> &method_table() {
     static const std::vector<MethodInputs> table = {
         {"aaf",
-         {Role::Visibility, Role::D1, Role::D2Min, Role::D2Max, Role::Position, Role::Normal,
-          Role::ObjectId, Role::PixelSize, Role::Unshadowed}},
+         {Role::Visibility, Role::D1, Role::D2Min, Role::D2Max, Role::Position, Role::Normal, Role::ObjectId,
+          Role::PixelSize, Role::Unshadowed}},
     };
     return table;
 }
@@ -135,18 +172,21 @@ void ChannelMap::set_override(const std::string &spec) {
         }
     }
     if (names.size() != defaults.size())
-        throw Error("mapping '" + spec + "' names " + std::to_string(names.size()) +
-                    " channels, role '" + key + "' needs " + std::to_string(defaults.size()));
+        throw Error("mapping '" + spec + "' names " + std::to_string(names.size()) + " channels, role '" +
+                    key + "' needs " + std::to_string(defaults.size()));
     for (const std::string &name : names)
         if (name.empty()) throw Error("empty channel name in mapping '" + spec + "'");
     names_[info->role] = names;
 }
 
-const std::vector<std::string> &ChannelMap::channels(Role role) const { return names_.at(role); }
+const std::vector<std::string> &ChannelMap::channels(Role role) const {
+    return names_.at(role);
+}
 
 const std::string &ChannelMap::channel(Role role) const {
     const std::vector<std::string> &names = channels(role);
-    if (names.size() != 1) throw Error(std::string("internal: role '") + role_info(role).key + "' has several channels");
+    if (names.size() != 1)
+        throw Error(std::string("internal: role '") + role_info(role).key + "' has several channels");
     return names.front();
 }
 

@@ -24,16 +24,16 @@ ErrorMetrics compare_channels(const AovSet &test, const AovSet &reference,
             for (int x = 0; x < test.width(); ++x) {
                 const double diff = double(a(x, y)) - double(b(x, y));
                 if (!std::isfinite(diff))
-                    throw Error("non-finite value in channel '" + name + "' at pixel (" +
-                                std::to_string(x) + ", " + std::to_string(y) + ")");
+                    throw Error("non-finite value in channel '" + name + "' at pixel (" + std::to_string(x) +
+                                ", " + std::to_string(y) + ")");
                 sum_sq += diff * diff;
             }
     }
     metrics.samples = test.pixel_count() * channels.size();
     metrics.mse = sum_sq / double(metrics.samples);
     metrics.rmse = std::sqrt(metrics.mse);
-    metrics.psnr = metrics.mse > 0 ? 10.0 * std::log10(1.0 / metrics.mse)
-                                   : std::numeric_limits<double>::infinity();
+    metrics.psnr =
+        metrics.mse > 0 ? 10.0 * std::log10(1.0 / metrics.mse) : std::numeric_limits<double>::infinity();
     return metrics;
 }
 

@@ -7,8 +7,8 @@
 
 namespace aaf {
 
-FilledOccluders fill_occluder_distances(ConstPlaneView d2_min, ConstPlaneView d2_max, ConstPlaneView object_id,
-                                        int radius_px) {
+FilledOccluders fill_occluder_distances(ConstPlaneView d2_min, ConstPlaneView d2_max,
+                                        ConstPlaneView object_id, int radius_px) {
     const int width = d2_max.width, height = d2_max.height;
     FilledOccluders filled;
     filled.d2_min_m.assign(std::size_t(width) * height, 0.0f);
@@ -20,10 +20,9 @@ FilledOccluders fill_occluder_distances(ConstPlaneView d2_min, ConstPlaneView d2
     const std::size_t sat_width = std::size_t(width) + 1;
     for (int y = 0; y < height; ++y)
         for (int x = 0; x < width; ++x)
-            occluded_before[(y + 1) * sat_width + x + 1] = int(has_occluder(d2_max(x, y))) +
-                                                           occluded_before[y * sat_width + x + 1] +
-                                                           occluded_before[(y + 1) * sat_width + x] -
-                                                           occluded_before[y * sat_width + x];
+            occluded_before[(y + 1) * sat_width + x + 1] =
+                int(has_occluder(d2_max(x, y))) + occluded_before[y * sat_width + x + 1] +
+                occluded_before[(y + 1) * sat_width + x] - occluded_before[y * sat_width + x];
     auto occluded_in_window = [&](int x0, int y0, int x1, int y1) {  // inclusive bounds
         return occluded_before[(y1 + 1) * sat_width + x1 + 1] - occluded_before[y0 * sat_width + x1 + 1] -
                occluded_before[(y1 + 1) * sat_width + x0] + occluded_before[y0 * sat_width + x0];

@@ -23,7 +23,8 @@ void plan_samples(const SamplingPlanInputs &in, float light_sigma_m, const AafPa
             throw Error("sampling plan inputs and output must all be " + std::to_string(width) + "x" +
                         std::to_string(height));
 
-    const FilledOccluders occluders = fill_occluder_distances(in.d2_min, in.d2_max, in.object_id, aaf.fill_radius_px);
+    const FilledOccluders occluders =
+        fill_occluder_distances(in.d2_min, in.d2_max, in.object_id, aaf.fill_radius_px);
     parallel_for_rows(height, [&](int y) {
         for (int x = 0; x < width; ++x) {
             const std::size_t i = std::size_t(y) * width + x;
@@ -31,11 +32,13 @@ void plan_samples(const SamplingPlanInputs &in, float light_sigma_m, const AafPa
             float n = float(params.first_pass_spp);
             if (in.object_id(x, y) != 0 && d1 > 0 && pixel_size > 0 && std::isfinite(pixel_size) &&
                 has_occluder(occluders.d2_max_m[i])) {
-                const float rate = aaf_bandlimits(d1, occluders.d2_min_m[i], occluders.d2_max_m[i], pixel_size,
-                                                  light_sigma_m, aaf)
+                const float rate = aaf_bandlimits(d1, occluders.d2_min_m[i], occluders.d2_max_m[i],
+                                                  pixel_size, light_sigma_m, aaf)
                                        .samples_per_pixel;
-                if (std::isfinite(rate)) n = std::ceil(rate);
-                else n = float(params.max_spp);
+                if (std::isfinite(rate))
+                    n = std::ceil(rate);
+                else
+                    n = float(params.max_spp);
             }
             spp_out(x, y) = std::clamp(n, float(params.first_pass_spp), float(params.max_spp));
         }

@@ -49,8 +49,11 @@ void write_png(const std::vector<float> &rgb, int width, int height, const std::
 
 /// Piecewise-linear colour ramp for t in [0, 1].
 Vec3 ramp(float t) {
-    static const Vec3 stops[] = {{0.05f, 0.05f, 0.45f}, {0.0f, 0.55f, 0.95f}, {0.1f, 0.85f, 0.3f},
-                                 {0.98f, 0.9f, 0.1f},   {0.85f, 0.1f, 0.05f}};
+    static const Vec3 stops[] = {{0.05f, 0.05f, 0.45f},
+                                 {0.0f, 0.55f, 0.95f},
+                                 {0.1f, 0.85f, 0.3f},
+                                 {0.98f, 0.9f, 0.1f},
+                                 {0.85f, 0.1f, 0.05f}};
     constexpr int kIntervals = 4;
     const float position = std::clamp(t, 0.0f, 1.0f) * kIntervals;
     const int i = std::min(int(position), kIntervals - 1);
@@ -60,8 +63,8 @@ Vec3 ramp(float t) {
 
 }  // namespace
 
-void write_false_colour_png(const AovSet &aovs, const std::string &channel, const std::string &path, float low,
-                            float high) {
+void write_false_colour_png(const AovSet &aovs, const std::string &channel, const std::string &path,
+                            float low, float high) {
     if (!aovs.has_channel(channel)) throw Error(path + ": no channel '" + channel + "' to preview");
     const ConstPlaneView values = aovs.channel(channel);
     if (low == high) {
@@ -89,8 +92,8 @@ void write_false_colour_png(const AovSet &aovs, const std::string &channel, cons
     write_png(rgb, aovs.width(), aovs.height(), path);
 }
 
-void write_preview_png(const AovSet &aovs, const std::vector<std::string> &channels,
-                       const std::string &path, float exposure_stops) {
+void write_preview_png(const AovSet &aovs, const std::vector<std::string> &channels, const std::string &path,
+                       float exposure_stops) {
     if (channels.size() != 1 && channels.size() != 3)
         throw Error(path + ": a preview needs one or three channels");
     std::vector<ConstPlaneView> planes;
@@ -105,7 +108,8 @@ void write_preview_png(const AovSet &aovs, const std::vector<std::string> &chann
         for (int x = 0; x < width; ++x)
             for (int c = 0; c < 3; ++c) {
                 float value = planes[planes.size() == 3 ? c : 0](x, y) * scale;
-                rgb[(std::size_t(y) * width + x) * 3 + c] = std::isfinite(value) ? std::max(0.0f, value) : 0.0f;
+                rgb[(std::size_t(y) * width + x) * 3 + c] =
+                    std::isfinite(value) ? std::max(0.0f, value) : 0.0f;
             }
     try {
         OCIO::PackedImageDesc image(rgb.data(), width, height, 3);

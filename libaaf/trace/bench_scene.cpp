@@ -30,9 +30,9 @@ SceneDescription make_bench_scene(int width, int height) {
     frame.object_id = 3;
     frame.albedo = {0.25f, 0.25f, 0.28f};
     for (float x : {-0.75f, 0.75f}) {
-        frame.add_box({x - 0.03f, 0.0f, 0.16f}, {x + 0.03f, 0.45f, 0.22f}, angle);     // front leg
-        frame.add_box({x - 0.03f, 0.0f, -0.30f}, {x + 0.03f, 0.95f, -0.24f}, angle);   // back leg and post
-        frame.add_box({x - 0.03f, 0.40f, -0.30f}, {x + 0.03f, 0.45f, 0.22f}, angle);   // seat rail
+        frame.add_box({x - 0.03f, 0.0f, 0.16f}, {x + 0.03f, 0.45f, 0.22f}, angle);    // front leg
+        frame.add_box({x - 0.03f, 0.0f, -0.30f}, {x + 0.03f, 0.95f, -0.24f}, angle);  // back leg and post
+        frame.add_box({x - 0.03f, 0.40f, -0.30f}, {x + 0.03f, 0.45f, 0.22f}, angle);  // seat rail
     }
     scene.meshes.push_back(frame);
 

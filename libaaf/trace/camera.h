@@ -10,11 +10,12 @@ namespace aaf::trace {
 /// space, y down; `ray_direction` takes continuous raster coordinates.
 struct PinholeCamera {
     Vec3 eye;
-    Vec3 forward, right, up;  ///< orthonormal; right and up span the image plane
+    Vec3 forward, right, up;   ///< orthonormal; right and up span the image plane
     float tan_half_fov_y = 0;  ///< tan of half the vertical field of view
     int width = 0, height = 0;
 
-    static PinholeCamera look_at(Vec3 eye, Vec3 target, Vec3 up_hint, float fov_y_deg, int width, int height) {
+    static PinholeCamera look_at(Vec3 eye, Vec3 target, Vec3 up_hint, float fov_y_deg, int width,
+                                 int height) {
         PinholeCamera camera;
         camera.eye = eye;
         camera.forward = normalize(target - eye);

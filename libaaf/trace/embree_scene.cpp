@@ -12,13 +12,20 @@ namespace {
 
 const char *embree_error_name(RTCError code) {
     switch (code) {
-        case RTC_ERROR_NONE: return "no error";
-        case RTC_ERROR_INVALID_ARGUMENT: return "invalid argument";
-        case RTC_ERROR_INVALID_OPERATION: return "invalid operation";
-        case RTC_ERROR_OUT_OF_MEMORY: return "out of memory";
-        case RTC_ERROR_UNSUPPORTED_CPU: return "unsupported CPU";
-        case RTC_ERROR_CANCELLED: return "cancelled";
-        default: return "unknown error";
+        case RTC_ERROR_NONE:
+            return "no error";
+        case RTC_ERROR_INVALID_ARGUMENT:
+            return "invalid argument";
+        case RTC_ERROR_INVALID_OPERATION:
+            return "invalid operation";
+        case RTC_ERROR_OUT_OF_MEMORY:
+            return "out of memory";
+        case RTC_ERROR_UNSUPPORTED_CPU:
+            return "unsupported CPU";
+        case RTC_ERROR_CANCELLED:
+            return "cancelled";
+        default:
+            return "unknown error";
     }
 }
 
@@ -36,10 +43,12 @@ EmbreeScene::EmbreeScene(const SceneDescription &description) {
         scene_ = rtcNewScene(device_);
         for (const Mesh &mesh : description.meshes) {
             RTCGeometry geometry = rtcNewGeometry(device_, RTC_GEOMETRY_TYPE_TRIANGLE);
-            auto *vertices = static_cast<float *>(rtcSetNewGeometryBuffer(
-                geometry, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3, 3 * sizeof(float), mesh.positions.size()));
-            auto *indices = static_cast<unsigned *>(rtcSetNewGeometryBuffer(
-                geometry, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3, 3 * sizeof(unsigned), mesh.indices.size() / 3));
+            auto *vertices = static_cast<float *>(
+                rtcSetNewGeometryBuffer(geometry, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3,
+                                        3 * sizeof(float), mesh.positions.size()));
+            auto *indices = static_cast<unsigned *>(
+                rtcSetNewGeometryBuffer(geometry, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3,
+                                        3 * sizeof(unsigned), mesh.indices.size() / 3));
             check_device(device_, "allocating geometry buffers");
             for (std::size_t i = 0; i < mesh.positions.size(); ++i) {
                 vertices[3 * i + 0] = mesh.positions[i].x;

@@ -9,7 +9,7 @@ namespace aaf::trace {
 /// The closest hit of a ray, or none.
 struct Hit {
     bool found = false;
-    float distance = 0;   ///< along the (unnormalised) ray direction, in units of its length
+    float distance = 0;     ///< along the (unnormalised) ray direction, in units of its length
     Vec3 geometric_normal;  ///< unnormalised, as Embree reports it
     unsigned mesh_index = 0;
 };

@@ -12,7 +12,9 @@ namespace {
 
 constexpr int kTableIntervals = 4096;
 
-double standard_normal_cdf(double x) { return 0.5 * std::erfc(-x / std::sqrt(2.0)); }
+double standard_normal_cdf(double x) {
+    return 0.5 * std::erfc(-x / std::sqrt(2.0));
+}
 
 }  // namespace
 
@@ -46,8 +48,8 @@ LightSampler::LightSampler(const LightPlane &light)
       normal_u_(0.5 * light.width_m / light.sigma_m),
       normal_v_(0.5 * light.height_m / light.sigma_m) {}
 
-void LightSampler::stratified_unit(std::uint32_t index, std::uint32_t count, std::uint32_t stratum_key, float u1,
-                                   float u2, float &s, float &t) {
+void LightSampler::stratified_unit(std::uint32_t index, std::uint32_t count, std::uint32_t stratum_key,
+                                   float u1, float u2, float &s, float &t) {
     const std::uint32_t columns = std::uint32_t(std::ceil(std::sqrt(double(count))));
     const std::uint32_t rows = (count + columns - 1) / columns;
     const std::uint32_t stratum = permute_index(index, columns * rows, stratum_key);

@@ -36,7 +36,8 @@ class LightSampler {
 
     /// Point of sample `index` of `count` for a pixel; `stratum_key` picks the
     /// pixel's order of strata, `u1, u2` in [0, 1) the jitter.
-    Vec3 sample(std::uint32_t index, std::uint32_t count, std::uint32_t stratum_key, float u1, float u2) const;
+    Vec3 sample(std::uint32_t index, std::uint32_t count, std::uint32_t stratum_key, float u1,
+                float u2) const;
 
     /// The stratified unit-square point of the same sample, before warping.
     static void stratified_unit(std::uint32_t index, std::uint32_t count, std::uint32_t stratum_key, float u1,

@@ -44,7 +44,8 @@ void Mesh::add_sphere(Vec3 center, float radius_m, int segments) {
         for (int i = 0; i <= segments; ++i) {
             const float phi = 2 * kPi * float(i) / float(segments);
             positions.push_back(center + Vec3{std::sin(theta) * std::cos(phi), std::cos(theta),
-                                              std::sin(theta) * std::sin(phi)} * radius_m);
+                                              std::sin(theta) * std::sin(phi)} *
+                                             radius_m);
         }
     }
     const auto stride = std::uint32_t(segments + 1);
@@ -73,7 +74,8 @@ void Mesh::add_tube(const std::vector<Vec3> &centre, const std::vector<float> &r
     const auto ring = std::uint32_t(sides);
     for (std::size_t k = 0; k + 1 < count; ++k)
         for (std::uint32_t i = 0; i < ring; ++i) {
-            const std::uint32_t a = base + std::uint32_t(k) * ring + i, b = base + std::uint32_t(k) * ring + (i + 1) % ring;
+            const std::uint32_t a = base + std::uint32_t(k) * ring + i,
+                                b = base + std::uint32_t(k) * ring + (i + 1) % ring;
             indices.insert(indices.end(), {a, b, b + ring, a, b + ring, a + ring});
         }
 }

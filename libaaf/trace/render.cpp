@@ -116,7 +116,8 @@ AovSet render_builtin(const std::string &scene_name, const RenderSettings &setti
         for_each_pixel_tiled(settings.width, settings.height, [&](int x, int y) {
             const std::size_t i = std::size_t(y) * settings.width + x;
             primaries[i] = renderer.trace_primary(x, y);
-            if (primaries[i].found) renderer.trace_shadows(primaries[i], i, 0, std::uint32_t(settings.spp), stats[i]);
+            if (primaries[i].found)
+                renderer.trace_shadows(primaries[i], i, 0, std::uint32_t(settings.spp), stats[i]);
         });
         measured.first_pass_s = seconds_since(start);
         if (settings.adaptive) {
@@ -138,7 +139,8 @@ AovSet render_builtin(const std::string &scene_name, const RenderSettings &setti
             for_each_pixel_tiled(settings.width, settings.height, [&](int x, int y) {
                 const std::size_t i = std::size_t(y) * settings.width + x;
                 const auto remaining = std::uint32_t(totals(x, y)) - std::uint32_t(settings.spp);
-                if (primaries[i].found && remaining > 0) renderer.trace_shadows(primaries[i], i, 1, remaining, stats[i]);
+                if (primaries[i].found && remaining > 0)
+                    renderer.trace_shadows(primaries[i], i, 1, remaining, stats[i]);
             });
             measured.second_pass_s = seconds_since(start);
         }

@@ -51,8 +51,9 @@ PrimaryHit Renderer::trace_primary(int x, int y) const {
 
     // AAF Eq. 1: r(x) with the light's irradiance at its centre (or, with the
     // falloff inside l(y), the exact unshadowed irradiance), no visibility.
-    const float geometry = settings_.cosine_falloff ? mean_falloff(primary.position, primary.normal)
-                                                    : falloff(primary.position, primary.normal, scene_.light.center);
+    const float geometry = settings_.cosine_falloff
+                               ? mean_falloff(primary.position, primary.normal)
+                               : falloff(primary.position, primary.normal, scene_.light.center);
     primary.unshadowed = primary.mesh->albedo * (scene_.light_intensity * geometry / kPi);
     return primary;
 }
@@ -74,7 +75,8 @@ void Renderer::trace_shadows(const PrimaryHit &primary, std::uint64_t pixel_inde
         // Samples follow the emission profile; the falloff, when included in l(y),
         // weights them relative to the centre (AAF Sec. 7).
         double weight = 1.0;
-        if (settings_.cosine_falloff && centre_falloff > 0) weight = falloff(p, primary.normal, target) / centre_falloff;
+        if (settings_.cosine_falloff && centre_falloff > 0)
+            weight = falloff(p, primary.normal, target) / centre_falloff;
         ++stats.taken;
         stats.weight_sum += weight;
         const Vec3 direction = target - origin;

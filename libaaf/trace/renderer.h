@@ -13,8 +13,8 @@ namespace aaf::trace {
 /// What the primary ray through a pixel's centre sees.
 struct PrimaryHit {
     bool found = false;
-    Vec3 position;           ///< world metres
-    Vec3 normal;             ///< unit geometric normal, facing the camera
+    Vec3 position;  ///< world metres
+    Vec3 normal;    ///< unit geometric normal, facing the camera
     const Mesh *mesh = nullptr;
     float pixel_size_m = 0;  ///< d of AAF Eq. 6
     Vec3 unshadowed;         ///< r(x) of AAF Eq. 1
@@ -34,9 +34,7 @@ struct ShadowStats {
     }
     bool occluded_any() const { return d2_max_m > 0; }
     /// Light-weighted visibility in [0, 1]; exactly 1 when no sample was occluded.
-    float visibility() const {
-        return weight_sum > 0 ? float(unoccluded_weight_sum / weight_sum) : 1.0f;
-    }
+    float visibility() const { return weight_sum > 0 ? float(unoccluded_weight_sum / weight_sum) : 1.0f; }
 };
 
 /// Traces primary and shadow rays of one scene (thread-safe, const).

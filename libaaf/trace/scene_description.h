@@ -11,10 +11,10 @@ namespace aaf::trace {
 
 /// A triangle mesh with one diffuse material, identified in the object-id AOV.
 struct Mesh {
-    std::vector<Vec3> positions;               ///< world metres
-    std::vector<std::uint32_t> indices;        ///< three per triangle
-    int object_id = 1;                         ///< > 0; 0 is the background
-    Vec3 albedo{0.75f, 0.75f, 0.75f};          ///< diffuse reflectance per channel
+    std::vector<Vec3> positions;         ///< world metres
+    std::vector<std::uint32_t> indices;  ///< three per triangle
+    int object_id = 1;                   ///< > 0; 0 is the background
+    Vec3 albedo{0.75f, 0.75f, 0.75f};    ///< diffuse reflectance per channel
 
     /// Appends an axis-aligned box [lo, hi] transformed by a rotation of
     /// `angle_rad` about the vertical (y) axis.

@@ -45,8 +45,9 @@ const Fixture &fixture(int width, int height) {
     f.light = aaf::read_light_attributes(a);
 
     std::vector<float> filtered(a.pixel_count()), beta(a.pixel_count());
-    aaf::aaf_filter(f.inputs, f.light, aaf::AafParams{},
-                    {aaf::plane_view(filtered.data(), width, height), aaf::plane_view(beta.data(), width, height)});
+    aaf::aaf_filter(
+        f.inputs, f.light, aaf::AafParams{},
+        {aaf::plane_view(filtered.data(), width, height), aaf::plane_view(beta.data(), width, height)});
     double sum = 0;
     std::size_t count = 0;
     for (std::size_t i = 0; i < beta.size(); ++i)
@@ -62,7 +63,8 @@ void BM_AafVsFixed(benchmark::State &state) {
     const int width = int(state.range(0)), height = int(state.range(1));
     const Fixture &f = fixture(width, height);
     std::vector<float> out(f.aovs.pixel_count()), beta(f.aovs.pixel_count());
-    const aaf::AafOutputs outputs{aaf::plane_view(out.data(), width, height), aaf::plane_view(beta.data(), width, height)};
+    const aaf::AafOutputs outputs{aaf::plane_view(out.data(), width, height),
+                                  aaf::plane_view(beta.data(), width, height)};
     double aaf_seconds = 0, fixed_seconds = 0;
     for (auto _ : state) {
         const auto t0 = std::chrono::steady_clock::now();

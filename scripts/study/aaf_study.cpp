@@ -33,7 +33,8 @@ std::pair<double, float> best_fixed_filter(const AovSet &noisy, const AovSet &re
     for (float beta_m : {0.0025f, 0.005f, 0.01f, 0.015f, 0.02f, 0.03f, 0.045f, 0.065f, 0.09f}) {
         AafParams params;
         params.fixed_beta_m = beta_m;
-        const double rmse = compare_channels(aaf_filter_aovs(noisy, ChannelMap{}, params), reference, kRgb).rmse;
+        const double rmse =
+            compare_channels(aaf_filter_aovs(noisy, ChannelMap{}, params), reference, kRgb).rmse;
         if (rmse < best_rmse) {
             best_rmse = rmse;
             best_beta = beta_m;
@@ -57,11 +58,12 @@ void evaluate(const std::string &scene, const std::string &sampling, double sett
     params.mu = filter_mu;
     params.mu_from_spp = true;  // Sec. 5.2: the filter follows the samples taken
     const AovSet filtered = aaf_filter_aovs(noisy, ChannelMap{}, params);
-    rows.push_back({scene, sampling, "AF", setting, spp, compare_channels(filtered, reference, kRgb).rmse, 0});
+    rows.push_back(
+        {scene, sampling, "AF", setting, spp, compare_channels(filtered, reference, kRgb).rmse, 0});
     const Row &last = rows.back();
     std::fprintf(stderr, "%-10s %s mu/spp %-6g avg spp %7.2f  UF %.5f  NAF %.5f (beta %.4f m)  AF %.5f\n",
-                 scene.c_str(), sampling.c_str(), setting, spp, rows[rows.size() - 3].rmse, fixed_rmse, beta_m,
-                 last.rmse);
+                 scene.c_str(), sampling.c_str(), setting, spp, rows[rows.size() - 3].rmse, fixed_rmse,
+                 beta_m, last.rmse);
 }
 
 }  // namespace
@@ -109,8 +111,8 @@ int main(int argc, char **argv) {
             std::ofstream csv(temporary);
             csv << "scene,sampling,filter,setting,avg_spp,rmse,fixed_beta_m\n";
             for (const Row &r : rows)
-                csv << r.scene << ',' << r.sampling << ',' << r.filter << ',' << r.setting << ',' << r.avg_spp << ','
-                    << r.rmse << ',' << r.fixed_beta_m << '\n';
+                csv << r.scene << ',' << r.sampling << ',' << r.filter << ',' << r.setting << ',' << r.avg_spp
+                    << ',' << r.rmse << ',' << r.fixed_beta_m << '\n';
             if (!csv) throw Error(output + ": cannot write");
         }
         io::commit_temporary(temporary, output);

@@ -9,11 +9,11 @@
 
 using namespace aaf;
 
-
 // AAF Sec. 5.2 and Fig. 6(c): with mu following the samples taken, the filtered
 // error keeps falling as spp grows (the filter narrows towards one pixel); a
 // fixed-width filter's error flattens out at its blurring bias.
-TEST_CASE("AAF error decreases monotonically with spp; a fixed-width filter's stalls", "[integration][consistency]") {
+TEST_CASE("AAF error decreases monotonically with spp; a fixed-width filter's stalls",
+          "[integration][consistency]") {
     trace::RenderSettings settings;
     settings.width = 160;
     settings.height = 120;
@@ -38,8 +38,8 @@ TEST_CASE("AAF error decreases monotonically with spp; a fixed-width filter's st
     }
     std::ostringstream table;
     for (std::size_t i = 0; i < aaf_error.size(); ++i)
-        table << "step " << i << ": unfiltered " << unfiltered_error[i] << ", AAF " << aaf_error[i] << ", fixed "
-              << fixed_error[i] << "\n";
+        table << "step " << i << ": unfiltered " << unfiltered_error[i] << ", AAF " << aaf_error[i]
+              << ", fixed " << fixed_error[i] << "\n";
     INFO(table.str());
     for (std::size_t i = 1; i < aaf_error.size(); ++i) CHECK(aaf_error[i] < aaf_error[i - 1]);
     for (std::size_t i = 0; i < aaf_error.size(); ++i) CHECK(aaf_error[i] <= unfiltered_error[i]);
@@ -68,7 +68,8 @@ TEST_CASE("AAF with mu 3 works for a uniform light with cosine falloff", "[integ
     AafParams params;
     params.mu = 3.0f;
     const double unfiltered = compare_channels(noisy, reference, {"R", "G", "B"}).rmse;
-    const double filtered = compare_channels(aaf_filter_aovs(noisy, ChannelMap{}, params), reference, {"R", "G", "B"}).rmse;
+    const double filtered =
+        compare_channels(aaf_filter_aovs(noisy, ChannelMap{}, params), reference, {"R", "G", "B"}).rmse;
     INFO("unfiltered " << unfiltered << ", AAF mu 3 " << filtered);
     CHECK(filtered < 0.7 * unfiltered);
 }

@@ -2,8 +2,8 @@
 
 #include "aaf/core/aaf_bandlimits.h"
 
-using aaf::AafParams;
 using aaf::aaf_bandlimits;
+using aaf::AafParams;
 
 TEST_CASE("AAF slopes, bandlimits and beta match hand-computed values", "[aaf][bandlimits]") {
     // d1 = 2 m, d2min = 0.5 m, d2max = 1 m, d = 1 cm, sigma = 0.5 m, paper defaults.

@@ -1,8 +1,8 @@
 #include <catch2/catch.hpp>
 
+#include <tbb/task_arena.h>
 #include <cmath>
 #include <random>
-#include <tbb/task_arena.h>
 #include <vector>
 
 #include "aaf/core/aaf_bandlimits.h"
@@ -151,7 +151,8 @@ TEST_CASE("Taps of other objects and turned normals are rejected", "[aaf][filter
             const bool left = x < 10;
             scene.visibility[scene.index(x, y)] = left ? 0.2f : 0.9f;
             // Left and right differ by object id in the top half, by normal in the bottom half.
-            if (y < 10) scene.object_id[scene.index(x, y)] = left ? 1.0f : 2.0f;
+            if (y < 10)
+                scene.object_id[scene.index(x, y)] = left ? 1.0f : 2.0f;
             else if (!left) {
                 scene.nx[scene.index(x, y)] = 1.0f;
                 scene.ny[scene.index(x, y)] = 0.0f;
@@ -159,8 +160,7 @@ TEST_CASE("Taps of other objects and turned normals are rejected", "[aaf][filter
         }
     const std::vector<float> out = scene.run(AafParams{});
     for (int y = 0; y < scene.height; ++y)
-        for (int x = 0; x < scene.width; ++x)
-            CHECK(out[scene.index(x, y)] == Approx(x < 10 ? 0.2f : 0.9f));
+        for (int x = 0; x < scene.width; ++x) CHECK(out[scene.index(x, y)] == Approx(x < 10 ? 0.2f : 0.9f));
 }
 
 TEST_CASE("A NaN or zero normal never rejects the centre tap", "[aaf][filter]") {

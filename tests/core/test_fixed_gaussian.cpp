@@ -27,6 +27,6 @@ TEST_CASE("Fixed Gaussian keeps a constant image and conserves an impulse", "[ba
 
     fixed_gaussian_filter(plane_view(impulse.data(), w, h), 0.0f, plane_view(out.data(), w, h));
     CHECK(out == impulse);
-    CHECK_THROWS_AS(fixed_gaussian_filter(plane_view(impulse.data(), w, h), -1.0f, plane_view(out.data(), w, h)),
-                    Error);
+    CHECK_THROWS_AS(
+        fixed_gaussian_filter(plane_view(impulse.data(), w, h), -1.0f, plane_view(out.data(), w, h)), Error);
 }

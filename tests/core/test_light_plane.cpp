@@ -8,7 +8,7 @@ using aaf::Vec3;
 
 TEST_CASE("Light-plane distance is measured along the light normal", "[light]") {
     const LightPlane light = LightPlane::square({0, 3, 0}, {0, -1, 0}, 1.0f);
-    CHECK(light.plane_distance_m({5, 0, -7}) == Approx(3.0f));   // receiver on the ground
+    CHECK(light.plane_distance_m({5, 0, -7}) == Approx(3.0f));  // receiver on the ground
     CHECK(light.plane_distance_m({0.3f, 1.2f, 0.1f}) == Approx(1.8f));
 }
 

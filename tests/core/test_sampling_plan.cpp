@@ -13,7 +13,8 @@ TEST_CASE("Sampling plan follows Eq. 21 on a synthetic first pass", "[aaf][plan]
     // Row of 12 pixels: x < 3 occluded (d2 = 1 m, 0.5 m), x in [3, 9) unoccluded but
     // within 5 px of an occluded one, x >= 9 unoccluded and too far; x = 11 background.
     const int w = 12, h = 1;
-    std::vector<float> d1(w, 2.0f), d2_min(w, 0.0f), d2_max(w, 0.0f), id(w, 1.0f), size(w, 0.01f), spp(w, -1.0f);
+    std::vector<float> d1(w, 2.0f), d2_min(w, 0.0f), d2_max(w, 0.0f), id(w, 1.0f), size(w, 0.01f),
+        spp(w, -1.0f);
     for (int x = 0; x < 3; ++x) {
         d2_min[x] = 0.5f;
         d2_max[x] = 1.0f;
@@ -55,5 +56,6 @@ TEST_CASE("Sampling plan rejects bad parameters", "[aaf][plan]") {
     SamplingPlanParams bad;
     bad.max_spp = 4;
     CHECK_THROWS_AS(plan_samples(in, 0.5f, AafParams{}, bad, plane_view(out.data(), 2, 2)), Error);
-    CHECK_THROWS_AS(plan_samples(in, 0.5f, AafParams{}, SamplingPlanParams{}, plane_view(out.data(), 1, 4)), Error);
+    CHECK_THROWS_AS(plan_samples(in, 0.5f, AafParams{}, SamplingPlanParams{}, plane_view(out.data(), 1, 4)),
+                    Error);
 }

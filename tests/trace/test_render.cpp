@@ -31,7 +31,8 @@ TEST_CASE("Render is identical for any thread count and depends on the seed", "[
     CHECK(one.channel("shadow.V").data != reseeded.channel("shadow.V").data);
     bool any_different = false;
     for (std::size_t i = 0; i < one.pixel_count(); ++i)
-        any_different = any_different || one.channel("shadow.V").data[i] != reseeded.channel("shadow.V").data[i];
+        any_different =
+            any_different || one.channel("shadow.V").data[i] != reseeded.channel("shadow.V").data[i];
     CHECK(any_different);
 }
 
@@ -48,7 +49,8 @@ TEST_CASE("Render writes every AAF AOV with consistent values", "[trace]") {
             if (aovs.channel("id.object")(x, y) == 0) continue;
             const float v = aovs.channel("shadow.V")(x, y);
             const float d1 = aovs.channel("shadow.d1")(x, y);
-            const float d2_min = aovs.channel("shadow.d2min")(x, y), d2_max = aovs.channel("shadow.d2max")(x, y);
+            const float d2_min = aovs.channel("shadow.d2min")(x, y),
+                        d2_max = aovs.channel("shadow.d2max")(x, y);
             REQUIRE(v >= 0.0f);
             REQUIRE(v <= 1.0f);
             if (d2_max == 0) {
@@ -106,7 +108,8 @@ TEST_CASE("Render rejects bad settings and unknown scenes", "[trace]") {
     CHECK_THROWS_WITH(trace::render_builtin("nope", trace::RenderSettings{}), Catch::Contains("grids"));
 }
 
-TEST_CASE("Adaptive sampling follows the plan, capped, and is thread-count independent", "[trace][adaptive]") {
+TEST_CASE("Adaptive sampling follows the plan, capped, and is thread-count independent",
+          "[trace][adaptive]") {
     trace::RenderSettings settings;
     settings.width = 64;
     settings.height = 48;
@@ -163,8 +166,10 @@ TEST_CASE("Shadow rays from the ground never hit the ground itself (no acne)", "
             if (aovs.channel("id.object")(x, y) != 1.0f) continue;
             ++ground;
             const float d2_max = aovs.channel("shadow.d2max")(x, y);
-            if (d2_max > 0) REQUIRE(d2_max <= aovs.channel("shadow.d1")(x, y) - 0.33f);
-            else REQUIRE(aovs.channel("shadow.V")(x, y) == 1.0f);
+            if (d2_max > 0)
+                REQUIRE(d2_max <= aovs.channel("shadow.d1")(x, y) - 0.33f);
+            else
+                REQUIRE(aovs.channel("shadow.V")(x, y) == 1.0f);
         }
     CHECK(ground > 1000);
 }

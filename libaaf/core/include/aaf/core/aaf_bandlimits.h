@@ -7,14 +7,14 @@ namespace aaf {
 /// The frequency analysis of AAF at one pixel. Frequencies are in 1/metres,
 /// lengths in metres.
 struct AafBandlimits {
-    float s1 = 0;            ///< max spectrum slope d1/d2min - 1 (Eq. 4)
-    float s2 = 0;            ///< min spectrum slope d1/d2max - 1 (Eq. 4)
-    float omega_light = 0;   ///< Omega_L^max = 1/sigma
-    float omega_x_max = 0;   ///< occlusion bandlimit along x (Eq. 6)
-    float omega_y_max = 0;   ///< occlusion bandlimit along y (Eq. 7)
-    float omega_x_f0 = 0;    ///< critical filter width (Eq. 8)
-    float omega_x_f = 0;     ///< mu * omega_x_f0 (Sec. 5.2)
-    float beta_m = 0;        ///< spatial filter standard deviation (Eq. 13)
+    float s1 = 0;                 ///< max spectrum slope d1/d2min - 1 (Eq. 4)
+    float s2 = 0;                 ///< min spectrum slope d1/d2max - 1 (Eq. 4)
+    float omega_light = 0;        ///< Omega_L^max = 1/sigma
+    float omega_x_max = 0;        ///< occlusion bandlimit along x (Eq. 6)
+    float omega_y_max = 0;        ///< occlusion bandlimit along y (Eq. 7)
+    float omega_x_f0 = 0;         ///< critical filter width (Eq. 8)
+    float omega_x_f = 0;          ///< mu * omega_x_f0 (Sec. 5.2)
+    float beta_m = 0;             ///< spatial filter standard deviation (Eq. 13)
     float samples_per_pixel = 0;  ///< n of Eq. 15 with packing (a) of Fig. 4
 };
 
@@ -24,14 +24,14 @@ struct AafBandlimits {
 /// Slopes are clamped to >= 0 (an occluder measured beyond the receiver, which
 /// curved geometry can produce, counts as contact). Where the min() of Eq. 8
 /// and Fig. 4(a) clip, the clipped value is used, so s2 -> 0 stays finite.
-AafBandlimits aaf_bandlimits(float d1_m, float d2_min_m, float d2_max_m, float pixel_size_m,
-                             float sigma_m, const AafParams &params);
+AafBandlimits aaf_bandlimits(float d1_m, float d2_min_m, float d2_max_m, float pixel_size_m, float sigma_m,
+                             const AafParams &params);
 
 /// The mu (>= params.mu) at which the sampling rate of Eq. 15 reaches
 /// `samples`: n grows monotonically with mu, so bisection finds it to 1e-4
 /// relative; returns params.mu when even that rate exceeds `samples`, and at
 /// most 1e4 (a filter far below one pixel).
-float mu_for_samples(float samples, float d1_m, float d2_min_m, float d2_max_m, float pixel_size_m, float sigma_m,
-                     const AafParams &params);
+float mu_for_samples(float samples, float d1_m, float d2_min_m, float d2_max_m, float pixel_size_m,
+                     float sigma_m, const AafParams &params);
 
 }  // namespace aaf

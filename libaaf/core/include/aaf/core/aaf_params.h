@@ -5,7 +5,8 @@ namespace aaf {
 /// How the spatially varying Gaussian of AAF Eq. 10-12 is evaluated.
 enum class AafFilterMode {
     Separable,  ///< a vertical then a horizontal 1D pass (Sec. 6); exact where beta is locally constant
-    Exact2D,    ///< the full 2D gather of Eq. 10 over the square window; slower, for measuring Sec. 6's approximation
+    Exact2D,    ///< the full 2D gather of Eq. 10 over the square window; slower, for measuring Sec. 6's
+                ///< approximation
 };
 
 /// Parameters of Axis-Aligned Filtering (Mehta et al. 2012). The defaults are

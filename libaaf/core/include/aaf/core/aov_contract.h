@@ -31,8 +31,8 @@ enum class Role {
 
 struct RoleInfo {
     Role role;
-    const char *key;                        ///< spelling on the command line (--map key=...)
-    std::vector<std::string> channels;      ///< default EXR channel names
+    const char *key;                    ///< spelling on the command line (--map key=...)
+    std::vector<std::string> channels;  ///< default EXR channel names
     const char *units;
     const char *meaning;
 };
@@ -51,19 +51,19 @@ const std::vector<MethodInputs> &method_table();
 
 /// Per-image attributes, stored as EXR header attributes with the prefix "aaf:".
 namespace attr {
-inline constexpr const char *kLightCenter = "aaf:light:center";   // Vec3, world metres
-inline constexpr const char *kLightNormal = "aaf:light:normal";   // Vec3, unit, emitting side
-inline constexpr const char *kLightAxisU = "aaf:light:axis_u";    // Vec3, unit tangent
-inline constexpr const char *kLightAxisV = "aaf:light:axis_v";    // Vec3, unit tangent
-inline constexpr const char *kLightWidth = "aaf:light:width_m";   // float, extent along axis_u
-inline constexpr const char *kLightHeight = "aaf:light:height_m"; // float, extent along axis_v
-inline constexpr const char *kLightSigma = "aaf:light:sigma_m";   // float, profile std. dev.
-inline constexpr const char *kLightKind = "aaf:light:kind";       // "gaussian" or "uniform"
-inline constexpr const char *kScene = "aaf:scene";                // string
-inline constexpr const char *kSeed = "aaf:seed";                  // int
-inline constexpr const char *kSpp = "aaf:spp";                    // int, (first-pass) samples
-inline constexpr const char *kAdaptiveMu = "aaf:adaptive_mu";     // float, mu of the sampling plan
-inline constexpr const char *kMaxSpp = "aaf:max_spp";             // int, adaptive cap
+inline constexpr const char *kLightCenter = "aaf:light:center";      // Vec3, world metres
+inline constexpr const char *kLightNormal = "aaf:light:normal";      // Vec3, unit, emitting side
+inline constexpr const char *kLightAxisU = "aaf:light:axis_u";       // Vec3, unit tangent
+inline constexpr const char *kLightAxisV = "aaf:light:axis_v";       // Vec3, unit tangent
+inline constexpr const char *kLightWidth = "aaf:light:width_m";      // float, extent along axis_u
+inline constexpr const char *kLightHeight = "aaf:light:height_m";    // float, extent along axis_v
+inline constexpr const char *kLightSigma = "aaf:light:sigma_m";      // float, profile std. dev.
+inline constexpr const char *kLightKind = "aaf:light:kind";          // "gaussian" or "uniform"
+inline constexpr const char *kScene = "aaf:scene";                   // string
+inline constexpr const char *kSeed = "aaf:seed";                     // int
+inline constexpr const char *kSpp = "aaf:spp";                       // int, (first-pass) samples
+inline constexpr const char *kAdaptiveMu = "aaf:adaptive_mu";        // float, mu of the sampling plan
+inline constexpr const char *kMaxSpp = "aaf:max_spp";                // int, adaptive cap
 inline constexpr const char *kCosineFalloff = "aaf:cosine_falloff";  // int 0/1, falloff in l(y)
 }  // namespace attr
 

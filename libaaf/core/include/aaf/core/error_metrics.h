@@ -9,9 +9,9 @@ namespace aaf {
 
 /// Error of a test image against a reference over a set of channels.
 struct ErrorMetrics {
-    double mse = 0;   ///< mean over pixels and channels of (test - ref)^2
-    double rmse = 0;  ///< sqrt(mse)
-    double psnr = 0;  ///< 10 log10(peak^2 / mse) dB with peak = 1; +inf when equal
+    double mse = 0;           ///< mean over pixels and channels of (test - ref)^2
+    double rmse = 0;          ///< sqrt(mse)
+    double psnr = 0;          ///< 10 log10(peak^2 / mse) dB with peak = 1; +inf when equal
     std::size_t samples = 0;  ///< pixels x channels compared
 };
 

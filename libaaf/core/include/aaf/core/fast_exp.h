@@ -13,10 +13,11 @@ namespace aaf {
 /// positive inputs are clamped to 0.
 inline float fast_exp_nonpositive(float x) {
     constexpr float kLog2e = 1.44269504088896341f;
-    constexpr float kLn2Hi = 0.693145751953125f;      // ln 2 split so k * kLn2Hi is exact
+    constexpr float kLn2Hi = 0.693145751953125f;  // ln 2 split so k * kLn2Hi is exact
     constexpr float kLn2Lo = 1.428606765330187045e-06f;
     const float clamped = std::min(std::max(x, -87.0f), 0.0f);
-    const float k = static_cast<float>(static_cast<int>(clamped * kLog2e - 0.5f));  // round to nearest (x <= 0)
+    const float k =
+        static_cast<float>(static_cast<int>(clamped * kLog2e - 0.5f));  // round to nearest (x <= 0)
     const float r = (clamped - k * kLn2Hi) - k * kLn2Lo;
     float p = 1.0f / 720.0f;
     p = p * r + 1.0f / 120.0f;

@@ -25,13 +25,13 @@ LightProfile light_profile_from_string(const std::string &name);
 /// truncated at 1 sigma from the centre. The filter and the sampling rate use
 /// `sigma_m` for both profiles; the tracer uses it to shape a Gaussian light.
 struct LightPlane {
-    Vec3 center;                ///< world metres
-    Vec3 normal{0, -1, 0};      ///< unit, the side the light emits towards
-    Vec3 axis_u{1, 0, 0};       ///< unit tangent along the rectangle's width
-    Vec3 axis_v{0, 0, 1};       ///< unit tangent along the rectangle's height
-    float width_m = 1.0f;       ///< extent along axis_u
-    float height_m = 1.0f;      ///< extent along axis_v
-    float sigma_m = 0.5f;       ///< standard deviation of the emission profile, metres
+    Vec3 center;            ///< world metres
+    Vec3 normal{0, -1, 0};  ///< unit, the side the light emits towards
+    Vec3 axis_u{1, 0, 0};   ///< unit tangent along the rectangle's width
+    Vec3 axis_v{0, 0, 1};   ///< unit tangent along the rectangle's height
+    float width_m = 1.0f;   ///< extent along axis_u
+    float height_m = 1.0f;  ///< extent along axis_v
+    float sigma_m = 0.5f;   ///< standard deviation of the emission profile, metres
     LightProfile profile = LightProfile::Gaussian;
 
     /// A square light of side `side_m` centred at `center`, facing `normal`,

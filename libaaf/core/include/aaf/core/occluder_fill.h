@@ -16,10 +16,12 @@ struct FilledOccluders {
 };
 
 /// Computes the fill on the current oneTBB arena (thread-count independent).
-FilledOccluders fill_occluder_distances(ConstPlaneView d2_min, ConstPlaneView d2_max, ConstPlaneView object_id,
-                                        int radius_px);
+FilledOccluders fill_occluder_distances(ConstPlaneView d2_min, ConstPlaneView d2_max,
+                                        ConstPlaneView object_id, int radius_px);
 
 /// True where a shadow ray hit an occluder: a positive, finite d2max.
-inline bool has_occluder(float d2_max_m) { return d2_max_m > 0 && d2_max_m < 3.0e38f; }
+inline bool has_occluder(float d2_max_m) {
+    return d2_max_m > 0 && d2_max_m < 3.0e38f;
+}
 
 }  // namespace aaf

@@ -17,7 +17,8 @@ struct BasicPlaneView {
     std::ptrdiff_t row_stride = 0;
 
     BasicPlaneView() = default;
-    BasicPlaneView(T *data_, int width_, int height_, std::ptrdiff_t pixel_stride_, std::ptrdiff_t row_stride_)
+    BasicPlaneView(T *data_, int width_, int height_, std::ptrdiff_t pixel_stride_,
+                   std::ptrdiff_t row_stride_)
         : data(data_), width(width_), height(height_), pixel_stride(pixel_stride_), row_stride(row_stride_) {}
     /// A mutable view converts to a read-only one.
     template <typename U, typename = std::enable_if_t<std::is_same_v<T, const U>>>

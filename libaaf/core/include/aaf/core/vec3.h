@@ -19,12 +19,20 @@ struct Vec3 {
     constexpr Vec3 operator/(float s) const { return {x / s, y / s, z / s}; }
 };
 
-constexpr Vec3 operator*(float s, Vec3 v) { return v * s; }
-constexpr float dot(Vec3 a, Vec3 b) { return a.x * b.x + a.y * b.y + a.z * b.z; }
+constexpr Vec3 operator*(float s, Vec3 v) {
+    return v * s;
+}
+constexpr float dot(Vec3 a, Vec3 b) {
+    return a.x * b.x + a.y * b.y + a.z * b.z;
+}
 constexpr Vec3 cross(Vec3 a, Vec3 b) {
     return {a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x};
 }
-inline float length(Vec3 v) { return std::sqrt(dot(v, v)); }
-inline Vec3 normalize(Vec3 v) { return v / length(v); }
+inline float length(Vec3 v) {
+    return std::sqrt(dot(v, v));
+}
+inline Vec3 normalize(Vec3 v) {
+    return v / length(v);
+}
 
 }  // namespace aaf

@@ -11,8 +11,8 @@ namespace aaf::io {
 /// shown as grey), scaled by 2^exposure_stops, encoded with OpenColorIO's
 /// sRGB transfer function (IEC 61966-2-1). Written to a temporary name and
 /// renamed. Throws aaf::Error "<path>: <problem>".
-void write_preview_png(const AovSet &aovs, const std::vector<std::string> &channels,
-                       const std::string &path, float exposure_stops = 0.0f);
+void write_preview_png(const AovSet &aovs, const std::vector<std::string> &channels, const std::string &path,
+                       float exposure_stops = 0.0f);
 
 /// Writes a false-colour PNG of one channel, as AAF Fig. 7 shows beta and n:
 /// values in [low, high] run from dark blue through cyan, green and yellow to
