@@ -1,5 +1,6 @@
 #pragma once
 
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -7,17 +8,49 @@
 
 namespace aaf {
 
-/// Error of a test image against a reference over a set of channels.
-struct ErrorMetrics {
-    double mse = 0;           ///< mean over pixels and channels of (test - ref)^2
-    double rmse = 0;          ///< sqrt(mse)
-    double psnr = 0;          ///< 10 log10(peak^2 / mse) dB with peak = 1; +inf when equal
-    std::size_t samples = 0;  ///< pixels x channels compared
+/// A pixel rectangle [x, x + width) x [y, y + height).
+struct PixelRect {
+    int x = 0, y = 0, width = 0, height = 0;
 };
 
-/// Compares `channels` of `test` against the same channels of `reference`.
-/// Throws aaf::Error on a size mismatch, a missing channel, or a non-finite
-/// value (naming the channel and pixel).
+/// What to compare and how. The defaults measure R, G, B over the whole image.
+struct CompareOptions {
+    std::vector<std::string> channels{"R", "G", "B"};
+    std::optional<PixelRect> crop;  ///< only pixels inside; must lie within the image
+    ConstPlaneView mask;            ///< optional, same size: only pixels where mask != 0
+    /// Relative MSE: (test - ref)^2 / (ref^2 + epsilon), the convention of
+    /// Rousselle et al. and pbrt-v4's imgtool with epsilon = 0.01.
+    double relmse_epsilon = 0.01;
+    /// PSNR peak value. Renders are HDR, so there is no natural white: the
+    /// default 1 is display white of linear images; pass the reference's
+    /// maximum for a data-range PSNR.
+    double psnr_peak = 1.0;
+    bool compute_ssim = false;  ///< SSIM costs a few blurs; off unless asked for
+};
+
+/// Error of a test image against a reference.
+struct ErrorMetrics {
+    double mse = 0;     ///< mean over pixels and channels of (test - ref)^2
+    double rmse = 0;    ///< sqrt(mse)
+    double mae = 0;     ///< mean of |test - ref|
+    double relmse = 0;  ///< mean of (test - ref)^2 / (ref^2 + epsilon)
+    double psnr = 0;    ///< 10 log10(peak^2 / mse) dB; +inf when mse = 0
+    /// Mean SSIM (Wang et al. 2004) of the luminance (Rec. 709 weights of
+    /// three channels, or the single channel), 11x11 Gaussian window of
+    /// sigma 1.5 px, K1 = 0.01, K2 = 0.03, dynamic range L = 1; NaN unless asked.
+    double ssim = 0;
+    std::size_t pixels = 0;            ///< pixels compared (finite in both images)
+    std::size_t nonfinite_pixels = 0;  ///< selected pixels skipped for a NaN/Inf in either image
+};
+
+/// Compares the selected channels of `test` against the same channels of
+/// `reference`. Pixels with a NaN or Inf in any compared channel of either
+/// image are counted in `nonfinite_pixels` and left out of every average.
+/// Throws aaf::Error on a size mismatch, a missing channel (naming it and the
+/// image), a crop outside the image or a mask of another size.
+ErrorMetrics compare_images(const AovSet &test, const AovSet &reference, const CompareOptions &options = {});
+
+/// compare_images over `channels`, whole image.
 ErrorMetrics compare_channels(const AovSet &test, const AovSet &reference,
                               const std::vector<std::string> &channels);
 
