@@ -1,0 +1,45 @@
+#include <catch2/catch.hpp>
+
+#include <filesystem>
+#include <fstream>
+
+#include "aaf/core/error.h"
+#include "aaf/io/sequence.h"
+
+using namespace aaf;
+namespace fs = std::filesystem;
+
+TEST_CASE("Frame ranges: single, span, steps with x and :, lists", "[io][sequence]") {
+    CHECK(io::parse_frame_range("7") == std::vector<int>{7});
+    CHECK(io::parse_frame_range("1-4") == std::vector<int>{1, 2, 3, 4});
+    CHECK(io::parse_frame_range("1-9x3") == std::vector<int>{1, 4, 7});
+    CHECK(io::parse_frame_range("1-9:3") == std::vector<int>{1, 4, 7});  // ':' is a step, not ignored
+    CHECK(io::parse_frame_range("1,5,7-9") == std::vector<int>{1, 5, 7, 8, 9});
+    CHECK(io::parse_frame_range("3,1-3") == std::vector<int>{3, 1, 2});  // order kept, no duplicates
+    CHECK(io::parse_frame_range("-2-1") == std::vector<int>{-2, -1, 0, 1});
+    for (const char *bad : {"", "a", "1-", "5-1", "1-9x0", "1-9:-2", "1,,2", "4x2"})
+        CHECK_THROWS_AS(io::parse_frame_range(bad), Error);
+}
+
+TEST_CASE("Frame paths: # and @ pad one digit each, printf fields", "[io][sequence]") {
+    CHECK(io::frame_path("shot.####.exr", 7) == "shot.0007.exr");
+    CHECK(io::frame_path("shot.#.exr", 12) == "shot.12.exr");
+    CHECK(io::frame_path("shot.@@@.exr", 7) == "shot.007.exr");
+    CHECK(io::frame_path("shot.%04d.exr", 7) == "shot.0007.exr");
+    CHECK(io::frame_path("shot.%d.exr", 7) == "shot.7.exr");
+    CHECK(io::frame_path("a/b.####.exr", 123456) == "a/b.123456.exr");
+    CHECK(io::is_sequence_pattern("x.####.exr"));
+    CHECK(!io::is_sequence_pattern("x.exr"));
+    CHECK_THROWS_AS(io::frame_path("plain.exr", 1), Error);
+}
+
+TEST_CASE("Frames on disk are found by pattern", "[io][sequence]") {
+    const fs::path dir = fs::path(AAF_TEST_BINARY_DIR) / "scratch" / "sequence";
+    fs::remove_all(dir);
+    fs::create_directories(dir);
+    for (const char *name : {"shot.0001.exr", "shot.0003.exr", "shot.0010.exr", "shot.1.exr", "other.0002.exr",
+                             "shot.0002.exr.tmp"})
+        std::ofstream(dir / name) << "x";
+    CHECK(io::frames_on_disk((dir / "shot.####.exr").string()) == std::vector<int>{1, 3, 10});
+    CHECK(io::frames_on_disk((dir / "shot.#.exr").string()) == std::vector<int>{1});
+}
