@@ -4,6 +4,11 @@
 
 namespace aaf::cli {
 
+/// Thrown by a command that ran to the end but whose check failed
+/// (`aaf compare --fail-above`); `aaf` exits with kExitCheckFailed.
+struct CheckFailed {};
+inline constexpr int kExitCheckFailed = 3;
+
 /// Each adds one subcommand (with its options and action) to the `aaf` app.
 void add_render_command(CLI::App &app);
 void add_filter_command(CLI::App &app);

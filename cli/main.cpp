@@ -16,6 +16,8 @@ int main(int argc, char **argv) {
     aaf::cli::add_preview_command(app);
     try {
         app.parse(argc, argv);
+    } catch (const aaf::cli::CheckFailed &) {
+        return aaf::cli::kExitCheckFailed;
     } catch (const CLI::ParseError &e) {
         // Help and version exit 0; usage errors exit 2.
         return app.exit(e) == 0 ? 0 : 2;

@@ -11,6 +11,7 @@
 
 #include "aaf/core/error.h"
 #include "aaf/io/atomic_file.h"
+#include "false_colour.h"
 
 namespace OCIO = OCIO_NAMESPACE;
 
@@ -29,36 +30,6 @@ OCIO::ConstCPUProcessorRcPtr srgb_encoder() {
     curve->setOffset(offset);
     curve->setDirection(OCIO::TRANSFORM_DIR_INVERSE);
     return OCIO::Config::CreateRaw()->getProcessor(curve)->getDefaultCPUProcessor();
-}
-
-/// Writes 8-bit RGB from float values in [0, 1] (OpenImageIO quantises).
-void write_png(const std::vector<float> &rgb, int width, int height, const std::string &path) {
-    OIIO::ImageSpec spec(width, height, 3, OIIO::TypeDesc::UINT8);
-    const std::string temporary = temporary_path_for(path);
-    std::unique_ptr<OIIO::ImageOutput> output = OIIO::ImageOutput::create("png");
-    if (!output) throw Error(path + ": PNG writer unavailable: " + OIIO::geterror());
-    bool ok = output->open(temporary, spec) && output->write_image(OIIO::TypeDesc::FLOAT, rgb.data());
-    ok = output->close() && ok;
-    if (!ok) {
-        std::string message = output->geterror();
-        std::remove(temporary.c_str());
-        throw Error(path + ": cannot write preview: " + message);
-    }
-    commit_temporary(temporary, path);
-}
-
-/// Piecewise-linear colour ramp for t in [0, 1].
-Vec3 ramp(float t) {
-    static const Vec3 stops[] = {{0.05f, 0.05f, 0.45f},
-                                 {0.0f, 0.55f, 0.95f},
-                                 {0.1f, 0.85f, 0.3f},
-                                 {0.98f, 0.9f, 0.1f},
-                                 {0.85f, 0.1f, 0.05f}};
-    constexpr int kIntervals = 4;
-    const float position = std::clamp(t, 0.0f, 1.0f) * kIntervals;
-    const int i = std::min(int(position), kIntervals - 1);
-    const float f = position - float(i);
-    return stops[i] * (1 - f) + stops[i + 1] * f;
 }
 
 }  // namespace
@@ -83,7 +54,7 @@ void write_false_colour_png(const AovSet &aovs, const std::string &channel, cons
         for (int x = 0; x < aovs.width(); ++x) {
             const float v = values(x, y);
             if (v == 0 || !std::isfinite(v)) continue;
-            const Vec3 colour = ramp((v - low) / (high - low));
+            const Vec3 colour = false_colour((v - low) / (high - low));
             float *pixel = &rgb[(std::size_t(y) * aovs.width() + x) * 3];
             pixel[0] = colour.x;
             pixel[1] = colour.y;

@@ -1,45 +1,14 @@
 #include <catch2/catch.hpp>
 
-#include <sys/wait.h>
-#include <unistd.h>
-#include <cstdlib>
 #include <filesystem>
-#include <fstream>
-#include <sstream>
 
 #include "aaf/io/exr_io.h"
+#include "run_aaf.h"
 
 namespace fs = std::filesystem;
-
-namespace {
-
-struct RunResult {
-    int exit_code;
-    std::string output;  // stdout and stderr
-};
-
-/// Runs the aaf executable with `args` (a shell-quoted string).
-RunResult run_aaf(const std::string &args) {
-    // ctest runs test cases as parallel processes: one log per process and call.
-    static int call = 0;
-    const fs::path log = fs::path(AAF_TEST_BINARY_DIR) / "scratch" /
-                         ("cli_output_" + std::to_string(::getpid()) + "_" + std::to_string(call++) + ".txt");
-    fs::create_directories(log.parent_path());
-    const std::string command = std::string(AAF_EXECUTABLE) + " " + args + " >" + log.string() + " 2>&1";
-    const int status = std::system(command.c_str());
-    std::stringstream text;
-    text << std::ifstream(log).rdbuf();
-    return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, text.str()};
-}
-
-fs::path scratch_dir(const std::string &name) {
-    fs::path dir = fs::path(AAF_TEST_BINARY_DIR) / "scratch" / name;
-    fs::remove_all(dir);
-    fs::create_directories(dir);
-    return dir;
-}
-
-}  // namespace
+using aaf_test::run_aaf;
+using aaf_test::RunResult;
+using aaf_test::scratch_dir;
 
 TEST_CASE("CLI: render, info, filter and compare chain together", "[cli]") {
     const fs::path dir = scratch_dir("cli_chain");

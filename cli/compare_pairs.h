@@ -1,0 +1,24 @@
+#pragma once
+
+#include <string>
+#include <vector>
+
+namespace aaf::cli {
+
+/// One test image and its reference, with a label for reports.
+struct ImagePair {
+    std::string label;  ///< frame number or file name
+    std::string test, reference;
+};
+
+/// The pairs `aaf compare` measures:
+/// - two sequence patterns (`test.####.exr ref.####.exr`): the frames of
+///   `frames` (a range spec, see io::parse_frame_range), or else every frame of
+///   the test pattern found on disk;
+/// - two directories: files of the same name present in both, sorted by name;
+/// - two files: that one pair.
+/// Throws aaf::Error when nothing matches or the two arguments are of different kinds.
+std::vector<ImagePair> compare_pairs(const std::string &test, const std::string &reference,
+                                     const std::string &frames);
+
+}  // namespace aaf::cli
