@@ -1,4 +1,5 @@
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <fstream>
@@ -99,6 +100,7 @@ void add_compare_command(CLI::App &app) {
         std::vector<std::string> fail_above, fail_below;
         double peak = 1.0;
         bool json = false;
+        bool timing = false;
     };
     auto options = std::make_shared<Options>();
     CLI::App *cmd = app.add_subcommand(
@@ -122,6 +124,7 @@ void add_compare_command(CLI::App &app) {
     cmd->add_option("--fail-below", options->fail_below, "Exit 3 when any pair's METRIC falls below VALUE");
     cmd->add_flag("--json", options->json, "Print JSON: one object for a pair; pairs and summary for a batch");
     cmd->add_option("--csv", options->csv, "Also write one CSV row per pair to this file");
+    cmd->add_flag("--timing", options->timing, "Print the seconds spent reading and measuring to stderr");
     cmd->add_option("--heatmap", options->heatmap,
                     "Per-pixel error as a false-colour PNG with a colour bar, and as an EXR beside it");
     cmd->callback([options] {
@@ -153,8 +156,13 @@ void add_compare_command(CLI::App &app) {
         if (!options->heatmap.empty() && pairs.size() != 1)
             throw Error(options->heatmap + ": --heatmap needs a single pair of images");
         std::vector<Result> results;
+        using Clock = std::chrono::steady_clock;
+        double read_s = 0, measure_s = 0;
         for (const ImagePair &pair : pairs) {
+            const auto read_start = Clock::now();
             const AovSet test = io::read_aovs(pair.test), reference = io::read_aovs(pair.reference);
+            const auto measure_start = Clock::now();
+            read_s += std::chrono::duration<double>(measure_start - read_start).count();
             compare.channels = options->channels;
             if (!options->layer.empty()) {
                 compare.channels.clear();
@@ -165,6 +173,7 @@ void add_compare_command(CLI::App &app) {
             }
             try {
                 results.push_back({pair, compare_images(test, reference, compare), mean_spp_of(test)});
+                measure_s += std::chrono::duration<double>(Clock::now() - measure_start).count();
                 if (!options->heatmap.empty()) {
                     const float scale = io::write_error_heatmap(test, reference, compare.channels, options->heatmap);
                     std::fprintf(stderr, "heatmap %s: colour bar 0 to %s (99th percentile)\n",
@@ -174,6 +183,10 @@ void add_compare_command(CLI::App &app) {
                 throw Error(pair.test + " vs " + pair.reference + ": " + e.what());
             }
         }
+
+        if (options->timing)
+            std::fprintf(stderr, "timing: read %.3f s, metrics %.3f s over %zu pairs\n", read_s, measure_s,
+                         results.size());
 
         if (!options->csv.empty()) {
             const std::string temporary = io::temporary_path_for(options->csv);
