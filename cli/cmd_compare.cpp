@@ -2,6 +2,7 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <filesystem>
 #include <fstream>
 #include <iostream>
 #include <memory>
@@ -36,6 +37,8 @@ const std::vector<Metric> &metrics() {
         {"rmse", "RMSE", false, &ErrorMetrics::rmse},    {"mse", "MSE", false, &ErrorMetrics::mse},
         {"mae", "MAE", false, &ErrorMetrics::mae},       {"relmse", "relMSE", false, &ErrorMetrics::relmse},
         {"psnr", "PSNR", true, &ErrorMetrics::psnr},     {"ssim", "SSIM", true, &ErrorMetrics::ssim},
+        {"flip", "FLIP", false, &ErrorMetrics::flip_mean},
+        {"flip_median", "FLIP-wmedian", false, &ErrorMetrics::flip_weighted_median},
     };
     return table;
 }
@@ -99,6 +102,7 @@ void add_compare_command(CLI::App &app) {
         std::vector<int> crop;
         std::vector<std::string> fail_above, fail_below;
         double peak = 1.0;
+        float ppd = 67.0206f;
         bool json = false;
         bool timing = false;
     };
@@ -108,7 +112,8 @@ void add_compare_command(CLI::App &app) {
     cmd->add_option("test", options->test, "Image, sequence pattern (shot.####.exr) or folder")->required();
     cmd->add_option("reference", options->reference, "Reference image, pattern or folder")->required();
     cmd->add_option("--frames", options->frames, "Frame range of the sequences: 1-100, 1-100x2, 1-100:2, 1,5,7-9");
-    cmd->add_option("--metric", options->metric_keys, "Metrics: rmse, mse, mae, relmse, psnr, ssim")
+    cmd->add_option("--metric", options->metric_keys,
+                    "Metrics: rmse, mse, mae, relmse, psnr, ssim, flip (mean), flip_median (weighted median)")
         ->delimiter(',')
         ->capture_default_str();
     cmd->add_option("--channels", options->channels, "Channels to compare")->delimiter(',')->capture_default_str();
@@ -119,6 +124,8 @@ void add_compare_command(CLI::App &app) {
     cmd->add_option("--mask", options->mask_path, "Only pixels where this image is non-zero");
     cmd->add_option("--mask-channel", options->mask_channel, "Channel of the mask (default: its first)");
     cmd->add_option("--peak", options->peak, "PSNR peak value (linear HDR images have no white)")
+        ->capture_default_str();
+    cmd->add_option("--ppd", options->ppd, "FLIP pixels per degree (default: 0.7 m from a 0.7 m wide 4K display)")
         ->capture_default_str();
     cmd->add_option("--fail-above", options->fail_above, "Exit 3 when METRIC=VALUE is exceeded by any pair");
     cmd->add_option("--fail-below", options->fail_below, "Exit 3 when any pair's METRIC falls below VALUE");
@@ -140,6 +147,10 @@ void add_compare_command(CLI::App &app) {
             return std::string(m->key) == "ssim";
         });
         for (const Gate &gate : gates) compare.compute_ssim |= std::string(gate.metric->key) == "ssim";
+        bool want_flip = false;
+        for (const Metric *m : chosen) want_flip |= std::string(m->key).rfind("flip", 0) == 0;
+        for (const Gate &gate : gates) want_flip |= std::string(gate.metric->key).rfind("flip", 0) == 0;
+        compare.flip_pixels_per_degree = options->ppd;
         if (!options->crop.empty())
             compare.crop = PixelRect{options->crop[0], options->crop[1], options->crop[2], options->crop[3]};
         AovSet mask;
@@ -164,6 +175,11 @@ void add_compare_command(CLI::App &app) {
             const auto measure_start = Clock::now();
             read_s += std::chrono::duration<double>(measure_start - read_start).count();
             compare.channels = options->channels;
+            // HDR-FLIP for linear EXR data, LDR-FLIP for display-encoded files (PNG, JPEG, ...).
+            const std::string extension = std::filesystem::path(pair.reference).extension().string();
+            const bool linear = extension == ".exr" || extension == ".EXR";
+            compare.flip = !want_flip ? CompareOptions::Flip::Off
+                                      : (linear ? CompareOptions::Flip::Hdr : CompareOptions::Flip::Ldr);
             if (!options->layer.empty()) {
                 compare.channels.clear();
                 for (const std::string &name : test.channel_names())

@@ -1,10 +1,12 @@
 #include "aaf/core/error_metrics.h"
 
+#include <array>
 #include <cmath>
 #include <limits>
 
 #include "aaf/core/error.h"
 #include "aaf/core/fixed_gaussian.h"
+#include "aaf/core/flip.h"
 
 namespace aaf {
 
@@ -125,6 +127,32 @@ ErrorMetrics compare_images(const AovSet &test, const AovSet &reference, const C
         for (std::size_t i = 0; i < map.size(); ++i)
             if (selected[i]) sum += map[i];
         m.ssim = sum / double(m.pixels);
+    }
+    m.flip_mean = m.flip_weighted_median = nan;
+    if (options.flip != CompareOptions::Flip::Off && m.pixels > 0) {
+        if (options.channels.size() != 3) throw Error("FLIP needs three (RGB) channels");
+        // Non-finite values would spread through FLIP's filters: zero them (those pixels are not pooled).
+        std::array<std::vector<float>, 3> a_rgb, b_rgb;
+        RgbPlanes a_view, b_view;
+        for (int c = 0; c < 3; ++c) {
+            a_rgb[c].resize(test.pixel_count());
+            b_rgb[c].resize(test.pixel_count());
+            for (int y = 0; y < height; ++y)
+                for (int x = 0; x < width; ++x) {
+                    const std::size_t i = std::size_t(y) * width + x;
+                    a_rgb[c][i] = std::isfinite(a[c](x, y)) ? a[c](x, y) : 0.0f;
+                    b_rgb[c][i] = std::isfinite(b[c](x, y)) ? b[c](x, y) : 0.0f;
+                }
+            a_view[c] = plane_view(a_rgb[c].data(), width, height);
+            b_view[c] = plane_view(b_rgb[c].data(), width, height);
+        }
+        FlipParams flip_params;
+        flip_params.pixels_per_degree = options.flip_pixels_per_degree;
+        const std::vector<float> map = options.flip == CompareOptions::Flip::Hdr ? hdr_flip(b_view, a_view, flip_params)
+                                                                                 : ldr_flip(b_view, a_view, flip_params);
+        const FlipSummary pooled = summarize_flip(map, selected);
+        m.flip_mean = pooled.mean;
+        m.flip_weighted_median = pooled.weighted_median;
     }
     return m;
 }

@@ -66,16 +66,18 @@ TEST_CASE("compare: batch over a 3-frame sequence with CSV and JSON", "[cli][com
     CHECK(json["summary"]["rmse"]["worst_label"] == "3");
 }
 
-TEST_CASE("compare: identical images report PSNR as null in JSON and SSIM 1", "[cli][compare]") {
+TEST_CASE("compare: identical images report PSNR as null in JSON, SSIM 1, FLIP 0", "[cli][compare]") {
     const fs::path dir = scratch_dir("compare_identical");
     write_flat(dir / "a.exr", 0.25f);
     const auto run = run_aaf("compare " + (dir / "a.exr").string() + " " + (dir / "a.exr").string() +
-                             " --json --metric mse,psnr,ssim");
+                             " --json --metric mse,psnr,ssim,flip,flip_median");
     REQUIRE(run.exit_code == 0);
     const nlohmann::json json = nlohmann::json::parse(run.output);
     CHECK(json["mse"].get<double>() == 0.0);
     CHECK(json["psnr"].is_null());
     CHECK(json["ssim"].get<double>() == Approx(1.0));
+    CHECK(json["flip"].get<double>() == 0.0);
+    CHECK(json["flip_median"].get<double>() == 0.0);
 }
 
 TEST_CASE("compare: --fail-above and --fail-below set the exit code", "[cli][compare]") {

@@ -26,6 +26,10 @@ struct CompareOptions {
     /// maximum for a data-range PSNR.
     double psnr_peak = 1.0;
     bool compute_ssim = false;  ///< SSIM costs a few blurs; off unless asked for
+    /// FLIP of three channels: LDR-FLIP for sRGB-encoded images in [0, 1]
+    /// (PNG), HDR-FLIP for linear images (EXR); see flip.h.
+    enum class Flip { Off, Ldr, Hdr } flip = Flip::Off;
+    float flip_pixels_per_degree = 67.0206f;  ///< FLIP's default viewing condition
 };
 
 /// Error of a test image against a reference.
@@ -39,6 +43,8 @@ struct ErrorMetrics {
     /// three channels, or the single channel), 11x11 Gaussian window of
     /// sigma 1.5 px, K1 = 0.01, K2 = 0.03, dynamic range L = 1; NaN unless asked.
     double ssim = 0;
+    double flip_mean = 0;             ///< FLIP pooled by the mean; NaN unless asked
+    double flip_weighted_median = 0;  ///< FLIP's weighted median; NaN unless asked
     std::size_t pixels = 0;            ///< pixels compared (finite in both images)
     std::size_t nonfinite_pixels = 0;  ///< selected pixels skipped for a NaN/Inf in either image
 };
