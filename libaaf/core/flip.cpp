@@ -24,14 +24,19 @@ constexpr float kQc = 0.7f, kPc = 0.4f, kPt = 0.95f, kFeatureWidthDeg = 0.082f, 
 constexpr float kCsfA1[3] = {1.0f, 1.0f, 34.1f}, kCsfB1[3] = {0.0047f, 0.0053f, 0.04f};
 constexpr float kCsfA2 = 13.5f, kCsfB2 = 0.025f;
 // ACES filmic fit with the 0.6 pre-exposure folded in: (k0 x^2 + k1 x) / (k3 x^2 + k4 x + k5).
-constexpr float kAces[6] = {0.6f * 0.6f * 2.51f, 0.6f * 0.03f, 0.0f, 0.6f * 0.6f * 2.43f, 0.6f * 0.59f, 0.14f};
+constexpr float kAces[6] = {0.6f * 0.6f * 2.51f, 0.6f * 0.03f, 0.0f,
+                            0.6f * 0.6f * 2.43f, 0.6f * 0.59f, 0.14f};
 
 struct Rgb {
     float r, g, b;
 };
 
-float srgb_to_linear(float c) { return c <= 0.04045f ? c / 12.92f : std::pow((c + 0.055f) / 1.055f, 2.4f); }
-float linear_to_srgb(float c) { return c <= 0.0031308f ? c * 12.92f : 1.055f * std::pow(c, 1.0f / 2.4f) - 0.055f; }
+float srgb_to_linear(float c) {
+    return c <= 0.04045f ? c / 12.92f : std::pow((c + 0.055f) / 1.055f, 2.4f);
+}
+float linear_to_srgb(float c) {
+    return c <= 0.0031308f ? c * 12.92f : 1.055f * std::pow(c, 1.0f / 2.4f) - 0.055f;
+}
 
 Rgb linear_to_xyz(Rgb c) {
     return {(10135552.0f * c.r + 8788810.0f * c.g + 4435075.0f * c.b) / 24577794.0f,
@@ -68,7 +73,9 @@ Rgb linear_to_hunt_lab(Rgb c) {
 }
 
 /// HyAB distance: city-block in lightness, Euclidean in the chroma plane.
-float hyab(Rgb a, Rgb b) { return std::fabs(a.r - b.r) + std::hypot(a.g - b.g, a.b - b.b); }
+float hyab(Rgb a, Rgb b) {
+    return std::fabs(a.r - b.r) + std::hypot(a.g - b.g, a.b - b.b);
+}
 
 /// A planar float image with edge-replicating separable convolution.
 struct Plane {
@@ -79,22 +86,28 @@ struct Plane {
     float at(int x, int y) const { return data[std::size_t(y) * width + x]; }
 };
 
-/// Convolves rows with `kx` then columns with `ky` (odd lengths, centred).
+/// Convolves rows with `kx` then columns with `ky` (odd lengths, centred),
+/// replicating edge pixels. Loops run over contiguous pixels per tap so they
+/// vectorise; each output sums its taps in a fixed order.
 Plane convolve(const Plane &in, const std::vector<float> &kx, const std::vector<float> &ky) {
-    const int rx = int(kx.size()) / 2, ry = int(ky.size()) / 2;
-    Plane rows(in.width, in.height), out(in.width, in.height);
-    parallel_for_rows(in.height, [&](int y) {
-        for (int x = 0; x < in.width; ++x) {
-            float sum = 0;
-            for (int i = -rx; i <= rx; ++i) sum += kx[i + rx] * in.at(std::clamp(x + i, 0, in.width - 1), y);
-            rows.at(x, y) = sum;
+    const int rx = int(kx.size()) / 2, ry = int(ky.size()) / 2, width = in.width, height = in.height;
+    Plane rows(width, height), out(width, height);
+    parallel_for_rows(height, [&](int y) {
+        std::vector<float> padded(std::size_t(width) + 2 * rx);
+        for (int x = -rx; x < width + rx; ++x) padded[std::size_t(x + rx)] = in.at(std::clamp(x, 0, width - 1), y);
+        float *dst = &rows.at(0, y);
+        for (int i = 0; i <= 2 * rx; ++i) {
+            const float weight = kx[i];
+            const float *src = padded.data() + i;
+            for (int x = 0; x < width; ++x) dst[x] += weight * src[x];
         }
     });
-    parallel_for_rows(in.height, [&](int y) {
-        for (int x = 0; x < in.width; ++x) {
-            float sum = 0;
-            for (int i = -ry; i <= ry; ++i) sum += ky[i + ry] * rows.at(x, std::clamp(y + i, 0, in.height - 1));
-            out.at(x, y) = sum;
+    parallel_for_rows(height, [&](int y) {
+        float *dst = &out.at(0, y);
+        for (int i = -ry; i <= ry; ++i) {
+            const float weight = ky[i + ry];
+            const float *src = &rows.at(0, std::clamp(y + i, 0, height - 1));
+            for (int x = 0; x < width; ++x) dst[x] += weight * src[x];
         }
     });
     return out;
@@ -169,22 +182,29 @@ FeatureKernels feature_kernels(float ppd) {
 std::array<Plane, 3> to_ycxcz(const std::array<Plane, 3> &srgb) {
     std::array<Plane, 3> out{Plane(srgb[0].width, srgb[0].height), Plane(srgb[0].width, srgb[0].height),
                              Plane(srgb[0].width, srgb[0].height)};
-    for (std::size_t i = 0; i < srgb[0].data.size(); ++i) {
-        const Rgb c = xyz_to_ycxcz(linear_to_xyz(
-            {srgb_to_linear(srgb[0].data[i]), srgb_to_linear(srgb[1].data[i]), srgb_to_linear(srgb[2].data[i])}));
-        out[0].data[i] = c.r;
-        out[1].data[i] = c.g;
-        out[2].data[i] = c.b;
-    }
+    const int width = srgb[0].width;
+    parallel_for_rows(srgb[0].height, [&](int y) {
+        for (std::size_t i = std::size_t(y) * width; i < std::size_t(y + 1) * width; ++i) {
+            const Rgb c =
+                xyz_to_ycxcz(linear_to_xyz({srgb_to_linear(srgb[0].data[i]), srgb_to_linear(srgb[1].data[i]),
+                                            srgb_to_linear(srgb[2].data[i])}));
+            out[0].data[i] = c.r;
+            out[1].data[i] = c.g;
+            out[2].data[i] = c.b;
+        }
+    });
     return out;
 }
 
 /// Edge and point magnitudes of the normalised achromatic channel.
 std::pair<Plane, Plane> features(const Plane &y_channel, const FeatureKernels &k) {
     Plane normalised(y_channel.width, y_channel.height);
-    for (std::size_t i = 0; i < normalised.data.size(); ++i) normalised.data[i] = (y_channel.data[i] + 16.0f) / 116.0f;
-    const Plane dx = convolve(normalised, k.first, k.gaussian), dy = convolve(normalised, k.gaussian, k.first);
-    const Plane ddx = convolve(normalised, k.second, k.gaussian), ddy = convolve(normalised, k.gaussian, k.second);
+    for (std::size_t i = 0; i < normalised.data.size(); ++i)
+        normalised.data[i] = (y_channel.data[i] + 16.0f) / 116.0f;
+    const Plane dx = convolve(normalised, k.first, k.gaussian),
+                dy = convolve(normalised, k.gaussian, k.first);
+    const Plane ddx = convolve(normalised, k.second, k.gaussian),
+                ddy = convolve(normalised, k.gaussian, k.second);
     Plane edges(y_channel.width, y_channel.height), points(y_channel.width, y_channel.height);
     for (std::size_t i = 0; i < edges.data.size(); ++i) {
         edges.data[i] = std::hypot(dx.data[i], dy.data[i]);
@@ -193,8 +213,8 @@ std::pair<Plane, Plane> features(const Plane &y_channel, const FeatureKernels &k
     return {edges, points};
 }
 
-std::vector<float> ldr_flip_planes(const std::array<Plane, 3> &reference_srgb, const std::array<Plane, 3> &test_srgb,
-                                   float ppd) {
+std::vector<float> ldr_flip_planes(const std::array<Plane, 3> &reference_srgb,
+                                   const std::array<Plane, 3> &test_srgb, float ppd) {
     const std::array<Plane, 3> ref = to_ycxcz(reference_srgb), test = to_ycxcz(test_srgb);
     const CsfKernels csf = csf_kernels(ppd);
     auto filtered = [&](const std::array<Plane, 3> &c) {
@@ -220,14 +240,18 @@ std::vector<float> ldr_flip_planes(const std::array<Plane, 3> &reference_srgb, c
     const auto [test_edges, test_points] = features(test[0], fk);
 
     std::vector<float> errors(ref[0].data.size());
-    for (std::size_t i = 0; i < errors.size(); ++i) {
-        float colour = std::pow(hyab(to_lab(ref_f, i), to_lab(test_f, i)), kQc);
-        colour = colour < pccmax ? colour * kPt / pccmax : kPt + (colour - pccmax) / (cmax - pccmax) * (1.0f - kPt);
-        const float feature_difference = std::max(std::fabs(ref_edges.data[i] - test_edges.data[i]),
-                                                  std::fabs(ref_points.data[i] - test_points.data[i]));
-        const float feature = std::pow(feature_difference / std::sqrt(2.0f), kQf);
-        errors[i] = std::pow(colour, 1.0f - feature);
-    }
+    const int width = ref[0].width;
+    parallel_for_rows(ref[0].height, [&](int y) {
+        for (std::size_t i = std::size_t(y) * width; i < std::size_t(y + 1) * width; ++i) {
+            float colour = std::pow(hyab(to_lab(ref_f, i), to_lab(test_f, i)), kQc);
+            colour = colour < pccmax ? colour * kPt / pccmax
+                                     : kPt + (colour - pccmax) / (cmax - pccmax) * (1.0f - kPt);
+            const float feature_difference = std::max(std::fabs(ref_edges.data[i] - test_edges.data[i]),
+                                                      std::fabs(ref_points.data[i] - test_points.data[i]));
+            const float feature = std::pow(feature_difference / std::sqrt(2.0f), kQf);
+            errors[i] = std::pow(colour, 1.0f - feature);
+        }
+    });
     return errors;
 }
 
@@ -248,7 +272,8 @@ void check_sizes(const RgbPlanes &a, const RgbPlanes &b) {
 }
 
 float aces(float x) {
-    const float value = (kAces[0] * x * x + kAces[1] * x + kAces[2]) / (kAces[3] * x * x + kAces[4] * x + kAces[5]);
+    const float value =
+        (kAces[0] * x * x + kAces[1] * x + kAces[2]) / (kAces[3] * x * x + kAces[4] * x + kAces[5]);
     return std::isfinite(value) ? std::clamp(value, 0.0f, 1.0f) : 1.0f;
 }
 
@@ -294,7 +319,10 @@ std::vector<float> hdr_flip(const RgbPlanes &reference, const RgbPlanes &test, c
         auto expose = [&](const std::array<Plane, 3> &image) {
             std::array<Plane, 3> out = image;
             for (Plane &plane : out)
-                for (float &v : plane.data) v = linear_to_srgb(aces(scale * std::max(0.0f, v)));
+                parallel_for_rows(plane.height, [&](int y) {
+                    for (int x = 0; x < plane.width; ++x)
+                        plane.at(x, y) = linear_to_srgb(aces(scale * std::max(0.0f, plane.at(x, y))));
+                });
             return out;
         };
         const std::vector<float> ldr = ldr_flip_planes(expose(ref), expose(tst), params.pixels_per_degree);
