@@ -2,12 +2,11 @@
 
 #include <OpenImageIO/imageio.h>
 
-#include <cstdio>
 #include <memory>
 #include <vector>
 
 #include "aaf/core/error.h"
-#include "aaf/io/atomic_file.h"
+#include "image_writer.h"
 
 namespace aaf::io {
 
@@ -99,17 +98,7 @@ void write_aovs(const AovSet &aovs, const std::string &path) {
         for (std::size_t i = 0; i < aovs.pixel_count(); ++i) pixels[i * channels + c] = plane[i];
     }
 
-    const std::string temporary = temporary_path_for(path);
-    std::unique_ptr<OIIO::ImageOutput> output = OIIO::ImageOutput::create("openexr");
-    if (!output) throw Error(path + ": OpenEXR writer unavailable: " + OIIO::geterror());
-    bool ok = output->open(temporary, spec) && output->write_image(TypeDesc::FLOAT, pixels.data());
-    ok = output->close() && ok;
-    if (!ok) {
-        std::string message = output->geterror();
-        std::remove(temporary.c_str());
-        throw Error(path + ": cannot write image: " + message);
-    }
-    commit_temporary(temporary, path);
+    write_image_atomically(path, "openexr", spec, pixels.data());
 }
 
 }  // namespace aaf::io

@@ -17,8 +17,8 @@ constexpr int kBarGapPx = 4;
 
 }  // namespace
 
-float write_error_heatmap(const AovSet &test, const AovSet &reference, const std::vector<std::string> &channels,
-                          const std::string &png_path) {
+float write_error_heatmap(const AovSet &test, const AovSet &reference,
+                          const std::vector<std::string> &channels, const std::string &png_path) {
     if (test.width() != reference.width() || test.height() != reference.height())
         throw Error(png_path + ": heatmap images differ in size");
     const int width = test.width(), height = test.height();
@@ -63,9 +63,8 @@ float write_error_heatmap(const AovSet &test, const AovSet &reference, const std
     write_png(rgb, png_width, height, png_path);
 
     errors.attributes["aaf:heatmap:max"] = scale;
-    errors.attributes["ImageDescription"] =
-        std::string("RMS error over ") + std::to_string(channels.size()) + " channels, colour bar 0 to " +
-        std::to_string(scale);
+    errors.attributes["ImageDescription"] = std::string("RMS error over ") + std::to_string(channels.size()) +
+                                            " channels, colour bar 0 to " + std::to_string(scale);
     write_aovs(errors, std::filesystem::path(png_path).replace_extension(".exr").string());
     return scale;
 }

@@ -1,16 +1,12 @@
 #include "aaf/io/preview.h"
 
 #include <OpenColorIO/OpenColorIO.h>
-#include <OpenImageIO/imageio.h>
 
 #include <algorithm>
 #include <cmath>
-#include <cstdio>
 #include <limits>
-#include <memory>
 
 #include "aaf/core/error.h"
-#include "aaf/io/atomic_file.h"
 #include "false_colour.h"
 
 namespace OCIO = OCIO_NAMESPACE;

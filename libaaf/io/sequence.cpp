@@ -52,7 +52,8 @@ std::vector<int> parse_frame_range(const std::string &spec) {
     std::size_t start = 0;
     while (start <= spec.size()) {
         const std::size_t comma = spec.find(',', start);
-        const std::string part = spec.substr(start, comma == std::string::npos ? std::string::npos : comma - start);
+        const std::string part =
+            spec.substr(start, comma == std::string::npos ? std::string::npos : comma - start);
         if (part.empty()) throw Error("bad frame range '" + spec + "': empty item");
         // first[-last[(x|:)step]]; a '-' after position 0 separates first and last.
         const std::size_t step_at = part.find_first_of("x:");
@@ -73,11 +74,14 @@ std::vector<int> parse_frame_range(const std::string &spec) {
     return frames;
 }
 
-bool is_sequence_pattern(const std::string &path) { return find_field(path).begin != std::string::npos; }
+bool is_sequence_pattern(const std::string &path) {
+    return find_field(path).begin != std::string::npos;
+}
 
 std::string frame_path(const std::string &pattern, int frame) {
     const FrameField field = find_field(pattern);
-    if (field.begin == std::string::npos) throw Error(pattern + ": no frame field (#, @ or %0Nd) in the pattern");
+    if (field.begin == std::string::npos)
+        throw Error(pattern + ": no frame field (#, @ or %0Nd) in the pattern");
     char digits[32];
     std::snprintf(digits, sizeof digits, "%0*d", field.padding, frame);
     return pattern.substr(0, field.begin) + digits + pattern.substr(field.end);
@@ -85,7 +89,8 @@ std::string frame_path(const std::string &pattern, int frame) {
 
 std::vector<int> frames_on_disk(const std::string &pattern) {
     const FrameField field = find_field(pattern);
-    if (field.begin == std::string::npos) throw Error(pattern + ": no frame field (#, @ or %0Nd) in the pattern");
+    if (field.begin == std::string::npos)
+        throw Error(pattern + ": no frame field (#, @ or %0Nd) in the pattern");
     const std::filesystem::path pattern_path(pattern);
     const std::filesystem::path directory = pattern_path.has_parent_path() ? pattern_path.parent_path() : ".";
     const std::string name = pattern_path.filename().string();
@@ -95,11 +100,14 @@ std::vector<int> frames_on_disk(const std::string &pattern) {
     std::error_code ec;
     for (const auto &entry : std::filesystem::directory_iterator(directory, ec)) {
         const std::string candidate = entry.path().filename().string();
-        if (candidate.size() <= prefix.size() + suffix.size() || candidate.compare(0, prefix.size(), prefix) != 0 ||
+        if (candidate.size() <= prefix.size() + suffix.size() ||
+            candidate.compare(0, prefix.size(), prefix) != 0 ||
             candidate.compare(candidate.size() - suffix.size(), suffix.size(), suffix) != 0)
             continue;
-        const std::string number = candidate.substr(prefix.size(), candidate.size() - prefix.size() - suffix.size());
-        if (!std::all_of(number.begin() + (number[0] == '-' ? 1 : 0), number.end(), ::isdigit) || number == "-")
+        const std::string number =
+            candidate.substr(prefix.size(), candidate.size() - prefix.size() - suffix.size());
+        if (!std::all_of(number.begin() + (number[0] == '-' ? 1 : 0), number.end(), ::isdigit) ||
+            number == "-")
             continue;
         const int frame = std::stoi(number);
         if (frame_path(name, frame) == candidate) frames.push_back(frame);  // padding must match too
