@@ -127,8 +127,8 @@ void add_compare_command(CLI::App &app) {
         ->capture_default_str();
     cmd->add_option("--ppd", options->ppd, "FLIP pixels per degree (default: 0.7 m from a 0.7 m wide 4K display)")
         ->capture_default_str();
-    cmd->add_option("--fail-above", options->fail_above, "Exit 3 when METRIC=VALUE is exceeded by any pair");
-    cmd->add_option("--fail-below", options->fail_below, "Exit 3 when any pair's METRIC falls below VALUE");
+    cmd->add_option("--fail-above", options->fail_above, "Exit 4 when METRIC=VALUE is exceeded by any pair");
+    cmd->add_option("--fail-below", options->fail_below, "Exit 4 when any pair's METRIC falls below VALUE");
     cmd->add_flag("--json", options->json, "Print JSON: one object for a pair; pairs and summary for a batch");
     cmd->add_option("--csv", options->csv, "Also write one CSV row per pair to this file");
     cmd->add_flag("--timing", options->timing, "Print the seconds spent reading and measuring to stderr");

@@ -87,9 +87,9 @@ TEST_CASE("compare: --fail-above and --fail-below set the exit code", "[cli][com
     const std::string pair = (dir / "test.exr").string() + " " + (dir / "ref.exr").string();
     CHECK(run_aaf("compare " + pair + " --fail-above rmse=0.2").exit_code == 0);
     const auto failed = run_aaf("compare " + pair + " --fail-above rmse=0.05");
-    CHECK(failed.exit_code == 3);
+    CHECK(failed.exit_code == 4);
     CHECK_THAT(failed.output, Catch::Contains("rmse") && Catch::Contains("above"));
-    CHECK(run_aaf("compare " + pair + " --fail-below psnr=25").exit_code == 3);  // PSNR is 20 dB
+    CHECK(run_aaf("compare " + pair + " --fail-below psnr=25").exit_code == 4);  // PSNR is 20 dB
     CHECK(run_aaf("compare " + pair + " --fail-below psnr=15").exit_code == 0);
     CHECK(run_aaf("compare " + pair + " --fail-above nonsense=1").exit_code == 2);
 }
