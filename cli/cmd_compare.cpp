@@ -10,8 +10,8 @@
 #include <string>
 #include <vector>
 
-#include "aaf/core/error.h"
 #include "aaf/core/aov_contract.h"
+#include "aaf/core/error.h"
 #include "aaf/core/error_metrics.h"
 #include "aaf/core/sample_statistics.h"
 #include "aaf/io/atomic_file.h"
@@ -34,9 +34,12 @@ struct Metric {
 
 const std::vector<Metric> &metrics() {
     static const std::vector<Metric> table = {
-        {"rmse", "RMSE", false, &ErrorMetrics::rmse},    {"mse", "MSE", false, &ErrorMetrics::mse},
-        {"mae", "MAE", false, &ErrorMetrics::mae},       {"relmse", "relMSE", false, &ErrorMetrics::relmse},
-        {"psnr", "PSNR", true, &ErrorMetrics::psnr},     {"ssim", "SSIM", true, &ErrorMetrics::ssim},
+        {"rmse", "RMSE", false, &ErrorMetrics::rmse},
+        {"mse", "MSE", false, &ErrorMetrics::mse},
+        {"mae", "MAE", false, &ErrorMetrics::mae},
+        {"relmse", "relMSE", false, &ErrorMetrics::relmse},
+        {"psnr", "PSNR", true, &ErrorMetrics::psnr},
+        {"ssim", "SSIM", true, &ErrorMetrics::ssim},
         {"flip", "FLIP", false, &ErrorMetrics::flip_mean},
         {"flip_median", "FLIP-wmedian", false, &ErrorMetrics::flip_weighted_median},
     };
@@ -61,7 +64,8 @@ struct Gate {
 Gate parse_gate(const std::string &spec, bool above) {
     const std::size_t eq = spec.find('=');
     const char *option = above ? "--fail-above" : "--fail-below";
-    if (eq == std::string::npos) throw CLI::ValidationError(option, "expected METRIC=VALUE, got '" + spec + "'");
+    if (eq == std::string::npos)
+        throw CLI::ValidationError(option, "expected METRIC=VALUE, got '" + spec + "'");
     try {
         return {&metric_named(spec.substr(0, eq)), std::stod(spec.substr(eq + 1)), above};
     } catch (const std::invalid_argument &) {
@@ -70,7 +74,9 @@ Gate parse_gate(const std::string &spec, bool above) {
 }
 
 /// JSON has no infinity or NaN: they are written as null.
-nlohmann::json number(double value) { return std::isfinite(value) ? nlohmann::json(value) : nlohmann::json(); }
+nlohmann::json number(double value) {
+    return std::isfinite(value) ? nlohmann::json(value) : nlohmann::json();
+}
 
 std::string format(double value) {
     char text[32];
@@ -111,12 +117,15 @@ void add_compare_command(CLI::App &app) {
         "compare", "Error of images against references: one pair, two sequences or two folders");
     cmd->add_option("test", options->test, "Image, sequence pattern (shot.####.exr) or folder")->required();
     cmd->add_option("reference", options->reference, "Reference image, pattern or folder")->required();
-    cmd->add_option("--frames", options->frames, "Frame range of the sequences: 1-100, 1-100x2, 1-100:2, 1,5,7-9");
+    cmd->add_option("--frames", options->frames,
+                    "Frame range of the sequences: 1-100, 1-100x2, 1-100:2, 1,5,7-9");
     cmd->add_option("--metric", options->metric_keys,
                     "Metrics: rmse, mse, mae, relmse, psnr, ssim, flip (mean), flip_median (weighted median)")
         ->delimiter(',')
         ->capture_default_str();
-    cmd->add_option("--channels", options->channels, "Channels to compare")->delimiter(',')->capture_default_str();
+    cmd->add_option("--channels", options->channels, "Channels to compare")
+        ->delimiter(',')
+        ->capture_default_str();
     cmd->add_option("--layer", options->layer, "Compare every channel of this layer (e.g. shadow)");
     cmd->add_option("--crop", options->crop, "Only the rectangle X,Y,WIDTH,HEIGHT (pixels)")
         ->delimiter(',')
@@ -125,11 +134,13 @@ void add_compare_command(CLI::App &app) {
     cmd->add_option("--mask-channel", options->mask_channel, "Channel of the mask (default: its first)");
     cmd->add_option("--peak", options->peak, "PSNR peak value (linear HDR images have no white)")
         ->capture_default_str();
-    cmd->add_option("--ppd", options->ppd, "FLIP pixels per degree (default: 0.7 m from a 0.7 m wide 4K display)")
+    cmd->add_option("--ppd", options->ppd,
+                    "FLIP pixels per degree (default: 0.7 m from a 0.7 m wide 4K display)")
         ->capture_default_str();
     cmd->add_option("--fail-above", options->fail_above, "Exit 4 when METRIC=VALUE is exceeded by any pair");
     cmd->add_option("--fail-below", options->fail_below, "Exit 4 when any pair's METRIC falls below VALUE");
-    cmd->add_flag("--json", options->json, "Print JSON: one object for a pair; pairs and summary for a batch");
+    cmd->add_flag("--json", options->json,
+                  "Print JSON: one object for a pair; pairs and summary for a batch");
     cmd->add_option("--csv", options->csv, "Also write one CSV row per pair to this file");
     cmd->add_flag("--timing", options->timing, "Print the seconds spent reading and measuring to stderr");
     cmd->add_option("--heatmap", options->heatmap,
@@ -143,9 +154,8 @@ void add_compare_command(CLI::App &app) {
 
         CompareOptions compare;
         compare.psnr_peak = options->peak;
-        compare.compute_ssim = std::any_of(chosen.begin(), chosen.end(), [](const Metric *m) {
-            return std::string(m->key) == "ssim";
-        });
+        compare.compute_ssim = std::any_of(chosen.begin(), chosen.end(),
+                                           [](const Metric *m) { return std::string(m->key) == "ssim"; });
         for (const Gate &gate : gates) compare.compute_ssim |= std::string(gate.metric->key) == "ssim";
         bool want_flip = false;
         for (const Metric *m : chosen) want_flip |= std::string(m->key).rfind("flip", 0) == 0;
@@ -163,7 +173,8 @@ void add_compare_command(CLI::App &app) {
             compare.mask = mask.channel(channel);
         }
 
-        const std::vector<ImagePair> pairs = compare_pairs(options->test, options->reference, options->frames);
+        const std::vector<ImagePair> pairs =
+            compare_pairs(options->test, options->reference, options->frames);
         if (!options->heatmap.empty() && pairs.size() != 1)
             throw Error(options->heatmap + ": --heatmap needs a single pair of images");
         std::vector<Result> results;
@@ -191,7 +202,8 @@ void add_compare_command(CLI::App &app) {
                 results.push_back({pair, compare_images(test, reference, compare), mean_spp_of(test)});
                 measure_s += std::chrono::duration<double>(Clock::now() - measure_start).count();
                 if (!options->heatmap.empty()) {
-                    const float scale = io::write_error_heatmap(test, reference, compare.channels, options->heatmap);
+                    const float scale =
+                        io::write_error_heatmap(test, reference, compare.channels, options->heatmap);
                     std::fprintf(stderr, "heatmap %s: colour bar 0 to %s (99th percentile)\n",
                                  options->heatmap.c_str(), format(scale).c_str());
                 }
@@ -277,7 +289,8 @@ void add_compare_command(CLI::App &app) {
             for (const Metric *m : chosen)
                 line += std::string(line.empty() ? "" : "  ") + m->label + " " +
                         (std::string(m->key) == "psnr" ? format(em.psnr) + " dB" : format(em.*(m->value)));
-            if (em.nonfinite_pixels) line += "  (" + std::to_string(em.nonfinite_pixels) + " NaN/Inf pixels skipped)";
+            if (em.nonfinite_pixels)
+                line += "  (" + std::to_string(em.nonfinite_pixels) + " NaN/Inf pixels skipped)";
             std::cout << line << "\n";
         } else {
             std::printf("%-24s", "pair");
@@ -292,9 +305,9 @@ void add_compare_command(CLI::App &app) {
                 std::printf("%-24s", row);
                 for (const Metric *m : chosen) {
                     const auto [mean, median, worst] = summary_of(*m);
-                    const double v = std::string(row) == "mean" ? mean
+                    const double v = std::string(row) == "mean"     ? mean
                                      : std::string(row) == "median" ? median
-                                                                     : worst->metrics.*(m->value);
+                                                                    : worst->metrics.*(m->value);
                     std::printf(" %12s", format(v).c_str());
                 }
                 std::printf("\n");

@@ -7,6 +7,7 @@
 #include "aaf/io/exr_io.h"
 #include "channel_options.h"
 #include "commands.h"
+#include "frame_runner.h"
 #include "input_guard.h"
 #include "threads.h"
 
@@ -21,12 +22,23 @@ void add_aaf_method(CLI::App &filter) {
         std::vector<std::string> maps;
         int threads = 0;
         std::string mode = "separable";
+        std::string frames, progress = "auto";
+        bool skip_existing = false, skip_bad_frames = false;
     };
     auto options = std::make_shared<Options>();
     CLI::App *cmd =
         filter.add_subcommand("aaf", "Axis-Aligned Filtering of soft shadows (Mehta et al. 2012)");
-    cmd->add_option("input", options->input, "Input EXR with the AAF AOVs")->required();
-    cmd->add_option("-o,--output", options->output, "Output EXR")->required();
+    cmd->add_option("input", options->input, "Input EXR with the AAF AOVs, or a sequence (shot.####.exr)")
+        ->required();
+    cmd->add_option("-o,--output", options->output, "Output EXR, or a sequence pattern for a sequence")
+        ->required();
+    cmd->add_option("--frames", options->frames, "Frames of a sequence: 1-100, 1-100x2, 1-100:2, 1,5,7-9");
+    cmd->add_option("--progress", options->progress, "auto, lines, jsonl, openjd or none")
+        ->capture_default_str();
+    cmd->add_flag("--skip-existing", options->skip_existing,
+                  "Skip frames whose output exists and reads back");
+    cmd->add_flag("--skip-bad-frames", options->skip_bad_frames,
+                  "Report a failed frame and continue (the exit code is still non-zero)");
     AafParams &p = options->params;
     cmd->add_option("--mu", p.mu, "Filter scale for consistency, beta ~ 1/mu (Sec. 5.2)")
         ->capture_default_str();
@@ -52,17 +64,26 @@ void add_aaf_method(CLI::App &filter) {
     cmd->callback([options] {
         const ChannelMap channels = channel_map_from(options->maps);
         options->params.mode = options->mode == "2d" ? AafFilterMode::Exact2D : AafFilterMode::Separable;
-        check_not_same_file(options->input, options->output);
-        AovSet input = io::read_aovs(options->input);
-        AovSet output;
-        run_with_threads(options->threads, [&] {
-            try {
-                output = aaf_filter_aovs(input, channels, options->params);
-            } catch (const Error &e) {
-                throw Error(options->input + ": " + e.what());
-            }
+        RunOptions run;
+        run.progress = progress_from_string(options->progress);
+        run.skip_existing = options->skip_existing;
+        run.skip_bad_frames = options->skip_bad_frames;
+        const std::vector<FrameJob> jobs = frame_jobs(options->input, options->output, options->frames);
+        // Frames stream one at a time (bounded memory); the filter itself runs on all threads.
+        const int failed = run_frames(jobs, run, [&](const FrameJob &job) {
+            const AovSet input = io::read_aovs(job.input);
+            AovSet output;
+            run_with_threads(options->threads, [&] {
+                try {
+                    output = aaf_filter_aovs(input, channels, options->params);
+                } catch (const Error &e) {
+                    throw Error(job.input + ": " + e.what());
+                }
+            });
+            io::write_aovs(output, job.output);
         });
-        io::write_aovs(output, options->output);
+        if (failed > 0)
+            throw Error(std::to_string(failed) + " of " + std::to_string(jobs.size()) + " frames failed");
     });
 }
 

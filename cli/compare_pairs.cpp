@@ -14,14 +14,18 @@ namespace fs = std::filesystem;
 std::vector<ImagePair> compare_pairs(const std::string &test, const std::string &reference,
                                      const std::string &frames) {
     std::vector<ImagePair> pairs;
-    const bool test_sequence = io::is_sequence_pattern(test), reference_sequence = io::is_sequence_pattern(reference);
+    const bool test_sequence = io::is_sequence_pattern(test),
+               reference_sequence = io::is_sequence_pattern(reference);
     if (test_sequence || reference_sequence) {
         if (!(test_sequence && reference_sequence))
-            throw Error(test + " vs " + reference + ": compare two sequence patterns or two files, not one of each");
-        const std::vector<int> numbers = frames.empty() ? io::frames_on_disk(test) : io::parse_frame_range(frames);
+            throw Error(test + " vs " + reference +
+                        ": compare two sequence patterns or two files, not one of each");
+        const std::vector<int> numbers =
+            frames.empty() ? io::frames_on_disk(test) : io::parse_frame_range(frames);
         if (numbers.empty()) throw Error(test + ": no frames found");
         for (int frame : numbers)
-            pairs.push_back({std::to_string(frame), io::frame_path(test, frame), io::frame_path(reference, frame)});
+            pairs.push_back(
+                {std::to_string(frame), io::frame_path(test, frame), io::frame_path(reference, frame)});
         return pairs;
     }
     if (!frames.empty()) throw Error("--frames needs sequence patterns (e.g. test.####.exr ref.####.exr)");
@@ -41,7 +45,8 @@ std::vector<ImagePair> compare_pairs(const std::string &test, const std::string 
     }
     if (ec) throw Error(test + ": cannot list the directory: " + ec.message());
     if (pairs.empty()) throw Error(test + " vs " + reference + ": no file names in common");
-    std::sort(pairs.begin(), pairs.end(), [](const ImagePair &a, const ImagePair &b) { return a.label < b.label; });
+    std::sort(pairs.begin(), pairs.end(),
+              [](const ImagePair &a, const ImagePair &b) { return a.label < b.label; });
     return pairs;
 }
 

@@ -83,6 +83,15 @@ AovSet read_aovs(const std::string &path) {
     return aovs;
 }
 
+bool is_readable_image(const std::string &path) {
+    std::unique_ptr<OIIO::ImageInput> input = OIIO::ImageInput::open(path);
+    if (!input) {
+        OIIO::geterror();  // clear the pending message
+        return false;
+    }
+    return input->spec().width > 0 && input->spec().height > 0;
+}
+
 void write_aovs(const AovSet &aovs, const std::string &path) {
     const int channels = int(aovs.channel_names().size());
     if (channels == 0) throw Error(path + ": nothing to write (no channels)");

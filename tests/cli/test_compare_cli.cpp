@@ -33,7 +33,8 @@ TEST_CASE("compare: batch over a 3-frame sequence with CSV and JSON", "[cli][com
     }
     const std::string test = (dir / "test.###.exr").string(), ref = (dir / "ref.###.exr").string();
     const std::string csv = (dir / "out.csv").string();
-    const auto result = run_aaf("compare " + test + " " + ref + " --frames 1-3 --metric rmse,mae --csv " + csv);
+    const auto result =
+        run_aaf("compare " + test + " " + ref + " --frames 1-3 --metric rmse,mae --csv " + csv);
     REQUIRE(result.exit_code == 0);
     CHECK_THAT(result.output, Catch::Contains("median") && Catch::Contains("worst"));
 
@@ -56,7 +57,8 @@ TEST_CASE("compare: batch over a 3-frame sequence with CSV and JSON", "[cli][com
     }
     CHECK(rows == 3);
 
-    const auto json_run = run_aaf("compare " + test + " " + ref + " --json --metric rmse");  // frames from disk
+    const auto json_run =
+        run_aaf("compare " + test + " " + ref + " --json --metric rmse");  // frames from disk
     REQUIRE(json_run.exit_code == 0);
     const nlohmann::json json = nlohmann::json::parse(json_run.output);
     REQUIRE(json["pairs"].size() == 3);

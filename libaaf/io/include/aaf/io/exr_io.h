@@ -13,6 +13,10 @@ namespace aaf::io {
 /// or has duplicate channel names.
 AovSet read_aovs(const std::string &path);
 
+/// True when `path` exists and its header reads back (e.g. a finished
+/// output frame); never throws.
+bool is_readable_image(const std::string &path);
+
 /// Writes all channels as 32-bit float OpenEXR with ZIP compression, and the
 /// attributes as header attributes. The file is written under a temporary
 /// name in the same directory and renamed into place, so `path` never holds a

@@ -1,0 +1,126 @@
+#include "frame_runner.h"
+
+#include <unistd.h>
+
+#include <chrono>
+#include <cstdio>
+#include <filesystem>
+#include <iostream>
+#include <nlohmann/json.hpp>
+#include <set>
+
+#include "aaf/core/error.h"
+#include "aaf/io/exr_io.h"
+#include "aaf/io/sequence.h"
+#include "input_guard.h"
+
+namespace aaf::cli {
+
+namespace fs = std::filesystem;
+
+std::vector<FrameJob> frame_jobs(const std::string &input, const std::string &output,
+                                 const std::string &frames) {
+    const bool input_sequence = io::is_sequence_pattern(input),
+               output_sequence = io::is_sequence_pattern(output);
+    if (!input_sequence) {
+        if (output_sequence) throw Error(output + ": a frame pattern needs an input pattern too");
+        if (!frames.empty())
+            throw Error("--frames needs sequence patterns (e.g. in.####.exr -o out.####.exr)");
+        check_not_same_file(input, output);
+        return {{0, input, output}};
+    }
+    if (!output_sequence)
+        throw Error(output + ": has no frame field (#, @ or %0Nd), so every frame would write this one file");
+    const std::vector<int> numbers =
+        frames.empty() ? io::frames_on_disk(input) : io::parse_frame_range(frames);
+    if (numbers.empty()) throw Error(input + ": no frames found");
+    std::vector<FrameJob> jobs;
+    std::set<std::string> outputs;
+    for (int frame : numbers) {
+        FrameJob job{frame, io::frame_path(input, frame), io::frame_path(output, frame)};
+        check_not_same_file(job.input, job.output);
+        if (!outputs.insert(job.output).second) throw Error(job.output + ": two frames map to this output");
+        jobs.push_back(job);
+    }
+    return jobs;
+}
+
+Progress progress_from_string(const std::string &name) {
+    if (name == "auto") return Progress::Automatic;
+    if (name == "lines") return Progress::Lines;
+    if (name == "jsonl") return Progress::Jsonl;
+    if (name == "openjd") return Progress::OpenJd;
+    if (name == "none") return Progress::None;
+    throw Error("unknown progress mode '" + name + "' (auto, lines, jsonl, openjd, none)");
+}
+
+int run_frames(const std::vector<FrameJob> &jobs, const RunOptions &options,
+               const std::function<void(const FrameJob &)> &work) {
+    using Clock = std::chrono::steady_clock;
+    Progress mode = options.progress;
+    if (mode == Progress::Automatic) mode = jobs.size() == 1 ? Progress::None : Progress::Lines;
+    const bool bar =
+        options.progress == Progress::Automatic && mode == Progress::Lines && ::isatty(STDERR_FILENO);
+    const auto run_start = Clock::now();
+    int done = 0, failed = 0, skipped = 0;
+    if (mode == Progress::Jsonl)
+        std::cout << nlohmann::json{{"event", "start"}, {"frames", jobs.size()}}.dump() << std::endl;
+
+    for (const FrameJob &job : jobs) {
+        const auto start = Clock::now();
+        std::string status = "ok", message;
+        if (options.skip_existing && io::is_readable_image(job.output)) {
+            status = "skipped";
+            ++skipped;
+        } else {
+            try {
+                work(job);
+            } catch (const std::exception &e) {
+                status = "failed";
+                message = e.what();
+                ++failed;
+                if (!options.skip_bad_frames) {
+                    if (mode == Progress::Jsonl)
+                        std::cout << nlohmann::json{{"event", "frame_end"}, {"frame", job.frame},
+                                                    {"input", job.input},   {"output", job.output},
+                                                    {"status", status},     {"error", message}}
+                                         .dump()
+                                  << std::endl;
+                    throw;
+                }
+                std::cerr << "aaf: error: " << message << "\n";
+            }
+        }
+        ++done;
+        const double seconds = std::chrono::duration<double>(Clock::now() - start).count();
+        if (mode == Progress::Jsonl) {
+            nlohmann::json event{{"event", "frame_end"}, {"frame", job.frame}, {"input", job.input},
+                                 {"output", job.output}, {"seconds", seconds}, {"status", status}};
+            if (!message.empty()) event["error"] = message;
+            std::cout << event.dump() << std::endl;
+        } else if (mode == Progress::OpenJd) {
+            std::cout << "openjd_progress: " << (100.0 * done / double(jobs.size())) << std::endl;
+        } else if (bar) {
+            const int width = 30, filled = int(width * done / double(jobs.size()));
+            std::fprintf(stderr, "\r[%s%s] %d/%zu frames", std::string(filled, '#').c_str(),
+                         std::string(width - filled, ' ').c_str(), done, jobs.size());
+            if (done == int(jobs.size())) std::fprintf(stderr, "\n");
+        } else if (mode == Progress::Lines) {
+            std::fprintf(stderr, "frame %d (%d/%zu): %s -> %s: %s, %.2f s\n", job.frame, done, jobs.size(),
+                         job.input.c_str(), job.output.c_str(), status.c_str(), seconds);
+        }
+    }
+    if (mode == Progress::Jsonl)
+        std::cout << nlohmann::json{{"event", "summary"},
+                                    {"frames", jobs.size()},
+                                    {"ok", done - failed - skipped},
+                                    {"failed", failed},
+                                    {"skipped", skipped},
+                                    {"seconds",
+                                     std::chrono::duration<double>(Clock::now() - run_start).count()}}
+                         .dump()
+                  << std::endl;
+    return failed;
+}
+
+}  // namespace aaf::cli
