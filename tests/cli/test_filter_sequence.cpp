@@ -1,5 +1,7 @@
 #include <catch2/catch.hpp>
 
+#include <sys/resource.h>
+#include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <nlohmann/json.hpp>
@@ -97,4 +99,30 @@ TEST_CASE("filter: a failed frame, then a rerun with --skip-existing completes t
     }
     CHECK(skipped == 3);
     CHECK(ok == 1);
+}
+
+TEST_CASE("filter: peak memory does not grow with the number of frames", "[cli][sequence][memory]") {
+    // Frames stream one at a time: 40 frames must peak like 4. Each 320x240
+    // frame holds ~6 MB in and out, so keeping them would add ~240 MB.
+    const fs::path dir = scratch_dir("filter_memory");
+    aaf::trace::RenderSettings settings;
+    settings.width = 320;
+    settings.height = 240;
+    settings.spp = 2;
+    aaf::io::write_aovs(aaf::trace::render_builtin("grids", settings), (dir / "base.exr").string());
+    for (int frame = 1; frame <= 40; ++frame) {
+        char name[32];
+        std::snprintf(name, sizeof name, "in.%04d.exr", frame);
+        fs::copy_file(dir / "base.exr", dir / name);
+    }
+    const std::string in = (dir / "in.####.exr").string(), out = (dir / "out.####.exr").string();
+    rusage usage{};
+    REQUIRE(run_aaf("filter aaf " + in + " -o " + out + " --frames 1-4 --progress none").exit_code == 0);
+    getrusage(RUSAGE_CHILDREN, &usage);
+    const long peak_4_kb = usage.ru_maxrss;
+    REQUIRE(run_aaf("filter aaf " + in + " -o " + out + " --frames 1-40 --progress none").exit_code == 0);
+    getrusage(RUSAGE_CHILDREN, &usage);  // the largest child so far
+    const long peak_40_kb = usage.ru_maxrss;
+    INFO("peak RSS: 4 frames " << peak_4_kb << " KB, 40 frames " << peak_40_kb << " KB");
+    CHECK(peak_40_kb < peak_4_kb + 50 * 1024);
 }
