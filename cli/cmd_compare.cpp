@@ -19,6 +19,7 @@
 #include "aaf/io/heatmap.h"
 #include "commands.h"
 #include "compare_pairs.h"
+#include "input_guard.h"
 
 namespace aaf::cli {
 
@@ -198,7 +199,7 @@ void add_compare_command(CLI::App &app) {
                 if (compare.channels.empty())
                     throw Error(pair.test + ": no channels in layer '" + options->layer + "'");
             }
-            try {
+            with_context(pair.test + " vs " + pair.reference, [&] {
                 results.push_back({pair, compare_images(test, reference, compare), mean_spp_of(test)});
                 measure_s += std::chrono::duration<double>(Clock::now() - measure_start).count();
                 if (!options->heatmap.empty()) {
@@ -207,9 +208,7 @@ void add_compare_command(CLI::App &app) {
                     std::fprintf(stderr, "heatmap %s: colour bar 0 to %s (99th percentile)\n",
                                  options->heatmap.c_str(), format(scale).c_str());
                 }
-            } catch (const Error &e) {
-                throw Error(pair.test + " vs " + pair.reference + ": " + e.what());
-            }
+            });
         }
 
         if (options->timing)

@@ -74,11 +74,7 @@ void add_aaf_method(CLI::App &filter) {
             const AovSet input = io::read_aovs(job.input);
             AovSet output;
             run_with_threads(options->threads, [&] {
-                try {
-                    output = aaf_filter_aovs(input, channels, options->params);
-                } catch (const Error &e) {
-                    throw Error(job.input + ": " + e.what());
-                }
+                with_context(job.input, [&] { output = aaf_filter_aovs(input, channels, options->params); });
             });
             io::write_aovs(output, job.output);
         });

@@ -44,11 +44,8 @@ void add_plan_command(CLI::App &app) {
         const AovSet input = io::read_aovs(options->input);
         AovSet plan;
         run_with_threads(options->threads, [&] {
-            try {
-                plan = plan_samples_aovs(input, channels, options->aaf, options->plan);
-            } catch (const Error &e) {
-                throw Error(options->input + ": " + e.what());
-            }
+            with_context(options->input,
+                         [&] { plan = plan_samples_aovs(input, channels, options->aaf, options->plan); });
         });
         io::write_aovs(plan, options->output);
     });

@@ -7,7 +7,9 @@ namespace aaf::cli {
 /// Thrown by a command that ran to the end but whose check failed
 /// (`aaf compare --fail-above`); `aaf` exits with kExitCheckFailed.
 struct CheckFailed {};
-inline constexpr int kExitCheckFailed = 4;  // 3 is kept for input/IO errors (issue 5)
+inline constexpr int kExitCheckFailed = 4;
+/// Exit code for aaf::InputError: unreadable, unwritable or incomplete files.
+inline constexpr int kExitInputError = 3;
 
 /// Each adds one subcommand (with its options and action) to the `aaf` app.
 void add_render_command(CLI::App &app);

@@ -18,6 +18,9 @@ int main(int argc, char **argv) {
         app.parse(argc, argv);
     } catch (const aaf::cli::CheckFailed &) {
         return aaf::cli::kExitCheckFailed;
+    } catch (const aaf::InputError &e) {
+        std::cerr << "aaf: error: " << e.what() << "\n";
+        return aaf::cli::kExitInputError;
     } catch (const CLI::ParseError &e) {
         // Help and version exit 0; usage errors exit 2.
         return app.exit(e) == 0 ? 0 : 2;

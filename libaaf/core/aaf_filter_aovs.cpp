@@ -37,7 +37,7 @@ AovSet aaf_filter_aovs(const AovSet &input, const ChannelMap &channels, const Aa
         std::string names;
         for (const std::string &name : channels.channels(info.role))
             names += (names.empty() ? "" : ",") + name;
-        throw Error("missing AAF input '" + std::string(info.key) + "' (channels " + names + ")");
+        throw InputError("missing AAF input '" + std::string(info.key) + "' (channels " + names + ")");
     }
     const LightPlane light = read_light_attributes(input);
 
@@ -52,7 +52,7 @@ AovSet aaf_filter_aovs(const AovSet &input, const ChannelMap &channels, const Aa
     in.pixel_size = input.channel(channels.channel(Role::PixelSize));
     if (params.mu_from_spp) {
         const std::string &spp = channels.channel(Role::SamplesPerPixel);
-        if (!input.has_channel(spp)) throw Error("mu from spp needs the 'spp' input (channel " + spp + ")");
+        if (!input.has_channel(spp)) throw InputError("mu from spp needs the 'spp' input (channel " + spp + ")");
         in.spp = input.channel(spp);
     }
 

@@ -111,11 +111,11 @@ namespace {
 template <typename T>
 T get_attribute(const AovSet &aovs, const char *name) {
     auto it = aovs.attributes.find(name);
-    if (it == aovs.attributes.end()) throw Error("missing header attribute '" + std::string(name) + "'");
+    if (it == aovs.attributes.end()) throw InputError("missing header attribute '" + std::string(name) + "'");
     if (const T *value = std::get_if<T>(&it->second)) return *value;
     if constexpr (std::is_same_v<T, float>)
         if (const int *value = std::get_if<int>(&it->second)) return float(*value);
-    throw Error("header attribute '" + std::string(name) + "' has the wrong type");
+    throw InputError("header attribute '" + std::string(name) + "' has the wrong type");
 }
 
 }  // namespace

@@ -33,13 +33,13 @@ PlaneView AovSet::ensure_channel(const std::string &name, float fill) {
 
 PlaneView AovSet::channel(const std::string &name) {
     std::size_t i = index_of(name);
-    if (i == std::string::npos) throw Error("missing channel '" + name + "'");
+    if (i == std::string::npos) throw InputError("missing channel '" + name + "'");
     return plane_view(planes_[i].data(), width_, height_);
 }
 
 ConstPlaneView AovSet::channel(const std::string &name) const {
     std::size_t i = index_of(name);
-    if (i == std::string::npos) throw Error("missing channel '" + name + "'");
+    if (i == std::string::npos) throw InputError("missing channel '" + name + "'");
     return plane_view(planes_[i].data(), width_, height_);
 }
 

@@ -67,12 +67,12 @@ std::vector<float> ssim_map(std::vector<float> a, std::vector<float> b, int widt
 
 ErrorMetrics compare_images(const AovSet &test, const AovSet &reference, const CompareOptions &options) {
     if (test.width() != reference.width() || test.height() != reference.height())
-        throw Error("image sizes differ: " + size_text(test) + " vs " + size_text(reference));
+        throw InputError("image sizes differ: " + size_text(test) + " vs " + size_text(reference));
     if (options.channels.empty()) throw Error("no channels to compare");
     std::vector<ConstPlaneView> a, b;
     for (const std::string &name : options.channels) {
-        if (!test.has_channel(name)) throw Error("test image has no channel '" + name + "'");
-        if (!reference.has_channel(name)) throw Error("reference image has no channel '" + name + "'");
+        if (!test.has_channel(name)) throw InputError("test image has no channel '" + name + "'");
+        if (!reference.has_channel(name)) throw InputError("reference image has no channel '" + name + "'");
         a.push_back(test.channel(name));
         b.push_back(reference.channel(name));
     }
@@ -87,7 +87,7 @@ ErrorMetrics compare_images(const AovSet &test, const AovSet &reference, const C
                         size_text(test) + " image");
     }
     if (options.mask.valid() && (options.mask.width != width || options.mask.height != height))
-        throw Error("mask is " + std::to_string(options.mask.width) + "x" + std::to_string(options.mask.height) +
+        throw InputError("mask is " + std::to_string(options.mask.width) + "x" + std::to_string(options.mask.height) +
                     ", images are " + size_text(test));
 
     std::vector<unsigned char> selected(test.pixel_count(), 0);  // finite and inside crop and mask

@@ -49,7 +49,7 @@ AovSet plan_samples_aovs(const AovSet &first_pass, const ChannelMap &channels, c
                          const SamplingPlanParams &params) {
     for (Role role : {Role::D1, Role::D2Min, Role::D2Max, Role::ObjectId, Role::PixelSize})
         if (!first_pass.has_channel(channels.channel(role)))
-            throw Error("missing sampling-plan input '" + std::string(role_info(role).key) + "' (channel " +
+            throw InputError("missing sampling-plan input '" + std::string(role_info(role).key) + "' (channel " +
                         channels.channel(role) + ")");
     SamplingPlanInputs inputs;
     inputs.d1 = first_pass.channel(channels.channel(Role::D1));

@@ -23,7 +23,7 @@ void commit_temporary(const std::string &temporary, const std::string &path) {
     std::filesystem::rename(temporary, path, ec);
     if (ec) {
         std::filesystem::remove(temporary, ec);
-        throw Error(path + ": cannot move the finished file into place: " + ec.message());
+        throw InputError(path + ": cannot move the finished file into place: " + ec.message());
     }
 }
 

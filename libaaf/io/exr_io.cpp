@@ -56,26 +56,26 @@ AovSet read_aovs(const std::string &path) {
     std::unique_ptr<OIIO::ImageInput> input = OIIO::ImageInput::open(path);
     if (!input) {
         std::string message = OIIO::geterror();
-        throw Error(path + ": cannot read image" + (message.empty() ? "" : ": " + message));
+        throw InputError(path + ": cannot read image" + (message.empty() ? "" : ": " + message));
     }
     const OIIO::ImageSpec &spec = input->spec();
-    if (spec.deep) throw Error(path + ": deep images are not supported");
-    if (spec.depth > 1) throw Error(path + ": volume images are not supported");
+    if (spec.deep) throw InputError(path + ": deep images are not supported");
+    if (spec.depth > 1) throw InputError(path + ": volume images are not supported");
     const int channels = spec.nchannels;
     AovSet aovs;
     try {
         aovs = AovSet(spec.width, spec.height);
     } catch (const Error &e) {
-        throw Error(path + ": " + e.what());
+        throw InputError(path + ": " + e.what());
     }
 
     std::vector<float> pixels(aovs.pixel_count() * std::size_t(channels));
     if (!input->read_image(0, 0, 0, channels, TypeDesc::FLOAT, pixels.data()))
-        throw Error(path + ": cannot read pixels: " + input->geterror());
+        throw InputError(path + ": cannot read pixels: " + input->geterror());
 
     for (int c = 0; c < channels; ++c) {
         const std::string &name = spec.channelnames[c];
-        if (aovs.has_channel(name)) throw Error(path + ": duplicate channel '" + name + "'");
+        if (aovs.has_channel(name)) throw InputError(path + ": duplicate channel '" + name + "'");
         PlaneView plane = aovs.add_channel(name);
         for (std::size_t i = 0; i < aovs.pixel_count(); ++i) plane.data[i] = pixels[i * channels + c];
     }
@@ -94,7 +94,7 @@ bool is_readable_image(const std::string &path) {
 
 void write_aovs(const AovSet &aovs, const std::string &path) {
     const int channels = int(aovs.channel_names().size());
-    if (channels == 0) throw Error(path + ": nothing to write (no channels)");
+    if (channels == 0) throw InputError(path + ": nothing to write (no channels)");
     OIIO::ImageSpec spec(aovs.width(), aovs.height(), channels, TypeDesc::FLOAT);
     spec.channelnames = aovs.channel_names();
     spec.alpha_channel = -1;

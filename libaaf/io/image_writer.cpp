@@ -12,13 +12,13 @@ void write_image_atomically(const std::string &path, const char *format, const O
                             const float *pixels) {
     const std::string temporary = temporary_path_for(path);
     std::unique_ptr<OIIO::ImageOutput> output = OIIO::ImageOutput::create(format);
-    if (!output) throw Error(path + ": no " + format + " writer: " + OIIO::geterror());
+    if (!output) throw InputError(path + ": no " + format + " writer: " + OIIO::geterror());
     bool ok = output->open(temporary, spec) && output->write_image(OIIO::TypeDesc::FLOAT, pixels);
     ok = output->close() && ok;
     if (!ok) {
         const std::string message = output->geterror();
         std::remove(temporary.c_str());
-        throw Error(path + ": cannot write: " + message);
+        throw InputError(path + ": cannot write: " + message);
     }
     commit_temporary(temporary, path);
 }

@@ -44,12 +44,12 @@ TEST_CASE("CLI: render, info, filter and compare chain together", "[cli]") {
     CHECK_THAT(differ.output, Catch::Contains("RMSE"));
 }
 
-TEST_CASE("CLI: bad input is one clear line, exit 1, no output written", "[cli]") {
+TEST_CASE("CLI: bad input is one clear line, exit 3, no output written", "[cli]") {
     const fs::path dir = scratch_dir("cli_errors");
     const std::string missing = (dir / "missing.exr").string(), out = (dir / "out.exr").string();
 
     RunResult r = run_aaf("filter aaf " + missing + " -o " + out);
-    CHECK(r.exit_code == 1);
+    CHECK(r.exit_code == 3);
     CHECK_THAT(r.output, Catch::StartsWith("aaf: error: ") && Catch::Contains("missing.exr"));
     CHECK(!fs::exists(out));
 
@@ -59,12 +59,12 @@ TEST_CASE("CLI: bad input is one clear line, exit 1, no output written", "[cli]"
     aovs.add_channel("R");
     aaf::io::write_aovs(aovs, plain);
     r = run_aaf("filter aaf " + plain + " -o " + out);
-    CHECK(r.exit_code == 1);
+    CHECK(r.exit_code == 3);
     CHECK_THAT(r.output, Catch::Contains("plain.exr") && Catch::Contains("shadow.V"));
     CHECK(!fs::exists(out));
 
     r = run_aaf("plan " + plain + " -o " + out);
-    CHECK(r.exit_code == 1);
+    CHECK(r.exit_code == 3);
     CHECK_THAT(r.output, Catch::Contains("plain.exr") && Catch::Contains("shadow.d1"));
     CHECK(!fs::exists(out));
 
@@ -74,12 +74,12 @@ TEST_CASE("CLI: bad input is one clear line, exit 1, no output written", "[cli]"
     tiny.add_channel("R");
     aaf::io::write_aovs(tiny, small);
     r = run_aaf("compare " + small + " " + plain + " --channels R");
-    CHECK(r.exit_code == 1);
+    CHECK(r.exit_code == 3);
     CHECK_THAT(r.output, Catch::Contains("sizes differ"));
 
     // The input is never overwritten.
     r = run_aaf("filter aaf " + plain + " -o " + plain);
-    CHECK(r.exit_code == 1);
+    CHECK(r.exit_code == 3);
     CHECK(aaf::io::read_aovs(plain).has_channel("R"));
 }
 
