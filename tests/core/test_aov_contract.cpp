@@ -44,6 +44,7 @@ TEST_CASE("Light attributes round-trip and missing ones are named", "[contract]"
     CHECK(back.profile == LightProfile::Uniform);
     aovs.attributes.erase(attr::kLightSigma);
     CHECK_THROWS_WITH(read_light_attributes(aovs), Catch::Contains(attr::kLightSigma));
+    CHECK_THROWS_AS(read_light_attributes(aovs), InputError);  // an input problem: CLI exit 3
 }
 
 TEST_CASE("Missing method inputs are reported by role", "[contract]") {

@@ -64,6 +64,7 @@ TEST_CASE("EXR round-trip keeps every channel bit-exact and the attributes", "[i
 TEST_CASE("Unreadable inputs give an error naming the file", "[io]") {
     const fs::path dir = scratch_dir("bad_input");
     CHECK_THROWS_WITH(io::read_aovs((dir / "missing.exr").string()), Catch::Contains("missing.exr"));
+    CHECK_THROWS_AS(io::read_aovs((dir / "missing.exr").string()), InputError);
     const fs::path garbage = dir / "garbage.exr";
     std::ofstream(garbage) << "not an image";
     CHECK_THROWS_WITH(io::read_aovs(garbage.string()), Catch::Contains("garbage.exr"));
