@@ -27,10 +27,6 @@ PlaneView AovSet::add_channel(const std::string &name, float fill) {
     return plane_view(planes_.back().data(), width_, height_);
 }
 
-PlaneView AovSet::ensure_channel(const std::string &name, float fill) {
-    return has_channel(name) ? channel(name) : add_channel(name, fill);
-}
-
 PlaneView AovSet::channel(const std::string &name) {
     std::size_t i = index_of(name);
     if (i == std::string::npos) throw InputError("missing channel '" + name + "'");

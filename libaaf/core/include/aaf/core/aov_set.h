@@ -29,8 +29,6 @@ class AovSet {
 
     /// Adds a channel filled with `fill`; throws aaf::Error if the name exists.
     PlaneView add_channel(const std::string &name, float fill = 0.0f);
-    /// The channel called `name`, added (filled with `fill`) if absent.
-    PlaneView ensure_channel(const std::string &name, float fill = 0.0f);
 
     bool has_channel(const std::string &name) const;
     /// Throws aaf::Error naming the channel when it is missing.
