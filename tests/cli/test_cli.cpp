@@ -3,6 +3,7 @@
 #include <filesystem>
 
 #include "aaf/io/exr_io.h"
+#include "aaf/trace/render.h"
 #include "run_aaf.h"
 
 namespace fs = std::filesystem;
@@ -81,6 +82,29 @@ TEST_CASE("CLI: bad input is one clear line, exit 3, no output written", "[cli]"
     r = run_aaf("filter aaf " + plain + " -o " + plain);
     CHECK(r.exit_code == 3);
     CHECK(aaf::io::read_aovs(plain).has_channel("R"));
+}
+
+TEST_CASE("CLI: --map finds AOVs a renderer named differently", "[cli]") {
+    const fs::path dir = scratch_dir("cli_map");
+    aaf::trace::RenderSettings settings;
+    settings.width = 24;
+    settings.height = 18;
+    const aaf::AovSet original = aaf::trace::render_builtin("grids", settings);
+    aaf::AovSet renamed(original.width(), original.height());
+    renamed.attributes = original.attributes;
+    for (std::size_t c = 0; c < original.channel_names().size(); ++c) {
+        std::string name = original.channel_names()[c];
+        if (name.rfind("P.", 0) == 0) name = "Pworld" + name.substr(1);  // P.X -> Pworld.X
+        if (name == "shadow.V") name = "vis";
+        const aaf::PlaneView plane = renamed.add_channel(name);
+        std::copy(original.plane(c).begin(), original.plane(c).end(), plane.data);
+    }
+    const std::string in = (dir / "renamed.exr").string(), out = (dir / "out.exr").string();
+    aaf::io::write_aovs(renamed, in);
+    CHECK(run_aaf("filter aaf " + in + " -o " + out).exit_code == 3);  // defaults not found
+    REQUIRE(run_aaf("filter aaf " + in + " -o " + out + " --map position=Pworld --map visibility=vis")
+                .exit_code == 0);
+    CHECK(aaf::io::read_aovs(out).has_channel("aaf.V"));
 }
 
 TEST_CASE("CLI: usage errors exit 2", "[cli]") {
