@@ -12,7 +12,7 @@ using namespace aaf;
 // AAF Sec. 5.2 and Fig. 6(c): with mu following the samples taken, the filtered
 // error keeps falling as spp grows (the filter narrows towards one pixel); a
 // fixed-width filter's error flattens out at its blurring bias.
-TEST_CASE("AAF error decreases monotonically with spp; a fixed-width filter's stalls",
+TEST_CASE("AAF error decreases monotonically with spp, a fixed-width filter's stalls",
           "[integration][consistency]") {
     trace::RenderSettings settings;
     settings.width = 160;
