@@ -34,7 +34,8 @@ SceneDescription make_grids_scene(int width, int height) {
     SceneDescription scene;
     scene.name = "grids";
 
-    scene.meshes.push_back(ground_plane(8.0f, 1, {0.75f, 0.75f, 0.75f}));
+    // The ground reaches past the top of the frame (about 11 m behind the origin).
+    scene.meshes.push_back(ground_plane(24.0f, 1, {0.75f, 0.75f, 0.75f}));
     scene.meshes.push_back(make_lattice(0.35f, 0.0f, 2, {0.80f, 0.30f, 0.25f}));
     scene.meshes.push_back(make_lattice(0.80f, 20.0f, 3, {0.30f, 0.70f, 0.30f}));
     scene.meshes.push_back(make_lattice(1.30f, 40.0f, 4, {0.30f, 0.40f, 0.85f}));

@@ -1,55 +1,39 @@
 #pragma once
 
-#include <cstdint>
-#include <vector>
-
 #include "aaf/core/light_plane.h"
+#include "stratified_grid.h"
+#include "truncated_normal.h"
 
 namespace aaf::trace {
 
-/// Inverse CDF of a standard normal truncated to [-limit, limit], tabulated
-/// once per light: 4096 intervals with linear interpolation, accurate to about
-/// 1e-7 sigma for limit = 1 (the default light) and to 1e-3 sigma at limit 3.
-class TruncatedNormal {
-  public:
-    explicit TruncatedNormal(double limit_sigmas);
-    /// Maps u in [0, 1) to x in [-limit, limit] (units of sigma) with density
-    /// proportional to exp(-x^2 / 2).
-    float sample(float u) const;
-    double limit() const { return limit_; }
-
-  private:
-    double limit_;
-    std::vector<float> table_;
-};
-
-/// Draws points on a planar light proportionally to its emission profile, so
-/// the light-weighted visibility is the plain fraction of unoccluded samples.
-/// Samples are stratified: `count` samples fill a grid of ceil(sqrt(count))
-/// columns and enough rows, one per stratum, in a per-pixel random order
-/// (3x3 strata for 9 samples), each jittered within its stratum; the two
-/// axes are sampled independently, which is exact for the separable truncated
-/// Gaussian and for the uniform profile.
+/// Maps unit-square points onto a planar light, with density proportional to
+/// its emission profile l(y), so the light-weighted visibility of AAF Eq. 1
+/// is the plain fraction of unoccluded samples. The two tangent axes are
+/// warped independently, which is exact for the separable Gaussian truncated
+/// to the rectangle (inverse CDF of a truncated normal per axis) and for the
+/// uniform profile (a linear map).
 class LightSampler {
   public:
+    /// Throws aaf::Error when the light is invalid or its Gaussian is
+    /// truncated beyond 8 sigma.
     explicit LightSampler(const LightPlane &light);
 
-    /// Point of sample `index` of `count` for a pixel; `stratum_key` picks the
-    /// pixel's order of strata, `u1, u2` in [0, 1) the jitter.
-    Vec3 sample(std::uint32_t index, std::uint32_t count, std::uint32_t stratum_key, float u1,
-                float u2) const;
+    /// World point of the light for `p` in [0, 1)^2.
+    Vec3 point(UnitPoint p) const { return light_.point_at(warp_u(p.s), warp_v(p.t)); }
 
-    /// The stratified unit-square point of the same sample, before warping.
-    static void stratified_unit(std::uint32_t index, std::uint32_t count, std::uint32_t stratum_key, float u1,
-                                float u2, float &s, float &t);
-
-    /// Offset along one axis, metres, for a unit-interval coordinate.
-    float warp_u(float s) const;
-    float warp_v(float t) const;
+    /// Offset from the centre along axis_u, metres, for s in [0, 1].
+    float warp_u(float s) const {
+        return gaussian_ ? light_.sigma_m * normal_u_.sample(s) : (s - 0.5f) * light_.width_m;
+    }
+    /// Offset from the centre along axis_v, metres, for t in [0, 1].
+    float warp_v(float t) const {
+        return gaussian_ ? light_.sigma_m * normal_v_.sample(t) : (t - 0.5f) * light_.height_m;
+    }
 
   private:
     LightPlane light_;
-    TruncatedNormal normal_u_, normal_v_;
+    bool gaussian_;
+    TruncatedNormal normal_u_, normal_v_;  ///< truncated at the rectangle's edges
 };
 
 }  // namespace aaf::trace

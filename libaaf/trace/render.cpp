@@ -1,6 +1,7 @@
 #include "aaf/trace/render.h"
 
-#include <tbb/blocked_range2d.h>
+#include <tbb/blocked_range.h>
+#include <tbb/info.h>
 #include <tbb/parallel_for.h>
 #include <tbb/task_arena.h>
 
@@ -33,14 +34,22 @@ void validate(const RenderSettings &settings) {
     }
 }
 
-/// Calls `body(x, y)` for every pixel, in 16x16 tiles over oneTBB.
+/// Calls `body(x, y)` for every pixel, one 16x16 tile (clipped at the image's
+/// edges) per task index over oneTBB. Each pixel is written by exactly one
+/// call, so results do not depend on the schedule.
 template <typename Body>
 void for_each_pixel_tiled(int width, int height, const Body &body) {
-    tbb::parallel_for(tbb::blocked_range2d<int>(0, height, kTileSize, 0, width, kTileSize),
-                      [&](const tbb::blocked_range2d<int> &tile) {
-                          for (int y = tile.rows().begin(); y != tile.rows().end(); ++y)
-                              for (int x = tile.cols().begin(); x != tile.cols().end(); ++x) body(x, y);
-                      });
+    const int tiles_x = (width + kTileSize - 1) / kTileSize;
+    const int tiles_y = (height + kTileSize - 1) / kTileSize;
+    tbb::parallel_for(
+        tbb::blocked_range<int>(0, tiles_x * tiles_y), [&](const tbb::blocked_range<int> &tiles) {
+            for (int tile = tiles.begin(); tile != tiles.end(); ++tile) {
+                const int x0 = (tile % tiles_x) * kTileSize, y0 = (tile / tiles_x) * kTileSize;
+                const int x1 = std::min(x0 + kTileSize, width), y1 = std::min(y0 + kTileSize, height);
+                for (int y = y0; y < y1; ++y)
+                    for (int x = x0; x < x1; ++x) body(x, y);
+            }
+        });
 }
 
 /// Writable views of the contract's channels for one role.
@@ -110,7 +119,10 @@ AovSet render_builtin(const std::string &scene_name, const RenderSettings &setti
         return std::chrono::duration<double>(Clock::now() - start).count();
     };
     RenderTimings measured;
-    tbb::task_arena arena(settings.threads == 0 ? tbb::task_arena::automatic : settings.threads);
+    // More threads than the machine runs gain nothing (and make oneTBB warn).
+    tbb::task_arena arena(settings.threads == 0
+                              ? tbb::task_arena::automatic
+                              : std::min(settings.threads, tbb::info::default_concurrency()));
     arena.execute([&] {
         auto start = Clock::now();
         for_each_pixel_tiled(settings.width, settings.height, [&](int x, int y) {
@@ -138,9 +150,9 @@ AovSet render_builtin(const std::string &scene_name, const RenderSettings &setti
             start = Clock::now();
             for_each_pixel_tiled(settings.width, settings.height, [&](int x, int y) {
                 const std::size_t i = std::size_t(y) * settings.width + x;
-                const auto remaining = std::uint32_t(totals(x, y)) - std::uint32_t(settings.spp);
+                const int remaining = int(totals(x, y)) - settings.spp;
                 if (primaries[i].found && remaining > 0)
-                    renderer.trace_shadows(primaries[i], i, 1, remaining, stats[i]);
+                    renderer.trace_shadows(primaries[i], i, 1, std::uint32_t(remaining), stats[i]);
             });
             measured.second_pass_s = seconds_since(start);
         }

@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "random.h"
+#include "stratified_grid.h"
 
 namespace aaf::trace {
 
@@ -11,6 +12,8 @@ namespace {
 
 constexpr float kPi = 3.14159265358979323846f;
 constexpr int kFalloffQuadrature = 16;  // per axis
+/// Shadow rays end at this fraction of the way to the light point.
+constexpr float kShadowRayReach = 1.0f - 1e-4f;
 
 }  // namespace
 
@@ -30,8 +33,8 @@ float Renderer::mean_falloff(Vec3 p, Vec3 n) const {
     double sum = 0;
     for (int j = 0; j < kFalloffQuadrature; ++j)
         for (int i = 0; i < kFalloffQuadrature; ++i) {
-            const float s = (i + 0.5f) / kFalloffQuadrature, t = (j + 0.5f) / kFalloffQuadrature;
-            sum += falloff(p, n, scene_.light.point_at(light_sampler_.warp_u(s), light_sampler_.warp_v(t)));
+            const UnitPoint cell{(i + 0.5f) / kFalloffQuadrature, (j + 0.5f) / kFalloffQuadrature};
+            sum += falloff(p, n, light_sampler_.point(cell));
         }
     return float(sum / (kFalloffQuadrature * kFalloffQuadrature));
 }
@@ -63,7 +66,10 @@ void Renderer::trace_shadows(const PrimaryHit &primary, std::uint64_t pixel_inde
     const LightPlane &light = scene_.light;
     PixelRng rng(settings_.seed, pixel_index, pass);
     const std::uint32_t stratum_key = rng.next_u32();
+    const StratifiedGrid strata(count);
     // Offset along the camera-facing normal, scaled to the coordinates' magnitude.
+    // Only light points in front of that normal are traced, so the origin
+    // always lies on the side of the surface that faces the light point.
     const Vec3 p = primary.position;
     const float epsilon = 1e-4f * (1.0f + std::max({std::fabs(p.x), std::fabs(p.y), std::fabs(p.z)}));
     const Vec3 origin = p + primary.normal * epsilon;
@@ -71,7 +77,7 @@ void Renderer::trace_shadows(const PrimaryHit &primary, std::uint64_t pixel_inde
     const float centre_falloff = settings_.cosine_falloff ? falloff(p, primary.normal, light.center) : 0.0f;
     for (std::uint32_t i = 0; i < count; ++i) {
         const float u1 = rng.next_float(), u2 = rng.next_float();
-        const Vec3 target = light_sampler_.sample(i, count, stratum_key, u1, u2);
+        const Vec3 target = light_sampler_.point(strata.point(i, stratum_key, u1, u2));
         // Samples follow the emission profile; the falloff, when included in l(y),
         // weights them relative to the centre (AAF Sec. 7).
         double weight = 1.0;
@@ -79,14 +85,15 @@ void Renderer::trace_shadows(const PrimaryHit &primary, std::uint64_t pixel_inde
             weight = falloff(p, primary.normal, target) / centre_falloff;
         ++stats.taken;
         stats.weight_sum += weight;
-        const Vec3 direction = target - origin;
         if (dot(primary.normal, target - p) <= 0) {
-            // The light point lies behind the receiver's own tangent plane: self-occlusion.
+            // The light point lies behind the receiver's own tangent plane: the
+            // (closed) surface occludes it at the receiver itself.
             stats.add_occluder(d1);
             continue;
         }
-        // Parameter 1 reaches the light point; the light itself is not in the BVH.
-        const Hit hit = bvh_.intersect(origin, direction, 0.0f, 1.0f);
+        // t = 1 reaches the light point; stop just short of it.
+        const Vec3 direction = target - origin;
+        const Hit hit = bvh_.intersect(origin, direction, 0.0f, kShadowRayReach);
         if (!hit.found) {
             stats.unoccluded_weight_sum += weight;
             continue;

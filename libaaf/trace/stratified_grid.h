@@ -1,0 +1,49 @@
+#pragma once
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+
+#include "random.h"
+
+namespace aaf::trace {
+
+/// A point of the unit square [0, 1)^2.
+struct UnitPoint {
+    float s = 0, t = 0;
+};
+
+/// Jittered stratification of `count` samples of the unit square: a grid of
+/// ceil(sqrt(count)) columns and ceil(count / columns) rows, one sample per
+/// stratum. A perfect square (9 -> 3x3) fills the grid; otherwise the grid
+/// has up to columns - 1 strata to spare, and a per-pixel key picks which
+/// `count` strata get a sample through a hashed permutation (random.h), so no
+/// part of the square is systematically left out.
+class StratifiedGrid {
+  public:
+    /// `count` >= 1 samples.
+    explicit StratifiedGrid(std::uint32_t count)
+        : count_(count),
+          columns_(std::max(1u, std::uint32_t(std::ceil(std::sqrt(double(count)))))),
+          rows_((count + columns_ - 1) / columns_) {}
+
+    std::uint32_t count() const { return count_; }
+    std::uint32_t columns() const { return columns_; }
+    std::uint32_t rows() const { return rows_; }
+
+    /// Sample `index` (< count) of a pixel: its stratum, chosen by `key`
+    /// when the grid has spare strata, jittered by (u1, u2) in [0, 1)^2.
+    UnitPoint point(std::uint32_t index, std::uint32_t key, float u1, float u2) const {
+        const std::uint32_t strata = columns_ * rows_;
+        const std::uint32_t stratum = count_ == strata ? index : permute_index(index, strata, key);
+        // The minimum guards the float rounding of (k + u) / n up to 1.
+        constexpr float kBelowOne = 0x1.fffffep-1f;
+        return {std::min((float(stratum % columns_) + u1) / float(columns_), kBelowOne),
+                std::min((float(stratum / columns_) + u2) / float(rows_), kBelowOne)};
+    }
+
+  private:
+    std::uint32_t count_, columns_, rows_;
+};
+
+}  // namespace aaf::trace
