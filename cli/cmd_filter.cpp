@@ -58,9 +58,7 @@ void add_aaf_method(CLI::App &filter) {
            "separable: two 1D passes (Sec. 6); 2d: exact 2D gather of Eq. 10, to measure the approximation")
         ->check(CLI::IsMember({"separable", "2d"}))
         ->capture_default_str();
-    cmd->add_option("--map", options->maps, "Override a channel name: role=channel[,channel...]");
-    cmd->add_option("--threads", options->threads, "Worker threads, 0 = all (output is identical)")
-        ->capture_default_str();
+    add_map_and_threads_options(*cmd, options->maps, options->threads);
     cmd->callback([options] {
         const ChannelMap channels = channel_map_from(options->maps);
         options->params.mode = options->mode == "2d" ? AafFilterMode::Exact2D : AafFilterMode::Separable;

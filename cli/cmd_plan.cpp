@@ -35,9 +35,7 @@ void add_plan_command(CLI::App &app) {
     cmd->add_option("--fill-radius", options->aaf.fill_radius_px,
                     "Radius to borrow occluder distances, pixels")
         ->capture_default_str();
-    cmd->add_option("--map", options->maps, "Override a channel name: role=channel[,channel...]");
-    cmd->add_option("--threads", options->threads, "Worker threads, 0 = all (output is identical)")
-        ->capture_default_str();
+    add_map_and_threads_options(*cmd, options->maps, options->threads);
     cmd->callback([options] {
         const ChannelMap channels = channel_map_from(options->maps);
         check_not_same_file(options->input, options->output);
