@@ -1,34 +1,83 @@
+#include <unistd.h>
+
+#include <chrono>
 #include <cstdio>
 #include <iostream>
-
 #include <memory>
-#include "aaf/core/aov_contract.h"
-#include "aaf/core/sample_statistics.h"
+#include <optional>
 
+#include "aaf/core/aov_contract.h"
+#include "aaf/core/error.h"
+#include "aaf/core/sample_statistics.h"
 #include "aaf/io/exr_io.h"
+#include "aaf/io/sequence.h"
 #include "aaf/trace/render.h"
 #include "commands.h"
+#include "frame_runner.h"
+#include "input_guard.h"
 
 namespace aaf::cli {
 
+namespace {
+
+/// Reports the rounds of a progressive render on stderr: a bar redrawn in
+/// place on a terminal, otherwise a line at most every 10 % of the samples.
+class RoundReporter {
+  public:
+    RoundReporter(bool enabled) : enabled_(enabled), terminal_(::isatty(STDERR_FILENO)) {}
+
+    void operator()(int done, int total) {
+        if (!enabled_ || total <= trace::kSamplesPerRound) return;
+        const double seconds =
+            std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
+        const int percent = int(100.0 * done / total);
+        if (terminal_) {
+            const int filled = percent / 5;
+            std::fprintf(stderr, "\rrender: [%-20s] %d/%d spp %.0f s",
+                         std::string(std::size_t(filled), '#').c_str(), done, total, seconds);
+            if (done == total) std::fputc('\n', stderr);
+        } else if (percent / 10 != last_decile_ || done == total) {
+            std::fprintf(stderr, "render: %d/%d spp (%d%%) %.1f s\n", done, total, percent, seconds);
+            last_decile_ = percent / 10;
+        }
+        std::fflush(stderr);
+    }
+
+  private:
+    bool enabled_, terminal_;
+    int last_decile_ = 0;
+    std::chrono::steady_clock::time_point start_ = std::chrono::steady_clock::now();
+};
+
+}  // namespace
+
 void add_render_command(CLI::App &app) {
     struct Options {
-        std::string scene;
-        std::string output;
+        std::string scene, output, light, aovs = "aaf", frames, resume, progress = "auto";
         trace::RenderSettings settings;
-        bool list = false;
-        std::string light;
+        double checkpoint_s = 60;
+        bool list = false, skip_existing = false;
     };
     auto options = std::make_shared<Options>();
-    CLI::App *cmd = app.add_subcommand("render", "Render a built-in scene to a multi-layer EXR of AOVs");
-    cmd->add_option("scene", options->scene, "Built-in scene name (see --list)");
-    cmd->add_option("-o,--output", options->output, "Output EXR path");
+    CLI::App *cmd = app.add_subcommand(
+        "render", "Render a scene (JSON file or built-in name) to a multi-layer EXR of AOVs");
+    cmd->add_option("scene", options->scene, "Scene file (.json) or built-in scene name (see --list)");
+    cmd->add_option("-o,--output", options->output,
+                    "Output EXR, or a sequence pattern (shot.####.exr) with --frames");
     cmd->add_option("--width", options->settings.width, "Image width, pixels")->capture_default_str();
     cmd->add_option("--height", options->settings.height, "Image height, pixels")->capture_default_str();
-    cmd->add_option("--spp", options->settings.spp, "Light samples per pixel, stratified over the light")
+    cmd->add_option("--spp", options->settings.spp,
+                    "Light samples per pixel, stratified over the light, in rounds of 1024")
         ->capture_default_str();
     cmd->add_option("--seed", options->settings.seed, "Random seed")->capture_default_str();
     cmd->add_option("--threads", options->settings.threads, "Worker threads, 0 = all (output is identical)")
+        ->capture_default_str();
+    cmd->add_option("--frame", options->settings.frame, "Animation time of a single render, frames")
+        ->capture_default_str();
+    cmd->add_option("--frames", options->frames, "Render a sequence: 1-24, 1-24x2, 1-24:2, 1,5,7-9");
+    cmd->add_option("--aovs", options->aovs,
+                    "AOV groups, comma-separated: aaf (default), all, shadow, position, normal, id, "
+                    "unshadowed, depth, albedo, motion, progress")
         ->capture_default_str();
     cmd->add_flag("--adaptive", options->settings.adaptive,
                   "Two-pass adaptive sampling (AAF Sec. 6): --spp first, then Eq. 21 per pixel");
@@ -36,11 +85,20 @@ void add_render_command(CLI::App &app) {
         ->capture_default_str();
     cmd->add_option("--max-spp", options->settings.max_spp, "Cap on the adaptive samples per pixel")
         ->capture_default_str();
-    cmd->add_option("--light", options->light, "Override the light's profile: gaussian or uniform")
+    cmd->add_option("--light", options->light, "Override the lights' profile: gaussian or uniform")
         ->check(CLI::IsMember({"gaussian", "uniform"}));
     cmd->add_flag("--falloff", options->settings.cosine_falloff,
                   "Include the cosine falloff in the light function (AAF Sec. 7)");
-    cmd->add_flag("--list", options->list, "List the built-in scenes and exit");
+    cmd->add_option("--resume", options->resume,
+                    "Continue a progressive render from this partial output (may be the -o file)");
+    cmd->add_option("--checkpoint", options->checkpoint_s,
+                    "Seconds between checkpoints of a progressive render (written to -o, resumable)")
+        ->capture_default_str();
+    cmd->add_option("--progress", options->progress, "auto, lines, jsonl, openjd or none (sequences)")
+        ->capture_default_str();
+    cmd->add_flag("--skip-existing", options->skip_existing,
+                  "Skip frames whose output exists and reads back");
+    cmd->add_flag("--list", options->list, "List the scenes found by name and exit");
     cmd->callback([options] {
         if (options->list) {
             for (const std::string &name : trace::builtin_scene_names()) std::cout << name << "\n";
@@ -48,20 +106,58 @@ void add_render_command(CLI::App &app) {
         }
         if (options->scene.empty()) throw CLI::RequiredError("scene");
         if (options->output.empty()) throw CLI::RequiredError("--output");
-        if (!options->light.empty())
-            options->settings.light_profile = light_profile_from_string(options->light);
-        trace::RenderTimings timings;
-        AovSet aovs = trace::render_builtin(options->scene, options->settings, &timings);
-        io::write_aovs(aovs, options->output);
-        if (options->settings.adaptive) {
-            const ChannelMap channels;
-            std::printf(
-                "adaptive sampling: average %.2f spp over shaded pixels; first pass %.3f s, "
-                "plan %.3f s, second pass %.3f s\n",
-                mean_spp_over_shaded(aovs.channel(channels.channel(Role::SamplesPerPixel)),
-                                     aovs.channel(channels.channel(Role::ObjectId))),
-                timings.first_pass_s, timings.plan_s, timings.second_pass_s);
+        trace::RenderSettings &settings = options->settings;
+        if (!options->light.empty()) settings.light_profile = light_profile_from_string(options->light);
+        settings.aovs = trace::parse_aov_groups(options->aovs);
+        if (!(options->checkpoint_s > 0)) throw Error("--checkpoint must be positive");
+        settings.checkpoint_interval_s = options->checkpoint_s;
+
+        const bool sequence = !options->frames.empty();
+        if (sequence != io::is_sequence_pattern(options->output))
+            throw Error(sequence ? "--frames needs an output pattern such as shot.####.exr"
+                                 : "an output pattern needs --frames");
+        if (sequence && !options->resume.empty())
+            throw Error("--resume continues a single render, not a sequence");
+
+        std::optional<AovSet> partial;
+        if (!options->resume.empty()) {
+            partial = io::read_aovs(options->resume);
+            settings.resume = &*partial;
         }
+
+        std::vector<FrameJob> jobs;
+        if (sequence) {
+            for (int frame : io::parse_frame_range(options->frames))
+                jobs.push_back({frame, options->scene, io::frame_path(options->output, frame)});
+        } else {
+            jobs.push_back({0, options->scene, options->output});
+        }
+        RunOptions run;
+        run.progress = progress_from_string(options->progress);
+        run.skip_existing = options->skip_existing;
+        RoundReporter report_rounds(!sequence && run.progress != Progress::None);
+        const int failed = run_frames(jobs, run, [&](const FrameJob &job) {
+            trace::RenderSettings frame_settings = settings;
+            if (sequence) frame_settings.frame = job.frame;
+            frame_settings.on_progress = [&](int done, int total) { report_rounds(done, total); };
+            frame_settings.on_checkpoint = [&](const AovSet &so_far) { io::write_aovs(so_far, job.output); };
+            trace::RenderTimings timings;
+            const AovSet aovs = with_context(options->resume.empty() ? job.input : options->resume, [&] {
+                return trace::render_scene(job.input, frame_settings, &timings);
+            });
+            io::write_aovs(aovs, job.output);
+            if (settings.adaptive) {
+                const ChannelMap channels;
+                std::printf(
+                    "adaptive sampling: average %.2f spp over shaded pixels; first pass %.3f s, "
+                    "plan %.3f s, second pass %.3f s\n",
+                    mean_spp_over_shaded(aovs.channel(channels.channel(Role::SamplesPerPixel)),
+                                         aovs.channel(channels.channel(Role::ObjectId))),
+                    timings.first_pass_s, timings.plan_s, timings.second_pass_s);
+            }
+        });
+        if (failed > 0)
+            throw Error(std::to_string(failed) + " of " + std::to_string(jobs.size()) + " frames failed");
     });
 }
 

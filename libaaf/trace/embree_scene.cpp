@@ -36,11 +36,13 @@ void check_device(RTCDevice device, const char *what) {
 
 }  // namespace
 
-EmbreeScene::EmbreeScene(const SceneDescription &description) {
+EmbreeScene::EmbreeScene(const SceneDescription &description, bool high_quality) {
     device_ = rtcNewDevice(nullptr);
     if (!device_) throw Error("Embree: cannot create a device");
     try {
         scene_ = rtcNewScene(device_);
+        rtcSetSceneFlags(scene_, RTC_SCENE_FLAG_ROBUST);
+        rtcSetSceneBuildQuality(scene_, high_quality ? RTC_BUILD_QUALITY_HIGH : RTC_BUILD_QUALITY_MEDIUM);
         for (const Mesh &mesh : description.meshes) {
             RTCGeometry geometry = rtcNewGeometry(device_, RTC_GEOMETRY_TYPE_TRIANGLE);
             auto *vertices = static_cast<float *>(
@@ -56,6 +58,8 @@ EmbreeScene::EmbreeScene(const SceneDescription &description) {
                 vertices[3 * i + 2] = mesh.positions[i].z;
             }
             std::memcpy(indices, mesh.indices.data(), mesh.indices.size() * sizeof(unsigned));
+            rtcSetGeometryBuildQuality(geometry,
+                                       high_quality ? RTC_BUILD_QUALITY_HIGH : RTC_BUILD_QUALITY_MEDIUM);
             rtcCommitGeometry(geometry);
             rtcAttachGeometry(scene_, geometry);  // geometry ids follow mesh order
             rtcReleaseGeometry(geometry);
@@ -101,6 +105,26 @@ Hit EmbreeScene::intersect(Vec3 origin, Vec3 direction, float t_near, float t_fa
     hit.geometric_normal = {query.hit.Ng_x, query.hit.Ng_y, query.hit.Ng_z};
     hit.mesh_index = query.hit.geomID;
     return hit;
+}
+
+bool EmbreeScene::occluded(Vec3 origin, Vec3 direction, float t_near, float t_far) const {
+    RTCIntersectContext context;
+    rtcInitIntersectContext(&context);
+    RTCRay ray;
+    ray.org_x = origin.x;
+    ray.org_y = origin.y;
+    ray.org_z = origin.z;
+    ray.dir_x = direction.x;
+    ray.dir_y = direction.y;
+    ray.dir_z = direction.z;
+    ray.tnear = t_near;
+    ray.tfar = t_far;
+    ray.time = 0;
+    ray.mask = std::numeric_limits<unsigned>::max();
+    ray.id = 0;
+    ray.flags = 0;
+    rtcOccluded1(scene_, &context, &ray);
+    return ray.tfar < 0;  // Embree sets tfar to -inf on a hit
 }
 
 }  // namespace aaf::trace

@@ -15,16 +15,24 @@ struct Hit {
 };
 
 /// The scene's meshes in an Embree 3 BVH (owns the device and the scene).
-/// Thread-safe for concurrent `intersect` calls once built.
+/// Thread-safe for concurrent queries once built.
 class EmbreeScene {
   public:
-    explicit EmbreeScene(const SceneDescription &scene);
+    /// Builds with RTC_SCENE_FLAG_ROBUST (no leaks between adjacent
+    /// triangles); `high_quality` selects RTC_BUILD_QUALITY_HIGH (a slower
+    /// build that pays off over the many rays of a reference).
+    EmbreeScene(const SceneDescription &scene, bool high_quality);
     ~EmbreeScene();
     EmbreeScene(const EmbreeScene &) = delete;
     EmbreeScene &operator=(const EmbreeScene &) = delete;
 
     /// Closest hit of origin + t direction for t in [t_near, t_far].
     Hit intersect(Vec3 origin, Vec3 direction, float t_near, float t_far) const;
+    /// Whether anything lies on origin + t direction for t in [t_near, t_far]
+    /// (rtcOccluded1: stops at the first hit found).
+    bool occluded(Vec3 origin, Vec3 direction, float t_near, float t_far) const;
+
+    RTCScene handle() const { return scene_; }
 
   private:
     RTCDevice device_ = nullptr;

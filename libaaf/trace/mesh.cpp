@@ -1,9 +1,38 @@
-#include <algorithm>
 #include <cmath>
 
 #include "scene_description.h"
 
 namespace aaf::trace {
+
+namespace {
+
+constexpr float kPi = 3.14159265358979f;
+
+}  // namespace
+
+Transform Transform::from(Vec3 scale, Vec3 rotate_deg, Vec3 translate) {
+    const float to_rad = kPi / 180.0f;
+    const float cx = std::cos(rotate_deg.x * to_rad), sx = std::sin(rotate_deg.x * to_rad);
+    const float cy = std::cos(rotate_deg.y * to_rad), sy = std::sin(rotate_deg.y * to_rad);
+    const float cz = std::cos(rotate_deg.z * to_rad), sz = std::sin(rotate_deg.z * to_rad);
+    // R = Rz * Ry * Rx (x applied first), right-handed.
+    const float rx[3][3] = {{1, 0, 0}, {0, cx, -sx}, {0, sx, cx}};
+    const float ry[3][3] = {{cy, 0, sy}, {0, 1, 0}, {-sy, 0, cy}};
+    const float rz[3][3] = {{cz, -sz, 0}, {sz, cz, 0}, {0, 0, 1}};
+    float ryx[3][3] = {};
+    for (int i = 0; i < 3; ++i)
+        for (int j = 0; j < 3; ++j)
+            for (int k = 0; k < 3; ++k) ryx[i][j] += ry[i][k] * rx[k][j];
+    Transform t;
+    for (int i = 0; i < 3; ++i)
+        for (int j = 0; j < 3; ++j) {
+            float r = 0;
+            for (int k = 0; k < 3; ++k) r += rz[i][k] * ryx[k][j];
+            t.m[i][j] = r * scale[j];
+        }
+    t.translation = translate;
+    return t;
+}
 
 void Mesh::add_quad(Vec3 a, Vec3 b, Vec3 c, Vec3 d) {
     const auto base = std::uint32_t(positions.size());
@@ -11,13 +40,11 @@ void Mesh::add_quad(Vec3 a, Vec3 b, Vec3 c, Vec3 d) {
     indices.insert(indices.end(), {base, base + 1, base + 2, base, base + 2, base + 3});
 }
 
-void Mesh::add_box(Vec3 lo, Vec3 hi, float angle_rad) {
-    const float c = std::cos(angle_rad), s = std::sin(angle_rad);
-    auto corner = [&](int i) {
-        const Vec3 p{(i & 1) ? hi.x : lo.x, (i & 2) ? hi.y : lo.y, (i & 4) ? hi.z : lo.z};
-        return Vec3{c * p.x + s * p.z, p.y, -s * p.x + c * p.z};
-    };
+void Mesh::add_box(Vec3 lo, Vec3 hi, const Transform &to_world) {
     // Corner i has x from bit 0, y from bit 1, z from bit 2.
+    auto corner = [&](int i) {
+        return to_world.apply({(i & 1) ? hi.x : lo.x, (i & 2) ? hi.y : lo.y, (i & 4) ? hi.z : lo.z});
+    };
     add_quad(corner(0), corner(1), corner(3), corner(2));  // z = lo
     add_quad(corner(4), corner(6), corner(7), corner(5));  // z = hi
     add_quad(corner(0), corner(2), corner(6), corner(4));  // x = lo
@@ -26,26 +53,16 @@ void Mesh::add_box(Vec3 lo, Vec3 hi, float angle_rad) {
     add_quad(corner(2), corner(3), corner(7), corner(6));  // y = hi
 }
 
-Mesh ground_plane(float half_extent_m, int object_id, Vec3 albedo) {
-    Mesh ground;
-    ground.object_id = object_id;
-    ground.albedo = albedo;
-    const float h = half_extent_m;
-    ground.add_quad({-h, 0, -h}, {-h, 0, h}, {h, 0, h}, {h, 0, -h});
-    return ground;
-}
-
-void Mesh::add_sphere(Vec3 center, float radius_m, int segments) {
-    constexpr float kPi = 3.14159265358979f;
+void Mesh::add_sphere(Vec3 center, float radius_m, int segments, const Transform &to_world) {
     const int rings = segments / 2;
     const auto base = std::uint32_t(positions.size());
     for (int j = 0; j <= rings; ++j) {
         const float theta = kPi * float(j) / float(rings);
         for (int i = 0; i <= segments; ++i) {
             const float phi = 2 * kPi * float(i) / float(segments);
-            positions.push_back(center + Vec3{std::sin(theta) * std::cos(phi), std::cos(theta),
-                                              std::sin(theta) * std::sin(phi)} *
-                                             radius_m);
+            const Vec3 unit{std::sin(theta) * std::cos(phi), std::cos(theta),
+                            std::sin(theta) * std::sin(phi)};
+            positions.push_back(to_world.apply(center + unit * radius_m));
         }
     }
     const auto stride = std::uint32_t(segments + 1);
@@ -58,26 +75,24 @@ void Mesh::add_sphere(Vec3 center, float radius_m, int segments) {
         }
 }
 
-void Mesh::add_tube(const std::vector<Vec3> &centre, const std::vector<float> &radius_m, int sides) {
-    constexpr float kPi = 3.14159265358979f;
+void Mesh::add_cylinder(float radius_m, float height_m, int segments, const Transform &to_world) {
     const auto base = std::uint32_t(positions.size());
-    const std::size_t count = centre.size();
-    for (std::size_t k = 0; k < count; ++k) {
-        const Vec3 tangent = normalize(centre[std::min(k + 1, count - 1)] - centre[k == 0 ? 0 : k - 1]);
-        const Vec3 helper = std::fabs(tangent.y) < 0.9f ? Vec3{0, 1, 0} : Vec3{1, 0, 0};
-        const Vec3 side = normalize(cross(tangent, helper)), other = cross(tangent, side);
-        for (int i = 0; i < sides; ++i) {
-            const float angle = 2 * kPi * float(i) / float(sides);
-            positions.push_back(centre[k] + (side * std::cos(angle) + other * std::sin(angle)) * radius_m[k]);
-        }
+    for (int i = 0; i < segments; ++i) {
+        const float phi = 2 * kPi * float(i) / float(segments);
+        const float x = radius_m * std::cos(phi), z = radius_m * std::sin(phi);
+        positions.push_back(to_world.apply({x, 0, z}));
+        positions.push_back(to_world.apply({x, height_m, z}));
     }
-    const auto ring = std::uint32_t(sides);
-    for (std::size_t k = 0; k + 1 < count; ++k)
-        for (std::uint32_t i = 0; i < ring; ++i) {
-            const std::uint32_t a = base + std::uint32_t(k) * ring + i,
-                                b = base + std::uint32_t(k) * ring + (i + 1) % ring;
-            indices.insert(indices.end(), {a, b, b + ring, a, b + ring, a + ring});
-        }
+    const auto bottom = std::uint32_t(positions.size());
+    positions.push_back(to_world.apply({0, 0, 0}));
+    positions.push_back(to_world.apply({0, height_m, 0}));
+    const auto n = std::uint32_t(segments);
+    for (std::uint32_t i = 0; i < n; ++i) {
+        const std::uint32_t a = base + 2 * i, b = base + 2 * ((i + 1) % n);
+        indices.insert(indices.end(), {a, a + 1, b + 1, a, b + 1, b});  // side
+        indices.insert(indices.end(), {bottom, a, b});                  // bottom cap
+        indices.insert(indices.end(), {bottom + 1, b + 1, a + 1});      // top cap
+    }
 }
 
 }  // namespace aaf::trace

@@ -14,10 +14,12 @@ inline std::uint64_t mix64(std::uint64_t z) {
 
 /// Counter-based random numbers for one pixel and pass: every value depends
 /// only on (seed, pixel index, pass, draw index), never on thread scheduling.
+/// Any 32-bit pass number gives its own stream (progressive references use
+/// one pass per round of samples).
 class PixelRng {
   public:
     PixelRng(std::uint64_t seed, std::uint64_t pixel_index, std::uint32_t pass)
-        : state_(mix64(seed ^ mix64(pixel_index * 8 + pass))) {}
+        : state_(mix64(seed ^ mix64(pixel_index ^ mix64(pass)))) {}
 
     std::uint64_t next_u64() { return mix64(state_ += 0x632be59bd9b4e019ull); }
     std::uint32_t next_u32() { return std::uint32_t(next_u64() >> 32); }

@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "random.h"
+#include "shading.h"
 #include "stratified_grid.h"
 
 namespace aaf::trace {
@@ -14,18 +15,52 @@ constexpr float kPi = 3.14159265358979323846f;
 constexpr int kFalloffQuadrature = 16;  // per axis
 /// Shadow rays end at this fraction of the way to the light point.
 constexpr float kShadowRayReach = 1.0f - 1e-4f;
+/// Distinguishes the lens and other-light random numbers from the key light's.
+constexpr std::uint64_t kSecondaryStream = 0x5bd1e9955bd1e995ull;
+
+/// Offset of a surface point along its (ray-facing) normal, scaled to the
+/// coordinates' magnitude so float rounding cannot put it behind the surface.
+Vec3 offset_origin(Vec3 p, Vec3 n) {
+    const float epsilon = 1e-4f * (1.0f + std::max({std::fabs(p.x), std::fabs(p.y), std::fabs(p.z)}));
+    return p + n * epsilon;
+}
+
+/// Shirley-Chiu concentric map of the unit square onto the unit disc.
+void concentric_disc(float u1, float u2, float &dx, float &dy) {
+    const float a = 2 * u1 - 1, b = 2 * u2 - 1;
+    if (a == 0 && b == 0) {
+        dx = dy = 0;
+        return;
+    }
+    float r, phi;
+    if (std::fabs(a) > std::fabs(b)) {
+        r = a;
+        phi = (kPi / 4) * (b / a);
+    } else {
+        r = b;
+        phi = (kPi / 2) - (kPi / 4) * (a / b);
+    }
+    dx = r * std::cos(phi);
+    dy = r * std::sin(phi);
+}
+
+Vec3 times(Vec3 a, Vec3 b) {
+    return {a.x * b.x, a.y * b.y, a.z * b.z};
+}
 
 }  // namespace
 
 Renderer::Renderer(const SceneDescription &scene, const RenderSettings &settings)
-    : scene_(scene), settings_(settings), bvh_(scene), light_sampler_(scene.light) {}
+    : scene_(scene), settings_(settings), bvh_(scene, settings.spp >= 1024) {
+    for (const SceneLight &light : scene.lights) light_samplers_.emplace_back(light.plane);
+}
 
-float Renderer::falloff(Vec3 p, Vec3 n, Vec3 light_point) const {
+float Renderer::falloff(const LightPlane &light, Vec3 p, Vec3 n, Vec3 light_point) const {
     Vec3 to_light = light_point - p;
     const float distance_sq = dot(to_light, to_light);
     to_light = to_light / std::sqrt(distance_sq);
     const float cos_receiver = std::max(0.0f, dot(n, to_light));
-    const float cos_light = std::max(0.0f, -dot(scene_.light.normal, to_light));
+    const float cos_light = std::max(0.0f, -dot(light.normal, to_light));
     return cos_receiver * cos_light / distance_sq;
 }
 
@@ -34,13 +69,24 @@ float Renderer::mean_falloff(Vec3 p, Vec3 n) const {
     for (int j = 0; j < kFalloffQuadrature; ++j)
         for (int i = 0; i < kFalloffQuadrature; ++i) {
             const UnitPoint cell{(i + 0.5f) / kFalloffQuadrature, (j + 0.5f) / kFalloffQuadrature};
-            sum += falloff(p, n, light_sampler_.point(cell));
+            sum += falloff(scene_.key_light(), p, n, light_samplers_[0].point(cell));
         }
     return float(sum / (kFalloffQuadrature * kFalloffQuadrature));
 }
 
+Vec3 Renderer::unshadowed(std::size_t light_index, const Mesh &mesh, Vec3 p, Vec3 n, Vec3 eye) const {
+    const SceneLight &light = scene_.lights[light_index];
+    // With the falloff inside l(y) (AAF Sec. 7), the key light's r(x) is the
+    // exact unshadowed irradiance; otherwise the irradiance at the light's centre.
+    const float geometry = light_index == 0 && settings_.cosine_falloff
+                               ? mean_falloff(p, n)
+                               : falloff(light.plane, p, n, light.plane.center);
+    const Vec3 brdf = evaluate_brdf(mesh.material, n, normalize(eye - p), normalize(light.plane.center - p));
+    return times(brdf, light.color) * (light.intensity * geometry);
+}
+
 PrimaryHit Renderer::trace_primary(int x, int y) const {
-    const PinholeCamera &camera = scene_.camera;
+    const Camera &camera = scene_.camera;
     const Vec3 direction = camera.ray_direction(x + 0.5f, y + 0.5f);
     const Hit hit = bvh_.intersect(camera.eye, direction, 0.0f, std::numeric_limits<float>::infinity());
     PrimaryHit primary;
@@ -48,57 +94,97 @@ PrimaryHit Renderer::trace_primary(int x, int y) const {
     primary.found = true;
     primary.mesh = &scene_.meshes[hit.mesh_index];
     primary.position = camera.eye + direction * hit.distance;
+    primary.depth_m = hit.distance;  // the direction's forward component is 1
     const Vec3 normal = normalize(hit.geometric_normal);
     primary.normal = dot(normal, direction) > 0 ? -normal : normal;
     primary.pixel_size_m = pixel_footprint(primary, x, y);
-
-    // AAF Eq. 1: r(x) with the light's irradiance at its centre (or, with the
-    // falloff inside l(y), the exact unshadowed irradiance), no visibility.
-    const float geometry = settings_.cosine_falloff
-                               ? mean_falloff(primary.position, primary.normal)
-                               : falloff(primary.position, primary.normal, scene_.light.center);
-    primary.unshadowed = primary.mesh->albedo * (scene_.light_intensity * geometry / kPi);
+    primary.unshadowed = unshadowed(0, *primary.mesh, primary.position, primary.normal, camera.eye);
     return primary;
 }
 
-void Renderer::trace_shadows(const PrimaryHit &primary, std::uint64_t pixel_index, std::uint32_t pass,
-                             std::uint32_t count, ShadowStats &stats) const {
-    const LightPlane &light = scene_.light;
+bool Renderer::occluded(Vec3 p, Vec3 n, Vec3 target) const {
+    // A light point behind the receiver's own tangent plane is occluded by the
+    // (closed) surface at the receiver itself.
+    if (dot(n, target - p) <= 0) return true;
+    const Vec3 origin = offset_origin(p, n);
+    return bvh_.occluded(origin, target - origin, 0.0f, kShadowRayReach);
+}
+
+Vec3 Renderer::shade(const Mesh &mesh, Vec3 p, Vec3 n, Vec3 eye, UnitPoint u, std::size_t first_light) const {
+    Vec3 radiance;
+    for (std::size_t l = first_light; l < scene_.lights.size(); ++l)
+        if (!occluded(p, n, light_samplers_[l].point(u)))
+            radiance = radiance + unshadowed(l, mesh, p, n, eye);
+    return radiance;
+}
+
+void Renderer::trace_shadows(const PrimaryHit &primary, int x, int y, std::uint64_t pixel_index,
+                             std::uint32_t pass, std::uint32_t count, ShadowStats &stats) const {
+    const LightPlane &light = scene_.key_light();
+    const Camera &camera = scene_.camera;
     PixelRng rng(settings_.seed, pixel_index, pass);
+    PixelRng secondary_rng(settings_.seed ^ kSecondaryStream, pixel_index, pass);
     const std::uint32_t stratum_key = rng.next_u32();
     const StratifiedGrid strata(count);
-    // Offset along the camera-facing normal, scaled to the coordinates' magnitude.
-    // Only light points in front of that normal are traced, so the origin
-    // always lies on the side of the surface that faces the light point.
+    // Only light points in front of the camera-facing normal are traced, so
+    // the offset origin always lies on the side that faces the light point.
     const Vec3 p = primary.position;
-    const float epsilon = 1e-4f * (1.0f + std::max({std::fabs(p.x), std::fabs(p.y), std::fabs(p.z)}));
-    const Vec3 origin = p + primary.normal * epsilon;
-    const float d1 = light.plane_distance_m(p);
-    const float centre_falloff = settings_.cosine_falloff ? falloff(p, primary.normal, light.center) : 0.0f;
+    const Vec3 origin = offset_origin(p, primary.normal);
+    const float d1 = primary.found ? light.plane_distance_m(p) : 0.0f;
+    const float centre_falloff =
+        settings_.cosine_falloff && primary.found ? falloff(light, p, primary.normal, light.center) : 0.0f;
+    const bool separate = has_separate_radiance();
     for (std::uint32_t i = 0; i < count; ++i) {
         const float u1 = rng.next_float(), u2 = rng.next_float();
-        const Vec3 target = light_sampler_.point(strata.point(i, stratum_key, u1, u2));
-        // Samples follow the emission profile; the falloff, when included in l(y),
-        // weights them relative to the centre (AAF Sec. 7).
-        double weight = 1.0;
-        if (settings_.cosine_falloff && centre_falloff > 0)
-            weight = falloff(p, primary.normal, target) / centre_falloff;
+        const UnitPoint u = strata.point(i, stratum_key, u1, u2);
         ++stats.taken;
-        stats.weight_sum += weight;
-        if (dot(primary.normal, target - p) <= 0) {
-            // The light point lies behind the receiver's own tangent plane: the
-            // (closed) surface occludes it at the receiver itself.
-            stats.add_occluder(d1);
-            continue;
+        // The key light's visibility at the central hit (none for a thin
+        // lens's background pixel, which only gathers lens rays).
+        if (primary.found) {
+            const Vec3 target = light_samplers_[0].point(u);
+            // Samples follow the emission profile; the falloff, when included in
+            // l(y), weights them relative to the centre (AAF Sec. 7).
+            double weight = 1.0;
+            if (settings_.cosine_falloff && centre_falloff > 0)
+                weight = falloff(light, p, primary.normal, target) / centre_falloff;
+            stats.weight_sum += weight;
+            if (dot(primary.normal, target - p) <= 0) {
+                stats.add_occluder(d1);  // behind the receiver's own tangent plane
+            } else {
+                // t = 1 reaches the light point; stop just short of it.
+                const Vec3 direction = target - origin;
+                const Hit hit = bvh_.intersect(origin, direction, 0.0f, kShadowRayReach);
+                if (hit.found)
+                    stats.add_occluder(light.plane_distance_m(origin + direction * hit.distance));
+                else
+                    stats.unoccluded_weight_sum += weight;
+            }
         }
-        // t = 1 reaches the light point; stop just short of it.
-        const Vec3 direction = target - origin;
-        const Hit hit = bvh_.intersect(origin, direction, 0.0f, kShadowRayReach);
-        if (!hit.found) {
-            stats.unoccluded_weight_sum += weight;
-            continue;
+        if (!separate) continue;
+
+        Vec3 radiance;
+        if (camera.is_thin_lens()) {
+            // A ray from a point of the aperture through the pixel centre's
+            // point on the plane in focus; its hit is shaded by every light.
+            float dx, dy;
+            concentric_disc(secondary_rng.next_float(), secondary_rng.next_float(), dx, dy);
+            const Vec3 lens = camera.eye + (camera.right * dx + camera.up * dy) * camera.aperture_radius_m;
+            const Vec3 focus =
+                camera.eye + camera.ray_direction(x + 0.5f, y + 0.5f) * camera.focus_distance_m;
+            const Vec3 direction = focus - lens;
+            const Hit hit = bvh_.intersect(lens, direction, 0.0f, std::numeric_limits<float>::infinity());
+            if (hit.found) {
+                const Vec3 hit_point = lens + direction * hit.distance;
+                Vec3 n = normalize(hit.geometric_normal);
+                n = dot(n, direction) > 0 ? -n : n;
+                radiance = shade(scene_.meshes[hit.mesh_index], hit_point, n, lens, u, 0);
+            }
+        } else {
+            radiance = shade(*primary.mesh, p, primary.normal, camera.eye, u, 1);
         }
-        stats.add_occluder(light.plane_distance_m(origin + direction * hit.distance));
+        stats.radiance_sum[0] += radiance.x;
+        stats.radiance_sum[1] += radiance.y;
+        stats.radiance_sum[2] += radiance.z;
     }
 }
 
@@ -106,7 +192,7 @@ void Renderer::trace_shadows(const PrimaryHit &primary, std::uint64_t pixel_inde
 /// pixel centres meet the hit's tangent plane; d = sqrt(|dP/dx x dP/dy|),
 /// which includes foreshortening.
 float Renderer::pixel_footprint(const PrimaryHit &primary, int x, int y) const {
-    const PinholeCamera &camera = scene_.camera;
+    const Camera &camera = scene_.camera;
     const Vec3 n = primary.normal;
     const float plane_offset = dot(n, primary.position - camera.eye);
     auto on_plane = [&](Vec3 direction) {

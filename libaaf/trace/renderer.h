@@ -2,6 +2,7 @@
 
 #include <cstdint>
 #include <limits>
+#include <vector>
 
 #include "aaf/trace/render.h"
 #include "embree_scene.h"
@@ -10,23 +11,28 @@
 
 namespace aaf::trace {
 
-/// What the primary ray through a pixel's centre sees.
+/// What the central (pinhole) primary ray through a pixel's centre sees.
 struct PrimaryHit {
     bool found = false;
     Vec3 position;  ///< world metres
     Vec3 normal;    ///< unit geometric normal, facing the camera
     const Mesh *mesh = nullptr;
     float pixel_size_m = 0;  ///< d of AAF Eq. 6
-    Vec3 unshadowed;         ///< r(x) of AAF Eq. 1
+    float depth_m = 0;       ///< distance along the camera's forward axis
+    Vec3 unshadowed;         ///< r(x) of AAF Eq. 1 for the key light
 };
 
 /// Shadow-ray statistics of one pixel, accumulated over passes.
 struct ShadowStats {
     std::uint32_t taken = 0;
-    double weight_sum = 0;             ///< sum of the samples' light-function weights
+    double weight_sum = 0;             ///< sum of the key light samples' light-function weights
     double unoccluded_weight_sum = 0;  ///< the same over unoccluded samples
     float d2_min_m = std::numeric_limits<float>::infinity();
     float d2_max_m = 0;
+    /// Sum over samples of the radiance that does not factor as r(x) V(x):
+    /// the other lights' shadowed shading, and with a thin lens the whole
+    /// beauty (seen through the lens sample's ray).
+    double radiance_sum[3] = {0, 0, 0};
 
     void add_occluder(float d2_m) {
         d2_min_m = d2_m < d2_min_m ? d2_m : d2_min_m;
@@ -35,6 +41,13 @@ struct ShadowStats {
     bool occluded_any() const { return d2_max_m > 0; }
     /// Light-weighted visibility in [0, 1]; exactly 1 when no sample was occluded.
     float visibility() const { return weight_sum > 0 ? float(unoccluded_weight_sum / weight_sum) : 1.0f; }
+    /// Rounds the sums to float, the precision a checkpoint file stores them
+    /// in, so a resumed render continues from exactly the same state.
+    void round_to_float() {
+        weight_sum = double(float(weight_sum));
+        unoccluded_weight_sum = double(float(unoccluded_weight_sum));
+        for (double &sum : radiance_sum) sum = double(float(sum));
+    }
 };
 
 /// Traces primary and shadow rays of one scene (thread-safe, const).
@@ -44,23 +57,40 @@ class Renderer {
 
     PrimaryHit trace_primary(int x, int y) const;
 
-    /// Traces `count` shadow rays of pass `pass`, stratified among themselves,
-    /// and adds them to `stats`.
-    void trace_shadows(const PrimaryHit &primary, std::uint64_t pixel_index, std::uint32_t pass,
+    /// Traces `count` samples of pass `pass`, stratified among themselves,
+    /// and adds them to `stats`: one key-light shadow ray from the primary
+    /// hit each, plus one per other light and, with a thin lens, a lens ray.
+    void trace_shadows(const PrimaryHit &primary, int x, int y, std::uint64_t pixel_index, std::uint32_t pass,
                        std::uint32_t count, ShadowStats &stats) const;
+
+    /// True when the beauty is not r(x) times the key light's visibility.
+    bool has_separate_radiance() const { return scene_.lights.size() > 1 || scene_.camera.is_thin_lens(); }
+
+    const EmbreeScene &bvh() const { return bvh_; }
 
   private:
     float pixel_footprint(const PrimaryHit &primary, int x, int y) const;
     /// Geometric factor cos(receiver) cos(light) / r^2 from `p` (normal `n`) to a light point.
-    float falloff(Vec3 p, Vec3 n, Vec3 light_point) const;
+    float falloff(const LightPlane &light, Vec3 p, Vec3 n, Vec3 light_point) const;
     /// Exact unshadowed irradiance factor with falloff: the profile-weighted
-    /// mean of falloff() over the light, by a 16x16 midpoint quadrature in the sampler's warped coordinates.
+    /// mean of falloff() over the key light, by a 16x16 midpoint quadrature in
+    /// the sampler's warped coordinates.
     float mean_falloff(Vec3 p, Vec3 n) const;
+    /// r(x) of light `light_index` for a hit seen from `eye`: BRDF towards the
+    /// light's centre times its irradiance there (AAF Eq. 1).
+    Vec3 unshadowed(std::size_t light_index, const Mesh &mesh, Vec3 p, Vec3 n, Vec3 eye) const;
+    /// Radiance at a surface point from lights [first_light, count), each
+    /// r(x) times the visibility of one shadow ray towards the light's point
+    /// for the unit-square sample `u`.
+    Vec3 shade(const Mesh &mesh, Vec3 p, Vec3 n, Vec3 eye, UnitPoint u, std::size_t first_light) const;
+    /// Whether a shadow ray from surface point `p` (normal `n`, facing the
+    /// ray's side) to `target` is blocked.
+    bool occluded(Vec3 p, Vec3 n, Vec3 target) const;
 
     const SceneDescription &scene_;
     const RenderSettings &settings_;
     EmbreeScene bvh_;
-    LightSampler light_sampler_;
+    std::vector<LightSampler> light_samplers_;
 };
 
 }  // namespace aaf::trace

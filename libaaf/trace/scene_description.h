@@ -9,70 +9,92 @@
 
 namespace aaf::trace {
 
-/// A triangle mesh with one diffuse material, identified in the object-id AOV.
+/// A surface's reflectance: Lambertian albedo plus an optional GGX
+/// (Trowbridge-Reitz) specular lobe with Schlick Fresnel.
+struct Material {
+    Vec3 albedo{0.75f, 0.75f, 0.75f};  ///< diffuse reflectance per channel, [0, 1]
+    Vec3 specular{0, 0, 0};            ///< Fresnel reflectance at normal incidence (F0); 0 = none
+    float roughness = 0.5f;            ///< GGX alpha = roughness^2
+
+    bool has_specular() const { return specular.x > 0 || specular.y > 0 || specular.z > 0; }
+};
+
+/// An affine map applied to object-space points: scale, then rotate, then translate.
+struct Transform {
+    float m[3][3] = {{1, 0, 0}, {0, 1, 0}, {0, 0, 1}};  ///< rotation times scale
+    Vec3 translation;
+
+    Vec3 apply(Vec3 p) const {
+        return Vec3{m[0][0] * p.x + m[0][1] * p.y + m[0][2] * p.z,
+                    m[1][0] * p.x + m[1][1] * p.y + m[1][2] * p.z,
+                    m[2][0] * p.x + m[2][1] * p.y + m[2][2] * p.z} +
+               translation;
+    }
+    /// Euler rotation in degrees about x, then y, then z, after scaling by `scale`.
+    static Transform from(Vec3 scale, Vec3 rotate_deg, Vec3 translate);
+};
+
+/// A triangle mesh with one material, identified in the object-id AOV.
 struct Mesh {
     std::vector<Vec3> positions;         ///< world metres
     std::vector<std::uint32_t> indices;  ///< three per triangle
     int object_id = 1;                   ///< > 0; 0 is the background
-    Vec3 albedo{0.75f, 0.75f, 0.75f};    ///< diffuse reflectance per channel
+    Material material;
 
-    /// Appends an axis-aligned box [lo, hi] transformed by a rotation of
-    /// `angle_rad` about the vertical (y) axis.
-    void add_box(Vec3 lo, Vec3 hi, float angle_rad);
+    std::size_t triangle_count() const { return indices.size() / 3; }
+
+    /// Appends the axis-aligned box [lo, hi] mapped by `to_world`.
+    void add_box(Vec3 lo, Vec3 hi, const Transform &to_world);
     /// Appends a quad (two triangles) with corners a, b, c, d in order.
     void add_quad(Vec3 a, Vec3 b, Vec3 c, Vec3 d);
     /// Appends a UV sphere of `segments` longitudes and segments/2 latitudes.
-    void add_sphere(Vec3 center, float radius_m, int segments);
-    /// Appends the surface y = height(x, z) over [-half, half]^2 on a
-    /// `resolution` x `resolution` grid of quads.
-    template <typename HeightFn>
-    void add_heightfield(float half_extent_m, int resolution, const HeightFn &height);
-    /// Appends a tube of `sides` sides around the polyline `centre`, with a
-    /// radius per polyline point; ends are left open.
-    void add_tube(const std::vector<Vec3> &centre, const std::vector<float> &radius_m, int sides);
+    void add_sphere(Vec3 center, float radius_m, int segments, const Transform &to_world);
+    /// Appends a closed cylinder around the y axis from y = 0 to `height_m`.
+    void add_cylinder(float radius_m, float height_m, int segments, const Transform &to_world);
 };
 
-template <typename HeightFn>
-void Mesh::add_heightfield(float half_extent_m, int resolution, const HeightFn &height) {
-    const auto base = std::uint32_t(positions.size());
-    for (int j = 0; j <= resolution; ++j)
-        for (int i = 0; i <= resolution; ++i) {
-            const float x = -half_extent_m + 2 * half_extent_m * float(i) / float(resolution);
-            const float z = -half_extent_m + 2 * half_extent_m * float(j) / float(resolution);
-            positions.push_back({x, height(x, z), z});
-        }
-    const auto stride = std::uint32_t(resolution + 1);
-    for (int j = 0; j < resolution; ++j)
-        for (int i = 0; i < resolution; ++i) {
-            const std::uint32_t a = base + std::uint32_t(j) * stride + std::uint32_t(i);
-            indices.insert(indices.end(), {a, a + stride, a + stride + 1, a, a + stride + 1, a + 1});
-        }
-}
+/// A planar rectangular area light (AAF Fig. 2) with its emission.
+struct SceneLight {
+    LightPlane plane;
+    float intensity = 1.0f;  ///< radiant intensity along the light normal, W/sr
+    Vec3 color{1, 1, 1};     ///< multiplies the intensity per channel
+};
 
-/// A flat square ground at y = 0, centred on the origin.
-Mesh ground_plane(float half_extent_m, int object_id, Vec3 albedo);
+/// Keyframed values of the camera and lights (linear interpolation between
+/// keys, held constant before the first and after the last key).
+struct CameraKey {
+    double frame = 1;
+    Vec3 eye, target;
+    float fov_y_deg = 45;
+    float focus_distance_m = 1;
+};
+struct LightKey {
+    double frame = 1;
+    Vec3 center;
+    float intensity = 1;
+};
+struct Animation {
+    std::vector<CameraKey> camera;              ///< empty = static camera
+    std::vector<std::vector<LightKey>> lights;  ///< per light; empty = static
+    Vec3 camera_up{0, 1, 0};
+};
 
 /// Everything the tracer needs to render one frame.
 struct SceneDescription {
     std::string name;
+    std::string source;  ///< the scene file it was read from
     std::vector<Mesh> meshes;
-    LightPlane light;
-    float light_intensity = 1.0f;  ///< radiant intensity along the light normal, W/sr
-    PinholeCamera camera;
+    /// lights[0] is the key light: the AAF AOVs (visibility, d1, d2,
+    /// unshadowed) describe it; the beauty sums every light.
+    std::vector<SceneLight> lights;
+    Camera camera;
+    Animation animation;
+
+    const LightPlane &key_light() const { return lights.front().plane; }
+    /// The camera at `frame` (the static camera when it has no keys).
+    Camera camera_at(double frame) const;
+    /// Moves the camera and lights to `frame`.
+    void set_frame(double frame);
 };
-
-/// The built-in `grids` scene (after AAF Fig. 6): a ground plane under three
-/// square lattices of thin bars at different heights and rotations, lit by a
-/// square Gaussian area light above.
-SceneDescription make_grids_scene(int width, int height);
-/// `spheres` (after AAF Fig. 8): spheres floating above a curved receiver.
-SceneDescription make_spheres_scene(int width, int height);
-/// `tentacles` (after AAF Fig. 9): thin curved occluders over a wavy ground.
-SceneDescription make_tentacles_scene(int width, int height);
-/// `bench` (after AAF Fig. 1): a slatted bench of many thin parts, contact shadows.
-SceneDescription make_bench_scene(int width, int height);
-
-/// The built-in scene called `name`; throws aaf::Error listing the known ones.
-SceneDescription make_builtin_scene(const std::string &name, int width, int height);
 
 }  // namespace aaf::trace

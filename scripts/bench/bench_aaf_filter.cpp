@@ -32,7 +32,7 @@ const Fixture &fixture(int width, int height) {
     settings.width = width;
     settings.height = height;
     settings.spp = 9;
-    f.aovs = aaf::trace::render_builtin("grids", settings);
+    f.aovs = aaf::trace::render_scene("grids", settings);
     const aaf::AovSet &a = f.aovs;
     f.inputs.visibility = a.channel("shadow.V");
     f.inputs.d1 = a.channel("shadow.d1");

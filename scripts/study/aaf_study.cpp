@@ -92,18 +92,18 @@ int main(int argc, char **argv) {
             settings.height = height;
             settings.spp = reference_spp;
             settings.seed = 1000;  // independent of the test renders
-            const AovSet reference = trace::render_builtin(scene, settings);
+            const AovSet reference = trace::render_scene(scene, settings);
             settings.seed = 1;
             for (int spp : spp_values) {
                 settings.spp = spp;
-                evaluate(scene, "NAS", spp, trace::render_builtin(scene, settings), reference, 2.0f, rows);
+                evaluate(scene, "NAS", spp, trace::render_scene(scene, settings), reference, 2.0f, rows);
             }
             settings.spp = 9;  // AAF Sec. 6: the first pass
             settings.adaptive = true;
             settings.max_spp = 1000;
             for (float mu : mu_values) {
                 settings.adaptive_mu = mu;
-                evaluate(scene, "AS", mu, trace::render_builtin(scene, settings), reference, mu, rows);
+                evaluate(scene, "AS", mu, trace::render_scene(scene, settings), reference, mu, rows);
             }
         }
         const std::string temporary = io::temporary_path_for(output);

@@ -89,7 +89,7 @@ TEST_CASE("CLI: --map finds AOVs a renderer named differently", "[cli]") {
     aaf::trace::RenderSettings settings;
     settings.width = 24;
     settings.height = 18;
-    const aaf::AovSet original = aaf::trace::render_builtin("grids", settings);
+    const aaf::AovSet original = aaf::trace::render_scene("grids", settings);
     aaf::AovSet renamed(original.width(), original.height());
     renamed.attributes = original.attributes;
     for (std::size_t c = 0; c < original.channel_names().size(); ++c) {

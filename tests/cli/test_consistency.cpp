@@ -19,7 +19,7 @@ TEST_CASE("AAF error decreases monotonically with spp, a fixed-width filter's st
     settings.height = 120;
     settings.spp = 2048;
     settings.seed = 99;
-    const AovSet reference = trace::render_builtin("grids", settings);
+    const AovSet reference = trace::render_scene("grids", settings);
 
     AafParams params;
     params.mu_from_spp = true;
@@ -27,7 +27,7 @@ TEST_CASE("AAF error decreases monotonically with spp, a fixed-width filter's st
     for (int spp : {9, 36, 144, 576}) {
         settings.spp = spp;
         settings.seed = 1;
-        const AovSet noisy = trace::render_builtin("grids", settings);
+        const AovSet noisy = trace::render_scene("grids", settings);
         const AovSet filtered = aaf_filter_aovs(noisy, ChannelMap{}, params);
         aaf_error.push_back(compare_channels(filtered, reference, {"R", "G", "B"}).rmse);
         unfiltered_error.push_back(compare_channels(noisy, reference, {"R", "G", "B"}).rmse);
@@ -60,10 +60,10 @@ TEST_CASE("AAF with mu 3 works for a uniform light with cosine falloff", "[integ
     settings.cosine_falloff = true;
     settings.spp = 1024;
     settings.seed = 5;
-    const AovSet reference = trace::render_builtin("grids", settings);
+    const AovSet reference = trace::render_scene("grids", settings);
     settings.spp = 9;
     settings.seed = 1;
-    const AovSet noisy = trace::render_builtin("grids", settings);
+    const AovSet noisy = trace::render_scene("grids", settings);
     CHECK(read_light_attributes(noisy).profile == LightProfile::Uniform);
     AafParams params;
     params.mu = 3.0f;

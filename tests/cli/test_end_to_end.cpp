@@ -18,10 +18,10 @@ TEST_CASE("AAF halves the error of a 9 spp render of grids", "[integration]") {
     settings.height = 300;
     settings.spp = 9;
     settings.seed = 1;
-    const AovSet noisy = trace::render_builtin("grids", settings);
+    const AovSet noisy = trace::render_scene("grids", settings);
     settings.spp = 2048;
     settings.seed = 2;  // independent of the noisy render
-    const AovSet reference = trace::render_builtin("grids", settings);
+    const AovSet reference = trace::render_scene("grids", settings);
 
     const AovSet filtered = aaf_filter_aovs(noisy, ChannelMap{}, AafParams{});
     const std::vector<std::string> rgb{"R", "G", "B"};

@@ -25,7 +25,7 @@ void render_sequence(const fs::path &dir) {
     settings.spp = 4;
     for (int frame = 1; frame <= 4; ++frame) {
         settings.seed = std::uint64_t(frame);
-        aaf::io::write_aovs(aaf::trace::render_builtin("grids", settings),
+        aaf::io::write_aovs(aaf::trace::render_scene("grids", settings),
                             (dir / ("in.000" + std::to_string(frame) + ".exr")).string());
     }
 }
@@ -109,7 +109,7 @@ TEST_CASE("filter: peak memory does not grow with the number of frames", "[cli][
     settings.width = 320;
     settings.height = 240;
     settings.spp = 2;
-    aaf::io::write_aovs(aaf::trace::render_builtin("grids", settings), (dir / "base.exr").string());
+    aaf::io::write_aovs(aaf::trace::render_scene("grids", settings), (dir / "base.exr").string());
     for (int frame = 1; frame <= 40; ++frame) {
         char name[32];
         std::snprintf(name, sizeof name, "in.%04d.exr", frame);

@@ -10,6 +10,7 @@
 #include "aaf/core/error.h"
 #include "aaf/trace/render.h"
 #include "scene_description.h"
+#include "scene_file.h"
 
 using namespace aaf;
 
@@ -22,7 +23,7 @@ AovSet render_small(int spp, std::uint64_t seed, int threads) {
     settings.spp = spp;
     settings.seed = seed;
     settings.threads = threads;
-    return trace::render_builtin("grids", settings);
+    return trace::render_scene("grids", settings);
 }
 
 /// The `index`-th channel of `role`, named by the AOV contract.
@@ -145,7 +146,7 @@ TEST_CASE("Pixel size on the ground matches the pinhole camera's footprint", "[t
     // 45 degree vertical field of view, here with 480 rows.
     const Vec3 eye{0, 4.2f, 5.2f}, target{0, 0.2f, 0};
     const float fov_y_deg = 45.0f;
-    const trace::PinholeCamera camera = trace::make_grids_scene(640, 480).camera;
+    const trace::Camera camera = trace::load_scene_file(trace::resolve_scene("grids"), 640, 480).camera;
     REQUIRE(camera.eye.y == eye.y);
     REQUIRE(camera.eye.z == eye.z);
     REQUIRE(camera.tan_half_fov_y == Approx(std::tan(0.5f * fov_y_deg * 3.14159265f / 180.0f)));
@@ -157,7 +158,7 @@ TEST_CASE("Pixel size on the ground matches the pinhole camera's footprint", "[t
     settings.width = 640;
     settings.height = 480;
     settings.spp = 1;
-    const AovSet aovs = trace::render_builtin("grids", settings);
+    const AovSet aovs = trace::render_scene("grids", settings);
     // The image centre shows a lattice: take the ground straight below it
     // (in front of the lattices) and above it (behind them, seen more obliquely).
     for (int y : {470, 20}) {
@@ -178,14 +179,14 @@ TEST_CASE("Render rejects bad settings and unknown scenes", "[trace]") {
     auto rejects = [](auto change) {
         trace::RenderSettings settings;
         change(settings);
-        CHECK_THROWS_AS(trace::render_builtin("grids", settings), Error);
+        CHECK_THROWS_AS(trace::render_scene("grids", settings), Error);
     };
     rejects([](trace::RenderSettings &s) { s.width = 0; });
     rejects([](trace::RenderSettings &s) { s.height = 16385; });
     rejects([](trace::RenderSettings &s) { s.spp = 0; });
     rejects([](trace::RenderSettings &s) { s.spp = (1 << 20) + 1; });
     rejects([](trace::RenderSettings &s) { s.threads = -1; });
-    CHECK_THROWS_WITH(trace::render_builtin("nope", trace::RenderSettings{}), Catch::Contains("grids"));
+    CHECK_THROWS_WITH(trace::render_scene("nope", trace::RenderSettings{}), Catch::Contains("grids"));
     const auto names = trace::builtin_scene_names();
     CHECK(std::find(names.begin(), names.end(), "grids") != names.end());
 }
@@ -198,9 +199,9 @@ TEST_CASE("Adaptive sampling follows the plan, capped, and is thread-count indep
     settings.adaptive = true;
     settings.max_spp = 60;
     settings.threads = 1;
-    const AovSet one = trace::render_builtin("grids", settings);
+    const AovSet one = trace::render_scene("grids", settings);
     settings.threads = 2;
-    CHECK(same_channels(one, trace::render_builtin("grids", settings)));
+    CHECK(same_channels(one, trace::render_scene("grids", settings)));
 
     int above_first_pass = 0;
     for (int y = 0; y < one.height(); ++y)
@@ -220,7 +221,7 @@ TEST_CASE("Cosine falloff keeps visibility in [0, 1] and exactly 1 when unocclud
     settings.height = 36;
     settings.spp = 16;
     settings.cosine_falloff = true;
-    const AovSet aovs = trace::render_builtin("grids", settings);
+    const AovSet aovs = trace::render_scene("grids", settings);
     for (int y = 0; y < aovs.height(); ++y)
         for (int x = 0; x < aovs.width(); ++x) {
             const float v = channel(aovs, Role::Visibility)(x, y);
@@ -238,7 +239,7 @@ TEST_CASE("Shadow rays from the ground never hit the ground itself (no acne)", "
     settings.width = 80;
     settings.height = 60;
     settings.spp = 64;
-    const AovSet aovs = trace::render_builtin("grids", settings);
+    const AovSet aovs = trace::render_scene("grids", settings);
     int ground = 0;
     for (int y = 0; y < aovs.height(); ++y)
         for (int x = 0; x < aovs.width(); ++x) {

@@ -27,6 +27,13 @@ enum class Role {
     FilterWidth,         ///< output: AAF beta
     NoisyBeauty,         ///< output: the input beauty kept beside the filtered one
     PlannedSpp,          ///< output of the sampling plan: total samples per pixel (AAF Eq. 21)
+    Depth,               ///< distance along the camera axis
+    Albedo,              ///< diffuse reflectance
+    Motion,              ///< screen-space motion since the previous frame
+    OtherLights,         ///< shadowed shading of every light but the key light
+    ProgressWeight,      ///< progressive render: sum of the key light's sample weights
+    ProgressUnoccluded,  ///< progressive render: the same over unoccluded samples
+    ProgressRadiance,    ///< progressive render: sum of the separately traced radiance
 };
 
 struct RoleInfo {
@@ -65,6 +72,11 @@ inline constexpr const char *kSpp = "aaf:spp";                       // int, (fi
 inline constexpr const char *kAdaptiveMu = "aaf:adaptive_mu";        // float, mu of the sampling plan
 inline constexpr const char *kMaxSpp = "aaf:max_spp";                // int, adaptive cap
 inline constexpr const char *kCosineFalloff = "aaf:cosine_falloff";  // int 0/1, falloff in l(y)
+inline constexpr const char *kSppDone = "aaf:spp_done";              // int, samples per pixel traced so far
+inline constexpr const char *kFrame = "aaf:frame";                   // float, animation time
+inline constexpr const char *kSceneFile = "aaf:scene_file";          // string, the scene file rendered
+inline constexpr const char *kLightCount =
+    "aaf:light_count";  // int, lights in the scene (light = the key light)
 }  // namespace attr
 
 void write_light_attributes(const LightPlane &light, AovSet &aovs);

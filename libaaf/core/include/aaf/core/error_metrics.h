@@ -43,8 +43,8 @@ struct ErrorMetrics {
     /// three channels, or the single channel), 11x11 Gaussian window of
     /// sigma 1.5 px, K1 = 0.01, K2 = 0.03, dynamic range L = 1; NaN unless asked.
     double ssim = 0;
-    double flip_mean = 0;             ///< FLIP pooled by the mean; NaN unless asked
-    double flip_weighted_median = 0;  ///< FLIP's weighted median; NaN unless asked
+    double flip_mean = 0;              ///< FLIP pooled by the mean; NaN unless asked
+    double flip_weighted_median = 0;   ///< FLIP's weighted median; NaN unless asked
     std::size_t pixels = 0;            ///< pixels compared (finite in both images)
     std::size_t nonfinite_pixels = 0;  ///< selected pixels skipped for a NaN/Inf in either image
 };

@@ -17,6 +17,8 @@ struct Vec3 {
     constexpr Vec3 operator-() const { return {-x, -y, -z}; }
     constexpr Vec3 operator*(float s) const { return {x * s, y * s, z * s}; }
     constexpr Vec3 operator/(float s) const { return {x / s, y / s, z / s}; }
+    constexpr bool operator==(Vec3 b) const { return x == b.x && y == b.y && z == b.z; }
+    constexpr bool operator!=(Vec3 b) const { return !(*this == b); }
 };
 
 constexpr Vec3 operator*(float s, Vec3 v) {

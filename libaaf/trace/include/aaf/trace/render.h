@@ -1,6 +1,7 @@
 #pragma once
 
 #include <cstdint>
+#include <functional>
 #include <optional>
 #include <string>
 #include <vector>
@@ -10,15 +11,54 @@
 
 namespace aaf::trace {
 
-/// Settings of one render of a built-in scene.
+/// Groups of AOVs a render can write (`aaf render --aovs`). The beauty R,G,B
+/// is always written. Each group is one block of `write_aovs` in render.cpp:
+/// the place where later methods add theirs (MAAF's cos/sin accumulations,
+/// the ratio estimator's U, S_N, U_N, ISG's hard-shadow and reflection maps).
+enum AovGroup : unsigned {
+    kAovShadow =
+        1u << 0,  ///< shadow.V/d1/d2min/d2max, pixel.spp, pixel.size (+ otherlights.* with several lights)
+    kAovPosition = 1u << 1,    ///< P.X/Y/Z
+    kAovNormal = 1u << 2,      ///< N.X/Y/Z
+    kAovObjectId = 1u << 3,    ///< id.object
+    kAovUnshadowed = 1u << 4,  ///< unshadowed.R/G/B
+    kAovDepth = 1u << 5,       ///< Z
+    kAovAlbedo = 1u << 6,      ///< albedo.R/G/B
+    kAovMotion = 1u << 7,      ///< motion.X/Y
+    kAovProgress = 1u << 8,    ///< progress.*: the sums a resumed reference continues from
+};
+/// Everything AAF reads.
+inline constexpr unsigned kAovsForAaf =
+    kAovShadow | kAovPosition | kAovNormal | kAovObjectId | kAovUnshadowed;
+inline constexpr unsigned kAovsAll = (kAovProgress << 1) - 1;
+
+/// Name (as `--aovs` spells it) and contents of each group.
+struct AovGroupInfo {
+    unsigned group;
+    const char *name;
+    const char *contents;
+};
+const std::vector<AovGroupInfo> &aov_group_table();
+/// Parses a comma-separated list of group names, "aaf" (the AAF set) and
+/// "all"; throws aaf::Error naming an unknown entry.
+unsigned parse_aov_groups(const std::string &list);
+
+/// Samples per round of a progressive render: round k uses random-number
+/// pass k and its own stratification, so a reference of N * 1024 samples can
+/// be stopped after any round and resumed to the same bytes.
+inline constexpr int kSamplesPerRound = 1024;
+
+/// Settings of one render.
 struct RenderSettings {
     int width = 640;
     int height = 480;
-    /// Light samples per pixel, stratified over the light. With `adaptive`,
-    /// the first pass (AAF Sec. 6 uses 9).
+    /// Light samples per pixel, stratified over the light, in rounds of
+    /// kSamplesPerRound. With `adaptive`, the first pass (AAF Sec. 6 uses 9).
     int spp = 9;
     std::uint64_t seed = 1;  ///< with pixel index and pass, fixes every random number
     int threads = 0;         ///< 0 = all hardware threads; the result does not depend on it
+    double frame = 1;        ///< animation time (scene keyframes), frames
+    unsigned aovs = kAovsForAaf;
 
     /// AAF's two-pass adaptive sampling (Sec. 5.1, 6): after the first pass,
     /// each pixel gets the total of Eq. 21 (aaf::plan_samples), capped at max_spp.
@@ -26,12 +66,23 @@ struct RenderSettings {
     float adaptive_mu = 2.0f;  ///< mu of Eq. 21
     int max_spp = 100;         ///< cap of the adaptive total per pixel
 
-    /// Overrides the scene light's emission profile (AAF Sec. 7: uniform lights).
+    /// Overrides the lights' emission profile (AAF Sec. 7: uniform lights).
     std::optional<LightProfile> light_profile;
-    /// Includes the cosine falloff in the light function l(y) (AAF Sec. 7):
-    /// shadow samples are weighted by cos(receiver) cos(light) / r^2 relative to
-    /// the light's centre, and r(x) becomes the exact unshadowed irradiance.
+    /// Includes the cosine falloff in the key light's function l(y) (AAF
+    /// Sec. 7): shadow samples are weighted by cos(receiver) cos(light) / r^2
+    /// relative to the light's centre, and r(x) becomes the exact unshadowed irradiance.
     bool cosine_falloff = false;
+
+    /// Progressive rendering: a render already holding some rounds (the
+    /// output of an earlier render of the same scene, seed, size and frame,
+    /// with the progress AOVs) to continue from instead of starting over.
+    const AovSet *resume = nullptr;
+    /// Called after each round with the samples per pixel done so far and the target.
+    std::function<void(int done_spp, int total_spp)> on_progress;
+    /// Called with the complete AOVs of the render so far (progress AOVs
+    /// included) at most every `checkpoint_interval_s` seconds between rounds.
+    std::function<void(const AovSet &partial)> on_checkpoint;
+    double checkpoint_interval_s = 60;
 };
 
 /// Wall-clock seconds of a render's stages (AAF Table 1's columns).
@@ -41,15 +92,16 @@ struct RenderTimings {
     double second_pass_s = 0;  ///< the remaining shadow samples (adaptive only)
 };
 
-/// Names of the built-in procedural scenes.
+/// Names of the scenes found in the scene directories (built-in: the
+/// project's testdata/scenes), for `aaf render --list`.
 std::vector<std::string> builtin_scene_names();
 
-/// Renders the built-in scene `scene_name` with Embree and returns every AAF
-/// AOV of the contract (aov_contract.h) plus the beauty, with the light and
-/// render settings as header attributes. Throws aaf::Error on an unknown scene
-/// or bad settings.
+/// Renders a scene, given as a JSON scene file or by name, with Embree and
+/// returns the selected AOVs (aov_contract.h) plus the beauty, with the key
+/// light and render settings as header attributes. Throws aaf::InputError on
+/// a bad scene or resume file and aaf::Error on bad settings.
 /// When `timings` is given it receives the stages' durations.
-AovSet render_builtin(const std::string &scene_name, const RenderSettings &settings,
-                      RenderTimings *timings = nullptr);
+AovSet render_scene(const std::string &scene, const RenderSettings &settings,
+                    RenderTimings *timings = nullptr);
 
 }  // namespace aaf::trace

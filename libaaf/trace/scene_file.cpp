@@ -1,0 +1,434 @@
+#include "scene_file.h"
+
+#include <tiny_obj_loader.h>
+
+#include <cmath>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <initializer_list>
+#include <nlohmann/json.hpp>
+#include <optional>
+#include <set>
+#include <sstream>
+
+#include "aaf/core/error.h"
+#include "aaf/trace/render.h"
+
+namespace aaf::trace {
+
+namespace fs = std::filesystem;
+using nlohmann::json;
+
+namespace {
+
+/// A JSON value with the path that leads to it, so every error can say where
+/// in which file the problem is ("scene.json: objects[2].radius: ...").
+class Node {
+  public:
+    Node(const json &value, std::string path, const std::string &file)
+        : value_(value), path_(std::move(path)), file_(file) {}
+
+    [[noreturn]] void fail(const std::string &problem) const {
+        throw InputError(file_ + ": " + (path_.empty() ? "" : path_ + ": ") + problem);
+    }
+
+    bool has(const char *key) const { return value_.is_object() && value_.contains(key); }
+    Node at(const char *key) const {
+        if (!value_.is_object()) fail("expected an object");
+        if (!value_.contains(key)) fail(std::string("missing required field '") + key + "'");
+        return child(key);
+    }
+    std::optional<Node> find(const char *key) const {
+        if (!has(key)) return std::nullopt;
+        return child(key);
+    }
+    std::vector<std::string> keys() const {
+        if (!value_.is_object()) fail("expected an object");
+        std::vector<std::string> names;
+        for (const auto &item : value_.items()) names.push_back(item.key());
+        return names;
+    }
+    std::size_t size() const {
+        if (!value_.is_array()) fail("expected an array");
+        return value_.size();
+    }
+    Node operator[](std::size_t index) const {
+        return Node(value_.at(index), path_ + "[" + std::to_string(index) + "]", file_);
+    }
+    /// Rejects keys outside `allowed`, so a misspelt field is an error, not a silent default.
+    void allow_only(std::initializer_list<const char *> allowed) const {
+        if (!value_.is_object()) fail("expected an object");
+        const std::set<std::string> known(allowed.begin(), allowed.end());
+        for (const auto &item : value_.items())
+            if (!known.count(item.key())) child(item.key().c_str()).fail("unknown field");
+    }
+
+    float number() const {
+        if (!value_.is_number()) fail("expected a number");
+        const double v = value_.get<double>();
+        if (!std::isfinite(v)) fail("expected a finite number");
+        return float(v);
+    }
+    float positive() const {
+        const float v = number();
+        if (!(v > 0)) fail("must be positive");
+        return v;
+    }
+    int integer() const {
+        if (!value_.is_number_integer()) fail("expected an integer");
+        return value_.get<int>();
+    }
+    bool boolean() const {
+        if (!value_.is_boolean()) fail("expected true or false");
+        return value_.get<bool>();
+    }
+    std::string string() const {
+        if (!value_.is_string()) fail("expected a string");
+        return value_.get<std::string>();
+    }
+    Vec3 vec3() const {
+        if (!value_.is_array() || value_.size() != 3) fail("expected an array of 3 numbers");
+        return {(*this)[0].number(), (*this)[1].number(), (*this)[2].number()};
+    }
+    /// A 3-vector, or one number for all three components.
+    Vec3 vec3_or_scalar() const {
+        if (value_.is_number()) {
+            const float v = number();
+            return {v, v, v};
+        }
+        return vec3();
+    }
+
+  private:
+    Node child(const std::string &key) const {
+        return Node(value_.at(key), path_.empty() ? key : path_ + "." + key, file_);
+    }
+    const json &value_;
+    std::string path_;
+    const std::string &file_;
+};
+
+json parse_json_file(const std::string &path) {
+    std::ifstream in(path, std::ios::binary);
+    if (!in) throw InputError(path + ": cannot open scene file");
+    std::stringstream text;
+    text << in.rdbuf();
+    try {
+        return json::parse(text.str());
+    } catch (const json::parse_error &e) {
+        // nlohmann's message reads "[json.exception.parse_error.101] parse error at line L, column C: ...".
+        std::string message = e.what();
+        const auto at = message.find("at line");
+        message = at == std::string::npos ? message : message.substr(at + 3);
+        throw InputError(path + ": invalid JSON " + message);
+    }
+}
+
+Material read_material(const Node &node) {
+    node.allow_only({"albedo", "specular", "roughness"});
+    Material material;
+    if (auto albedo = node.find("albedo")) material.albedo = albedo->vec3_or_scalar();
+    if (auto specular = node.find("specular")) material.specular = specular->vec3_or_scalar();
+    if (auto roughness = node.find("roughness")) material.roughness = roughness->number();
+    for (int c = 0; c < 3; ++c)
+        if (material.albedo[c] < 0 || material.albedo[c] > 1 || material.specular[c] < 0 ||
+            material.specular[c] > 1)
+            node.fail("albedo and specular must lie in [0, 1]");
+    if (!(material.roughness >= 0.01f && material.roughness <= 1))
+        node.fail("roughness must lie in [0.01, 1]");
+    return material;
+}
+
+Transform read_transform(const std::optional<Node> &node) {
+    if (!node) return {};
+    node->allow_only({"scale", "rotate_deg", "translate"});
+    Vec3 scale{1, 1, 1}, rotate{0, 0, 0}, translate{0, 0, 0};
+    if (auto s = node->find("scale")) {
+        scale = s->vec3_or_scalar();
+        if (!(scale.x > 0 && scale.y > 0 && scale.z > 0)) s->fail("scale must be positive");
+    }
+    if (auto r = node->find("rotate_deg")) rotate = r->vec3();
+    if (auto t = node->find("translate")) translate = t->vec3();
+    return Transform::from(scale, rotate, translate);
+}
+
+SceneLight read_light(const Node &node) {
+    node.allow_only({"center", "edge_u", "edge_v", "intensity", "color", "profile", "sigma_m"});
+    SceneLight light;
+    LightPlane &plane = light.plane;
+    plane.center = node.at("center").vec3();
+    const Vec3 edge_u = node.at("edge_u").vec3(), edge_v = node.at("edge_v").vec3();
+    plane.width_m = length(edge_u);
+    plane.height_m = length(edge_v);
+    if (!(plane.width_m > 0) || !(plane.height_m > 0)) node.fail("edge_u and edge_v must be non-zero");
+    plane.axis_u = edge_u / plane.width_m;
+    plane.axis_v = edge_v / plane.height_m;
+    if (std::fabs(dot(plane.axis_u, plane.axis_v)) > 1e-3f) node.fail("edge_u and edge_v must be orthogonal");
+    // The light emits towards edge_u x edge_v.
+    plane.normal = normalize(cross(plane.axis_u, plane.axis_v));
+    // Default sigma: half the shorter side (for a square, sigma = L / 2: light_plane.h).
+    plane.sigma_m = 0.5f * std::min(plane.width_m, plane.height_m);
+    if (auto sigma = node.find("sigma_m")) plane.sigma_m = sigma->positive();
+    if (auto profile = node.find("profile")) {
+        const std::string name = profile->string();
+        if (name != "gaussian" && name != "uniform") profile->fail("expected \"gaussian\" or \"uniform\"");
+        plane.profile = light_profile_from_string(name);
+    }
+    if (plane.profile == LightProfile::Gaussian &&
+        std::max(plane.width_m, plane.height_m) > 16 * plane.sigma_m)
+        node.fail("sigma_m is too small for the light's size (the Gaussian is truncated beyond 8 sigma)");
+    if (auto intensity = node.find("intensity")) {
+        light.intensity = intensity->number();
+        if (light.intensity < 0) intensity->fail("must not be negative");
+    }
+    if (auto color = node.find("color")) light.color = color->vec3_or_scalar();
+    return light;
+}
+
+Camera read_camera(const Node &node, int width, int height, CameraKey &key, Vec3 &up) {
+    node.allow_only(
+        {"type", "position", "look_at", "up", "fov_y_deg", "aperture_radius_m", "focus_distance_m"});
+    const std::string type = node.has("type") ? node.at("type").string() : "pinhole";
+    if (type != "pinhole" && type != "thin_lens")
+        node.at("type").fail("expected \"pinhole\" or \"thin_lens\"");
+    key.eye = node.at("position").vec3();
+    key.target = node.at("look_at").vec3();
+    if (!(length(key.target - key.eye) > 0)) node.fail("position and look_at must differ");
+    if (auto u = node.find("up")) up = u->vec3();
+    if (!(length(cross(normalize(key.target - key.eye), up)) > 1e-4f))
+        node.fail("up must not be parallel to the view");
+    if (auto fov = node.find("fov_y_deg")) {
+        key.fov_y_deg = fov->number();
+        if (!(key.fov_y_deg > 0 && key.fov_y_deg < 180)) fov->fail("must lie in (0, 180)");
+    }
+    key.focus_distance_m = length(key.target - key.eye);
+    if (auto focus = node.find("focus_distance_m")) key.focus_distance_m = focus->positive();
+    Camera camera = Camera::look_at(key.eye, key.target, up, key.fov_y_deg, width, height);
+    camera.focus_distance_m = key.focus_distance_m;
+    if (type == "thin_lens")
+        camera.aperture_radius_m = node.at("aperture_radius_m").positive();
+    else if (node.has("aperture_radius_m"))
+        node.at("aperture_radius_m").fail("only a thin_lens camera has an aperture");
+    return camera;
+}
+
+/// Appends the triangles of an OBJ file as one mesh, or one mesh per OBJ
+/// shape with consecutive ids when `mesh_per_shape`.
+void load_obj(const Node &node, const fs::path &file, const Mesh &prototype, const Transform &to_world,
+              bool mesh_per_shape, std::vector<Mesh> &meshes) {
+    if (!fs::is_regular_file(file)) node.fail("cannot open OBJ file '" + file.string() + "'");
+    tinyobj::ObjReaderConfig config;
+    config.triangulate = true;
+    config.vertex_color = false;
+    config.mtl_search_path = file.parent_path().string();
+    tinyobj::ObjReader reader;
+    if (!reader.ParseFromFile(file.string(), config)) node.fail(file.string() + ": " + reader.Error());
+    const std::vector<tinyobj::real_t> &vertices = reader.GetAttrib().vertices;
+    const std::size_t vertex_count = vertices.size() / 3;
+    Mesh mesh = prototype;
+    std::vector<std::int64_t> local(vertex_count, -1);  // OBJ vertex -> index in `mesh`
+    int shape_index = 0;
+    for (const tinyobj::shape_t &shape : reader.GetShapes()) {
+        for (const tinyobj::index_t &index : shape.mesh.indices) {
+            if (index.vertex_index < 0 || std::size_t(index.vertex_index) >= vertex_count)
+                node.fail(file.string() + ": shape '" + shape.name + "' has a vertex index out of range");
+            std::int64_t &slot = local[std::size_t(index.vertex_index)];
+            if (slot < 0) {
+                slot = std::int64_t(mesh.positions.size());
+                const float *v = &vertices[3 * std::size_t(index.vertex_index)];
+                mesh.positions.push_back(to_world.apply({v[0], v[1], v[2]}));
+            }
+            mesh.indices.push_back(std::uint32_t(slot));
+        }
+        if (mesh_per_shape && !mesh.indices.empty()) {
+            meshes.push_back(std::move(mesh));
+            mesh = prototype;
+            mesh.object_id = prototype.object_id + ++shape_index;
+            std::fill(local.begin(), local.end(), -1);
+        }
+    }
+    if (!mesh.indices.empty()) meshes.push_back(std::move(mesh));
+    if (meshes.empty() || meshes.back().positions.empty()) node.fail(file.string() + ": no triangles");
+}
+
+void read_object(const Node &node, const fs::path &scene_dir,
+                 const std::map<std::string, Material> &materials, int default_id,
+                 std::vector<Mesh> &meshes) {
+    const std::string type = node.at("type").string();
+    Mesh mesh;
+    mesh.object_id = default_id;
+    if (auto id = node.find("id")) {
+        mesh.object_id = id->integer();
+        if (mesh.object_id < 1 || mesh.object_id > (1 << 24)) id->fail("must lie in [1, 16777216]");
+    }
+    if (auto material = node.find("material")) {
+        if (material->has("albedo") || material->has("specular") || material->has("roughness")) {
+            mesh.material = read_material(*material);
+        } else {
+            auto it = materials.find(material->string());
+            if (it == materials.end()) material->fail("unknown material '" + material->string() + "'");
+            mesh.material = it->second;
+        }
+    }
+    const Transform to_world = read_transform(node.find("transform"));
+    if (type == "plane") {
+        node.allow_only({"type", "id", "material", "transform", "size"});
+        float half_x = 0.5f, half_z = 0.5f;
+        if (auto size = node.find("size")) {
+            if (size->size() != 2) size->fail("expected [size_x, size_z]");
+            half_x = 0.5f * (*size)[0].positive();
+            half_z = 0.5f * (*size)[1].positive();
+        }
+        // Normal +y (the winding does not matter: shading faces the camera).
+        mesh.add_quad(to_world.apply({-half_x, 0, -half_z}), to_world.apply({-half_x, 0, half_z}),
+                      to_world.apply({half_x, 0, half_z}), to_world.apply({half_x, 0, -half_z}));
+    } else if (type == "box") {
+        node.allow_only({"type", "id", "material", "transform", "min", "max"});
+        const Vec3 lo = node.at("min").vec3(), hi = node.at("max").vec3();
+        if (!(lo.x < hi.x && lo.y < hi.y && lo.z < hi.z)) node.fail("min must be below max on every axis");
+        mesh.add_box(lo, hi, to_world);
+    } else if (type == "sphere") {
+        node.allow_only({"type", "id", "material", "transform", "center", "radius", "segments"});
+        const Vec3 center = node.has("center") ? node.at("center").vec3() : Vec3{};
+        const int segments = node.has("segments") ? node.at("segments").integer() : 48;
+        if (segments < 4 || segments > 4096) node.at("segments").fail("must lie in [4, 4096]");
+        mesh.add_sphere(center, node.at("radius").positive(), segments, to_world);
+    } else if (type == "cylinder") {
+        node.allow_only({"type", "id", "material", "transform", "radius", "height", "segments"});
+        const int segments = node.has("segments") ? node.at("segments").integer() : 32;
+        if (segments < 3 || segments > 4096) node.at("segments").fail("must lie in [3, 4096]");
+        mesh.add_cylinder(node.at("radius").positive(), node.at("height").positive(), segments, to_world);
+    } else if (type == "obj") {
+        node.allow_only({"type", "id", "material", "transform", "file", "id_per_shape"});
+        const bool per_shape = node.has("id_per_shape") && node.at("id_per_shape").boolean();
+        load_obj(node.at("file"), scene_dir / node.at("file").string(), mesh, to_world, per_shape, meshes);
+        return;
+    } else {
+        node.at("type").fail("unknown object type '" + type +
+                             "' (expected plane, box, sphere, cylinder or obj)");
+    }
+    meshes.push_back(std::move(mesh));
+}
+
+/// Keys of one track, checked to have strictly increasing frames.
+template <typename Key, typename ReadKey>
+std::vector<Key> read_keys(const Node &node, const ReadKey &read_key) {
+    std::vector<Key> keys;
+    for (std::size_t i = 0; i < node.size(); ++i) {
+        Key key = read_key(node[i]);
+        key.frame = node[i].at("frame").number();
+        if (!keys.empty() && !(key.frame > keys.back().frame))
+            node[i].at("frame").fail("frames must increase");
+        keys.push_back(key);
+    }
+    if (keys.empty()) node.fail("expected at least one key");
+    return keys;
+}
+
+void read_animation(const Node &node, SceneDescription &scene, const CameraKey &static_camera) {
+    node.allow_only({"camera", "lights"});
+    if (auto camera = node.find("camera"))
+        scene.animation.camera = read_keys<CameraKey>(*camera, [&](const Node &key_node) {
+            key_node.allow_only({"frame", "position", "look_at", "fov_y_deg", "focus_distance_m"});
+            CameraKey key = static_camera;
+            if (auto p = key_node.find("position")) key.eye = p->vec3();
+            if (auto t = key_node.find("look_at")) key.target = t->vec3();
+            if (auto f = key_node.find("fov_y_deg")) key.fov_y_deg = f->number();
+            if (auto f = key_node.find("focus_distance_m")) key.focus_distance_m = f->positive();
+            return key;
+        });
+    if (auto lights = node.find("lights")) {
+        scene.animation.lights.resize(scene.lights.size());
+        for (std::size_t i = 0; i < lights->size(); ++i) {
+            const Node track = (*lights)[i];
+            track.allow_only({"light", "keys"});
+            const int index = track.has("light") ? track.at("light").integer() : 0;
+            if (index < 0 || std::size_t(index) >= scene.lights.size())
+                track.at("light").fail("no such light");
+            const SceneLight &light = scene.lights[std::size_t(index)];
+            scene.animation.lights[std::size_t(index)] =
+                read_keys<LightKey>(track.at("keys"), [&](const Node &key_node) {
+                    key_node.allow_only({"frame", "center", "intensity"});
+                    LightKey key;
+                    key.center = key_node.has("center") ? key_node.at("center").vec3() : light.plane.center;
+                    key.intensity =
+                        key_node.has("intensity") ? key_node.at("intensity").number() : light.intensity;
+                    return key;
+                });
+        }
+    }
+}
+
+}  // namespace
+
+SceneDescription load_scene_file(const std::string &path, int width, int height) {
+    const json document = parse_json_file(path);
+    const Node root(document, "", path);
+    root.allow_only({"format_version", "name", "camera", "materials", "lights", "objects", "animation"});
+    if (auto version = root.find("format_version"))
+        if (version->integer() != 1) version->fail("unsupported format version (this build reads 1)");
+
+    SceneDescription scene;
+    scene.source = path;
+    scene.name = root.has("name") ? root.at("name").string() : fs::path(path).stem().string();
+
+    CameraKey camera_key;
+    scene.camera = read_camera(root.at("camera"), width, height, camera_key, scene.animation.camera_up);
+
+    std::map<std::string, Material> materials;
+    if (auto table = root.find("materials"))
+        for (const std::string &name : table->keys())
+            materials[name] = read_material(table->at(name.c_str()));
+
+    const Node lights = root.at("lights");
+    if (lights.size() == 0) lights.fail("a scene needs at least one light");
+    for (std::size_t i = 0; i < lights.size(); ++i) scene.lights.push_back(read_light(lights[i]));
+
+    const Node objects = root.at("objects");
+    if (objects.size() == 0) objects.fail("a scene needs at least one object");
+    const fs::path scene_dir = fs::path(path).parent_path();
+    for (std::size_t i = 0; i < objects.size(); ++i)
+        read_object(objects[i], scene_dir, materials, int(i) + 1, scene.meshes);
+
+    if (auto animation = root.find("animation")) read_animation(*animation, scene, camera_key);
+    return scene;
+}
+
+std::vector<std::string> scene_directories() {
+    std::vector<std::string> dirs;
+    if (const char *env = std::getenv("AAF_SCENE_PATH")) {
+        std::stringstream list(env);
+        for (std::string dir; std::getline(list, dir, ':');)
+            if (!dir.empty()) dirs.push_back(dir);
+    }
+    dirs.push_back(AAF_INSTALLED_SCENE_DIR);
+    dirs.push_back(AAF_SOURCE_SCENE_DIR);
+    return dirs;
+}
+
+std::vector<std::string> builtin_scene_names() {
+    std::set<std::string> names;
+    for (const std::string &dir : scene_directories()) {
+        std::error_code error;
+        for (const auto &entry : fs::directory_iterator(dir, error))
+            if (entry.path().extension() == ".json") names.insert(entry.path().stem().string());
+    }
+    return {names.begin(), names.end()};
+}
+
+std::string resolve_scene(const std::string &name_or_path) {
+    const bool is_path =
+        name_or_path.find('/') != std::string::npos || fs::path(name_or_path).extension() == ".json";
+    if (is_path) return name_or_path;
+    for (const std::string &dir : scene_directories()) {
+        const fs::path candidate = fs::path(dir) / (name_or_path + ".json");
+        if (fs::is_regular_file(candidate)) return candidate.string();
+    }
+    std::string known;
+    for (const std::string &name : builtin_scene_names()) known += (known.empty() ? "" : ", ") + name;
+    throw InputError("unknown scene '" + name_or_path +
+                     "' (scenes: " + (known.empty() ? "none found" : known) + "; or give a .json file)");
+}
+
+}  // namespace aaf::trace

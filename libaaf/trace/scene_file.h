@@ -1,0 +1,27 @@
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "scene_description.h"
+
+namespace aaf::trace {
+
+/// Reads a JSON scene file (the format of libaaf/SCENE_FORMAT.md): camera,
+/// materials, area lights, objects (primitives and Wavefront OBJ meshes, paths
+/// relative to the file) and keyframes. The camera renders `width` x `height`.
+/// Throws aaf::InputError "<file>: <JSON path>: <problem>", or
+/// "<file>: line L, column C: <problem>" for malformed JSON.
+SceneDescription load_scene_file(const std::string &path, int width, int height);
+
+/// Directories searched for scenes given by name, in order: each entry of
+/// $AAF_SCENE_PATH (':'-separated), then the installed and the source tree's
+/// `testdata/scenes`.
+std::vector<std::string> scene_directories();
+
+/// The file of a scene given as a path (anything ending in .json or holding a
+/// '/') or as a name looked up as NAME.json in scene_directories(). Throws
+/// aaf::InputError listing the known names when there is none.
+std::string resolve_scene(const std::string &name_or_path);
+
+}  // namespace aaf::trace
