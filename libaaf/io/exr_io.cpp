@@ -99,6 +99,9 @@ void write_aovs(const AovSet &aovs, const std::string &path) {
     spec.channelnames = aovs.channel_names();
     spec.alpha_channel = -1;
     spec.attribute("compression", "zip");
+    // OpenImageIO stamps the current time unless told otherwise; an empty
+    // DateTime writes none, so equal inputs give byte-identical files.
+    spec.attribute("DateTime", "");
     write_attributes(aovs, spec);
 
     std::vector<float> pixels(aovs.pixel_count() * std::size_t(channels));

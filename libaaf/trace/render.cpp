@@ -175,11 +175,14 @@ void write_aovs(const Frame &frame, unsigned groups, AovSet &aovs) {
     if (groups & kAovMotion) {
         // Geometry is static; only the camera moves the surface point on screen.
         const auto motion = add_role(aovs, Role::Motion);
+        // Both positions are projected the same way, so a still camera gives exactly 0.
         for_each([&](int x, int y, const PrimaryHit &p, const ShadowStats &) {
-            float px, py;
-            if (!p.found || !frame.previous_camera.raster_of(p.position, px, py)) return;
-            motion[0](x, y) = (float(x) + 0.5f) - px;
-            motion[1](x, y) = (float(y) + 0.5f) - py;
+            float now_x, now_y, before_x, before_y;
+            if (!p.found || !frame.scene.camera.raster_of(p.position, now_x, now_y) ||
+                !frame.previous_camera.raster_of(p.position, before_x, before_y))
+                return;
+            motion[0](x, y) = now_x - before_x;
+            motion[1](x, y) = now_y - before_y;
         });
     }
     if (groups & kAovProgress) {
@@ -325,8 +328,8 @@ AovSet render_scene(const std::string &scene_name, const RenderSettings &setting
 
     const int rounds = (settings.spp + kSamplesPerRound - 1) / kSamplesPerRound;
     unsigned groups = settings.aovs;
-    // A render of several rounds can always be resumed to more samples.
-    if (!settings.adaptive && (rounds > 1 || settings.resume || settings.on_checkpoint))
+    // A reference (a round or more) can always be resumed to more samples.
+    if (!settings.adaptive && (settings.spp >= kSamplesPerRound || settings.resume))
         groups |= kAovProgress | kAovShadow;
 
     const std::size_t pixel_count = std::size_t(settings.width) * settings.height;

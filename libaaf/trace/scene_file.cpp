@@ -120,7 +120,7 @@ json parse_json_file(const std::string &path) {
         // nlohmann's message reads "[json.exception.parse_error.101] parse error at line L, column C: ...".
         std::string message = e.what();
         const auto at = message.find("at line");
-        message = at == std::string::npos ? message : message.substr(at + 3);
+        message = at == std::string::npos ? message : message.substr(at);
         throw InputError(path + ": invalid JSON " + message);
     }
 }

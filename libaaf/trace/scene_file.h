@@ -11,7 +11,7 @@ namespace aaf::trace {
 /// materials, area lights, objects (primitives and Wavefront OBJ meshes, paths
 /// relative to the file) and keyframes. The camera renders `width` x `height`.
 /// Throws aaf::InputError "<file>: <JSON path>: <problem>", or
-/// "<file>: line L, column C: <problem>" for malformed JSON.
+/// "<file>: invalid JSON at line L, column C: <problem>" for malformed JSON.
 SceneDescription load_scene_file(const std::string &path, int width, int height);
 
 /// Directories searched for scenes given by name, in order: each entry of

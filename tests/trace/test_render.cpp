@@ -2,6 +2,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <filesystem>
+#include <fstream>
 #include <string>
 #include <variant>
 #include <vector>
@@ -252,4 +254,178 @@ TEST_CASE("Shadow rays from the ground never hit the ground itself (no acne)", "
                 REQUIRE(channel(aovs, Role::Visibility)(x, y) == 1.0f);
         }
     CHECK(ground > 1000);
+}
+
+namespace {
+
+/// A scene that can be checked by hand: a thin square occluder 1 m above a
+/// ground plane, lit by a uniform 0.5 m square light 3 m up, seen straight
+/// down by a camera above the receiver point (0.9, 0, 0).
+std::string write_probe_scene(const std::string &extra_lights = "") {
+    const std::filesystem::path dir = std::filesystem::path(AAF_TEST_BINARY_DIR) / "scratch" / "probe_scene";
+    std::filesystem::create_directories(dir);
+    const std::string path = (dir / (extra_lights.empty() ? "probe.json" : "probe_two_lights.json")).string();
+    std::ofstream(path) << R"({
+  "camera": {"position": [0.9, 2.5, 0], "look_at": [0.9, 0, 0], "up": [0, 0, -1], "fov_y_deg": 45},
+  "lights": [{"center": [0, 3, 0], "edge_u": [0.5, 0, 0], "edge_v": [0, 0, 0.5], "intensity": 10,
+              "profile": "uniform"})" +
+                               extra_lights + R"(],
+  "objects": [
+    {"type": "plane", "size": [10, 10], "id": 1, "material": {"albedo": 0.5}},
+    {"type": "box", "min": [0.6, 1.0, -0.1], "max": [0.7, 1.01, 0.1], "id": 2}
+  ]
+})";
+    return path;
+}
+
+}  // namespace
+
+TEST_CASE("AOVs of a hand-checkable scene match its geometry", "[trace][geometry]") {
+    trace::RenderSettings settings;
+    settings.width = settings.height = 33;  // odd: the centre pixel's ray is the view axis
+    settings.spp = 1024;
+    settings.aovs = trace::kAovsAll;
+    const AovSet aovs = trace::render_scene(write_probe_scene(), settings);
+    const int c = 16;
+    const Vec3 p = position(aovs, c, c);
+    CHECK(p.x == Approx(0.9f).margin(1e-5));
+    CHECK(p.y == Approx(0.0f).margin(1e-5));
+    CHECK(p.z == Approx(0.0f).margin(1e-5));
+    CHECK(channel(aovs, Role::Normal, 1)(c, c) == 1.0f);
+    CHECK(channel(aovs, Role::ObjectId)(c, c) == 1.0f);
+    CHECK(channel(aovs, Role::Depth)(c, c) == Approx(2.5f));
+    // d1: the receiver lies 3 m below the light's plane.
+    CHECK(channel(aovs, Role::D1)(c, c) == Approx(3.0f));
+    // Rays towards the light enter the occluder through its bottom (1 m up,
+    // 2 m below the light) or, near its edge, its side between 1 and 1.01 m.
+    CHECK(channel(aovs, Role::D2Max)(c, c) == Approx(2.0f).margin(1e-4));
+    CHECK(channel(aovs, Role::D2Min)(c, c) >= 1.99f - 1e-4f);
+    CHECK(channel(aovs, Role::D2Min)(c, c) <= 2.0f + 1e-4f);
+    // Seen from the receiver, the occluder (x in [0.6, 0.7] at 1 m) covers the
+    // light's plane for x in [0, 0.3], i.e. exactly half of the light.
+    CHECK(channel(aovs, Role::Visibility)(c, c) == Approx(0.5f).margin(0.01));
+    // Straight down from 2.5 m, a pixel spans 2.5 * 2 tan(22.5 deg) / 33 metres.
+    CHECK(channel(aovs, Role::PixelSize)(c, c) ==
+          Approx(2.5 * 2 * std::tan(22.5 * 3.14159265358979 / 180) / 33).epsilon(1e-4));
+    // r(x) = albedo / pi * I * cos * cos / r^2 towards the centre (0, 3, 0): r^2 = 9.81.
+    const double unshadowed = 0.5 / 3.14159265358979 * 10 * (9 / 9.81) / 9.81;
+    CHECK(channel(aovs, Role::Unshadowed, 0)(c, c) == Approx(unshadowed).epsilon(1e-4));
+    CHECK(channel(aovs, Role::Beauty, 1)(c, c) ==
+          Approx(unshadowed * channel(aovs, Role::Visibility)(c, c)).epsilon(1e-5));
+    CHECK(channel(aovs, Role::Albedo, 2)(c, c) == 0.5f);
+    CHECK(channel(aovs, Role::Motion, 0)(c, c) == 0.0f);  // a still camera
+}
+
+TEST_CASE("A second light adds its shadowed shading to the beauty, not to the AAF AOVs", "[trace][lights]") {
+    trace::RenderSettings settings;
+    settings.width = settings.height = 17;
+    settings.spp = 16;
+    const AovSet one = trace::render_scene(write_probe_scene(), settings);
+    const AovSet two = trace::render_scene(
+        write_probe_scene(
+            R"(, {"center": [3, 3, 0], "edge_u": [0.5, 0, 0], "edge_v": [0, 0, 0.5], "intensity": 5})"),
+        settings);
+    CHECK(plane(one, "shadow.V") == plane(two, "shadow.V"));
+    CHECK(plane(one, "unshadowed.R") == plane(two, "unshadowed.R"));
+    REQUIRE(two.has_channel("otherlights.R"));
+    CHECK_FALSE(one.has_channel("otherlights.R"));
+    bool lit_by_second = false;
+    for (int y = 0; y < 17; ++y)
+        for (int x = 0; x < 17; ++x) {
+            const float other = two.channel("otherlights.G")(x, y);
+            lit_by_second |= other > 0;
+            CHECK(two.channel("G")(x, y) == Approx(one.channel("G")(x, y) + other).epsilon(1e-5));
+        }
+    CHECK(lit_by_second);
+}
+
+TEST_CASE("A thin lens with a vanishing aperture gives the pinhole's beauty", "[trace][lens]") {
+    const std::filesystem::path dir = std::filesystem::path(AAF_TEST_BINARY_DIR) / "scratch" / "lens_scene";
+    std::filesystem::create_directories(dir);
+    auto write_scene = [&](const std::string &name, const std::string &lens) {
+        const std::string path = (dir / name).string();
+        std::ofstream(path) << R"({"camera": {"position": [0, 4.2, 5.2], "look_at": [0, 0.2, 0])" << lens
+                            << R"(},
+  "lights": [{"center": [0, 3, 0], "edge_u": [1, 0, 0], "edge_v": [0, 0, 1], "intensity": 30}],
+  "objects": [{"type": "plane", "size": [20, 20]}, {"type": "sphere", "center": [0, 0.8, 0], "radius": 0.5, "id": 2}]})";
+        return path;
+    };
+    trace::RenderSettings settings;
+    settings.width = 40;
+    settings.height = 30;
+    settings.spp = 64;
+    const AovSet pinhole = trace::render_scene(write_scene("pinhole.json", ""), settings);
+    const AovSet lens = trace::render_scene(
+        write_scene("lens.json", R"(, "type": "thin_lens", "aperture_radius_m": 1e-6)"), settings);
+    // Same light samples, same hit points (up to the 1 um aperture): the same shading.
+    int close = 0;
+    for (int y = 0; y < 30; ++y)
+        for (int x = 0; x < 40; ++x)
+            close += std::fabs(lens.channel("R")(x, y) - pinhole.channel("R")(x, y)) < 1e-3f;
+    CHECK(close >= 40 * 30 - 12);  // a few silhouette pixels may flip
+
+    // A wide aperture focused far behind the sphere blurs it: the image moves
+    // away from the pinhole's by far more than the noise of another seed does.
+    const AovSet blurred = trace::render_scene(
+        write_scene("wide.json",
+                    R"(, "type": "thin_lens", "aperture_radius_m": 0.3, "focus_distance_m": 12)"),
+        settings);
+    settings.seed = 2;
+    const AovSet reseeded = trace::render_scene(write_scene("pinhole.json", ""), settings);
+    double blur_difference = 0, noise_difference = 0;
+    for (int y = 0; y < 30; ++y)
+        for (int x = 0; x < 40; ++x) {
+            blur_difference += std::fabs(blurred.channel("R")(x, y) - pinhole.channel("R")(x, y));
+            noise_difference += std::fabs(reseeded.channel("R")(x, y) - pinhole.channel("R")(x, y));
+        }
+    CHECK(blur_difference > 2 * noise_difference);
+}
+
+TEST_CASE("A reference resumed after its first round equals one rendered in one go", "[trace][resume]") {
+    trace::RenderSettings settings;
+    settings.width = 24;
+    settings.height = 18;
+    settings.spp = 2 * trace::kSamplesPerRound;
+    const AovSet whole = trace::render_scene("grids", settings);
+    settings.spp = trace::kSamplesPerRound;
+    const AovSet half = trace::render_scene("grids", settings);
+    settings.spp = 2 * trace::kSamplesPerRound;
+    settings.resume = &half;
+    const AovSet resumed = trace::render_scene("grids", settings);
+    REQUIRE(resumed.channel_names() == whole.channel_names());
+    for (std::size_t i = 0; i < whole.channel_names().size(); ++i) {
+        INFO(whole.channel_names()[i]);
+        CHECK(resumed.plane(i) == whole.plane(i));
+    }
+    CHECK(std::get<int>(resumed.attributes.at(attr::kSppDone)) == settings.spp);
+
+    settings.seed = 2;  // a different render cannot continue this one
+    CHECK_THROWS_WITH(trace::render_scene("grids", settings), Catch::Contains("aaf:seed"));
+}
+
+TEST_CASE("Motion vectors of a sideways camera move match the pinhole projection", "[trace][motion]") {
+    const std::filesystem::path dir = std::filesystem::path(AAF_TEST_BINARY_DIR) / "scratch" / "motion_scene";
+    std::filesystem::create_directories(dir);
+    const std::string path = (dir / "motion.json").string();
+    // Straight down from 2.5 m; between frames 1 and 2 the camera slides 0.1 m along +x (raster +x).
+    std::ofstream(path) << R"({
+  "camera": {"position": [0.9, 2.5, 0], "look_at": [0.9, 0, 0], "up": [0, 0, -1], "fov_y_deg": 45},
+  "lights": [{"center": [0, 3, 0], "edge_u": [0.5, 0, 0], "edge_v": [0, 0, 0.5]}],
+  "objects": [{"type": "plane", "size": [10, 10]}],
+  "animation": {"camera": [{"frame": 1}, {"frame": 2, "position": [1.0, 2.5, 0], "look_at": [1.0, 0, 0]}]}
+})";
+    trace::RenderSettings settings;
+    settings.width = settings.height = 33;
+    settings.spp = 1;
+    settings.aovs = trace::kAovMotion | trace::kAovPosition;
+    settings.frame = 2;
+    const AovSet aovs = trace::render_scene(path, settings);
+    // The point under the centre, (1.0, 0, 0), sat 0.1 m right of the old
+    // camera's axis at 2.5 m depth: 0.1 / (2.5 * 2 tan(22.5 deg) / 33) pixels.
+    const double pixel_m = 2.5 * 2 * std::tan(22.5 * 3.14159265358979 / 180) / 33;
+    CHECK(position(aovs, 16, 16).x == Approx(1.0f));
+    CHECK(aovs.channel("motion.X")(16, 16) == Approx(-0.1 / pixel_m).epsilon(1e-3));
+    CHECK(aovs.channel("motion.Y")(16, 16) == Approx(0.0).margin(1e-4));
+    settings.frame = 1;  // before the first key the camera holds still
+    CHECK(trace::render_scene(path, settings).channel("motion.X")(16, 16) == 0.0f);
 }

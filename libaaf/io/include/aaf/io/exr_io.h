@@ -18,7 +18,8 @@ AovSet read_aovs(const std::string &path);
 bool is_readable_image(const std::string &path);
 
 /// Writes all channels as 32-bit float OpenEXR with ZIP compression, and the
-/// attributes as header attributes. The file is written under a temporary
+/// attributes as header attributes (no time stamp unless `aovs` carries a
+/// "DateTime", so equal inputs give equal bytes). The file is written under a temporary
 /// name in the same directory and renamed into place, so `path` never holds a
 /// half-written image. Throws aaf::Error "<path>: <problem>".
 void write_aovs(const AovSet &aovs, const std::string &path);

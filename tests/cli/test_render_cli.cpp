@@ -1,0 +1,119 @@
+#include <catch2/catch.hpp>
+
+#include <filesystem>
+#include <fstream>
+#include <iterator>
+#include <string>
+
+#include "aaf/core/aov_contract.h"
+#include "aaf/io/exr_io.h"
+#include "run_aaf.h"
+
+namespace fs = std::filesystem;
+using aaf_test::run_aaf;
+using aaf_test::scratch_dir;
+
+namespace {
+
+std::string bytes_of(const fs::path &path) {
+    std::ifstream in(path, std::ios::binary);
+    return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+}
+
+/// A ground, a box above it and a light that moves 1 m along x from frame 1 to 3.
+fs::path write_moving_light_scene(const fs::path &dir) {
+    const fs::path path = dir / "moving.json";
+    std::ofstream(path) << R"({
+  "camera": {"position": [0, 4, 4], "look_at": [0, 0, 0]},
+  "lights": [{"center": [-0.5, 3, 0], "edge_u": [0.5, 0, 0], "edge_v": [0, 0, 0.5], "intensity": 20}],
+  "objects": [{"type": "plane", "size": [10, 10]},
+              {"type": "box", "min": [-0.3, 0.8, -0.3], "max": [0.3, 0.9, 0.3], "id": 2}],
+  "animation": {"lights": [{"keys": [{"frame": 1, "center": [-0.5, 3, 0]}, {"frame": 3, "center": [0.5, 3, 0]}]}]}
+})";
+    return path;
+}
+
+}  // namespace
+
+TEST_CASE("CLI: render --list shows the shipped scenes", "[cli][render]") {
+    const auto result = run_aaf("render --list");
+    CHECK(result.exit_code == 0);
+    for (const char *name : {"grids", "spheres", "tentacles", "bench", "studio"})
+        CHECK_THAT(result.output, Catch::Contains(std::string(name) + "\n"));
+}
+
+TEST_CASE("CLI: a 3-frame sequence with a moving light differs only where the light matters",
+          "[cli][render]") {
+    const fs::path dir = scratch_dir("render_sequence");
+    const fs::path scene = write_moving_light_scene(dir);
+    const auto result =
+        run_aaf("render " + scene.string() + " --frames 1-3 -o " + (dir / "shot.####.exr").string() +
+                " --width 40 --height 30 --spp 16 --aovs all");
+    REQUIRE(result.exit_code == 0);
+    std::vector<aaf::AovSet> frames;
+    for (const char *name : {"shot.0001.exr", "shot.0002.exr", "shot.0003.exr"}) {
+        REQUIRE(fs::exists(dir / name));
+        frames.push_back(aaf::io::read_aovs((dir / name).string()));
+    }
+    auto plane = [](const aaf::AovSet &aovs, const std::string &name) {
+        return std::vector<float>(aovs.channel(name).data, aovs.channel(name).data + aovs.pixel_count());
+    };
+    for (int f = 1; f < 3; ++f) {
+        INFO("frame " << f + 1);
+        // The camera and the geometry stand still...
+        for (const char *name : {"P.X", "P.Y", "P.Z", "N.Y", "id.object", "Z", "albedo.R", "pixel.size"})
+            CHECK(plane(frames[f], name) == plane(frames[0], name));
+        CHECK(plane(frames[f], "motion.X") == std::vector<float>(frames[f].pixel_count(), 0.0f));
+        // ...the light and therefore the shadow move.
+        CHECK(std::get<aaf::Vec3>(frames[f].attributes.at(aaf::attr::kLightCenter)).x ==
+              Approx(-0.5f + 0.5f * float(f)));
+        CHECK(plane(frames[f], "shadow.V") != plane(frames[f - 1], "shadow.V"));
+        CHECK(plane(frames[f], "unshadowed.R") != plane(frames[f - 1], "unshadowed.R"));
+    }
+}
+
+TEST_CASE("CLI: render output is byte-identical for 1 and 2 threads", "[cli][render][determinism]") {
+    const fs::path dir = scratch_dir("render_threads");
+    for (int threads : {1, 2})
+        REQUIRE(run_aaf("render studio --width 48 --height 36 --spp 8 --aovs all --threads " +
+                        std::to_string(threads) + " -o " +
+                        (dir / ("t" + std::to_string(threads) + ".exr")).string())
+                    .exit_code == 0);
+    const std::string one = bytes_of(dir / "t1.exr"), two = bytes_of(dir / "t2.exr");
+    CHECK(!one.empty());
+    CHECK(one == two);
+}
+
+TEST_CASE("CLI: a reference rendered in two halves with --resume equals one rendered in one go",
+          "[cli][render][resume]") {
+    const fs::path dir = scratch_dir("render_resume");
+    const std::string common = "render grids --width 32 --height 24 ";
+    REQUIRE(run_aaf(common + "--spp 2048 -o " + (dir / "whole.exr").string()).exit_code == 0);
+    REQUIRE(run_aaf(common + "--spp 1024 -o " + (dir / "halves.exr").string()).exit_code == 0);
+    const auto second = run_aaf(common + "--spp 2048 --resume " + (dir / "halves.exr").string() + " -o " +
+                                (dir / "halves.exr").string());
+    REQUIRE(second.exit_code == 0);
+    CHECK(bytes_of(dir / "halves.exr") == bytes_of(dir / "whole.exr"));
+
+    // A partial render of another seed is refused with one line, and nothing is written.
+    const auto refused = run_aaf(common + "--spp 3072 --seed 7 --resume " + (dir / "whole.exr").string() +
+                                 " -o " + (dir / "other.exr").string());
+    CHECK(refused.exit_code == 3);
+    CHECK_THAT(refused.output, Catch::Contains("whole.exr: cannot resume: header attribute 'aaf:seed'"));
+    CHECK_FALSE(fs::exists(dir / "other.exr"));
+}
+
+TEST_CASE("CLI: a bad scene file is one error line naming it, exit 3, no output", "[cli][render][errors]") {
+    const fs::path dir = scratch_dir("render_bad_scene");
+    std::ofstream(dir / "bad.json") << R"({"camera": {"position": [0, 1, 2], "look_at": [0, 0, 0]},
+      "lights": [{"center": [0, 3, 0], "edge_u": [1, 0, 0], "edge_v": [0, 0, 1]}],
+      "objects": [{"type": "obj", "file": "nowhere.obj"}]})";
+    const auto result =
+        run_aaf("render " + (dir / "bad.json").string() + " -o " + (dir / "out.exr").string());
+    CHECK(result.exit_code == 3);
+    CHECK_THAT(result.output, Catch::StartsWith("aaf: error: ") &&
+                                  Catch::Contains("bad.json: objects[0].file: cannot open OBJ file"));
+    CHECK(std::count(result.output.begin(), result.output.end(), '\n') == 1);
+    CHECK_FALSE(fs::exists(dir / "out.exr"));
+    CHECK(run_aaf("render nosuchscene -o " + (dir / "out.exr").string()).exit_code == 3);
+}

@@ -1,0 +1,203 @@
+#include <catch2/catch.hpp>
+
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <string>
+
+#include "aaf/core/error.h"
+#include "scene_file.h"
+
+using namespace aaf;
+namespace fs = std::filesystem;
+
+namespace {
+
+fs::path scratch(const std::string &name) {
+    const fs::path dir = fs::path(AAF_TEST_BINARY_DIR) / "scratch" / "scenes" / name;
+    fs::remove_all(dir);
+    fs::create_directories(dir);
+    return dir;
+}
+
+std::string write_file(const fs::path &path, const std::string &text) {
+    std::ofstream(path) << text;
+    return path.string();
+}
+
+/// A valid scene with one object; `objects` replaces the object list.
+std::string scene_text(const std::string &objects = R"([{"type": "sphere", "radius": 0.5}])",
+                       const std::string &extra = "") {
+    return R"({
+  "camera": {"position": [0, 2, 5], "look_at": [0, 0, 0]},
+  "lights": [{"center": [0, 3, 0], "edge_u": [1, 0, 0], "edge_v": [0, 0, 0.5], "intensity": 20}],
+  "objects": )" +
+           objects + extra + "\n}\n";
+}
+
+/// The message load_scene_file throws for `text`.
+std::string load_error(const std::string &name, const std::string &text) {
+    const fs::path dir = scratch(name);
+    const std::string path = write_file(dir / "scene.json", text);
+    try {
+        trace::load_scene_file(path, 16, 12);
+    } catch (const InputError &e) {
+        return e.what();
+    }
+    return "no error";
+}
+
+}  // namespace
+
+TEST_CASE("Scene file: camera, light, materials and primitives are read as written", "[trace][scene]") {
+    const fs::path dir = scratch("valid");
+    const std::string path = write_file(dir / "scene.json", R"({
+  "format_version": 1,
+  "name": "probe",
+  "camera": {"type": "thin_lens", "position": [0, 2, 5], "look_at": [0, 2, 0], "fov_y_deg": 60,
+             "aperture_radius_m": 0.1, "focus_distance_m": 4},
+  "materials": {"shiny": {"albedo": [0.2, 0.3, 0.4], "specular": 0.04, "roughness": 0.3}},
+  "lights": [{"center": [1, 3, 0], "edge_u": [2, 0, 0], "edge_v": [0, 0, 1], "intensity": 20, "color": [1, 0.5, 0.25]},
+             {"center": [0, 5, 0], "edge_u": [0, 0, 1], "edge_v": [1, 0, 0], "profile": "uniform", "sigma_m": 0.3}],
+  "objects": [
+    {"type": "plane", "size": [4, 2], "id": 7, "material": "shiny"},
+    {"type": "box", "min": [0, 0, 0], "max": [1, 1, 1], "transform": {"scale": 2, "rotate_deg": [0, 90, 0], "translate": [10, 0, 0]}},
+    {"type": "sphere", "radius": 0.5, "segments": 8, "material": {"albedo": 0.1}},
+    {"type": "cylinder", "radius": 0.2, "height": 1, "segments": 6}
+  ]
+})");
+    const trace::SceneDescription scene = trace::load_scene_file(path, 64, 48);
+    CHECK(scene.name == "probe");
+    CHECK(scene.camera.is_thin_lens());
+    CHECK(scene.camera.aperture_radius_m == Approx(0.1f));
+    CHECK(scene.camera.focus_distance_m == Approx(4.0f));
+    CHECK(scene.camera.tan_half_fov_y == Approx(std::tan(30.0 * 3.14159265358979 / 180.0)));
+    CHECK(scene.camera.forward.z == Approx(-1.0f));
+
+    REQUIRE(scene.lights.size() == 2);
+    const LightPlane &key = scene.key_light();
+    CHECK(key.width_m == Approx(2.0f));
+    CHECK(key.height_m == Approx(1.0f));
+    // Emits towards edge_u x edge_v = x cross z = -y; sigma defaults to half the shorter side.
+    CHECK(key.normal.y == Approx(-1.0f));
+    CHECK(key.sigma_m == Approx(0.5f));
+    CHECK(key.profile == LightProfile::Gaussian);
+    CHECK(scene.lights[0].color.y == Approx(0.5f));
+    CHECK(scene.lights[1].plane.normal.y == Approx(1.0f));  // z cross x = +y
+    CHECK(scene.lights[1].plane.profile == LightProfile::Uniform);
+    CHECK(scene.lights[1].plane.sigma_m == Approx(0.3f));
+
+    REQUIRE(scene.meshes.size() == 4);
+    CHECK(scene.meshes[0].object_id == 7);
+    CHECK(scene.meshes[0].material.specular.x == Approx(0.04f));
+    CHECK(scene.meshes[0].material.roughness == Approx(0.3f));
+    CHECK(scene.meshes[0].triangle_count() == 2);
+    CHECK(scene.meshes[1].object_id == 2);  // default: index + 1
+    CHECK(scene.meshes[1].triangle_count() == 12);
+    // Box corner (1, 1, 1): scaled to (2, 2, 2), rotated 90 deg about y to (2, 2, -2), moved by +10 in x.
+    bool corner_found = false;
+    for (Vec3 p : scene.meshes[1].positions)
+        corner_found |=
+            std::fabs(p.x - 12) < 1e-4f && std::fabs(p.y - 2) < 1e-4f && std::fabs(p.z + 2) < 1e-4f;
+    CHECK(corner_found);
+    CHECK(scene.meshes[2].material.albedo.z == Approx(0.1f));
+    for (Vec3 p : scene.meshes[2].positions) CHECK(length(p) == Approx(0.5f));
+    CHECK(scene.meshes[3].triangle_count() == 6 * 4);  // side quads and two caps
+}
+
+TEST_CASE("Scene file: OBJ meshes load with their transform, optionally one id per shape",
+          "[trace][scene][obj]") {
+    const fs::path dir = scratch("obj");
+    write_file(dir / "two.obj", R"(# a quad (triangulated) and a triangle
+o quad
+v 0 0 0
+v 1 0 0
+v 1 0 1
+v 0 0 1
+f 1 2 3 4
+o tri
+v 0 1 0
+v 1 1 0
+v 0 1 1
+f 5 6 7
+)");
+    const std::string objects =
+        R"([{"type": "obj", "file": "two.obj", "id": 3, "transform": {"translate": [0, 2, 0]}},
+      {"type": "obj", "file": "two.obj", "id": 10, "id_per_shape": true}])";
+    const std::string path = write_file(dir / "scene.json", scene_text(objects));
+    const trace::SceneDescription scene = trace::load_scene_file(path, 16, 12);
+    REQUIRE(scene.meshes.size() == 3);
+    CHECK(scene.meshes[0].object_id == 3);
+    CHECK(scene.meshes[0].triangle_count() == 3);
+    CHECK(scene.meshes[0].positions.size() == 7);
+    for (Vec3 p : scene.meshes[0].positions) CHECK((p.y == 2.0f || p.y == 3.0f));
+    CHECK(scene.meshes[1].object_id == 10);
+    CHECK(scene.meshes[1].triangle_count() == 2);
+    CHECK(scene.meshes[2].object_id == 11);
+    CHECK(scene.meshes[2].triangle_count() == 1);
+    CHECK(scene.meshes[2].positions[0].y == 1.0f);
+}
+
+TEST_CASE("Scene file: keyframes interpolate linearly and hold outside their range",
+          "[trace][scene][animation]") {
+    const fs::path dir = scratch("animation");
+    const std::string path =
+        write_file(dir / "scene.json", scene_text(R"([{"type": "sphere", "radius": 0.5}])", R"(,
+  "animation": {"lights": [{"light": 0, "keys": [{"frame": 1, "center": [-1, 3, 0]}, {"frame": 3, "center": [1, 3, 0], "intensity": 40}]}],
+                "camera": [{"frame": 1}, {"frame": 11, "position": [10, 2, 5]}]})"));
+    trace::SceneDescription scene = trace::load_scene_file(path, 16, 12);
+    scene.set_frame(2);
+    CHECK(scene.key_light().center.x == Approx(0.0f).margin(1e-6));
+    CHECK(scene.lights[0].intensity == Approx(30.0f));  // halfway from the static 20 to 40
+    CHECK(scene.camera.eye.x == Approx(1.0f));
+    scene.set_frame(-5);
+    CHECK(scene.key_light().center.x == Approx(-1.0f));
+    CHECK(scene.camera.eye.x == Approx(0.0f).margin(1e-6));
+    scene.set_frame(100);
+    CHECK(scene.key_light().center.x == Approx(1.0f));
+    CHECK(scene.camera.eye.x == Approx(10.0f));
+}
+
+TEST_CASE("Scene file: errors name the file, the JSON path and the problem", "[trace][scene][errors]") {
+    using Catch::Contains;
+    CHECK_THAT(load_error("syntax", "{\n  \"camera\": {\n  \"lights\": ]\n}"),
+               Contains("scene.json: invalid JSON at line 3"));
+    CHECK_THAT(load_error("missing", scene_text(R"([{"type": "sphere"}])")),
+               Contains("scene.json: objects[0]: missing required field 'radius'"));
+    CHECK_THAT(load_error("unknown_field", scene_text(R"([{"type": "sphere", "radius": 1, "radus": 2}])")),
+               Contains("objects[0].radus: unknown field"));
+    CHECK_THAT(load_error("type", scene_text(R"([{"type": "sphere", "radius": "big"}])")),
+               Contains("objects[0].radius: expected a number"));
+    CHECK_THAT(load_error("negative", scene_text(R"([{"type": "sphere", "radius": -1}])")),
+               Contains("objects[0].radius: must be positive"));
+    CHECK_THAT(load_error("material", scene_text(R"([{"type": "sphere", "radius": 1, "material": "gold"}])")),
+               Contains("objects[0].material: unknown material 'gold'"));
+    CHECK_THAT(load_error("kind", scene_text(R"([{"type": "torus"}])")),
+               Contains("objects[0].type: unknown object type 'torus'"));
+    CHECK_THAT(load_error("obj", scene_text(R"([{"type": "obj", "file": "missing.obj"}])")),
+               Contains("objects[0].file: cannot open OBJ file"));
+    CHECK_THAT(load_error("no_lights", R"({"camera": {"position": [0, 2, 5], "look_at": [0, 0, 0]},
+                                          "lights": [], "objects": [{"type": "sphere", "radius": 1}]})"),
+               Contains("lights: a scene needs at least one light"));
+    CHECK_THAT(load_error("skew_light", R"({"camera": {"position": [0, 2, 5], "look_at": [0, 0, 0]},
+        "lights": [{"center": [0, 3, 0], "edge_u": [1, 0, 0], "edge_v": [1, 0, 1]}],
+        "objects": [{"type": "sphere", "radius": 1}]})"),
+               Contains("lights[0]: edge_u and edge_v must be orthogonal"));
+    CHECK_THAT(load_error("keys", scene_text(R"([{"type": "sphere", "radius": 1}])",
+                                             R"(, "animation": {"camera": [{"frame": 2}, {"frame": 1}]})")),
+               Contains("animation.camera[1].frame: frames must increase"));
+    CHECK_THROWS_WITH(trace::load_scene_file((scratch("none") / "nope.json").string(), 8, 8),
+                      Contains("nope.json: cannot open scene file"));
+}
+
+TEST_CASE("Scene names resolve to the shipped scene files", "[trace][scene]") {
+    for (const char *name : {"grids", "spheres", "tentacles", "bench", "studio"}) {
+        const std::string path = trace::resolve_scene(name);
+        INFO(name);
+        CHECK(fs::path(path).filename() == std::string(name) + ".json");
+        const trace::SceneDescription scene = trace::load_scene_file(path, 32, 24);
+        CHECK(scene.name == name);
+        CHECK(!scene.meshes.empty());
+    }
+    CHECK_THROWS_WITH(trace::resolve_scene("nope"), Catch::Contains("grids"));
+}
