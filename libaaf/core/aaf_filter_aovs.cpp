@@ -70,14 +70,21 @@ AovSet aaf_filter_aovs(const AovSet &input, const ChannelMap &channels, const Aa
     result.beta_m = out.add_channel(channels.channel(Role::FilterWidth));
     aaf_filter(in, light, params, result);
 
-    // AAF Eq. 1: h(x) = r(x) times the (filtered) light-weighted visibility.
+    // AAF Eq. 1: h(x) = r(x) times the (filtered) light-weighted visibility,
+    // plus, when the renderer wrote it, the other lights' (unfiltered) shading.
     const std::vector<std::string> &unshadowed = channels.channels(Role::Unshadowed);
+    const std::vector<std::string> &other_lights = channels.channels(Role::OtherLights);
     for (int c = 0; c < 3; ++c) {
         ConstPlaneView r = input.channel(unshadowed[c]);
         PlaneView filtered = out.add_channel(beauty[c]);
         for (int y = 0; y < input.height(); ++y)
             for (int x = 0; x < input.width(); ++x)
                 filtered(x, y) = r(x, y) * result.filtered_visibility(x, y);
+        if (input.has_channel(other_lights[c])) {
+            ConstPlaneView other = input.channel(other_lights[c]);
+            for (int y = 0; y < input.height(); ++y)
+                for (int x = 0; x < input.width(); ++x) filtered(x, y) += other(x, y);
+        }
         if (input.has_channel(beauty[c])) {
             ConstPlaneView noisy_in = input.channel(beauty[c]);
             PlaneView kept = out.add_channel(noisy[c]);

@@ -8,6 +8,7 @@
 #include <variant>
 #include <vector>
 
+#include "aaf/core/aaf_filter.h"
 #include "aaf/core/aov_contract.h"
 #include "aaf/core/error.h"
 #include "aaf/trace/render.h"
@@ -337,6 +338,15 @@ TEST_CASE("A second light adds its shadowed shading to the beauty, not to the AA
             CHECK(two.channel("G")(x, y) == Approx(one.channel("G")(x, y) + other).epsilon(1e-5));
         }
     CHECK(lit_by_second);
+
+    // AAF filters the key light's shadow and adds the other lights back.
+    const AovSet filtered = aaf_filter_aovs(two, ChannelMap{}, AafParams{});
+    for (int y = 0; y < 17; ++y)
+        for (int x = 0; x < 17; ++x)
+            CHECK(filtered.channel("G")(x, y) ==
+                  Approx(two.channel("unshadowed.G")(x, y) * filtered.channel("aaf.V")(x, y) +
+                         two.channel("otherlights.G")(x, y))
+                      .epsilon(1e-6));
 }
 
 TEST_CASE("A thin lens with a vanishing aperture gives the pinhole's beauty", "[trace][lens]") {
