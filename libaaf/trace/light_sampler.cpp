@@ -16,7 +16,8 @@ double truncation_sigmas(const LightPlane &light, float extent_m) {
 LightSampler::LightSampler(const LightPlane &light)
     : light_(light),
       gaussian_(light.profile == LightProfile::Gaussian),
+      square_(light.width_m == light.height_m),
       normal_u_(truncation_sigmas(light, light.width_m)),
-      normal_v_(truncation_sigmas(light, light.height_m)) {}
+      normal_v_(square_ ? 1.0 : truncation_sigmas(light, light.height_m)) {}
 
 }  // namespace aaf::trace

@@ -27,12 +27,14 @@ class LightSampler {
     }
     /// Offset from the centre along axis_v, metres, for t in [0, 1].
     float warp_v(float t) const {
-        return gaussian_ ? light_.sigma_m * normal_v_.sample(t) : (t - 0.5f) * light_.height_m;
+        return gaussian_ ? light_.sigma_m * (square_ ? normal_u_ : normal_v_).sample(t)
+                         : (t - 0.5f) * light_.height_m;
     }
 
   private:
     LightPlane light_;
     bool gaussian_;
+    bool square_;  ///< both axes cut at the same sigma: one table serves both (half the cache)
     TruncatedNormal normal_u_, normal_v_;  ///< truncated at the rectangle's edges
 };
 

@@ -1,10 +1,10 @@
 #include "aaf/trace/render.h"
 
+#include <pmmintrin.h>  // flush-to-zero and denormals-are-zero
 #include <tbb/blocked_range.h>
 #include <tbb/info.h>
 #include <tbb/parallel_for.h>
 #include <tbb/task_arena.h>
-#include <xmmintrin.h>
 
 #include <algorithm>
 #include <array>

@@ -135,7 +135,8 @@ void Renderer::trace_shadows(const PrimaryHit &primary, int x, int y, std::uint6
         settings_.cosine_falloff && primary.found ? falloff(light, p, primary.normal, light.center) : 0.0f;
     const bool separate = has_separate_radiance();
     for (std::uint32_t i = 0; i < count; ++i) {
-        const float u1 = rng.next_float(), u2 = rng.next_float();
+        float u1, u2;
+        rng.next_float2(u1, u2);
         const UnitPoint u = strata.point(i, stratum_key, u1, u2);
         ++stats.taken;
         // The key light's visibility at the central hit (none for a thin

@@ -25,7 +25,9 @@ class StratifiedGrid {
     explicit StratifiedGrid(std::uint32_t count)
         : count_(count),
           columns_(std::max(1u, std::uint32_t(std::ceil(std::sqrt(double(count)))))),
-          rows_((count + columns_ - 1) / columns_) {}
+          rows_((count + columns_ - 1) / columns_),
+          inv_columns_(1.0f / float(columns_)),
+          inv_rows_(1.0f / float(rows_)) {}
 
     std::uint32_t count() const { return count_; }
     std::uint32_t columns() const { return columns_; }
@@ -38,12 +40,14 @@ class StratifiedGrid {
         const std::uint32_t stratum = count_ == strata ? index : permute_index(index, strata, key);
         // The minimum guards the float rounding of (k + u) / n up to 1.
         constexpr float kBelowOne = 0x1.fffffep-1f;
-        return {std::min((float(stratum % columns_) + u1) / float(columns_), kBelowOne),
-                std::min((float(stratum / columns_) + u2) / float(rows_), kBelowOne)};
+        const std::uint32_t row = stratum / columns_, column = stratum - row * columns_;
+        return {std::min((float(column) + u1) * inv_columns_, kBelowOne),
+                std::min((float(row) + u2) * inv_rows_, kBelowOne)};
     }
 
   private:
     std::uint32_t count_, columns_, rows_;
+    float inv_columns_, inv_rows_;  ///< multiplications instead of divisions in the hot loop
 };
 
 }  // namespace aaf::trace

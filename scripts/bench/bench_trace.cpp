@@ -1,0 +1,340 @@
+// Shadow-ray throughput of the bundled tracer (libaaf/trace) against raw
+// Embree loops over the same rays, in the same run, on one core.
+// Run: ./scripts/bench_trace.sh
+//
+// For each scene, the shadow rays of a 320x240 view at 16 samples per pixel
+// are generated exactly as Renderer::trace_shadows generates them (same
+// random numbers, strata, light warp and origin offset) and stored. Then
+// BM_Throughput times, alternately and single-threaded:
+//   tracer      Renderer::trace_shadows over every pixel (what `aaf render`
+//               runs per sample: RNG, light sampling, a closest-hit query for
+//               the occluder distance d2, statistics)
+//   occluded1   rtcOccluded1 on the stored rays (the fastest possible answer
+//               to "is it blocked")
+//   intersect1  rtcIntersect1 on the stored rays (what d2 needs)
+// and reports rays per second for each and tracer / occluded1.
+// BM_Packets compares rtcOccluded4/8/16 against rtcOccluded1 on the same rays
+// (each packet holds consecutive samples of one pixel: same origin, nearby
+// light points, the most coherent grouping shadow rays allow).
+// BM_BuildQuality compares rtcOccluded1 on a MEDIUM and a HIGH quality BVH,
+// and BM_Denormals the tracer with and without flush-to-zero.
+#include <benchmark/benchmark.h>
+#include <embree3/rtcore.h>
+#include <pmmintrin.h>  // flush-to-zero and denormals-are-zero
+
+#include <chrono>
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <limits>
+#include <map>
+#include <memory>
+#include <vector>
+
+#include "embree_scene.h"
+#include "light_sampler.h"
+#include "random.h"
+#include "renderer.h"
+#include "scene_file.h"
+#include "stratified_grid.h"
+
+namespace {
+
+using namespace aaf;
+using namespace aaf::trace;
+
+constexpr int kWidth = 320, kHeight = 240, kSpp = 16;
+
+struct Ray {
+    Vec3 origin, direction;
+    float t_far;
+};
+
+/// The JSON of a scene with one mesh of 129,240 triangles (a sphere of 360
+/// segments) over a ground, lit from above.
+std::string write_dense_mesh_scene() {
+    const auto path = std::filesystem::temp_directory_path() / "aaf_bench_dense_mesh.json";
+    std::ofstream(path) << R"({
+  "camera": {"position": [0, 2.2, 3.2], "look_at": [0, 0.4, 0]},
+  "lights": [{"center": [0, 3, 0], "edge_u": [1, 0, 0], "edge_v": [0, 0, 1], "intensity": 30}],
+  "objects": [{"type": "plane", "size": [20, 20]},
+              {"type": "sphere", "center": [0, 0.9, 0], "radius": 0.6, "segments": 360, "id": 2}]
+})";
+    return path.string();
+}
+
+struct Fixture {
+    SceneDescription scene;
+    RenderSettings settings;
+    std::unique_ptr<Renderer> renderer;
+    std::vector<PrimaryHit> primaries;
+    std::vector<Ray> rays;
+    std::size_t triangles = 0;
+};
+
+/// Offsets along the normal exactly as renderer.cpp does.
+Vec3 offset_origin(Vec3 p, Vec3 n) {
+    const float epsilon = 1e-4f * (1.0f + std::max({std::fabs(p.x), std::fabs(p.y), std::fabs(p.z)}));
+    return p + n * epsilon;
+}
+
+/// Calls `emit` with every shadow ray the sample loop of
+/// Renderer::trace_shadows (pass 0) traces, in the same order.
+template <typename Emit>
+void for_each_shadow_ray(const Fixture &f, const Emit &emit) {
+    const LightSampler sampler(f.scene.key_light());
+    for (int y = 0; y < kHeight; ++y)
+        for (int x = 0; x < kWidth; ++x) {
+            const PrimaryHit &primary = f.primaries[std::size_t(y) * kWidth + x];
+            if (!primary.found) continue;
+            PixelRng rng(f.settings.seed, std::uint64_t(y) * kWidth + x, 0);
+            const std::uint32_t key = rng.next_u32();
+            const StratifiedGrid strata(kSpp);
+            const Vec3 origin = offset_origin(primary.position, primary.normal);
+            for (std::uint32_t i = 0; i < kSpp; ++i) {
+                float u1, u2;
+                rng.next_float2(u1, u2);
+                const Vec3 target = sampler.point(strata.point(i, key, u1, u2));
+                if (dot(primary.normal, target - primary.position) <= 0) continue;  // not traced
+                emit(Ray{origin, target - origin, 1.0f - 1e-4f});
+            }
+        }
+}
+
+Fixture &fixture(const std::string &scene_name) {
+    static std::map<std::string, std::unique_ptr<Fixture>> cache;
+    auto &slot = cache[scene_name];
+    if (slot) return *slot;
+    slot = std::make_unique<Fixture>();
+    Fixture &f = *slot;
+    const std::string path =
+        scene_name == "dense_mesh" ? write_dense_mesh_scene() : resolve_scene(scene_name);
+    f.scene = load_scene_file(path, kWidth, kHeight);
+    for (const Mesh &mesh : f.scene.meshes) f.triangles += mesh.triangle_count();
+    f.settings.width = kWidth;
+    f.settings.height = kHeight;
+    f.settings.spp = kSpp;
+    f.renderer = std::make_unique<Renderer>(f.scene, f.settings);
+    for (int y = 0; y < kHeight; ++y)
+        for (int x = 0; x < kWidth; ++x) f.primaries.push_back(f.renderer->trace_primary(x, y));
+    for_each_shadow_ray(f, [&](const Ray &ray) { f.rays.push_back(ray); });
+    return f;
+}
+
+double seconds(const std::chrono::steady_clock::time_point &start) {
+    return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+}
+
+std::size_t run_tracer(const Fixture &f) {
+    std::size_t traced = 0;
+    for (int y = 0; y < kHeight; ++y)
+        for (int x = 0; x < kWidth; ++x) {
+            const std::size_t i = std::size_t(y) * kWidth + x;
+            if (!f.primaries[i].found) continue;
+            ShadowStats stats;
+            f.renderer->trace_shadows(f.primaries[i], x, y, i, 0, kSpp, stats);
+            traced += stats.taken;
+            benchmark::DoNotOptimize(stats);
+        }
+    return traced;
+}
+
+RTCRay to_rtc(const Ray &ray) {
+    RTCRay r;
+    r.org_x = ray.origin.x;
+    r.org_y = ray.origin.y;
+    r.org_z = ray.origin.z;
+    r.dir_x = ray.direction.x;
+    r.dir_y = ray.direction.y;
+    r.dir_z = ray.direction.z;
+    r.tnear = 0;
+    r.tfar = ray.t_far;
+    r.time = 0;
+    r.mask = std::numeric_limits<unsigned>::max();
+    r.id = 0;
+    r.flags = 0;
+    return r;
+}
+
+std::size_t run_occluded1(RTCScene scene, const std::vector<Ray> &rays) {
+    RTCIntersectContext context;
+    rtcInitIntersectContext(&context);
+    std::size_t blocked = 0;
+    for (const Ray &ray : rays) {
+        RTCRay r = to_rtc(ray);
+        rtcOccluded1(scene, &context, &r);
+        blocked += r.tfar < 0;
+    }
+    return blocked;
+}
+
+std::size_t run_intersect1(RTCScene scene, const std::vector<Ray> &rays) {
+    RTCIntersectContext context;
+    rtcInitIntersectContext(&context);
+    std::size_t hits = 0;
+    for (const Ray &ray : rays) {
+        RTCRayHit query;
+        query.ray = to_rtc(ray);
+        query.hit.geomID = RTC_INVALID_GEOMETRY_ID;
+        query.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
+        rtcIntersect1(scene, &context, &query);
+        hits += query.hit.geomID != RTC_INVALID_GEOMETRY_ID;
+    }
+    return hits;
+}
+
+/// rtcOccludedN on packets of N consecutive stored rays.
+template <int N, typename Packet, typename Occluded>
+std::size_t run_packets(RTCScene scene, const std::vector<Ray> &rays, Occluded occluded) {
+    RTCIntersectContext context;
+    rtcInitIntersectContext(&context);
+    context.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;
+    std::size_t blocked = 0;
+    alignas(64) int valid[N];
+    alignas(64) Packet packet;
+    for (std::size_t start = 0; start < rays.size(); start += N) {
+        for (int k = 0; k < N; ++k) {
+            const bool active = start + k < rays.size();
+            valid[k] = active ? -1 : 0;
+            const Ray &ray = rays[active ? start + k : start];
+            packet.org_x[k] = ray.origin.x;
+            packet.org_y[k] = ray.origin.y;
+            packet.org_z[k] = ray.origin.z;
+            packet.dir_x[k] = ray.direction.x;
+            packet.dir_y[k] = ray.direction.y;
+            packet.dir_z[k] = ray.direction.z;
+            packet.tnear[k] = 0;
+            packet.tfar[k] = ray.t_far;
+            packet.time[k] = 0;
+            packet.mask[k] = std::numeric_limits<unsigned>::max();
+            packet.id[k] = 0;
+            packet.flags[k] = 0;
+        }
+        occluded(valid, scene, &context, &packet);
+        for (int k = 0; k < N; ++k) blocked += valid[k] && packet.tfar[k] < 0;
+    }
+    return blocked;
+}
+
+void set_flush_to_zero(bool on) {
+    _MM_SET_FLUSH_ZERO_MODE(on ? _MM_FLUSH_ZERO_ON : _MM_FLUSH_ZERO_OFF);
+    _MM_SET_DENORMALS_ZERO_MODE(on ? _MM_DENORMALS_ZERO_ON : _MM_DENORMALS_ZERO_OFF);
+}
+
+void BM_Throughput(benchmark::State &state, const std::string &scene_name) {
+    Fixture &f = fixture(scene_name);
+    set_flush_to_zero(true);
+    const RTCScene scene = f.renderer->bvh().handle();
+    double tracer_s = 0, occluded_s = 0, intersect_s = 0, sampling_s = 0;
+    std::size_t tracer_rays = 0;
+    for (auto _ : state) {
+        auto sampling_start = std::chrono::steady_clock::now();
+        float sink = 0;
+        for_each_shadow_ray(f, [&](const Ray &ray) { sink += ray.direction.x; });
+        benchmark::DoNotOptimize(sink);
+        sampling_s += seconds(sampling_start);
+        auto start = std::chrono::steady_clock::now();
+        tracer_rays += run_tracer(f);
+        tracer_s += seconds(start);
+        start = std::chrono::steady_clock::now();
+        benchmark::DoNotOptimize(run_occluded1(scene, f.rays));
+        occluded_s += seconds(start);
+        start = std::chrono::steady_clock::now();
+        benchmark::DoNotOptimize(run_intersect1(scene, f.rays));
+        intersect_s += seconds(start);
+    }
+    const double n = double(state.iterations()), rays = double(f.rays.size());
+    state.counters["triangles"] = double(f.triangles);
+    state.counters["sampling_ns_per_ray"] = sampling_s / (rays * n) * 1e9;
+    state.counters["tracer_Mrays_s"] = double(tracer_rays) / tracer_s / 1e6;
+    state.counters["occluded1_Mrays_s"] = rays * n / occluded_s / 1e6;
+    state.counters["intersect1_Mrays_s"] = rays * n / intersect_s / 1e6;
+    // The tracer takes a sample behind the receiver's tangent plane without a
+    // ray; count only the rays it traces, as the stored set does.
+    state.counters["tracer_over_occluded1"] = (rays * n / tracer_s) / (rays * n / occluded_s);
+    state.counters["tracer_over_intersect1"] = (rays * n / tracer_s) / (rays * n / intersect_s);
+}
+
+void BM_Packets(benchmark::State &state, const std::string &scene_name) {
+    Fixture &f = fixture(scene_name);
+    set_flush_to_zero(true);
+    const RTCScene scene = f.renderer->bvh().handle();
+    double single_s = 0, p4_s = 0, p8_s = 0, p16_s = 0;
+    for (auto _ : state) {
+        auto start = std::chrono::steady_clock::now();
+        benchmark::DoNotOptimize(run_occluded1(scene, f.rays));
+        single_s += seconds(start);
+        start = std::chrono::steady_clock::now();
+        benchmark::DoNotOptimize(run_packets<4, RTCRay4>(scene, f.rays, rtcOccluded4));
+        p4_s += seconds(start);
+        start = std::chrono::steady_clock::now();
+        benchmark::DoNotOptimize(run_packets<8, RTCRay8>(scene, f.rays, rtcOccluded8));
+        p8_s += seconds(start);
+        start = std::chrono::steady_clock::now();
+        benchmark::DoNotOptimize(run_packets<16, RTCRay16>(scene, f.rays, rtcOccluded16));
+        p16_s += seconds(start);
+    }
+    const double rays = double(f.rays.size()) * double(state.iterations());
+    state.counters["occluded1_Mrays_s"] = rays / single_s / 1e6;
+    state.counters["occluded4_over_1"] = single_s / p4_s;
+    state.counters["occluded8_over_1"] = single_s / p8_s;
+    state.counters["occluded16_over_1"] = single_s / p16_s;
+}
+
+void BM_BuildQuality(benchmark::State &state, const std::string &scene_name) {
+    Fixture &f = fixture(scene_name);
+    set_flush_to_zero(true);
+    auto start = std::chrono::steady_clock::now();
+    const EmbreeScene medium(f.scene, false);
+    const double medium_build_s = seconds(start);
+    start = std::chrono::steady_clock::now();
+    const EmbreeScene high(f.scene, true);
+    const double high_build_s = seconds(start);
+    double medium_s = 0, high_s = 0;
+    for (auto _ : state) {
+        start = std::chrono::steady_clock::now();
+        benchmark::DoNotOptimize(run_occluded1(medium.handle(), f.rays));
+        medium_s += seconds(start);
+        start = std::chrono::steady_clock::now();
+        benchmark::DoNotOptimize(run_occluded1(high.handle(), f.rays));
+        high_s += seconds(start);
+    }
+    state.counters["medium_build_ms"] = medium_build_s * 1e3;
+    state.counters["high_build_ms"] = high_build_s * 1e3;
+    state.counters["high_over_medium_rays_s"] = medium_s / high_s;
+}
+
+void BM_Denormals(benchmark::State &state, const std::string &scene_name) {
+    Fixture &f = fixture(scene_name);
+    double ftz_s = 0, plain_s = 0;
+    for (auto _ : state) {
+        set_flush_to_zero(true);
+        auto start = std::chrono::steady_clock::now();
+        benchmark::DoNotOptimize(run_tracer(f));
+        ftz_s += seconds(start);
+        set_flush_to_zero(false);
+        start = std::chrono::steady_clock::now();
+        benchmark::DoNotOptimize(run_tracer(f));
+        plain_s += seconds(start);
+    }
+    set_flush_to_zero(true);
+    state.counters["ftz_over_plain_rays_s"] = plain_s / ftz_s;
+}
+
+}  // namespace
+
+BENCHMARK_CAPTURE(BM_Throughput, grids, std::string("grids"))->Unit(benchmark::kMillisecond)->MinTime(2);
+BENCHMARK_CAPTURE(BM_Throughput, dense_mesh, std::string("dense_mesh"))
+    ->Unit(benchmark::kMillisecond)
+    ->MinTime(2);
+BENCHMARK_CAPTURE(BM_Packets, grids, std::string("grids"))->Unit(benchmark::kMillisecond)->MinTime(2);
+BENCHMARK_CAPTURE(BM_Packets, dense_mesh, std::string("dense_mesh"))
+    ->Unit(benchmark::kMillisecond)
+    ->MinTime(2);
+BENCHMARK_CAPTURE(BM_BuildQuality, grids, std::string("grids"))->Unit(benchmark::kMillisecond)->MinTime(2);
+BENCHMARK_CAPTURE(BM_BuildQuality, dense_mesh, std::string("dense_mesh"))
+    ->Unit(benchmark::kMillisecond)
+    ->MinTime(2);
+BENCHMARK_CAPTURE(BM_Denormals, grids, std::string("grids"))->Unit(benchmark::kMillisecond)->MinTime(2);
+
+BENCHMARK_MAIN();
