@@ -24,6 +24,7 @@ PlaneView AovSet::add_channel(const std::string &name, float fill) {
     if (has_channel(name)) throw Error("channel '" + name + "' already exists");
     names_.push_back(name);
     planes_.emplace_back(pixel_count(), fill);
+    precisions_.push_back(Precision::Float);
     return plane_view(planes_.back().data(), width_, height_);
 }
 
@@ -37,6 +38,12 @@ ConstPlaneView AovSet::channel(const std::string &name) const {
     std::size_t i = index_of(name);
     if (i == std::string::npos) throw InputError("missing channel '" + name + "'");
     return plane_view(planes_[i].data(), width_, height_);
+}
+
+void AovSet::set_precision(const std::string &name, Precision precision) {
+    const std::size_t i = index_of(name);
+    if (i == std::string::npos) throw InputError("missing channel '" + name + "'");
+    precisions_[i] = precision;
 }
 
 }  // namespace aaf

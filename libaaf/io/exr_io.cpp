@@ -78,6 +78,8 @@ AovSet read_aovs(const std::string &path) {
         if (aovs.has_channel(name)) throw InputError(path + ": duplicate channel '" + name + "'");
         PlaneView plane = aovs.add_channel(name);
         for (std::size_t i = 0; i < aovs.pixel_count(); ++i) plane.data[i] = pixels[i * channels + c];
+        // Half channels stay half when written back.
+        if (spec.channelformat(c) == TypeDesc::HALF) aovs.set_precision(name, Precision::Half);
     }
     read_attributes(spec, aovs);
     return aovs;
@@ -97,6 +99,12 @@ void write_aovs(const AovSet &aovs, const std::string &path) {
     if (channels == 0) throw InputError(path + ": nothing to write (no channels)");
     OIIO::ImageSpec spec(aovs.width(), aovs.height(), channels, TypeDesc::FLOAT);
     spec.channelnames = aovs.channel_names();
+    bool any_half = false;
+    for (int c = 0; c < channels; ++c) any_half |= aovs.precision(std::size_t(c)) == Precision::Half;
+    if (any_half)
+        for (int c = 0; c < channels; ++c)
+            spec.channelformats.push_back(aovs.precision(std::size_t(c)) == Precision::Half ? TypeDesc::HALF
+                                                                                             : TypeDesc::FLOAT);
     spec.alpha_channel = -1;
     spec.attribute("compression", "zip");
     // OpenImageIO stamps the current time unless told otherwise; an empty

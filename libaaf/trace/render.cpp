@@ -62,10 +62,13 @@ void for_each_pixel_tiled(int width, int height, const Body &body) {
         });
 }
 
-/// Writable views of the contract's channels for one role.
-std::vector<PlaneView> add_role(AovSet &aovs, Role role) {
+/// Writable views of the contract's channels for one role, stored at `precision`.
+std::vector<PlaneView> add_role(AovSet &aovs, Role role, Precision precision = Precision::Float) {
     std::vector<PlaneView> views;
-    for (const std::string &name : role_info(role).channels) views.push_back(aovs.add_channel(name));
+    for (const std::string &name : role_info(role).channels) {
+        views.push_back(aovs.add_channel(name));
+        aovs.set_precision(name, precision);
+    }
     return views;
 }
 
@@ -167,14 +170,16 @@ void write_aovs(const Frame &frame, unsigned groups, AovSet &aovs) {
         });
     }
     if (groups & kAovAlbedo) {
-        const auto albedo = add_role(aovs, Role::Albedo);
+        // Reflectances in [0, 1] and motion of a few pixels need no more than half's
+        // 11 bits; the beauty stays float, since references are compared to 1e-4.
+        const auto albedo = add_role(aovs, Role::Albedo, Precision::Half);
         for_each([&](int x, int y, const PrimaryHit &p, const ShadowStats &) {
             if (p.found) set3(albedo, x, y, p.mesh->material.albedo);
         });
     }
     if (groups & kAovMotion) {
         // Geometry is static; only the camera moves the surface point on screen.
-        const auto motion = add_role(aovs, Role::Motion);
+        const auto motion = add_role(aovs, Role::Motion, Precision::Half);
         // Both positions are projected the same way, so a still camera gives exactly 0.
         for_each([&](int x, int y, const PrimaryHit &p, const ShadowStats &) {
             float now_x, now_y, before_x, before_y;

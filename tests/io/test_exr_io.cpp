@@ -1,5 +1,6 @@
 #include <catch2/catch.hpp>
 
+#include <algorithm>
 #include <filesystem>
 #include <fstream>
 
@@ -109,4 +110,34 @@ TEST_CASE("PNG preview encodes linear values with the sRGB curve", "[io][preview
     CHECK(back.channel("G")(1, 0) == Approx(0.5f).margin(1.5f / 255));
     CHECK(back.channel("B")(2, 0) == 1.0f);
     CHECK_THROWS_WITH(io::write_preview_png(aovs, {"nope"}, path), Catch::Contains("nope"));
+}
+
+TEST_CASE("Half channels are written as half, read back as half, the rest stays float", "[io][half]") {
+    const fs::path dir = scratch_dir("half");
+    AovSet aovs(4, 2);
+    PlaneView colour = aovs.add_channel("albedo.R");
+    PlaneView data = aovs.add_channel("P.X");
+    for (int x = 0; x < 4; ++x) {
+        colour(x, 0) = 0.1f * float(x) + 1e-4f;  // not representable in half
+        data(x, 0) = 1000.0f + 1e-3f * float(x);  // needs float: half steps by 0.5 here
+    }
+    aovs.set_precision("albedo.R", Precision::Half);
+    const std::string path = (dir / "half.exr").string();
+    io::write_aovs(aovs, path);
+    const AovSet back = io::read_aovs(path);
+    // EXR stores channels sorted by name: look them up.
+    auto precision_of = [](const AovSet &set, const std::string &name) {
+        const auto &names = set.channel_names();
+        return set.precision(std::size_t(std::find(names.begin(), names.end(), name) - names.begin()));
+    };
+    CHECK(precision_of(back, "albedo.R") == Precision::Half);
+    CHECK(precision_of(back, "P.X") == Precision::Float);
+    for (int x = 0; x < 4; ++x) {
+        CHECK(back.channel("albedo.R")(x, 0) == Approx(colour(x, 0)).epsilon(1e-3));  // half: 11 bits
+        CHECK(back.channel("P.X")(x, 0) == data(x, 0));                              // float: exact
+    }
+    CHECK(back.channel("albedo.R")(1, 0) != colour(1, 0));
+    // Writing what was read keeps the types: a pass-through does not widen or narrow.
+    io::write_aovs(back, (dir / "again.exr").string());
+    CHECK(precision_of(io::read_aovs((dir / "again.exr").string()), "albedo.R") == Precision::Half);
 }

@@ -10,6 +10,11 @@
 
 namespace aaf {
 
+/// How a channel is to be stored in a file: 32-bit float (the default), or
+/// 16-bit half where its values need no more (colours, albedo, motion).
+/// Computation is always in float.
+enum class Precision { Float, Half };
+
 /// Value of a per-image (not per-pixel) attribute, e.g. the light's centre.
 using AttributeValue = std::variant<int, float, std::string, Vec3>;
 
@@ -36,6 +41,10 @@ class AovSet {
     ConstPlaneView channel(const std::string &name) const;
 
     const std::vector<std::string> &channel_names() const { return names_; }
+    /// Storage precision of the i-th channel; set_precision throws aaf::Error
+    /// naming a missing channel.
+    Precision precision(std::size_t index) const { return precisions_[index]; }
+    void set_precision(const std::string &name, Precision precision);
     /// Contiguous storage of the i-th channel (width * height floats, row-major).
     const std::vector<float> &plane(std::size_t index) const { return planes_[index]; }
 
@@ -48,6 +57,7 @@ class AovSet {
     int height_ = 0;
     std::vector<std::string> names_;
     std::vector<std::vector<float>> planes_;
+    std::vector<Precision> precisions_;
 };
 
 }  // namespace aaf
