@@ -2,8 +2,13 @@
 #include <string>
 #include <vector>
 
+#include <algorithm>
+#include <cstdio>
+
 #include "aaf/core/aaf_filter.h"
+#include "aaf/core/aov_contract.h"
 #include "aaf/core/error.h"
+#include "aaf/core/non_finite.h"
 #include "aaf/io/exr_io.h"
 #include "channel_options.h"
 #include "commands.h"
@@ -15,6 +20,60 @@ namespace aaf::cli {
 
 namespace {
 
+/// The channels AAF reads, so bad values there are replaced before filtering.
+std::vector<std::string> filter_inputs(const ChannelMap &channels) {
+    std::vector<std::string> names;
+    std::vector<Role> roles = method_table().front().required;
+    roles.insert(roles.end(), {Role::Beauty, Role::SamplesPerPixel, Role::OtherLights});
+    for (Role role : roles)
+        for (const std::string &name : channels.channels(role)) names.push_back(name);
+    return names;
+}
+
+/// One warning line per file that had NaN or infinite inputs.
+void report_non_finite(const std::string &path, const NonFiniteCounts &counts) {
+    if (counts.empty()) return;
+    std::size_t total = 0;
+    std::string detail;
+    for (const auto &[name, count] : counts) {
+        total += count;
+        detail += (detail.empty() ? "" : ", ") + name + " " + std::to_string(count);
+    }
+    std::fprintf(stderr, "aaf: warning: %s: replaced %zu NaN/Inf input values by 0 (%s)\n", path.c_str(),
+                 total, detail.c_str());
+}
+
+/// The filter's output with the input beauty back in R,G,B (or the renderer's
+/// beauty layer) and the filtered image as aaf.R/G/B (--keep-beauty).
+AovSet keep_beauty(const AovSet &filtered, const ChannelMap &channels) {
+    const std::vector<std::string> &beauty = channels.channels(Role::Beauty);
+    const std::vector<std::string> &noisy = channels.channels(Role::NoisyBeauty);
+    const std::vector<std::string> &result = channels.channels(Role::FilteredBeauty);
+    AovSet out(filtered.width(), filtered.height());
+    out.attributes = filtered.attributes;
+    const std::vector<std::string> &names = filtered.channel_names();
+    auto copy = [&](std::size_t index, const std::string &as) {
+        PlaneView plane = out.add_channel(as);
+        std::copy(filtered.plane(index).begin(), filtered.plane(index).end(), plane.data);
+        out.set_precision(as, filtered.precision(index));
+    };
+    for (std::size_t i = 0; i < names.size(); ++i) {
+        const auto is = [&](const std::vector<std::string> &role) {
+            return std::find(role.begin(), role.end(), names[i]) != role.end();
+        };
+        if (is(beauty) || is(noisy)) continue;
+        copy(i, names[i]);
+    }
+    for (std::size_t c = 0; c < beauty.size(); ++c) {
+        const auto index_of = [&](const std::string &name) {
+            return std::size_t(std::find(names.begin(), names.end(), name) - names.begin());
+        };
+        if (filtered.has_channel(noisy[c])) copy(index_of(noisy[c]), beauty[c]);
+        copy(index_of(beauty[c]), result[c]);
+    }
+    return out;
+}
+
 void add_aaf_method(CLI::App &filter) {
     struct Options {
         std::string input, output;
@@ -24,6 +83,8 @@ void add_aaf_method(CLI::App &filter) {
         std::string mode = "separable";
         std::string frames, progress = "auto";
         bool skip_existing = false, skip_bad_frames = false;
+        bool replace_beauty = true;
+        io::WriteOptions write;
     };
     auto options = std::make_shared<Options>();
     CLI::App *cmd =
@@ -39,6 +100,16 @@ void add_aaf_method(CLI::App &filter) {
                   "Skip frames whose output exists and reads back");
     cmd->add_flag("--skip-bad-frames", options->skip_bad_frames,
                   "Report a failed frame and continue (the exit code is still non-zero)");
+    cmd->add_flag("--replace-beauty,!--keep-beauty", options->replace_beauty,
+                  "R,G,B become the filtered image, the input's kept as noisy.R/G/B (default); "
+                  "--keep-beauty leaves R,G,B as they were and adds the filtered image as aaf.R/G/B");
+    cmd->add_flag("--half", options->write.half_colour,
+                  "Store colour layers (R,G,B,A and LAYER.R/G/B/A) as half; data layers stay float");
+    cmd->add_option("--compression", options->write.compression,
+                    "EXR compression: zip, zips, piz, rle, none, or the lossy dwaa/dwab (only when every "
+                    "channel is colour)")
+        ->check(CLI::IsMember({"zip", "zips", "piz", "rle", "none", "dwaa", "dwab"}))
+        ->capture_default_str();
     AafParams &p = options->params;
     cmd->add_option("--mu", p.mu, "Filter scale for consistency, beta ~ 1/mu (Sec. 5.2)")
         ->capture_default_str();
@@ -69,12 +140,19 @@ void add_aaf_method(CLI::App &filter) {
         const std::vector<FrameJob> jobs = frame_jobs(options->input, options->output, options->frames);
         // Frames stream one at a time (bounded memory); the filter itself runs on all threads.
         const int failed = run_frames(jobs, run, [&](const FrameJob &job) {
-            const AovSet input = io::read_aovs(job.input);
+            // The input's header (every attribute, the windows) and its other
+            // parts go through to the output unchanged.
+            io::ImageLayout layout;
+            AovSet input = io::read_aovs(job.input, &layout);
+            report_non_finite(job.input, replace_non_finite(input, filter_inputs(channels.resolved(input))));
             AovSet output;
             run_with_threads(options->threads, [&] {
                 with_context(job.input, [&] { output = aaf_filter_aovs(input, channels, options->params); });
             });
-            io::write_aovs(output, job.output);
+            if (!options->replace_beauty) output = keep_beauty(output, channels.resolved(input));
+            io::WriteOptions write = options->write;
+            write.layout = &layout;
+            io::write_aovs(output, job.output, write);
         });
         if (failed > 0)
             throw Error(std::to_string(failed) + " of " + std::to_string(jobs.size()) + " frames failed");

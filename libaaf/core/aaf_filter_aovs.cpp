@@ -29,7 +29,9 @@ AovSet copy_except(const AovSet &input, const std::vector<std::string> &skip) {
 
 }  // namespace
 
-AovSet aaf_filter_aovs(const AovSet &input, const ChannelMap &channels, const AafParams &params) {
+AovSet aaf_filter_aovs(const AovSet &input, const ChannelMap &requested, const AafParams &params) {
+    // Other renderers' names are found through the synonym table.
+    const ChannelMap channels = requested.resolved(input);
     const MethodInputs &method = method_table().front();
     std::vector<Role> missing = channels.missing_inputs(method, input);
     if (!missing.empty()) {
@@ -52,7 +54,8 @@ AovSet aaf_filter_aovs(const AovSet &input, const ChannelMap &channels, const Aa
     in.pixel_size = input.channel(channels.channel(Role::PixelSize));
     if (params.mu_from_spp) {
         const std::string &spp = channels.channel(Role::SamplesPerPixel);
-        if (!input.has_channel(spp)) throw InputError("mu from spp needs the 'spp' input (channel " + spp + ")");
+        if (!input.has_channel(spp))
+            throw InputError("mu from spp needs the 'spp' input (channel " + spp + ")");
         in.spp = input.channel(spp);
     }
 

@@ -71,6 +71,11 @@ const std::vector<RoleInfo> &role_table() {
          {"noisy.R", "noisy.G", "noisy.B"},
          "linear radiance",
          "output of a filter: the input beauty, kept"},
+        {Role::FilteredBeauty,
+         "filtered_beauty",
+         {"aaf.R", "aaf.G", "aaf.B"},
+         "linear radiance",
+         "output of `aaf filter aaf --keep-beauty`: the filtered image, the beauty left as it was"},
         {Role::PlannedSpp,
          "planned_spp",
          {"plan.spp"},
@@ -213,6 +218,7 @@ void ChannelMap::set_override(const std::string &spec) {
     for (const std::string &name : names)
         if (name.empty()) throw Error("empty channel name in mapping '" + spec + "'");
     names_[info->role] = names;
+    overridden_[info->role] = true;
 }
 
 const std::vector<std::string> &ChannelMap::channels(Role role) const {
@@ -226,10 +232,81 @@ const std::string &ChannelMap::channel(Role role) const {
     return names.front();
 }
 
+const std::vector<RoleSynonym> &role_synonyms() {
+    static const std::vector<RoleSynonym> table = {
+        {Role::Beauty, "Blender", {"*.Combined.R", "*.Combined.G", "*.Combined.B"}},
+        {Role::Beauty, "Arnold", {"RGBA.R", "RGBA.G", "RGBA.B"}},
+        {Role::Position, "Blender", {"*.Position.X", "*.Position.Y", "*.Position.Z"}},
+        {Role::Position, "Arnold", {"P.R", "P.G", "P.B"}},
+        {Role::Position, "Houdini/Karma", {"Pw.X", "Pw.Y", "Pw.Z"}},
+        {Role::Normal, "Blender", {"*.Normal.X", "*.Normal.Y", "*.Normal.Z"}},
+        {Role::Normal, "Arnold", {"N.R", "N.G", "N.B"}},
+        {Role::Normal, "pbrt-v4 (shading normal)", {"Ns.X", "Ns.Y", "Ns.Z"}},
+        {Role::ObjectId, "Blender", {"*.IndexOB.X"}},
+        {Role::Depth, "Blender", {"*.Depth.Z"}},
+        {Role::Albedo, "Blender", {"*.DiffCol.R", "*.DiffCol.G", "*.DiffCol.B"}},
+        {Role::Albedo, "pbrt-v4", {"Albedo.R", "Albedo.G", "Albedo.B"}},
+        {Role::Albedo, "Arnold", {"albedo.R", "albedo.G", "albedo.B"}},
+    };
+    return table;
+}
+
+namespace {
+
+/// The channels of `patterns` as `aovs` names them, or none. A "*." prefix
+/// matches any prefix, found from the first channel and required of all.
+std::vector<std::string> match_channels(const std::vector<std::string> &patterns, const AovSet &aovs) {
+    const bool any_prefix = patterns.front().rfind("*.", 0) == 0;
+    std::string prefix;
+    if (any_prefix) {
+        const std::string tail = patterns.front().substr(1);  // ".Combined.R"
+        for (const std::string &name : aovs.channel_names())
+            if (name.size() > tail.size() &&
+                name.compare(name.size() - tail.size(), tail.size(), tail) == 0) {
+                prefix = name.substr(0, name.size() - tail.size());
+                break;
+            }
+        if (prefix.empty()) return {};
+    }
+    std::vector<std::string> names;
+    for (const std::string &pattern : patterns) {
+        const std::string name = any_prefix ? prefix + pattern.substr(1) : pattern;
+        if (!aovs.has_channel(name)) return {};
+        names.push_back(name);
+    }
+    return names;
+}
+
+}  // namespace
+
+ChannelMap ChannelMap::resolved(const AovSet &aovs) const {
+    ChannelMap map = *this;
+    for (auto &[role, names] : map.names_) {
+        if (overridden_.count(role)) continue;
+        if (!match_channels(names, aovs).empty()) continue;
+        // The contract's own names under a view-layer prefix, then other renderers' names.
+        std::vector<std::vector<std::string>> candidates;
+        std::vector<std::string> prefixed;
+        for (const std::string &name : role_info(role).channels) prefixed.push_back("*." + name);
+        candidates.push_back(prefixed);
+        for (const RoleSynonym &synonym : role_synonyms())
+            if (synonym.role == role) candidates.push_back(synonym.channels);
+        for (const auto &candidate : candidates) {
+            std::vector<std::string> found = match_channels(candidate, aovs);
+            if (!found.empty()) {
+                names = found;
+                break;
+            }
+        }
+    }
+    return map;
+}
+
 std::vector<Role> ChannelMap::missing_inputs(const MethodInputs &method, const AovSet &aovs) const {
+    const ChannelMap found = resolved(aovs);
     std::vector<Role> missing;
     for (Role role : method.required)
-        for (const std::string &name : channels(role))
+        for (const std::string &name : found.channels(role))
             if (!aovs.has_channel(name)) {
                 missing.push_back(role);
                 break;

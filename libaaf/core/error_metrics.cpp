@@ -35,7 +35,7 @@ std::vector<float> luminance(const AovSet &image, const std::vector<std::string>
 /// statistics; non-finite luminance is replaced by 0 so it cannot spread (those
 /// pixels are not averaged anyway).
 std::vector<float> ssim_map(std::vector<float> a, std::vector<float> b, int width, int height) {
-    constexpr float kSigmaPx = 1.5f;  // window: 11x11 (cut at ceil(3 sigma) = 5 px)
+    constexpr float kSigmaPx = 1.5f;                           // window: 11x11 (cut at ceil(3 sigma) = 5 px)
     constexpr float kC1 = 0.01f * 0.01f, kC2 = 0.03f * 0.03f;  // (K L)^2 with L = 1
     const std::size_t n = a.size();
     for (std::size_t i = 0; i < n; ++i) {
@@ -49,10 +49,12 @@ std::vector<float> ssim_map(std::vector<float> a, std::vector<float> b, int widt
     }
     auto blur = [&](const std::vector<float> &in) {
         std::vector<float> out(n);
-        fixed_gaussian_filter(plane_view(in.data(), width, height), kSigmaPx, plane_view(out.data(), width, height));
+        fixed_gaussian_filter(plane_view(in.data(), width, height), kSigmaPx,
+                              plane_view(out.data(), width, height));
         return out;
     };
-    const std::vector<float> mu_a = blur(a), mu_b = blur(b), e_aa = blur(aa), e_bb = blur(bb), e_ab = blur(ab);
+    const std::vector<float> mu_a = blur(a), mu_b = blur(b), e_aa = blur(aa), e_bb = blur(bb),
+                             e_ab = blur(ab);
     std::vector<float> map(n);
     for (std::size_t i = 0; i < n; ++i) {
         const float var_a = e_aa[i] - mu_a[i] * mu_a[i], var_b = e_bb[i] - mu_b[i] * mu_b[i];
@@ -87,8 +89,8 @@ ErrorMetrics compare_images(const AovSet &test, const AovSet &reference, const C
                         size_text(test) + " image");
     }
     if (options.mask.valid() && (options.mask.width != width || options.mask.height != height))
-        throw InputError("mask is " + std::to_string(options.mask.width) + "x" + std::to_string(options.mask.height) +
-                    ", images are " + size_text(test));
+        throw InputError("mask is " + std::to_string(options.mask.width) + "x" +
+                         std::to_string(options.mask.height) + ", images are " + size_text(test));
 
     std::vector<unsigned char> selected(test.pixel_count(), 0);  // finite and inside crop and mask
     ErrorMetrics m;
@@ -97,7 +99,8 @@ ErrorMetrics compare_images(const AovSet &test, const AovSet &reference, const C
         for (int x = rect.x; x < rect.x + rect.width; ++x) {
             if (options.mask.valid() && options.mask(x, y) == 0) continue;
             bool finite = true;
-            for (std::size_t c = 0; c < a.size(); ++c) finite = finite && std::isfinite(a[c](x, y)) && std::isfinite(b[c](x, y));
+            for (std::size_t c = 0; c < a.size(); ++c)
+                finite = finite && std::isfinite(a[c](x, y)) && std::isfinite(b[c](x, y));
             if (!finite) {
                 ++m.nonfinite_pixels;
                 continue;
@@ -121,8 +124,8 @@ ErrorMetrics compare_images(const AovSet &test, const AovSet &reference, const C
                        : (m.mse == 0 ? std::numeric_limits<double>::infinity() : nan);
     m.ssim = nan;
     if (options.compute_ssim && m.pixels > 0) {
-        const std::vector<float> map =
-            ssim_map(luminance(test, options.channels), luminance(reference, options.channels), width, height);
+        const std::vector<float> map = ssim_map(luminance(test, options.channels),
+                                                luminance(reference, options.channels), width, height);
         double sum = 0;
         for (std::size_t i = 0; i < map.size(); ++i)
             if (selected[i]) sum += map[i];
@@ -148,8 +151,9 @@ ErrorMetrics compare_images(const AovSet &test, const AovSet &reference, const C
         }
         FlipParams flip_params;
         flip_params.pixels_per_degree = options.flip_pixels_per_degree;
-        const std::vector<float> map = options.flip == CompareOptions::Flip::Hdr ? hdr_flip(b_view, a_view, flip_params)
-                                                                                 : ldr_flip(b_view, a_view, flip_params);
+        const std::vector<float> map = options.flip == CompareOptions::Flip::Hdr
+                                           ? hdr_flip(b_view, a_view, flip_params)
+                                           : ldr_flip(b_view, a_view, flip_params);
         const FlipSummary pooled = summarize_flip(map, selected);
         m.flip_mean = pooled.mean;
         m.flip_weighted_median = pooled.weighted_median;

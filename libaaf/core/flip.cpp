@@ -94,7 +94,8 @@ Plane convolve(const Plane &in, const std::vector<float> &kx, const std::vector<
     Plane rows(width, height), out(width, height);
     parallel_for_rows(height, [&](int y) {
         std::vector<float> padded(std::size_t(width) + 2 * rx);
-        for (int x = -rx; x < width + rx; ++x) padded[std::size_t(x + rx)] = in.at(std::clamp(x, 0, width - 1), y);
+        for (int x = -rx; x < width + rx; ++x)
+            padded[std::size_t(x + rx)] = in.at(std::clamp(x, 0, width - 1), y);
         float *dst = &rows.at(0, y);
         for (int i = 0; i <= 2 * rx; ++i) {
             const float weight = kx[i];

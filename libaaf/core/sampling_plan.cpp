@@ -45,12 +45,13 @@ void plan_samples(const SamplingPlanInputs &in, float light_sigma_m, const AafPa
     });
 }
 
-AovSet plan_samples_aovs(const AovSet &first_pass, const ChannelMap &channels, const AafParams &aaf,
+AovSet plan_samples_aovs(const AovSet &first_pass, const ChannelMap &requested, const AafParams &aaf,
                          const SamplingPlanParams &params) {
+    const ChannelMap channels = requested.resolved(first_pass);
     for (Role role : {Role::D1, Role::D2Min, Role::D2Max, Role::ObjectId, Role::PixelSize})
         if (!first_pass.has_channel(channels.channel(role)))
-            throw InputError("missing sampling-plan input '" + std::string(role_info(role).key) + "' (channel " +
-                        channels.channel(role) + ")");
+            throw InputError("missing sampling-plan input '" + std::string(role_info(role).key) +
+                             "' (channel " + channels.channel(role) + ")");
     SamplingPlanInputs inputs;
     inputs.d1 = first_pass.channel(channels.channel(Role::D1));
     inputs.d2_min = first_pass.channel(channels.channel(Role::D2Min));

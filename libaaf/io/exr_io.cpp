@@ -2,17 +2,33 @@
 
 #include <OpenImageIO/imageio.h>
 
+#include <cstdio>
 #include <memory>
+#include <set>
 #include <vector>
 
 #include "aaf/core/error.h"
-#include "image_writer.h"
+#include "aaf/io/atomic_file.h"
 
 namespace aaf::io {
 
-namespace {
-
 using OIIO::TypeDesc;
+
+struct ImageLayout::Impl {
+    std::string source_path;
+    OIIO::ImageSpec first_part;  ///< header of part 0 (its pixels live in the AovSet)
+    int parts = 1;
+};
+
+ImageLayout::ImageLayout() : impl_(std::make_unique<Impl>()) {}
+ImageLayout::~ImageLayout() = default;
+ImageLayout::ImageLayout(ImageLayout &&) noexcept = default;
+ImageLayout &ImageLayout::operator=(ImageLayout &&) noexcept = default;
+int ImageLayout::part_count() const {
+    return impl_->parts;
+}
+
+namespace {
 
 bool is_vec3(TypeDesc type) {
     return type.basetype == TypeDesc::FLOAT && type.aggregate == TypeDesc::VEC3 && type.arraylen == 0;
@@ -50,9 +66,78 @@ void write_attributes(const AovSet &aovs, OIIO::ImageSpec &spec) {
     }
 }
 
+const std::set<std::string> &lossless_compressions() {
+    static const std::set<std::string> names = {"zip", "zips", "piz", "rle", "none"};
+    return names;
+}
+
+/// The header of the first part to write: the carried header (every
+/// attribute, windows) updated with this set's channels and attributes.
+OIIO::ImageSpec first_part_spec(const AovSet &aovs, const std::string &path, const WriteOptions &options) {
+    const int channels = int(aovs.channel_names().size());
+    OIIO::ImageSpec spec(aovs.width(), aovs.height(), channels, TypeDesc::FLOAT);
+    if (options.layout) {
+        const OIIO::ImageSpec &source = options.layout->impl().first_part;
+        if (source.width != aovs.width() || source.height != aovs.height())
+            throw InputError(path + ": internal: the carried header has another size");
+        spec = source;  // attributes of every type, data and display windows, tiling
+        spec.nchannels = channels;
+        spec.set_format(TypeDesc::FLOAT);
+        spec.channelformats.clear();
+        spec.alpha_channel = spec.z_channel = -1;
+        spec.erase_attribute("compression");
+        if (!spec.find_attribute("DateTime")) spec.attribute("DateTime", "");  // no time stamp, as below
+    } else {
+        // OpenImageIO stamps the current time unless told otherwise; an empty
+        // DateTime writes none, so equal inputs give byte-identical files.
+        spec.attribute("DateTime", "");
+    }
+    spec.channelnames = aovs.channel_names();
+    spec.alpha_channel = -1;
+    write_attributes(aovs, spec);
+    spec.attribute("compression", options.compression);  // over any carried from an input
+
+    std::vector<TypeDesc> formats;
+    bool any_half = false;
+    for (int c = 0; c < channels; ++c) {
+        const bool half = aovs.precision(std::size_t(c)) == Precision::Half ||
+                          (options.half_colour && is_colour_channel(spec.channelnames[c]));
+        formats.push_back(half ? TypeDesc::HALF : TypeDesc::FLOAT);
+        any_half |= half;
+    }
+    if (any_half) spec.channelformats = formats;
+    return spec;
+}
+
+/// Copies part `part` of `source` (native pixel types) into the open output.
+void copy_part(OIIO::ImageInput &source, int part, OIIO::ImageOutput &output, const std::string &path) {
+    const OIIO::ImageSpec spec = source.spec(part, 0);
+    std::vector<unsigned char> pixels(spec.image_bytes(true));
+    if (!source.read_image(part, 0, 0, spec.nchannels, TypeDesc::UNKNOWN, pixels.data()))
+        throw InputError(path + ": cannot read part " + std::to_string(part) + ": " + source.geterror());
+    if (!output.open(path, spec, OIIO::ImageOutput::AppendSubimage) ||
+        !output.write_image(TypeDesc::UNKNOWN, pixels.data()))
+        throw InputError(output.geterror());
+}
+
 }  // namespace
 
-AovSet read_aovs(const std::string &path) {
+bool is_known_compression(const std::string &name) {
+    return lossless_compressions().count(name) || is_lossy_compression(name);
+}
+
+bool is_lossy_compression(const std::string &name) {
+    return name == "dwaa" || name == "dwab";
+}
+
+bool is_colour_channel(const std::string &name) {
+    if (name.rfind("progress.", 0) == 0) return false;  // resumable sums need float
+    const std::size_t dot = name.rfind('.');
+    const std::string suffix = dot == std::string::npos ? name : name.substr(dot + 1);
+    return suffix == "R" || suffix == "G" || suffix == "B" || suffix == "A";
+}
+
+AovSet read_aovs(const std::string &path, ImageLayout *layout) {
     std::unique_ptr<OIIO::ImageInput> input = OIIO::ImageInput::open(path);
     if (!input) {
         std::string message = OIIO::geterror();
@@ -82,6 +167,17 @@ AovSet read_aovs(const std::string &path) {
         if (spec.channelformat(c) == TypeDesc::HALF) aovs.set_precision(name, Precision::Half);
     }
     read_attributes(spec, aovs);
+    if (layout) {
+        ImageLayout::Impl &carried = layout->impl();
+        carried.source_path = path;
+        carried.first_part = spec;
+        carried.parts = 1;
+        while (input->seek_subimage(carried.parts, 0)) {
+            if (input->spec().deep) throw InputError(path + ": deep parts are not supported");
+            ++carried.parts;
+        }
+        OIIO::geterror();  // the failed seek past the last part leaves a message
+    }
     return aovs;
 }
 
@@ -94,23 +190,18 @@ bool is_readable_image(const std::string &path) {
     return input->spec().width > 0 && input->spec().height > 0;
 }
 
-void write_aovs(const AovSet &aovs, const std::string &path) {
+void write_aovs(const AovSet &aovs, const std::string &path, const WriteOptions &options) {
     const int channels = int(aovs.channel_names().size());
     if (channels == 0) throw InputError(path + ": nothing to write (no channels)");
-    OIIO::ImageSpec spec(aovs.width(), aovs.height(), channels, TypeDesc::FLOAT);
-    spec.channelnames = aovs.channel_names();
-    bool any_half = false;
-    for (int c = 0; c < channels; ++c) any_half |= aovs.precision(std::size_t(c)) == Precision::Half;
-    if (any_half)
-        for (int c = 0; c < channels; ++c)
-            spec.channelformats.push_back(aovs.precision(std::size_t(c)) == Precision::Half ? TypeDesc::HALF
-                                                                                             : TypeDesc::FLOAT);
-    spec.alpha_channel = -1;
-    spec.attribute("compression", "zip");
-    // OpenImageIO stamps the current time unless told otherwise; an empty
-    // DateTime writes none, so equal inputs give byte-identical files.
-    spec.attribute("DateTime", "");
-    write_attributes(aovs, spec);
+    if (!is_known_compression(options.compression))
+        throw InputError(path + ": unknown compression '" + options.compression + "'");
+    if (is_lossy_compression(options.compression))
+        for (const std::string &name : aovs.channel_names())
+            if (!is_colour_channel(name))
+                throw InputError(path + ": " + options.compression +
+                                 " is lossy and only for colour layers, but '" + name +
+                                 "' is data (use a lossless compression)");
+    const OIIO::ImageSpec spec = first_part_spec(aovs, path, options);
 
     std::vector<float> pixels(aovs.pixel_count() * std::size_t(channels));
     for (int c = 0; c < channels; ++c) {
@@ -118,7 +209,34 @@ void write_aovs(const AovSet &aovs, const std::string &path) {
         for (std::size_t i = 0; i < aovs.pixel_count(); ++i) pixels[i * channels + c] = plane[i];
     }
 
-    write_image_atomically(path, "openexr", spec, pixels.data());
+    // The other parts of a carried source, copied one at a time.
+    std::unique_ptr<OIIO::ImageInput> source;
+    std::vector<OIIO::ImageSpec> specs{spec};
+    if (options.layout && options.layout->part_count() > 1) {
+        const std::string &source_path = options.layout->impl().source_path;
+        source = OIIO::ImageInput::open(source_path);
+        if (!source)
+            throw InputError(source_path + ": cannot reopen to copy its other parts: " + OIIO::geterror());
+        for (int part = 1; part < options.layout->part_count(); ++part)
+            specs.push_back(source->spec(part, 0));
+    }
+
+    const std::string temporary = temporary_path_for(path);
+    std::unique_ptr<OIIO::ImageOutput> output = OIIO::ImageOutput::create("openexr");
+    if (!output) throw InputError(path + ": no OpenEXR writer: " + OIIO::geterror());
+    try {
+        const bool opened = specs.size() == 1 ? output->open(temporary, spec)
+                                              : output->open(temporary, int(specs.size()), specs.data());
+        if (!opened || !output->write_image(TypeDesc::FLOAT, pixels.data()))
+            throw InputError(output->geterror());
+        for (int part = 1; part < int(specs.size()); ++part) copy_part(*source, part, *output, temporary);
+        if (!output->close()) throw InputError(output->geterror());
+    } catch (const InputError &e) {
+        output.reset();
+        std::remove(temporary.c_str());
+        throw InputError(path + ": cannot write: " + e.what());
+    }
+    commit_temporary(temporary, path);
 }
 
 }  // namespace aaf::io

@@ -118,7 +118,7 @@ TEST_CASE("Half channels are written as half, read back as half, the rest stays 
     PlaneView colour = aovs.add_channel("albedo.R");
     PlaneView data = aovs.add_channel("P.X");
     for (int x = 0; x < 4; ++x) {
-        colour(x, 0) = 0.1f * float(x) + 1e-4f;  // not representable in half
+        colour(x, 0) = 0.1f * float(x) + 1e-4f;   // not representable in half
         data(x, 0) = 1000.0f + 1e-3f * float(x);  // needs float: half steps by 0.5 here
     }
     aovs.set_precision("albedo.R", Precision::Half);
@@ -134,7 +134,7 @@ TEST_CASE("Half channels are written as half, read back as half, the rest stays 
     CHECK(precision_of(back, "P.X") == Precision::Float);
     for (int x = 0; x < 4; ++x) {
         CHECK(back.channel("albedo.R")(x, 0) == Approx(colour(x, 0)).epsilon(1e-3));  // half: 11 bits
-        CHECK(back.channel("P.X")(x, 0) == data(x, 0));                              // float: exact
+        CHECK(back.channel("P.X")(x, 0) == data(x, 0));                               // float: exact
     }
     CHECK(back.channel("albedo.R")(1, 0) != colour(1, 0));
     // Writing what was read keeps the types: a pass-through does not widen or narrow.

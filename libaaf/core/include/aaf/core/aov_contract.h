@@ -26,6 +26,7 @@ enum class Role {
     FilteredVisibility,  ///< output: filtered visibility
     FilterWidth,         ///< output: AAF beta
     NoisyBeauty,         ///< output: the input beauty kept beside the filtered one
+    FilteredBeauty,      ///< output with --keep-beauty: the filtered image beside the untouched beauty
     PlannedSpp,          ///< output of the sampling plan: total samples per pixel (AAF Eq. 21)
     Depth,               ///< distance along the camera axis
     Albedo,              ///< diffuse reflectance
@@ -83,6 +84,18 @@ void write_light_attributes(const LightPlane &light, AovSet &aovs);
 /// Throws aaf::Error naming the first missing or mistyped attribute.
 LightPlane read_light_attributes(const AovSet &aovs);
 
+/// Other renderers' names for a role's channels, tried when the contract's
+/// names are missing. A leading "*." stands for any prefix (a Blender view
+/// layer, "ViewLayer." or "View Layer."), the same for all channels of the role.
+struct RoleSynonym {
+    Role role;
+    const char *renderer;
+    std::vector<std::string> channels;
+};
+/// The synonym table (documented in libaaf/AOV_CONTRACT.md). Besides these,
+/// every role's contract names are also found under any such prefix.
+const std::vector<RoleSynonym> &role_synonyms();
+
 /// Role -> channel names, the defaults overridden by `--map role=channels`.
 class ChannelMap {
   public:
@@ -97,11 +110,18 @@ class ChannelMap {
     /// The single channel of a one-channel role.
     const std::string &channel(Role role) const;
 
-    /// Roles of `method` whose channels are not all present in `aovs`.
+    /// This map with each role that `aovs` lacks under its current names and
+    /// that no --map override fixed, renamed to the first synonym `aovs` has
+    /// in full (role_synonyms(); the contract's names under a view-layer
+    /// prefix first). Roles found nowhere keep their names.
+    ChannelMap resolved(const AovSet &aovs) const;
+
+    /// Roles of `method` whose channels are not all present in `aovs`, after resolved().
     std::vector<Role> missing_inputs(const MethodInputs &method, const AovSet &aovs) const;
 
   private:
     std::map<Role, std::vector<std::string>> names_;
+    std::map<Role, bool> overridden_;
 };
 
 }  // namespace aaf

@@ -1,29 +1,72 @@
 #pragma once
 
+#include <memory>
 #include <string>
 
 #include "aaf/core/aov_set.h"
 
 namespace aaf::io {
 
-/// Reads every channel of the first subimage of an image file (OpenEXR and any
+/// What a file holds besides the channels of its first part, kept so that a
+/// pipeline step can write it back unchanged: the first part's complete
+/// header (attributes of every type, custom ones included, and the data and
+/// display windows) and the file's other parts (EXR multi-part subimages),
+/// which are copied from the source file when the output is written.
+class ImageLayout {
+  public:
+    ImageLayout();
+    ~ImageLayout();
+    ImageLayout(ImageLayout &&) noexcept;
+    ImageLayout &operator=(ImageLayout &&) noexcept;
+
+    /// Parts in the source file (1 for a single-part image).
+    int part_count() const;
+
+    struct Impl;  ///< OpenImageIO details, private to aaf_io
+    const Impl &impl() const { return *impl_; }
+    Impl &impl() { return *impl_; }
+
+  private:
+    std::unique_ptr<Impl> impl_;
+};
+
+/// Reads every channel of the first part of an image file (OpenEXR and any
 /// other format OpenImageIO reads) as float (half channels are marked
-/// Precision::Half, so writing them back keeps them half), with its header attributes: the
-/// "aaf:" attributes and every other int, float, string or 3-vector attribute.
-/// Throws aaf::Error "<path>: <problem>" when the file is missing, unreadable,
-/// or has duplicate channel names.
-AovSet read_aovs(const std::string &path);
+/// Precision::Half, so writing them back keeps them half), with its header
+/// attributes: the "aaf:" attributes and every other int, float, string or
+/// 3-vector attribute. When `layout` is given it receives everything else
+/// the file holds (ImageLayout). Throws aaf::InputError "<path>: <problem>"
+/// when the file is missing, unreadable, deep, or has duplicate channel names.
+AovSet read_aovs(const std::string &path, ImageLayout *layout = nullptr);
 
 /// True when `path` exists and its header reads back (e.g. a finished
 /// output frame); never throws.
 bool is_readable_image(const std::string &path);
 
-/// Writes all channels as OpenEXR with ZIP compression, each as 32-bit float
-/// or, where AovSet::precision says so, 16-bit half; and the
-/// attributes as header attributes (no time stamp unless `aovs` carries a
-/// "DateTime", so equal inputs give equal bytes). The file is written under a temporary
-/// name in the same directory and renamed into place, so `path` never holds a
-/// half-written image. Throws aaf::Error "<path>: <problem>".
-void write_aovs(const AovSet &aovs, const std::string &path);
+/// Lossless EXR compressions, and the lossy DWA ones (colour layers only).
+bool is_known_compression(const std::string &name);
+bool is_lossy_compression(const std::string &name);
+
+struct WriteOptions {
+    /// Header and other parts to carry over from a source file (read_aovs).
+    const ImageLayout *layout = nullptr;
+    /// zip (default), zips, piz, rle, none, or the lossy dwaa/dwab, which
+    /// is refused unless every channel written is a colour channel.
+    std::string compression = "zip";
+    /// Stores colour channels (R, G, B, A and LAYER.R/G/B/A, except the
+    /// progress.* sums) as half; data channels always stay as they are.
+    bool half_colour = false;
+};
+
+/// True for a channel WriteOptions::half_colour treats as colour.
+bool is_colour_channel(const std::string &name);
+
+/// Writes all channels as OpenEXR, each as 32-bit float or, where
+/// AovSet::precision says so, 16-bit half; and the attributes as header
+/// attributes (over those of `options.layout`; no time stamp unless one is
+/// carried, so equal inputs give equal bytes). The file is written under a
+/// temporary name in the same directory and renamed into place, so `path`
+/// never holds a half-written image. Throws aaf::InputError "<path>: <problem>".
+void write_aovs(const AovSet &aovs, const std::string &path, const WriteOptions &options = {});
 
 }  // namespace aaf::io
