@@ -1,3 +1,4 @@
+#include <algorithm>
 #include <memory>
 #include <string>
 #include <vector>
@@ -10,22 +11,56 @@
 
 namespace aaf::cli {
 
+namespace {
+
+/// The channels of layer `layer` to show: LAYER.R/G/B, else LAYER.X/Y/Z,
+/// else its only channel; throws aaf::InputError listing what it has.
+std::vector<std::string> layer_channels(const AovSet &aovs, const std::string &layer) {
+    std::vector<std::string> members;
+    for (const std::string &name : aovs.channel_names())
+        if (name.size() > layer.size() + 1 && name.compare(0, layer.size() + 1, layer + ".") == 0 &&
+            name.find('.', layer.size() + 1) == std::string::npos)
+            members.push_back(name);
+    for (const std::vector<std::string> &suffixes :
+         {std::vector<std::string>{"R", "G", "B"}, std::vector<std::string>{"X", "Y", "Z"}}) {
+        std::vector<std::string> names;
+        for (const std::string &suffix : suffixes)
+            if (aovs.has_channel(layer + "." + suffix)) names.push_back(layer + "." + suffix);
+        if (names.size() == 3) return names;
+    }
+    if (members.size() == 1) return members;
+    std::string listed;
+    for (const std::string &name : members) listed += (listed.empty() ? "" : ", ") + name;
+    throw InputError("layer '" + layer + "' has no R,G,B, X,Y,Z or single channel to show" +
+                     (listed.empty() ? " (no such layer)" : " (it has " + listed + ")"));
+}
+
+}  // namespace
+
 void add_preview_command(CLI::App &app) {
     struct Options {
-        std::string input, output;
+        std::string input, output, layer;
         std::vector<std::string> channels{"R", "G", "B"};
-        float exposure = 0;
         std::vector<float> range;
         bool false_colour = false;
+        io::PreviewOptions preview;
     };
     auto options = std::make_shared<Options>();
-    CLI::App *cmd = app.add_subcommand("preview", "Write an sRGB PNG preview of an EXR's channels");
+    CLI::App *cmd = app.add_subcommand(
+        "preview", "Write a PNG preview: colour through an OpenColorIO display/view, data as it is");
     cmd->add_option("input", options->input, "Input image")->required();
     cmd->add_option("-o,--output", options->output, "Output PNG")->required();
     cmd->add_option("--channels", options->channels, "One channel (grey) or three")
         ->delimiter(',')
         ->capture_default_str();
-    cmd->add_option("--exposure", options->exposure, "Exposure, stops")->capture_default_str();
+    cmd->add_option("--layer", options->layer, "Show a layer: LAYER.R/G/B, LAYER.X/Y/Z or its one channel");
+    cmd->add_option("--ocio-config", options->preview.ocio_config,
+                    "OpenColorIO config (default: $OCIO, else the config embedded in aaf)");
+    cmd->add_option("--display", options->preview.display, "OCIO display (default: the config's default)");
+    cmd->add_option("--view", options->preview.view, "OCIO view (default: the display's default)");
+    cmd->add_option("--colorspace", options->preview.input_space,
+                    "Colour space of the input (default: the config's scene_linear role)");
+    cmd->add_option("--exposure", options->preview.exposure_stops, "Exposure, stops")->capture_default_str();
     cmd->add_flag("--false-colour", options->false_colour,
                   "One channel in false colour, 0 in black (AAF Fig. 7 style for aaf.beta, plan.spp)");
     cmd->add_option("--range", options->range,
@@ -34,16 +69,23 @@ void add_preview_command(CLI::App &app) {
         ->expected(2);
     cmd->callback([options] {
         check_not_same_file(options->input, options->output);
-        const AovSet aovs = io::read_aovs(options->input);
+        io::ImageLayout layout;
+        const AovSet aovs = io::read_aovs(options->input, &layout);
+        std::vector<std::string> channels = options->channels;
+        if (!options->layer.empty())
+            channels = with_context(options->input, [&] { return layer_channels(aovs, options->layer); });
         if (options->false_colour) {
-            if (options->channels.size() != 1)
-                throw Error(options->output + ": --false-colour takes one channel");
+            if (channels.size() != 1) throw Error(options->output + ": --false-colour takes one channel");
             const float low = options->range.empty() ? 0.0f : options->range[0];
             const float high = options->range.empty() ? 0.0f : options->range[1];
-            io::write_false_colour_png(aovs, options->channels[0], options->output, low, high);
+            io::write_false_colour_png(aovs, channels[0], options->output, low, high);
             return;
         }
-        io::write_preview_png(aovs, options->channels, options->output, options->exposure);
+        // The picture is the display window; the pixels sit at the data window.
+        io::PreviewOptions preview = options->preview;
+        preview.data_window = layout.data_window();
+        preview.display_window = layout.display_window();
+        io::write_preview_png(aovs, channels, options->output, preview);
     });
 }
 

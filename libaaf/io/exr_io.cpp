@@ -27,6 +27,14 @@ ImageLayout &ImageLayout::operator=(ImageLayout &&) noexcept = default;
 int ImageLayout::part_count() const {
     return impl_->parts;
 }
+PixelWindow ImageLayout::data_window() const {
+    const OIIO::ImageSpec &spec = impl_->first_part;
+    return {spec.x, spec.y, spec.width, spec.height};
+}
+PixelWindow ImageLayout::display_window() const {
+    const OIIO::ImageSpec &spec = impl_->first_part;
+    return {spec.full_x, spec.full_y, spec.full_width, spec.full_height};
+}
 
 namespace {
 

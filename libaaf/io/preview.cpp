@@ -2,11 +2,15 @@
 
 #include <OpenColorIO/OpenColorIO.h>
 
+#include <cstdlib>
+#include <sstream>
+
 #include <algorithm>
 #include <cmath>
 #include <limits>
 
 #include "aaf/core/error.h"
+#include "default_ocio_config.h"
 #include "false_colour.h"
 
 namespace OCIO = OCIO_NAMESPACE;
@@ -15,17 +19,37 @@ namespace aaf::io {
 
 namespace {
 
-/// Linear -> sRGB-encoded. OCIO 2.1 ships no built-in config, so the transform
-/// is built directly: the inverse of the sRGB decoding curve, a power 2.4 with
-/// offset 0.055 and a linear toe.
-OCIO::ConstCPUProcessorRcPtr srgb_encoder() {
-    OCIO::ExponentWithLinearTransformRcPtr curve = OCIO::ExponentWithLinearTransform::Create();
-    const double gamma[4] = {2.4, 2.4, 2.4, 1.0};
-    const double offset[4] = {0.055, 0.055, 0.055, 0.0};
-    curve->setGamma(gamma);
-    curve->setOffset(offset);
-    curve->setDirection(OCIO::TRANSFORM_DIR_INVERSE);
-    return OCIO::Config::CreateRaw()->getProcessor(curve)->getDefaultCPUProcessor();
+/// The config of `options`, $OCIO or the embedded one, and its name.
+OCIO::ConstConfigRcPtr load_config(const PreviewOptions &options, std::string &name) {
+    if (!options.ocio_config.empty()) {
+        name = options.ocio_config;
+        return OCIO::Config::CreateFromFile(options.ocio_config.c_str());
+    }
+    if (const char *env = std::getenv("OCIO"); env && *env) {
+        name = env;
+        return OCIO::Config::CreateFromEnv();
+    }
+    name = "embedded aaf-default";
+    std::istringstream text(kDefaultOcioConfig);
+    return OCIO::Config::CreateFromStream(text);
+}
+
+/// The CPU processor from the input space to the display/view of `options`.
+OCIO::ConstCPUProcessorRcPtr display_processor(const PreviewOptions &options, std::string &config_name) {
+    OCIO::ConstConfigRcPtr config = load_config(options, config_name);
+    const std::string display = options.display.empty() ? config->getDefaultDisplay() : options.display;
+    const std::string view = options.view.empty() ? config->getDefaultView(display.c_str()) : options.view;
+    std::string input = options.input_space;
+    if (input.empty()) {
+        OCIO::ConstColorSpaceRcPtr linear = config->getColorSpace(OCIO::ROLE_SCENE_LINEAR);
+        if (!linear) throw OCIO::Exception("the config has no scene_linear role (give --colorspace)");
+        input = linear->getName();
+    }
+    OCIO::DisplayViewTransformRcPtr transform = OCIO::DisplayViewTransform::Create();
+    transform->setSrc(input.c_str());
+    transform->setDisplay(display.c_str());
+    transform->setView(view.c_str());
+    return config->getProcessor(transform)->getDefaultCPUProcessor();
 }
 
 }  // namespace
@@ -59,33 +83,51 @@ void write_false_colour_png(const AovSet &aovs, const std::string &channel, cons
     write_png(rgb, aovs.width(), aovs.height(), path);
 }
 
-void write_preview_png(const AovSet &aovs, const std::vector<std::string> &channels, const std::string &path,
-                       float exposure_stops) {
+bool is_colour_preview_channel(const std::string &name) {
+    const std::size_t dot = name.rfind('.');
+    const std::string suffix = dot == std::string::npos ? name : name.substr(dot + 1);
+    return suffix == "R" || suffix == "G" || suffix == "B" || suffix == "A" || suffix == "Y";
+}
+
+std::string write_preview_png(const AovSet &aovs, const std::vector<std::string> &channels,
+                              const std::string &path, const PreviewOptions &options) {
     if (channels.size() != 1 && channels.size() != 3)
         throw Error(path + ": a preview needs one or three channels");
     std::vector<ConstPlaneView> planes;
+    bool colour = true;
     for (const std::string &name : channels) {
         if (!aovs.has_channel(name)) throw Error(path + ": no channel '" + name + "' to preview");
         planes.push_back(aovs.channel(name));
+        colour = colour && is_colour_preview_channel(name);
     }
-    const float scale = std::exp2(exposure_stops);
-    const int width = aovs.width(), height = aovs.height();
-    std::vector<float> rgb(aovs.pixel_count() * 3);
-    for (int y = 0; y < height; ++y)
-        for (int x = 0; x < width; ++x)
+    // Place the data window inside the display window (cropping what lies outside).
+    PixelWindow data = options.data_window, shown = options.display_window;
+    if (shown.width <= 0 || shown.height <= 0) data = shown = {0, 0, aovs.width(), aovs.height()};
+    const float scale = std::exp2(options.exposure_stops);
+    std::vector<float> rgb(std::size_t(shown.width) * shown.height * 3, 0.0f);
+    for (int y = 0; y < shown.height; ++y)
+        for (int x = 0; x < shown.width; ++x) {
+            const int source_x = x + shown.x - data.x, source_y = y + shown.y - data.y;
+            if (source_x < 0 || source_y < 0 || source_x >= aovs.width() || source_y >= aovs.height())
+                continue;
             for (int c = 0; c < 3; ++c) {
-                float value = planes[planes.size() == 3 ? c : 0](x, y) * scale;
-                rgb[(std::size_t(y) * width + x) * 3 + c] =
-                    std::isfinite(value) ? std::max(0.0f, value) : 0.0f;
+                const float value = planes[planes.size() == 3 ? c : 0](source_x, source_y) * scale;
+                rgb[(std::size_t(y) * shown.width + x) * 3 + c] = std::isfinite(value) ? value : 0.0f;
             }
-    try {
-        OCIO::PackedImageDesc image(rgb.data(), width, height, 3);
-        srgb_encoder()->apply(image);
-    } catch (const OCIO::Exception &e) {
-        throw Error(path + ": colour conversion failed: " + e.what());
+        }
+    std::string config_name;
+    if (colour) {
+        try {
+            OCIO::PackedImageDesc image(rgb.data(), shown.width, shown.height, 3);
+            display_processor(options, config_name)->apply(image);
+        } catch (const OCIO::Exception &e) {
+            throw Error(path + ": OpenColorIO: " + e.what());
+        }
     }
-
-    write_png(rgb, width, height, path);
+    // Data values are written as they are; the PNG writer clamps to [0, 1].
+    for (float &value : rgb) value = std::clamp(value, 0.0f, 1.0f);
+    write_png(rgb, shown.width, shown.height, path);
+    return config_name;
 }
 
 }  // namespace aaf::io

@@ -5,6 +5,7 @@
 
 #include <OpenImageIO/imageio.h>
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -290,4 +291,33 @@ TEST_CASE("CLI filter: each bad input gives its exit code and leaves no output",
     // No temporary files are left behind by any of the failures.
     for (const auto &entry : fs::directory_iterator(dir))
         CHECK(entry.path().filename().string().find(".tmp-") == std::string::npos);
+}
+
+TEST_CASE("CLI preview: the display window, --layer, and data layers shown as they are",
+          "[cli][pipeline][preview]") {
+    const fs::path dir = scratch_dir("pipeline_preview");
+    write_two_part_input(dir / "in.exr", small_render());
+    REQUIRE(run_aaf("filter aaf " + (dir / "in.exr").string() + " -o " + (dir / "out.exr").string() +
+                    " --keep-beauty")
+                .exit_code == 0);
+    const std::string out = (dir / "out.exr").string();
+    REQUIRE(run_aaf("preview " + out + " -o " + (dir / "beauty.png").string()).exit_code == 0);
+    const aaf::AovSet beauty = aaf::io::read_aovs((dir / "beauty.png").string());
+    CHECK(beauty.width() == 64);  // the display window, not the 32x24 data window
+    CHECK(beauty.height() == 48);
+    CHECK(beauty.channel("G")(0, 0) == 0.0f);  // outside the data window
+
+    REQUIRE(run_aaf("preview " + out + " -o " + (dir / "filtered.png").string() + " --layer aaf").exit_code ==
+            0);
+    REQUIRE(run_aaf("preview " + out + " -o " + (dir / "position.png").string() + " --layer P").exit_code ==
+            0);
+    // Positions are data: P.Y of the ground (0) shows as 0, not through the sRGB curve.
+    const aaf::AovSet position = aaf::io::read_aovs((dir / "position.png").string());
+    const aaf::AovSet input = aaf::io::read_aovs(out);
+    const float y_value = input.channel("P.Y")(0, 23);
+    CHECK(position.channel("G")(10, 5 + 23) == Approx(std::clamp(y_value, 0.0f, 1.0f)).margin(1.0f / 255));
+
+    const auto ambiguous = run_aaf("preview " + out + " -o " + (dir / "x.png").string() + " --layer shadow");
+    CHECK(ambiguous.exit_code == 3);
+    CHECK_THAT(ambiguous.output, Catch::Contains("layer 'shadow'") && Catch::Contains("shadow.V"));
 }

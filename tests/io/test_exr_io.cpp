@@ -1,6 +1,7 @@
 #include <catch2/catch.hpp>
 
 #include <algorithm>
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 
@@ -95,21 +96,89 @@ TEST_CASE("Rewriting an existing file replaces it whole", "[io]") {
     CHECK(file_count(dir) == 1);
 }
 
-TEST_CASE("PNG preview encodes linear values with the sRGB curve", "[io][preview]") {
+TEST_CASE("PNG preview encodes colour with the sRGB curve and writes data as it is", "[io][preview]") {
     const fs::path dir = scratch_dir("preview");
     AovSet aovs(3, 1);
-    PlaneView grey = aovs.add_channel("V");
+    PlaneView grey = aovs.add_channel("Y");
     grey(0, 0) = 0.0f;
     grey(1, 0) = 0.2140f;  // sRGB encodes 0.214 as ~0.5 (127.5 / 255)
     grey(2, 0) = 4.0f;     // clipped to white
     const std::string path = (dir / "v.png").string();
-    io::write_preview_png(aovs, {"V"}, path);
+    CHECK(io::write_preview_png(aovs, {"Y"}, path) == "embedded aaf-default");
     const AovSet back = io::read_aovs(path);
     REQUIRE(back.has_channel("R"));
     CHECK(back.channel("R")(0, 0) == 0.0f);
     CHECK(back.channel("G")(1, 0) == Approx(0.5f).margin(1.5f / 255));
     CHECK(back.channel("B")(2, 0) == 1.0f);
     CHECK_THROWS_WITH(io::write_preview_png(aovs, {"nope"}, path), Catch::Contains("nope"));
+
+    // A data channel (visibility) is never colour converted: 0.214 stays 0.214.
+    PlaneView visibility = aovs.add_channel("shadow.V");
+    visibility(1, 0) = 0.2140f;
+    CHECK(io::write_preview_png(aovs, {"shadow.V"}, path).empty());
+    CHECK(io::read_aovs(path).channel("G")(1, 0) == Approx(0.214f).margin(1.0f / 255));
+}
+
+namespace {
+
+/// An OCIO config whose only view encodes linear values with x^(1/power).
+std::string write_power_config(const fs::path &path, int power) {
+    std::ofstream(path) << "ocio_profile_version: 2\n"
+                           "roles: {default: lin, scene_linear: lin}\n"
+                           "displays:\n  Test:\n    - !<View> {name: Root, colorspace: root}\n"
+                           "colorspaces:\n  - !<ColorSpace> {name: lin}\n"
+                           "  - !<ColorSpace>\n    name: root\n"
+                           "    from_reference: !<ExponentTransform> {value: ["
+                        << power << ", " << power << ", " << power << ", 1], direction: inverse}\n";
+    return path.string();
+}
+
+}  // namespace
+
+TEST_CASE("PNG preview uses --ocio-config, then $OCIO, then the embedded config", "[io][preview][ocio]") {
+    const fs::path dir = scratch_dir("preview_ocio");
+    AovSet aovs(1, 1);
+    aovs.add_channel("R")(0, 0) = 0.25f;
+    aovs.add_channel("G")(0, 0) = 0.25f;
+    aovs.add_channel("B")(0, 0) = 0.25f;
+    const std::string square_root = write_power_config(dir / "root2.ocio", 2);
+    const std::string fourth_root = write_power_config(dir / "root4.ocio", 4);
+    const std::string path = (dir / "p.png").string();
+    auto shown = [&] { return io::read_aovs(path).channel("R")(0, 0); };
+
+    ::setenv("OCIO", square_root.c_str(), 1);
+    CHECK(io::write_preview_png(aovs, {"R", "G", "B"}, path) == square_root);
+    CHECK(shown() == Approx(0.5f).margin(1.0f / 255));  // sqrt(0.25)
+    io::PreviewOptions options;
+    options.ocio_config = fourth_root;  // the option beats $OCIO
+    CHECK(io::write_preview_png(aovs, {"R", "G", "B"}, path, options) == fourth_root);
+    CHECK(shown() == Approx(0.7071f).margin(1.0f / 255));
+    ::unsetenv("OCIO");
+    io::write_preview_png(aovs, {"R", "G", "B"}, path);
+    CHECK(shown() == Approx(0.5371f).margin(1.0f / 255));  // sRGB-encoded 0.25
+    options.ocio_config = (dir / "missing.ocio").string();
+    CHECK_THROWS_WITH(io::write_preview_png(aovs, {"R", "G", "B"}, path, options),
+                      Catch::Contains("p.png: OpenColorIO"));
+}
+
+TEST_CASE("PNG preview shows the display window, the data window in place", "[io][preview]") {
+    const fs::path dir = scratch_dir("preview_window");
+    AovSet aovs(2, 2);
+    for (const char *c : {"R", "G", "B"}) {
+        PlaneView plane = aovs.add_channel(c);
+        for (int y = 0; y < 2; ++y)
+            for (int x = 0; x < 2; ++x) plane(x, y) = 1.0f;
+    }
+    io::PreviewOptions options;
+    options.data_window = {3, 1, 2, 2};     // pixels at x 3-4, y 1-2...
+    options.display_window = {0, 0, 4, 3};  // ...of a 4x3 picture: x 4 is cropped
+    const std::string path = (dir / "w.png").string();
+    io::write_preview_png(aovs, {"R", "G", "B"}, path, options);
+    const AovSet back = io::read_aovs(path);
+    REQUIRE(back.width() == 4);
+    REQUIRE(back.height() == 3);
+    for (int y = 0; y < 3; ++y)
+        for (int x = 0; x < 4; ++x) CHECK(back.channel("G")(x, y) == ((x == 3 && y >= 1) ? 1.0f : 0.0f));
 }
 
 TEST_CASE("Half channels are written as half, read back as half, the rest stays float", "[io][half]") {

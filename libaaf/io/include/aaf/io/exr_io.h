@@ -4,6 +4,7 @@
 #include <string>
 
 #include "aaf/core/aov_set.h"
+#include "aaf/io/preview.h"
 
 namespace aaf::io {
 
@@ -21,6 +22,9 @@ class ImageLayout {
 
     /// Parts in the source file (1 for a single-part image).
     int part_count() const;
+    /// The first part's data window (where its pixels lie) and display window.
+    PixelWindow data_window() const;
+    PixelWindow display_window() const;
 
     struct Impl;  ///< OpenImageIO details, private to aaf_io
     const Impl &impl() const { return *impl_; }

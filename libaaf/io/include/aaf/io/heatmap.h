@@ -16,7 +16,7 @@ namespace aaf::io {
 ///   the scale as attribute `aaf:heatmap:max`.
 /// Both are written under temporary names and renamed. Returns the scale.
 /// Throws aaf::Error "<path>: <problem>".
-float write_error_heatmap(const AovSet &test, const AovSet &reference, const std::vector<std::string> &channels,
-                          const std::string &png_path);
+float write_error_heatmap(const AovSet &test, const AovSet &reference,
+                          const std::vector<std::string> &channels, const std::string &png_path);
 
 }  // namespace aaf::io

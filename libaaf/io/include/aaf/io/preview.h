@@ -7,12 +7,35 @@
 
 namespace aaf::io {
 
-/// Writes an 8-bit sRGB PNG preview of three linear channels (or one channel
-/// shown as grey), scaled by 2^exposure_stops, encoded with OpenColorIO's
-/// sRGB transfer function (IEC 61966-2-1). Written to a temporary name and
-/// renamed. Throws aaf::Error "<path>: <problem>".
-void write_preview_png(const AovSet &aovs, const std::vector<std::string> &channels, const std::string &path,
-                       float exposure_stops = 0.0f);
+/// A rectangle of pixels: an EXR data or display window.
+struct PixelWindow {
+    int x = 0, y = 0, width = 0, height = 0;
+};
+
+struct PreviewOptions {
+    /// OpenColorIO config: this file, else $OCIO, else the project's embedded
+    /// config (default_ocio_config.h).
+    std::string ocio_config;
+    std::string display, view;  ///< empty: the config's default display and its default view
+    std::string input_space;    ///< empty: the config's scene_linear role
+    float exposure_stops = 0;   ///< applied in linear light before the view
+    /// Where the image's pixels sit (its data window) in the picture to write
+    /// (the display window); both empty = the image as it is. Pixels of the
+    /// display window outside the data window are black.
+    PixelWindow data_window, display_window;
+};
+
+/// True for channels that hold colour: R, G, B, A, Y and LAYER.R/G/B/A/Y.
+bool is_colour_preview_channel(const std::string &name);
+
+/// Writes an 8-bit PNG preview of three channels (or one shown as grey).
+/// Colour channels go through the OpenColorIO display/view of `options`;
+/// data channels (positions, normals, visibility, distances) are never colour
+/// converted: their values are written as they are, clamped to [0, 1].
+/// Written to a temporary name and renamed. Returns the name of the
+/// OpenColorIO config used ("" for data). Throws aaf::Error "<path>: <problem>".
+std::string write_preview_png(const AovSet &aovs, const std::vector<std::string> &channels,
+                              const std::string &path, const PreviewOptions &options = {});
 
 /// Writes a false-colour PNG of one channel, as AAF Fig. 7 shows beta and n:
 /// values in [low, high] run from dark blue through cyan, green and yellow to
