@@ -1,0 +1,13 @@
+#!/usr/bin/env bash
+# Installs Debian's Blender 3.4 (about 300 MB with its dependencies), which the
+# compositor test (tests/blender/compositor_test.sh) needs; without it that
+# test reports itself skipped.
+set -euo pipefail
+if command -v blender >/dev/null; then
+  blender --version | head -1
+  exit 0
+fi
+sudo=""
+[ "$(id -u)" -eq 0 ] || sudo="sudo"
+$sudo apt-get update -q
+DEBIAN_FRONTEND=noninteractive $sudo apt-get install -y -q --no-install-recommends blender
