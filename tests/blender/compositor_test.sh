@@ -6,12 +6,12 @@
 # Exits 77 (ctest: skipped) when Blender is not installed.
 set -euo pipefail
 aaf="$1" work="$2"
-here="$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)"
 blender="${AAF_BLENDER:-$(command -v blender || true)}"
 if [ -z "$blender" ]; then
   echo "SKIPPED: Blender is not installed (scripts/install_blender.sh installs Debian's Blender 3.4)"
   exit 77
 fi
+here="$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)"
 rm -rf "$work" && mkdir -p "$work"
 "$aaf" render grids -o "$work/noisy.exr" --width 32 --height 24 --spp 4
 "$aaf" filter aaf "$work/noisy.exr" -o "$work/filtered.exr"
