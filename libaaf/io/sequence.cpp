@@ -7,6 +7,8 @@
 #include <regex>
 #include <set>
 
+#include <OpenImageIO/filesystem.h>
+
 #include "aaf/core/error.h"
 
 namespace aaf::io {
@@ -35,6 +37,21 @@ FrameField find_field(const std::string &pattern) {
         field.padding = match[2].length() ? std::stoi(match[2].str()) : 0;
     }
     return field;
+}
+
+/// The pattern in OpenImageIO's normalised printf form, with this project's
+/// padding rule: a run of n '#' or '@' is n digits (OIIO's own '#' is 4).
+std::string normalized_pattern(const std::string &pattern) {
+    const FrameField field = find_field(pattern);
+    if (field.begin == std::string::npos)
+        throw Error(pattern + ": no frame field (#, @ or %0Nd) in the pattern");
+    const bool hashes = pattern[field.begin] == '#' || pattern[field.begin] == '@';
+    std::string normalized, framespec;
+    if (!OIIO::Filesystem::parse_pattern(pattern.c_str(), hashes ? field.padding : 0, normalized,
+                                         framespec) ||
+        normalized.empty())
+        throw Error(pattern + ": cannot read the frame field of the pattern");
+    return normalized;
 }
 
 int parse_int(const std::string &text, const std::string &spec) {
@@ -66,7 +83,14 @@ std::vector<int> parse_frame_range(const std::string &spec) {
         if (last < first) throw Error("bad frame range '" + spec + "': " + part + " ends before it starts");
         if (dash == std::string::npos && step_at != std::string::npos)
             throw Error("bad frame range '" + spec + "': a step needs a range (first-last)");
-        for (int frame = first; frame <= last; frame += step)
+        // Checked above (OIIO would accept a descending span and ignore ":2");
+        // OpenImageIO enumerates the item in its own syntax, "first-lastxstep".
+        const std::string item =
+            std::to_string(first) + "-" + std::to_string(last) + "x" + std::to_string(step);
+        std::vector<int> numbers;
+        if (!OIIO::Filesystem::enumerate_sequence(item, numbers))
+            throw Error("bad frame range '" + spec + "': cannot enumerate " + part);
+        for (int frame : numbers)
             if (seen.insert(frame).second) frames.push_back(frame);
         if (comma == std::string::npos) break;
         start = comma + 1;
@@ -79,40 +103,29 @@ bool is_sequence_pattern(const std::string &path) {
 }
 
 std::string frame_path(const std::string &pattern, int frame) {
-    const FrameField field = find_field(pattern);
-    if (field.begin == std::string::npos)
-        throw Error(pattern + ": no frame field (#, @ or %0Nd) in the pattern");
-    char digits[32];
-    std::snprintf(digits, sizeof digits, "%0*d", field.padding, frame);
-    return pattern.substr(0, field.begin) + digits + pattern.substr(field.end);
+    std::vector<std::string> names;
+    if (!OIIO::Filesystem::enumerate_file_sequence(normalized_pattern(pattern), {frame}, names) ||
+        names.empty())
+        throw Error(pattern + ": cannot make the path of frame " + std::to_string(frame));
+    return names.front();
 }
 
 std::vector<int> frames_on_disk(const std::string &pattern) {
-    const FrameField field = find_field(pattern);
-    if (field.begin == std::string::npos)
-        throw Error(pattern + ": no frame field (#, @ or %0Nd) in the pattern");
     const std::filesystem::path pattern_path(pattern);
     const std::filesystem::path directory = pattern_path.has_parent_path() ? pattern_path.parent_path() : ".";
-    const std::string name = pattern_path.filename().string();
-    const FrameField name_field = find_field(name);
-    const std::string prefix = name.substr(0, name_field.begin), suffix = name.substr(name_field.end);
-    std::vector<int> frames;
     std::error_code ec;
-    for (const auto &entry : std::filesystem::directory_iterator(directory, ec)) {
-        const std::string candidate = entry.path().filename().string();
-        if (candidate.size() <= prefix.size() + suffix.size() ||
-            candidate.compare(0, prefix.size(), prefix) != 0 ||
-            candidate.compare(candidate.size() - suffix.size(), suffix.size(), suffix) != 0)
-            continue;
-        const std::string number =
-            candidate.substr(prefix.size(), candidate.size() - prefix.size() - suffix.size());
-        if (!std::all_of(number.begin() + (number[0] == '-' ? 1 : 0), number.end(), ::isdigit) ||
-            number == "-")
-            continue;
-        const int frame = std::stoi(number);
-        if (frame_path(name, frame) == candidate) frames.push_back(frame);  // padding must match too
-    }
-    if (ec) throw Error(directory.string() + ": cannot list the directory: " + ec.message());
+    if (!std::filesystem::is_directory(directory, ec))
+        throw Error(directory.string() + ": cannot list the directory: no such directory");
+    std::vector<int> numbers;
+    std::vector<std::string> names;
+    if (!OIIO::Filesystem::scan_for_matching_filenames(normalized_pattern(pattern), numbers, names))
+        throw Error(directory.string() + ": cannot list the directory");
+    // OpenImageIO also matches other paddings (shot.7.exr for shot.####.exr); this rule does not.
+    std::vector<int> frames;
+    for (std::size_t i = 0; i < numbers.size(); ++i)
+        if (std::filesystem::path(names[i]).filename() ==
+            std::filesystem::path(frame_path(pattern, numbers[i])).filename())
+            frames.push_back(numbers[i]);
     std::sort(frames.begin(), frames.end());
     return frames;
 }

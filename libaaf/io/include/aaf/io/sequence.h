@@ -5,6 +5,11 @@
 
 namespace aaf::io {
 
+// A thin layer over OpenImageIO's Filesystem sequence functions
+// (parse_pattern, enumerate_sequence, enumerate_file_sequence,
+// scan_for_matching_filenames) with two rules of its own: ':' is a step like
+// 'x' (OIIO ignores it), and n '#' mean n digits (OIIO: one '#' = 4 digits).
+
 /// Frame numbers of a range spec, in the order written, duplicates kept out:
 /// "7"; "1-100"; "1-100x2" or "1-100:2" (every 2nd frame from 1); lists of
 /// these separated by commas, "1,5,7-9". Throws aaf::Error on a malformed spec,
