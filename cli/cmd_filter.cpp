@@ -43,35 +43,47 @@ void report_non_finite(const std::string &path, const NonFiniteCounts &counts) {
                  total, detail.c_str());
 }
 
+/// A set with `aovs`' attributes and, in order, the channel `from` of each
+/// (from, to) pair under the name `to` (values and storage precision copied).
+AovSet with_channels(const AovSet &aovs, const std::vector<std::pair<std::string, std::string>> &from_to) {
+    AovSet out(aovs.width(), aovs.height());
+    out.attributes = aovs.attributes;
+    const std::vector<std::string> &names = aovs.channel_names();
+    for (const auto &[from, to] : from_to) {
+        const std::size_t index = std::size_t(std::find(names.begin(), names.end(), from) - names.begin());
+        PlaneView plane = out.add_channel(to);
+        std::copy(aovs.plane(index).begin(), aovs.plane(index).end(), plane.data);
+        out.set_precision(to, aovs.precision(index));
+    }
+    return out;
+}
+
+bool contains(const std::vector<std::string> &names, const std::string &name) {
+    return std::find(names.begin(), names.end(), name) != names.end();
+}
+
 /// The filter's output with the input beauty back in R,G,B (or the renderer's
 /// beauty layer) and the filtered image as aaf.R/G/B (--keep-beauty).
 AovSet keep_beauty(const AovSet &filtered, const ChannelMap &channels) {
     const std::vector<std::string> &beauty = channels.channels(Role::Beauty);
     const std::vector<std::string> &noisy = channels.channels(Role::NoisyBeauty);
     const std::vector<std::string> &result = channels.channels(Role::FilteredBeauty);
-    AovSet out(filtered.width(), filtered.height());
-    out.attributes = filtered.attributes;
-    const std::vector<std::string> &names = filtered.channel_names();
-    auto copy = [&](std::size_t index, const std::string &as) {
-        PlaneView plane = out.add_channel(as);
-        std::copy(filtered.plane(index).begin(), filtered.plane(index).end(), plane.data);
-        out.set_precision(as, filtered.precision(index));
-    };
-    for (std::size_t i = 0; i < names.size(); ++i) {
-        const auto is = [&](const std::vector<std::string> &role) {
-            return std::find(role.begin(), role.end(), names[i]) != role.end();
-        };
-        if (is(beauty) || is(noisy)) continue;
-        copy(i, names[i]);
-    }
+    std::vector<std::pair<std::string, std::string>> from_to;
+    for (const std::string &name : filtered.channel_names())
+        if (!contains(beauty, name) && !contains(noisy, name)) from_to.emplace_back(name, name);
     for (std::size_t c = 0; c < beauty.size(); ++c) {
-        const auto index_of = [&](const std::string &name) {
-            return std::size_t(std::find(names.begin(), names.end(), name) - names.begin());
-        };
-        if (filtered.has_channel(noisy[c])) copy(index_of(noisy[c]), beauty[c]);
-        copy(index_of(beauty[c]), result[c]);
+        if (filtered.has_channel(noisy[c])) from_to.emplace_back(noisy[c], beauty[c]);
+        from_to.emplace_back(beauty[c], result[c]);
     }
-    return out;
+    return with_channels(filtered, from_to);
+}
+
+/// `aovs` less the channels in `dropped`.
+AovSet without_channels(const AovSet &aovs, const std::vector<std::string> &dropped) {
+    std::vector<std::pair<std::string, std::string>> from_to;
+    for (const std::string &name : aovs.channel_names())
+        if (!contains(dropped, name)) from_to.emplace_back(name, name);
+    return with_channels(aovs, from_to);
 }
 
 void add_aaf_method(CLI::App &filter) {
@@ -144,12 +156,17 @@ void add_aaf_method(CLI::App &filter) {
             // parts go through to the output unchanged.
             io::ImageLayout layout;
             AovSet input = io::read_aovs(job.input, &layout);
+            // AOVs the first part lacks may sit in other parts (one AOV per part);
+            // they are read for the filter and stay in their parts in the output.
+            const std::vector<std::string> borrowed = io::add_channels_from_other_parts(
+                job.input, layout, filter_inputs(channels.resolved(input)), input);
             report_non_finite(job.input, replace_non_finite(input, filter_inputs(channels.resolved(input))));
             AovSet output;
             run_with_threads(options->threads, [&] {
                 with_context(job.input, [&] { output = aaf_filter_aovs(input, channels, options->params); });
             });
             if (!options->replace_beauty) output = keep_beauty(output, channels.resolved(input));
+            if (!borrowed.empty()) output = without_channels(output, borrowed);
             io::WriteOptions write = options->write;
             write.layout = &layout;
             io::write_aovs(output, job.output, write);

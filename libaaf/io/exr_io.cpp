@@ -2,6 +2,7 @@
 
 #include <OpenImageIO/imageio.h>
 
+#include <algorithm>
 #include <cstdio>
 #include <memory>
 #include <set>
@@ -187,6 +188,35 @@ AovSet read_aovs(const std::string &path, ImageLayout *layout) {
         OIIO::geterror();  // the failed seek past the last part leaves a message
     }
     return aovs;
+}
+
+std::vector<std::string> add_channels_from_other_parts(const std::string &path, const ImageLayout &layout,
+                                                       const std::vector<std::string> &wanted, AovSet &aovs) {
+    std::vector<std::string> added;
+    if (layout.part_count() < 2) return added;
+    std::unique_ptr<OIIO::ImageInput> input = OIIO::ImageInput::open(path);
+    if (!input) throw InputError(path + ": cannot read image: " + OIIO::geterror());
+    for (int part = 1; part < layout.part_count(); ++part) {
+        const OIIO::ImageSpec spec = input->spec(part, 0);
+        const std::string part_name = spec.get_string_attribute("name", "#" + std::to_string(part));
+        for (int c = 0; c < spec.nchannels; ++c) {
+            const std::string &name = spec.channelnames[c];
+            if (aovs.has_channel(name) || std::find(wanted.begin(), wanted.end(), name) == wanted.end())
+                continue;
+            if (spec.width != aovs.width() || spec.height != aovs.height())
+                throw InputError(path + ": channel '" + name + "' is in part '" + part_name + "' of " +
+                                 std::to_string(spec.width) + "x" + std::to_string(spec.height) +
+                                 ", but the first part is " + std::to_string(aovs.width()) + "x" +
+                                 std::to_string(aovs.height()) + ": AOVs must share one resolution");
+            std::vector<float> values(aovs.pixel_count());
+            if (!input->read_image(part, 0, c, c + 1, TypeDesc::FLOAT, values.data()))
+                throw InputError(path + ": cannot read part '" + part_name + "': " + input->geterror());
+            PlaneView plane = aovs.add_channel(name);
+            std::copy(values.begin(), values.end(), plane.data);
+            added.push_back(name);
+        }
+    }
+    return added;
 }
 
 bool is_readable_image(const std::string &path) {

@@ -321,3 +321,82 @@ TEST_CASE("CLI preview: the display window, --layer, and data layers shown as th
     CHECK(ambiguous.exit_code == 3);
     CHECK_THAT(ambiguous.output, Catch::Contains("layer 'shadow'") && Catch::Contains("shadow.V"));
 }
+
+namespace {
+
+/// Writes `aovs` as a two-part EXR: the channels in `second` go to part
+/// "geometry" (of size `second_width` x `second_height`, filled with the
+/// first rows of the data when smaller), the rest to part "rgba".
+void write_split_parts(const fs::path &path, const aaf::AovSet &aovs, const std::vector<std::string> &second,
+                       int second_width, int second_height) {
+    std::vector<std::string> first_names, second_names;
+    for (const std::string &name : aovs.channel_names())
+        (std::find(second.begin(), second.end(), name) != second.end() ? second_names : first_names)
+            .push_back(name);
+    auto make_spec = [&](const std::vector<std::string> &names, int width, int height, const char *part) {
+        OIIO::ImageSpec spec(width, height, int(names.size()), TypeDesc::FLOAT);
+        spec.channelnames = names;
+        spec.attribute("name", part);
+        spec.full_width = kWidth;
+        spec.full_height = kHeight;
+        return spec;
+    };
+    auto interleave = [&](const std::vector<std::string> &names, int width, int height) {
+        std::vector<float> pixels;
+        for (int y = 0; y < height; ++y)
+            for (int x = 0; x < width; ++x)
+                for (const std::string &name : names) pixels.push_back(aovs.channel(name)(x, y));
+        return pixels;
+    };
+    OIIO::ImageSpec specs[2] = {make_spec(first_names, kWidth, kHeight, "rgba"),
+                                make_spec(second_names, second_width, second_height, "geometry")};
+    for (const auto &[name, value] : aovs.attributes) {
+        if (const aaf::Vec3 *v = std::get_if<aaf::Vec3>(&value)) {
+            const float data[3] = {v->x, v->y, v->z};
+            specs[0].attribute(name, OIIO::TypeVector, data);
+        } else if (const float *f = std::get_if<float>(&value)) {
+            specs[0].attribute(name, *f);
+        } else if (const std::string *s = std::get_if<std::string>(&value)) {
+            specs[0].attribute(name, *s);
+        }
+    }
+    auto out = OIIO::ImageOutput::create("openexr");
+    REQUIRE(out->open(path.string(), 2, specs));
+    REQUIRE(out->write_image(TypeDesc::FLOAT, interleave(first_names, kWidth, kHeight).data()));
+    REQUIRE(out->open(path.string(), specs[1], OIIO::ImageOutput::AppendSubimage));
+    REQUIRE(out->write_image(TypeDesc::FLOAT, interleave(second_names, second_width, second_height).data()));
+    REQUIRE(out->close());
+}
+
+}  // namespace
+
+TEST_CASE("CLI filter: AOVs in other parts are read, left in place, and must share the resolution",
+          "[cli][pipeline][parts]") {
+    const fs::path dir = scratch_dir("pipeline_parts");
+    const aaf::AovSet render = small_render();
+    const std::vector<std::string> geometry = {"P.X", "P.Y", "P.Z",       "N.X",
+                                               "N.Y", "N.Z", "id.object", "pixel.size"};
+    write_split_parts(dir / "split.exr", render, geometry, kWidth, kHeight);
+    aaf::io::write_aovs(render, (dir / "whole.exr").string());
+    REQUIRE(run_aaf("filter aaf " + (dir / "split.exr").string() + " -o " + (dir / "split_aaf.exr").string())
+                .exit_code == 0);
+    REQUIRE(run_aaf("filter aaf " + (dir / "whole.exr").string() + " -o " + (dir / "whole_aaf.exr").string())
+                .exit_code == 0);
+    // The same filter ran, its outputs are in the first part, the geometry stays in its own.
+    CHECK(read_part(dir / "split_aaf.exr", 0, "aaf.V") == read_part(dir / "whole_aaf.exr", 0, "aaf.V"));
+    auto in = OIIO::ImageInput::open((dir / "split_aaf.exr").string());
+    REQUIRE(in);
+    CHECK(in->spec(0, 0).channelindex("P.X") < 0);
+    CHECK(in->spec(1, 0).get_string_attribute("name") == "geometry");
+    CHECK(read_part(dir / "split_aaf.exr", 1, "P.X") == read_part(dir / "split.exr", 1, "P.X"));
+
+    // A part of another size cannot feed the filter.
+    write_split_parts(dir / "mismatched.exr", render, geometry, kWidth / 2, kHeight / 2);
+    const auto result =
+        run_aaf("filter aaf " + (dir / "mismatched.exr").string() + " -o " + (dir / "out.exr").string());
+    CHECK(result.exit_code == 3);
+    CHECK_THAT(result.output,
+               Catch::Contains("mismatched.exr: channel '") &&
+                   Catch::Contains("in part 'geometry' of 16x12, but the first part is 32x24"));
+    CHECK_FALSE(fs::exists(dir / "out.exr"));
+}

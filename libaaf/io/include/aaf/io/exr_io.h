@@ -2,6 +2,7 @@
 
 #include <memory>
 #include <string>
+#include <vector>
 
 #include "aaf/core/aov_set.h"
 #include "aaf/io/preview.h"
@@ -42,6 +43,14 @@ class ImageLayout {
 /// the file holds (ImageLayout). Throws aaf::InputError "<path>: <problem>"
 /// when the file is missing, unreadable, deep, or has duplicate channel names.
 AovSet read_aovs(const std::string &path, ImageLayout *layout = nullptr);
+
+/// Adds to `aovs` (the first part of `path`, read with `layout`) the channels
+/// of `wanted` that it lacks and that another part of the file holds, as
+/// renderers do that write one AOV per part. Returns the names added.
+/// Throws aaf::InputError "<path>: <problem>" when such a part's size differs
+/// from the first part's (AOVs must share one resolution).
+std::vector<std::string> add_channels_from_other_parts(const std::string &path, const ImageLayout &layout,
+                                                       const std::vector<std::string> &wanted, AovSet &aovs);
 
 /// True when `path` exists and its header reads back (e.g. a finished
 /// output frame); never throws.
