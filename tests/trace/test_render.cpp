@@ -439,3 +439,33 @@ TEST_CASE("Motion vectors of a sideways camera move match the pinhole projection
     settings.frame = 1;  // before the first key the camera holds still
     CHECK(trace::render_scene(path, settings).channel("motion.X")(16, 16) == 0.0f);
 }
+
+TEST_CASE("A checkpoint written between rounds resumes to the uninterrupted render", "[trace][resume]") {
+    trace::RenderSettings settings;
+    settings.width = 20;
+    settings.height = 15;
+    settings.spp = 3 * trace::kSamplesPerRound;
+    settings.checkpoint_interval_s = 1e-9;  // after every round but the last
+    std::vector<AovSet> checkpoints;
+    std::vector<int> progress;
+    settings.on_checkpoint = [&](const AovSet &partial) { checkpoints.push_back(partial); };
+    settings.on_progress = [&](int done, int total) {
+        CHECK(total == settings.spp);
+        progress.push_back(done);
+    };
+    const AovSet whole = trace::render_scene("grids", settings);
+    CHECK(progress == std::vector<int>{1024, 2048, 3072});
+    REQUIRE(checkpoints.size() == 2);
+    CHECK(std::get<int>(checkpoints[0].attributes.at(attr::kSppDone)) == 1024);
+    CHECK(std::get<int>(checkpoints[1].attributes.at(attr::kSppDone)) == 2048);
+    CHECK(checkpoints[0].channel("pixel.spp")(10, 10) == 1024.0f);
+
+    // A render killed after its first checkpoint continues from it to the same result.
+    trace::RenderSettings resumed = settings;
+    resumed.on_checkpoint = nullptr;
+    resumed.on_progress = nullptr;
+    resumed.resume = &checkpoints[0];
+    const AovSet continued = trace::render_scene("grids", resumed);
+    for (std::size_t i = 0; i < whole.channel_names().size(); ++i)
+        CHECK(continued.plane(i) == whole.plane(i));
+}
