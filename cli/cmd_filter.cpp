@@ -160,6 +160,7 @@ void add_aaf_method(CLI::App &filter) {
             // they are read for the filter and stay in their parts in the output.
             const std::vector<std::string> borrowed = io::add_channels_from_other_parts(
                 job.input, layout, filter_inputs(channels.resolved(input)), input);
+            // Resolved again: the borrowed channels may complete a synonym.
             report_non_finite(job.input, replace_non_finite(input, filter_inputs(channels.resolved(input))));
             AovSet output;
             run_with_threads(options->threads, [&] {

@@ -369,7 +369,7 @@ AovSet render_scene(const std::string &scene_name, const RenderSettings &setting
         });
         // Rounds of at most kSamplesPerRound samples, round k with pass k.
         auto last_checkpoint = Clock::now();
-        for (int round = spp_done / kSamplesPerRound; round < rounds; ++round) {
+        for (int round = spp_done / kSamplesPerRound; spp_done < settings.spp; ++round) {
             const int count = std::min(kSamplesPerRound, settings.spp - round * kSamplesPerRound);
             for_each_pixel_tiled(settings.width, settings.height, [&](int x, int y) {
                 const std::size_t i = std::size_t(y) * settings.width + x;

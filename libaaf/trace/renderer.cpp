@@ -134,6 +134,8 @@ void Renderer::trace_shadows(const PrimaryHit &primary, int x, int y, std::uint6
     const float centre_falloff =
         settings_.cosine_falloff && primary.found ? falloff(light, p, primary.normal, light.center) : 0.0f;
     const bool separate = has_separate_radiance();
+    // Thin lens: the pixel centre's point on the plane in focus, where every lens ray aims.
+    const Vec3 focus = camera.eye + camera.ray_direction(x + 0.5f, y + 0.5f) * camera.focus_distance_m;
     for (std::uint32_t i = 0; i < count; ++i) {
         float u1, u2;
         rng.next_float2(u1, u2);
@@ -170,8 +172,6 @@ void Renderer::trace_shadows(const PrimaryHit &primary, int x, int y, std::uint6
             float dx, dy;
             concentric_disc(secondary_rng.next_float(), secondary_rng.next_float(), dx, dy);
             const Vec3 lens = camera.eye + (camera.right * dx + camera.up * dy) * camera.aperture_radius_m;
-            const Vec3 focus =
-                camera.eye + camera.ray_direction(x + 0.5f, y + 0.5f) * camera.focus_distance_m;
             const Vec3 direction = focus - lens;
             const Hit hit = bvh_.intersect(lens, direction, 0.0f, std::numeric_limits<float>::infinity());
             if (hit.found) {

@@ -409,6 +409,19 @@ TEST_CASE("A reference resumed after its first round equals one rendered in one 
     }
     CHECK(std::get<int>(resumed.attributes.at(attr::kSppDone)) == settings.spp);
 
+    // Resuming a finished render (even one that ends inside a round) adds nothing.
+    settings.spp = trace::kSamplesPerRound + 300;
+    settings.resume = nullptr;
+    const AovSet finished = trace::render_scene("grids", settings);
+    settings.resume = &finished;
+    const AovSet again = trace::render_scene("grids", settings);
+    for (std::size_t i = 0; i < finished.channel_names().size(); ++i)
+        CHECK(again.plane(i) == finished.plane(i));
+    settings.spp = 2 * trace::kSamplesPerRound;
+    settings.resume = &finished;  // 1324 spp are not whole rounds: it cannot be continued
+    CHECK_THROWS_WITH(trace::render_scene("grids", settings), Catch::Contains("not whole rounds"));
+    settings.resume = &half;
+
     settings.seed = 2;  // a different render cannot continue this one
     CHECK_THROWS_WITH(trace::render_scene("grids", settings), Catch::Contains("aaf:seed"));
 }
