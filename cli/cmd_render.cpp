@@ -14,7 +14,6 @@
 #include "aaf/trace/render.h"
 #include "commands.h"
 #include "frame_runner.h"
-#include "input_guard.h"
 
 namespace aaf::cli {
 
@@ -123,6 +122,7 @@ void add_render_command(CLI::App &app) {
         if (!options->resume.empty()) {
             partial = io::read_aovs(options->resume);
             settings.resume = &*partial;
+            settings.resume_source = options->resume;
         }
 
         std::vector<FrameJob> jobs;
@@ -142,9 +142,8 @@ void add_render_command(CLI::App &app) {
             frame_settings.on_progress = [&](int done, int total) { report_rounds(done, total); };
             frame_settings.on_checkpoint = [&](const AovSet &so_far) { io::write_aovs(so_far, job.output); };
             trace::RenderTimings timings;
-            const AovSet aovs = with_context(options->resume.empty() ? job.input : options->resume, [&] {
-                return trace::render_scene(job.input, frame_settings, &timings);
-            });
+            // Scene and resume errors name their file themselves.
+            const AovSet aovs = trace::render_scene(job.input, frame_settings, &timings);
             io::write_aovs(aovs, job.output);
             if (settings.adaptive) {
                 const ChannelMap channels;

@@ -227,7 +227,10 @@ void write_attributes(const SceneDescription &scene, const RenderSettings &setti
 /// same scene, seed, size, frame and light.
 int restore_progress(const AovSet &partial, const SceneDescription &scene, const RenderSettings &settings,
                      std::vector<ShadowStats> &stats) {
-    auto fail = [](const std::string &problem) { throw InputError("cannot resume: " + problem); };
+    auto fail = [&](const std::string &problem) {
+        const std::string &source = settings.resume_source;
+        throw InputError((source.empty() ? "" : source + ": ") + "cannot resume: " + problem);
+    };
     auto attribute = [&](const char *name) -> const AttributeValue & {
         auto it = partial.attributes.find(name);
         if (it == partial.attributes.end()) fail(std::string("missing header attribute '") + name + "'");

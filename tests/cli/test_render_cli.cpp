@@ -114,6 +114,8 @@ TEST_CASE("CLI: a bad scene file is one error line naming it, exit 3, no output"
     CHECK_THAT(result.output, Catch::StartsWith("aaf: error: ") &&
                                   Catch::Contains("bad.json: objects[0].file: cannot open OBJ file"));
     CHECK(std::count(result.output.begin(), result.output.end(), '\n') == 1);
+    const std::size_t first = result.output.find("bad.json");
+    CHECK(result.output.find("bad.json", first + 1) == std::string::npos);  // named once
     CHECK_FALSE(fs::exists(dir / "out.exr"));
     CHECK(run_aaf("render nosuchscene -o " + (dir / "out.exr").string()).exit_code == 3);
 }

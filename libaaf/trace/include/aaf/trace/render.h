@@ -77,6 +77,7 @@ struct RenderSettings {
     /// output of an earlier render of the same scene, seed, size and frame,
     /// with the progress AOVs) to continue from instead of starting over.
     const AovSet *resume = nullptr;
+    std::string resume_source;  ///< where `resume` was read from, to name it in errors
     /// Called after each round with the samples per pixel done so far and the target.
     std::function<void(int done_spp, int total_spp)> on_progress;
     /// Called with the complete AOVs of the render so far (progress AOVs
