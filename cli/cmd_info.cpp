@@ -48,7 +48,7 @@ void add_info_command(CLI::App &app) {
             std::printf("  %-20s min %-12g max %-12g mean %g\n", aovs.channel_names()[c].c_str(), *lo, *hi,
                         mean);
         }
-        const ChannelMap channels;
+        const ChannelMap channels = ChannelMap{}.resolved(aovs);  // other renderers' names too
         const std::string &spp_name = channels.channel(Role::SamplesPerPixel);
         const std::string &id_name = channels.channel(Role::ObjectId);
         if (aovs.has_channel(spp_name) && aovs.has_channel(id_name))
