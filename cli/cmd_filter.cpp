@@ -62,6 +62,17 @@ bool contains(const std::vector<std::string> &names, const std::string &name) {
     return std::find(names.begin(), names.end(), name) != names.end();
 }
 
+/// AAF models soft shadows only: say so when the input's beauty was defocused.
+void warn_if_defocused(const std::string &path, const AovSet &aovs) {
+    auto it = aovs.attributes.find(attr::kApertureRadius);
+    const float *aperture = it == aovs.attributes.end() ? nullptr : std::get_if<float>(&it->second);
+    if (aperture && *aperture > 0)
+        std::fprintf(stderr,
+                     "aaf: warning: %s: rendered through a thin lens; AAF filters the in-focus shadow, "
+                     "its output R,G,B has no defocus\n",
+                     path.c_str());
+}
+
 /// The filter's output with the input beauty back in R,G,B (or the renderer's
 /// beauty layer) and the filtered image as aaf.R/G/B (--keep-beauty).
 AovSet keep_beauty(const AovSet &filtered, const ChannelMap &channels) {
@@ -161,6 +172,7 @@ void add_aaf_method(CLI::App &filter) {
             const std::vector<std::string> borrowed = io::add_channels_from_other_parts(
                 job.input, layout, filter_inputs(channels.resolved(input)), input);
             // Resolved again: the borrowed channels may complete a synonym.
+            warn_if_defocused(job.input, input);
             report_non_finite(job.input, replace_non_finite(input, filter_inputs(channels.resolved(input))));
             AovSet output;
             run_with_threads(options->threads, [&] {

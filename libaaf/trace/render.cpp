@@ -211,6 +211,7 @@ void write_attributes(const SceneDescription &scene, const RenderSettings &setti
     aovs.attributes[attr::kScene] = scene.name;
     aovs.attributes[attr::kSceneFile] = scene.source;
     aovs.attributes[attr::kLightCount] = int(scene.lights.size());
+    aovs.attributes[attr::kApertureRadius] = scene.camera.aperture_radius_m;
     aovs.attributes[attr::kSeed] = int(settings.seed);
     aovs.attributes[attr::kSpp] = settings.spp;
     aovs.attributes[attr::kSppDone] = spp_done;

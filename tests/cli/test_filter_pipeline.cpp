@@ -400,3 +400,20 @@ TEST_CASE("CLI filter: AOVs in other parts are read, left in place, and must sha
                    Catch::Contains("in part 'geometry' of 16x12, but the first part is 32x24"));
     CHECK_FALSE(fs::exists(dir / "out.exr"));
 }
+
+TEST_CASE("CLI filter: a thin-lens render gets a warning that AAF's output has no defocus",
+          "[cli][pipeline]") {
+    const fs::path dir = scratch_dir("pipeline_lens");
+    REQUIRE(
+        run_aaf("render studio --width 24 --height 18 --spp 4 -o " + (dir / "lens.exr").string()).exit_code ==
+        0);
+    const auto lens =
+        run_aaf("filter aaf " + (dir / "lens.exr").string() + " -o " + (dir / "out.exr").string());
+    CHECK(lens.exit_code == 0);
+    CHECK_THAT(lens.output, Catch::Contains("lens.exr: rendered through a thin lens"));
+    aaf::io::write_aovs(small_render(), (dir / "pinhole.exr").string());
+    const auto pinhole =
+        run_aaf("filter aaf " + (dir / "pinhole.exr").string() + " -o " + (dir / "p.exr").string());
+    CHECK(pinhole.exit_code == 0);
+    CHECK(pinhole.output.find("warning") == std::string::npos);
+}
