@@ -13,7 +13,8 @@
 //               to "is it blocked")
 //   intersect1  rtcIntersect1 on the stored rays (what d2 needs)
 // and reports rays per second for each and tracer / occluded1.
-// BM_Packets compares rtcOccluded4/8/16 against rtcOccluded1 on the same rays
+// BM_Packets compares rtcOccluded4/8/16 against rtcOccluded1, and
+// rtcIntersect16 against rtcIntersect1, on the same rays
 // (each packet holds consecutive samples of one pixel: same origin, nearby
 // light points, the most coherent grouping shadow rays allow).
 // BM_BuildQuality compares rtcOccluded1 on a MEDIUM and a HIGH quality BVH,
@@ -183,6 +184,28 @@ std::size_t run_intersect1(RTCScene scene, const std::vector<Ray> &rays) {
     return hits;
 }
 
+/// Loads rays [start, start + N) (fewer at the end: masked off) into a packet.
+template <int N, typename RayPacket>
+void fill_packet(const std::vector<Ray> &rays, std::size_t start, int *valid, RayPacket &packet) {
+    for (int k = 0; k < N; ++k) {
+        const bool active = start + k < rays.size();
+        valid[k] = active ? -1 : 0;
+        const Ray &ray = rays[active ? start + k : start];
+        packet.org_x[k] = ray.origin.x;
+        packet.org_y[k] = ray.origin.y;
+        packet.org_z[k] = ray.origin.z;
+        packet.dir_x[k] = ray.direction.x;
+        packet.dir_y[k] = ray.direction.y;
+        packet.dir_z[k] = ray.direction.z;
+        packet.tnear[k] = 0;
+        packet.tfar[k] = ray.t_far;
+        packet.time[k] = 0;
+        packet.mask[k] = std::numeric_limits<unsigned>::max();
+        packet.id[k] = 0;
+        packet.flags[k] = 0;
+    }
+}
+
 /// rtcOccludedN on packets of N consecutive stored rays.
 template <int N, typename Packet, typename Occluded>
 std::size_t run_packets(RTCScene scene, const std::vector<Ray> &rays, Occluded occluded) {
@@ -193,27 +216,28 @@ std::size_t run_packets(RTCScene scene, const std::vector<Ray> &rays, Occluded o
     alignas(64) int valid[N];
     alignas(64) Packet packet;
     for (std::size_t start = 0; start < rays.size(); start += N) {
-        for (int k = 0; k < N; ++k) {
-            const bool active = start + k < rays.size();
-            valid[k] = active ? -1 : 0;
-            const Ray &ray = rays[active ? start + k : start];
-            packet.org_x[k] = ray.origin.x;
-            packet.org_y[k] = ray.origin.y;
-            packet.org_z[k] = ray.origin.z;
-            packet.dir_x[k] = ray.direction.x;
-            packet.dir_y[k] = ray.direction.y;
-            packet.dir_z[k] = ray.direction.z;
-            packet.tnear[k] = 0;
-            packet.tfar[k] = ray.t_far;
-            packet.time[k] = 0;
-            packet.mask[k] = std::numeric_limits<unsigned>::max();
-            packet.id[k] = 0;
-            packet.flags[k] = 0;
-        }
+        fill_packet<N>(rays, start, valid, packet);
         occluded(valid, scene, &context, &packet);
         for (int k = 0; k < N; ++k) blocked += valid[k] && packet.tfar[k] < 0;
     }
     return blocked;
+}
+
+/// rtcIntersect16 on packets of 16 consecutive stored rays (the closest hit d2 needs).
+std::size_t run_intersect16(RTCScene scene, const std::vector<Ray> &rays) {
+    RTCIntersectContext context;
+    rtcInitIntersectContext(&context);
+    context.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;
+    std::size_t hits = 0;
+    alignas(64) int valid[16];
+    alignas(64) RTCRayHit16 packet;
+    for (std::size_t start = 0; start < rays.size(); start += 16) {
+        fill_packet<16>(rays, start, valid, packet.ray);
+        for (int k = 0; k < 16; ++k) packet.hit.geomID[k] = RTC_INVALID_GEOMETRY_ID;
+        rtcIntersect16(valid, scene, &context, &packet);
+        for (int k = 0; k < 16; ++k) hits += valid[k] && packet.hit.geomID[k] != RTC_INVALID_GEOMETRY_ID;
+    }
+    return hits;
 }
 
 void set_flush_to_zero(bool on) {
@@ -259,7 +283,7 @@ void BM_Packets(benchmark::State &state, const std::string &scene_name) {
     Fixture &f = fixture(scene_name);
     set_flush_to_zero(true);
     const RTCScene scene = f.renderer->bvh().handle();
-    double single_s = 0, p4_s = 0, p8_s = 0, p16_s = 0;
+    double single_s = 0, p4_s = 0, p8_s = 0, p16_s = 0, intersect1_s = 0, intersect16_s = 0;
     for (auto _ : state) {
         auto start = std::chrono::steady_clock::now();
         benchmark::DoNotOptimize(run_occluded1(scene, f.rays));
@@ -273,12 +297,19 @@ void BM_Packets(benchmark::State &state, const std::string &scene_name) {
         start = std::chrono::steady_clock::now();
         benchmark::DoNotOptimize(run_packets<16, RTCRay16>(scene, f.rays, rtcOccluded16));
         p16_s += seconds(start);
+        start = std::chrono::steady_clock::now();
+        benchmark::DoNotOptimize(run_intersect1(scene, f.rays));
+        intersect1_s += seconds(start);
+        start = std::chrono::steady_clock::now();
+        benchmark::DoNotOptimize(run_intersect16(scene, f.rays));
+        intersect16_s += seconds(start);
     }
     const double rays = double(f.rays.size()) * double(state.iterations());
     state.counters["occluded1_Mrays_s"] = rays / single_s / 1e6;
     state.counters["occluded4_over_1"] = single_s / p4_s;
     state.counters["occluded8_over_1"] = single_s / p8_s;
     state.counters["occluded16_over_1"] = single_s / p16_s;
+    state.counters["intersect16_over_1"] = intersect1_s / intersect16_s;
 }
 
 void BM_BuildQuality(benchmark::State &state, const std::string &scene_name) {
