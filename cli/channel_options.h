@@ -13,7 +13,8 @@ namespace aaf::cli {
 /// and `--threads`.
 inline void add_map_and_threads_options(CLI::App &cmd, std::vector<std::string> &maps, int &threads) {
     cmd.add_option("--map", maps, "Override a channel name: role=channel[,channel...]");
-    cmd.add_option("--threads", threads, "Worker threads, 0 = all (output is identical)")->capture_default_str();
+    cmd.add_option("--threads", threads, "Worker threads, 0 = all (output is identical)")
+        ->capture_default_str();
 }
 
 /// The default channel map with every `--map role=channel` override applied.

@@ -1,6 +1,7 @@
 #include <unistd.h>
 
 #include <chrono>
+#include <csignal>
 #include <cstdio>
 #include <iostream>
 #include <memory>
@@ -18,6 +19,15 @@
 namespace aaf::cli {
 
 namespace {
+
+volatile std::sig_atomic_t interrupt_received = 0;
+
+/// The first SIGINT/SIGTERM asks the render to stop after its current round
+/// and write what it has; a second one kills as usual.
+void on_interrupt(int signal) {
+    interrupt_received = 1;
+    std::signal(signal, SIG_DFL);
+}
 
 /// Reports the rounds of a progressive render on stderr: a bar redrawn in
 /// place on a terminal, otherwise a line at most every 10 % of the samples.
@@ -136,15 +146,26 @@ void add_render_command(CLI::App &app) {
         run.progress = progress_from_string(options->progress);
         run.skip_existing = options->skip_existing;
         RoundReporter report_rounds(!sequence && run.progress != Progress::None);
+        std::signal(SIGINT, on_interrupt);
+        std::signal(SIGTERM, on_interrupt);
         const int failed = run_frames(jobs, run, [&](const FrameJob &job) {
+            if (interrupt_received) throw Interrupted{};  // the frames so far are complete
             trace::RenderSettings frame_settings = settings;
             if (sequence) frame_settings.frame = job.frame;
             frame_settings.on_progress = [&](int done, int total) { report_rounds(done, total); };
             frame_settings.on_checkpoint = [&](const AovSet &so_far) { io::write_aovs(so_far, job.output); };
+            frame_settings.stop_requested = [] { return interrupt_received != 0; };
             trace::RenderTimings timings;
             // Scene and resume errors name their file themselves.
             const AovSet aovs = trace::render_scene(job.input, frame_settings, &timings);
             io::write_aovs(aovs, job.output);
+            const int done = std::get<int>(aovs.attributes.at(attr::kSppDone));
+            if (done < frame_settings.spp) {
+                std::fprintf(
+                    stderr, "aaf: interrupted after %d of %d spp; %s holds them: continue with --resume %s\n",
+                    done, frame_settings.spp, job.output.c_str(), job.output.c_str());
+                throw Interrupted{};
+            }
             if (settings.adaptive) {
                 const ChannelMap channels;
                 std::printf(

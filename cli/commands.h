@@ -10,6 +10,10 @@ struct CheckFailed {};
 inline constexpr int kExitCheckFailed = 4;
 /// Exit code for aaf::InputError: unreadable, unwritable or incomplete files.
 inline constexpr int kExitInputError = 3;
+/// Thrown when an interrupt (Ctrl-C, SIGTERM) stopped a render after it had
+/// written what it had, resumable; `aaf` exits with kExitInterrupted (128 + SIGINT).
+struct Interrupted {};
+inline constexpr int kExitInterrupted = 130;
 
 /// Each adds one subcommand (with its options and action) to the `aaf` app.
 void add_render_command(CLI::App &app);

@@ -18,6 +18,8 @@ int main(int argc, char **argv) {
         app.parse(argc, argv);
     } catch (const aaf::cli::CheckFailed &) {
         return aaf::cli::kExitCheckFailed;
+    } catch (const aaf::cli::Interrupted &) {
+        return aaf::cli::kExitInterrupted;
     } catch (const aaf::InputError &e) {
         std::cerr << "aaf: error: " << e.what() << "\n";
         return aaf::cli::kExitInputError;

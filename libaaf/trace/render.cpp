@@ -389,6 +389,7 @@ AovSet render_scene(const std::string &scene_name, const RenderSettings &setting
                 settings.on_checkpoint(render_so_far(spp_done));
                 last_checkpoint = Clock::now();
             }
+            if (settings.stop_requested && spp_done < settings.spp && settings.stop_requested()) break;
         }
         measured.first_pass_s = seconds_since(start);
         if (settings.adaptive) {

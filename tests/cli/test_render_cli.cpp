@@ -119,3 +119,31 @@ TEST_CASE("CLI: a bad scene file is one error line naming it, exit 3, no output"
     CHECK_FALSE(fs::exists(dir / "out.exr"));
     CHECK(run_aaf("render nosuchscene -o " + (dir / "out.exr").string()).exit_code == 3);
 }
+
+TEST_CASE("CLI: Ctrl-C stops a reference after its round, writes it, and --resume finishes it",
+          "[cli][render][resume][interrupt]") {
+    const fs::path dir = scratch_dir("render_interrupt");
+    const std::string out = (dir / "ref.exr").string(), whole = (dir / "whole.exr").string();
+    const std::string common =
+        std::string(AAF_EXECUTABLE) + " render grids --width 48 --height 36 --spp 16384 ";
+    // Interrupt as soon as the first checkpoint is on disk (the handler is set long before).
+    const std::string script = "(" + common + "--checkpoint 0.001 --threads 1 -o " + out +
+                               " >/dev/null 2>&1 & pid=$!; while [ ! -f " + out +
+                               " ]; do sleep 0.02; done; kill -INT $pid; wait $pid; echo $? > " +
+                               (dir / "rc.txt").string() + ")";
+    REQUIRE(std::system(("/bin/sh -c '" + script + "'").c_str()) == 0);
+    std::ifstream rc_file(dir / "rc.txt");
+    int rc = -1;
+    rc_file >> rc;
+    CHECK(rc == 130);
+    const aaf::AovSet partial = aaf::io::read_aovs(out);
+    const int done = std::get<int>(partial.attributes.at(aaf::attr::kSppDone));
+    CHECK(done < 16384);
+    CHECK(done % 1024 == 0);
+
+    REQUIRE(
+        run_aaf("render grids --width 48 --height 36 --spp 16384 --resume " + out + " -o " + out).exit_code ==
+        0);
+    REQUIRE(run_aaf("render grids --width 48 --height 36 --spp 16384 -o " + whole).exit_code == 0);
+    CHECK(bytes_of(out) == bytes_of(whole));
+}

@@ -84,6 +84,10 @@ struct RenderSettings {
     /// included) at most every `checkpoint_interval_s` seconds between rounds.
     std::function<void(const AovSet &partial)> on_checkpoint;
     double checkpoint_interval_s = 60;
+    /// Asked after each round of a progressive render; when it returns true the
+    /// render stops there and returns the AOVs so far (aaf:spp_done < aaf:spp),
+    /// which `resume` continues.
+    std::function<bool()> stop_requested;
 };
 
 /// Wall-clock seconds of a render's stages (AAF Table 1's columns).
