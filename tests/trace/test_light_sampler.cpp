@@ -178,3 +178,15 @@ TEST_CASE("Uniform light profile samples the rectangle uniformly", "[trace][ligh
     light.sigma_m = 0.01f;
     CHECK_NOTHROW(LightSampler(light));
 }
+
+TEST_CASE("Stratified grid finds a stratum's row without integer division, exactly", "[trace][light]") {
+    // Every stratum of grids up to 2^20 samples (the largest count a pixel takes).
+    for (std::uint32_t count : {1u, 2u, 9u, 10u, 1000u, 1024u, 4097u, 65536u, 100000u, 1u << 20}) {
+        const StratifiedGrid grid(count);
+        INFO("count " << count << ", columns " << grid.columns());
+        std::uint32_t wrong = 0;
+        for (std::uint32_t s = 0; s < grid.columns() * grid.rows(); ++s)
+            wrong += grid.row_of(s) != s / grid.columns();
+        CHECK(wrong == 0);
+    }
+}
