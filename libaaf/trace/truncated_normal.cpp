@@ -10,7 +10,6 @@ namespace aaf::trace {
 
 namespace {
 
-constexpr int kIntervals = 4096;
 /// Largest error of an interval's cubic, sigma, before it falls back to the
 /// exact inverse; float rounding of the result adds at most half an ulp.
 constexpr double kCubicTolerance = 1e-7;
@@ -92,17 +91,8 @@ double TruncatedNormal::inverse_cdf(double u) const {
     return solve(u, -limit_, limit_, 0.0);
 }
 
-float TruncatedNormal::sample(float u) const {
-    if (!(u > 0)) return float(-limit_);  // also catches NaN
-    if (u >= 1) return float(limit_);
-    const float position = u * float(kIntervals);
-    const int i = std::min(int(position), kIntervals - 1);
-    const float t = position - float(i);
-    const Cubic &c = cubics_[i];
-    const float next_x0 = cubics_[i + 1].x0;
-    if (exact_[i]) return float(solve(double(u), -limit_, limit_, 0.5 * (double(c.x0) + double(next_x0))));
-    const float x = c.x0 + t * (c.slope0 + t * (c.c2 + t * c.c3));
-    return std::clamp(x, c.x0, next_x0);  // keeps the map monotone across intervals
+float TruncatedNormal::exact_sample(float u, float x0, float x1) const {
+    return float(solve(double(u), -limit_, limit_, 0.5 * (double(x0) + double(x1))));
 }
 
 }  // namespace aaf::trace

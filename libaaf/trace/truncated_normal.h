@@ -1,5 +1,6 @@
 #pragma once
 
+#include <algorithm>
 #include <vector>
 
 namespace aaf::trace {
@@ -28,9 +29,24 @@ class TruncatedNormal {
     /// Fast inverse of cdf(): maps u in [0, 1] to x in [-limit, limit] with
     /// density proportional to exp(-x^2 / 2); monotone, never NaN (a NaN u
     /// maps to -limit).
-    float sample(float u) const;
+    float sample(float u) const {             // inline: it runs twice per shadow ray
+        if (!(u > 0)) return float(-limit_);  // also catches NaN
+        if (u >= 1) return float(limit_);
+        const float position = u * float(kIntervals);
+        const int i = std::min(int(position), kIntervals - 1);
+        const float t = position - float(i);
+        const Cubic &c = cubics_[std::size_t(i)];
+        const float next_x0 = cubics_[std::size_t(i) + 1].x0;
+        if (exact_[std::size_t(i)]) return exact_sample(u, c.x0, next_x0);
+        const float x = c.x0 + t * (c.slope0 + t * (c.c2 + t * c.c3));
+        return std::clamp(x, c.x0, next_x0);  // keeps the map monotone across intervals
+    }
+
+    static constexpr int kIntervals = 4096;  ///< of the inverse-CDF table in u
 
   private:
+    /// The exact inverse for an interval whose cubic is not accurate enough.
+    float exact_sample(float u, float x0, float x1) const;
     /// Root of cdf(x) = u inside [low, high], which must bracket it,
     /// starting from `guess`.
     double solve(double u, double low, double high, double guess) const;
