@@ -11,6 +11,7 @@
 #include <chrono>
 #include <cmath>
 #include <sstream>
+#include <type_traits>
 
 #include "aaf/core/aov_contract.h"
 #include "aaf/core/error.h"
@@ -139,44 +140,32 @@ void write_aovs(const Frame &frame, unsigned groups, AovSet &aovs) {
             });
         }
     }
-    if (groups & kAovPosition) {
-        const auto position = add_role(aovs, Role::Position);
+    // Groups that copy one value of the primary hit per pixel (0 where nothing was hit).
+    auto write_hit = [&](Role role, Precision precision, const auto &value) {
+        const auto views = add_role(aovs, role, precision);
         for_each([&](int x, int y, const PrimaryHit &p, const ShadowStats &) {
-            if (p.found) set3(position, x, y, p.position);
+            if (!p.found) return;
+            const auto v = value(p);
+            if constexpr (std::is_same_v<std::decay_t<decltype(v)>, Vec3>)
+                set3(views, x, y, v);
+            else
+                views[0](x, y) = float(v);
         });
-    }
-    if (groups & kAovNormal) {
-        const auto normal = add_role(aovs, Role::Normal);
-        for_each([&](int x, int y, const PrimaryHit &p, const ShadowStats &) {
-            if (p.found) set3(normal, x, y, p.normal);
-        });
-    }
-    if (groups & kAovObjectId) {
-        const auto id = add_role(aovs, Role::ObjectId);
-        for_each([&](int x, int y, const PrimaryHit &p, const ShadowStats &) {
-            if (p.found) id[0](x, y) = float(p.mesh->object_id);
-        });
-    }
-    if (groups & kAovUnshadowed) {
-        const auto unshadowed = add_role(aovs, Role::Unshadowed);
-        for_each([&](int x, int y, const PrimaryHit &p, const ShadowStats &) {
-            if (p.found) set3(unshadowed, x, y, p.unshadowed);
-        });
-    }
-    if (groups & kAovDepth) {
-        const auto depth = add_role(aovs, Role::Depth);
-        for_each([&](int x, int y, const PrimaryHit &p, const ShadowStats &) {
-            if (p.found) depth[0](x, y) = p.depth_m;
-        });
-    }
-    if (groups & kAovAlbedo) {
-        // Reflectances in [0, 1] and motion of a few pixels need no more than half's
-        // 11 bits; the beauty stays float, since references are compared to 1e-4.
-        const auto albedo = add_role(aovs, Role::Albedo, Precision::Half);
-        for_each([&](int x, int y, const PrimaryHit &p, const ShadowStats &) {
-            if (p.found) set3(albedo, x, y, p.mesh->material.albedo);
-        });
-    }
+    };
+    if (groups & kAovPosition)
+        write_hit(Role::Position, Precision::Float, [](const PrimaryHit &p) { return p.position; });
+    if (groups & kAovNormal)
+        write_hit(Role::Normal, Precision::Float, [](const PrimaryHit &p) { return p.normal; });
+    if (groups & kAovObjectId)
+        write_hit(Role::ObjectId, Precision::Float, [](const PrimaryHit &p) { return p.mesh->object_id; });
+    if (groups & kAovUnshadowed)
+        write_hit(Role::Unshadowed, Precision::Float, [](const PrimaryHit &p) { return p.unshadowed; });
+    if (groups & kAovDepth)
+        write_hit(Role::Depth, Precision::Float, [](const PrimaryHit &p) { return p.depth_m; });
+    // Reflectances in [0, 1] and motion of a few pixels need no more than half's
+    // 11 bits; the beauty stays float, since references are compared to 1e-4.
+    if (groups & kAovAlbedo)
+        write_hit(Role::Albedo, Precision::Half, [](const PrimaryHit &p) { return p.mesh->material.albedo; });
     if (groups & kAovMotion) {
         // Geometry is static; only the camera moves the surface point on screen.
         const auto motion = add_role(aovs, Role::Motion, Precision::Half);
@@ -194,8 +183,6 @@ void write_aovs(const Frame &frame, unsigned groups, AovSet &aovs) {
         const auto weight = add_role(aovs, Role::ProgressWeight);
         const auto unoccluded = add_role(aovs, Role::ProgressUnoccluded);
         const auto radiance = add_role(aovs, Role::ProgressRadiance);
-        // Progress needs the spp and distances too, to resume from.
-        if (!(groups & kAovShadow)) throw Error("the progress AOVs need the shadow AOVs");
         for_each([&](int x, int y, const PrimaryHit &, const ShadowStats &s) {
             weight[0](x, y) = float(s.weight_sum);
             unoccluded[0](x, y) = float(s.unoccluded_weight_sum);
@@ -338,8 +325,9 @@ AovSet render_scene(const std::string &scene_name, const RenderSettings &setting
     const int rounds = (settings.spp + kSamplesPerRound - 1) / kSamplesPerRound;
     unsigned groups = settings.aovs;
     // A reference (a round or more) can always be resumed to more samples.
-    if (!settings.adaptive && (settings.spp >= kSamplesPerRound || settings.resume))
-        groups |= kAovProgress | kAovShadow;
+    if (!settings.adaptive && (settings.spp >= kSamplesPerRound || settings.resume)) groups |= kAovProgress;
+    // Resuming needs the spp and occluder distances beside the sums.
+    if (groups & kAovProgress) groups |= kAovShadow;
 
     const std::size_t pixel_count = std::size_t(settings.width) * settings.height;
     std::vector<PrimaryHit> primaries(pixel_count);
