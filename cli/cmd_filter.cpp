@@ -126,11 +126,13 @@ void add_aaf_method(CLI::App &filter) {
     cmd->add_flag("--replace-beauty,!--keep-beauty", options->replace_beauty,
                   "R,G,B become the filtered image, the input's kept as noisy.R/G/B (default); "
                   "--keep-beauty leaves R,G,B as they were and adds the filtered image as aaf.R/G/B");
-    cmd->add_flag("--half", options->write.half_colour,
-                  "Store colour layers (R,G,B,A and LAYER.R/G/B/A) as half; data layers stay float");
+    cmd->add_flag(
+        "--half", options->write.half_colour,
+        "Store colour layers (beauty, unshadowed, albedo, unclaimed LAYER.R/G/B/A) as half; data layers "
+        "(P, N, ... whatever their names) stay float");
     cmd->add_option("--compression", options->write.compression,
-                    "EXR compression: zip, zips, piz, rle, none, or the lossy dwaa/dwab (only when every "
-                    "channel is colour)")
+                    "EXR compression: zip, zips, piz, rle, none, or the lossy dwaa/dwab (colour layers only: "
+                    "the data layers then go to a ZIP part named 'data')")
         ->check(CLI::IsMember({"zip", "zips", "piz", "rle", "none", "dwaa", "dwab"}))
         ->capture_default_str();
     AafParams &p = options->params;

@@ -1,5 +1,6 @@
 #include "aaf/core/aov_contract.h"
 
+#include <map>
 #include <type_traits>
 
 #include "aaf/core/error.h"
@@ -254,27 +255,33 @@ const std::vector<RoleSynonym> &role_synonyms() {
 namespace {
 
 /// The channels of `patterns` as `aovs` names them, or none. A "*." prefix
-/// matches any prefix, found from the first channel and required of all.
-std::vector<std::string> match_channels(const std::vector<std::string> &patterns, const AovSet &aovs) {
-    const bool any_prefix = patterns.front().rfind("*.", 0) == 0;
-    std::string prefix;
-    if (any_prefix) {
-        const std::string tail = patterns.front().substr(1);  // ".Combined.R"
-        for (const std::string &name : aovs.channel_names())
-            if (name.size() > tail.size() &&
-                name.compare(name.size() - tail.size(), tail.size(), tail) == 0) {
-                prefix = name.substr(0, name.size() - tail.size());
-                break;
-            }
-        if (prefix.empty()) return {};
+/// matches any prefix that completes every pattern; with `unique_prefix`,
+/// several such prefixes (AO.R and Combined.R for "*.R") match nothing, since
+/// guessing would filter the wrong pass.
+std::vector<std::string> match_channels(const std::vector<std::string> &patterns, const AovSet &aovs,
+                                        bool unique_prefix = false) {
+    const auto complete = [&](const std::string &prefix) {
+        std::vector<std::string> names;
+        for (const std::string &pattern : patterns) {
+            const std::string name = prefix.empty() ? pattern : prefix + pattern.substr(1);
+            if (!aovs.has_channel(name)) return std::vector<std::string>{};
+            names.push_back(name);
+        }
+        return names;
+    };
+    if (patterns.front().rfind("*.", 0) != 0) return complete("");
+    const std::string tail = patterns.front().substr(1);  // ".Combined.R"
+    std::vector<std::string> found;
+    for (const std::string &name : aovs.channel_names()) {
+        if (name.size() <= tail.size() || name.compare(name.size() - tail.size(), tail.size(), tail) != 0)
+            continue;
+        std::vector<std::string> names = complete(name.substr(0, name.size() - tail.size()));
+        if (names.empty()) continue;
+        if (!unique_prefix) return names;
+        if (!found.empty()) return {};
+        found = names;
     }
-    std::vector<std::string> names;
-    for (const std::string &pattern : patterns) {
-        const std::string name = any_prefix ? prefix + pattern.substr(1) : pattern;
-        if (!aovs.has_channel(name)) return {};
-        names.push_back(name);
-    }
-    return names;
+    return found;
 }
 
 }  // namespace
@@ -284,22 +291,52 @@ ChannelMap ChannelMap::resolved(const AovSet &aovs) const {
     for (auto &[role, names] : map.names_) {
         if (overridden_.count(role)) continue;
         if (!match_channels(names, aovs).empty()) continue;
-        // The contract's own names under a view-layer prefix, then other renderers' names.
-        std::vector<std::vector<std::string>> candidates;
-        std::vector<std::string> prefixed;
-        for (const std::string &name : role_info(role).channels) prefixed.push_back("*." + name);
-        candidates.push_back(prefixed);
+        // Other renderers' names first (their pass names say what they hold),
+        // then the contract's own names under a single view-layer prefix.
+        std::vector<std::string> found;
         for (const RoleSynonym &synonym : role_synonyms())
-            if (synonym.role == role) candidates.push_back(synonym.channels);
-        for (const auto &candidate : candidates) {
-            std::vector<std::string> found = match_channels(candidate, aovs);
-            if (!found.empty()) {
-                names = found;
-                break;
-            }
+            if (synonym.role == role && found.empty()) found = match_channels(synonym.channels, aovs);
+        if (found.empty()) {
+            std::vector<std::string> prefixed;
+            for (const std::string &name : role_info(role).channels) prefixed.push_back("*." + name);
+            found = match_channels(prefixed, aovs, /*unique_prefix=*/true);
         }
+        if (!found.empty()) names = found;
     }
     return map;
+}
+
+bool is_colour_role(Role role) {
+    switch (role) {
+        case Role::Beauty:
+        case Role::Unshadowed:
+        case Role::NoisyBeauty:
+        case Role::FilteredBeauty:
+        case Role::Albedo:
+        case Role::OtherLights:
+            return true;
+        default:
+            return false;
+    }
+}
+
+std::vector<bool> colour_channels(const AovSet &aovs, const ChannelMap &map) {
+    const ChannelMap found = map.resolved(aovs);
+    std::map<std::string, bool> claimed;  // channel -> colour, for channels a role claims
+    for (const RoleInfo &info : role_table())
+        for (const std::string &name : found.channels(info.role))
+            if (aovs.has_channel(name)) claimed[name] = is_colour_role(info.role);
+    std::vector<bool> colour;
+    for (const std::string &name : aovs.channel_names()) {
+        if (auto it = claimed.find(name); it != claimed.end()) {
+            colour.push_back(it->second);
+            continue;
+        }
+        const std::size_t dot = name.rfind('.');
+        const std::string suffix = dot == std::string::npos ? name : name.substr(dot + 1);
+        colour.push_back(suffix == "R" || suffix == "G" || suffix == "B" || suffix == "A" || name == "Y");
+    }
+    return colour;
 }
 
 std::vector<Role> ChannelMap::missing_inputs(const MethodInputs &method, const AovSet &aovs) const {

@@ -8,6 +8,7 @@
 #include <set>
 #include <vector>
 
+#include "aaf/core/aov_contract.h"
 #include "aaf/core/error.h"
 #include "aaf/io/atomic_file.h"
 
@@ -80,10 +81,13 @@ const std::set<std::string> &lossless_compressions() {
     return names;
 }
 
-/// The header of the first part to write: the carried header (every
-/// attribute, windows) updated with this set's channels and attributes.
-OIIO::ImageSpec first_part_spec(const AovSet &aovs, const std::string &path, const WriteOptions &options) {
-    const int channels = int(aovs.channel_names().size());
+/// The header of the first part to write, holding channels `in_part` of
+/// `aovs`: the carried header (every attribute, windows) updated with these
+/// channels and this set's attributes.
+OIIO::ImageSpec first_part_spec(const AovSet &aovs, const std::vector<std::size_t> &in_part,
+                                const std::vector<bool> &colour, const std::string &path,
+                                const WriteOptions &options) {
+    const int channels = int(in_part.size());
     OIIO::ImageSpec spec(aovs.width(), aovs.height(), channels, TypeDesc::FLOAT);
     if (options.layout) {
         const OIIO::ImageSpec &source = options.layout->impl().first_part;
@@ -101,21 +105,61 @@ OIIO::ImageSpec first_part_spec(const AovSet &aovs, const std::string &path, con
         // DateTime writes none, so equal inputs give byte-identical files.
         spec.attribute("DateTime", "");
     }
-    spec.channelnames = aovs.channel_names();
+    spec.channelnames.clear();
+    for (std::size_t c : in_part) spec.channelnames.push_back(aovs.channel_names()[c]);
     spec.alpha_channel = -1;
     write_attributes(aovs, spec);
     spec.attribute("compression", options.compression);  // over any carried from an input
 
     std::vector<TypeDesc> formats;
     bool any_half = false;
-    for (int c = 0; c < channels; ++c) {
-        const bool half = aovs.precision(std::size_t(c)) == Precision::Half ||
-                          (options.half_colour && is_colour_channel(spec.channelnames[c]));
+    for (std::size_t c : in_part) {
+        const bool half = aovs.precision(c) == Precision::Half || (options.half_colour && colour[c]);
         formats.push_back(half ? TypeDesc::HALF : TypeDesc::FLOAT);
         any_half |= half;
     }
     if (any_half) spec.channelformats = formats;
     return spec;
+}
+
+/// The header of the part that keeps data channels lossless when colour is
+/// written with a lossy (DWA) compression: a compression is per part in
+/// OpenEXR, and DWA's DCT would also quantise data named .R/.G/.B/.Y
+/// (Arnold's P.R, our N.Y).
+OIIO::ImageSpec data_part_spec(const AovSet &aovs, const std::vector<std::size_t> &in_part,
+                               const OIIO::ImageSpec &first) {
+    OIIO::ImageSpec spec(aovs.width(), aovs.height(), int(in_part.size()), TypeDesc::FLOAT);
+    spec.x = first.x;
+    spec.y = first.y;
+    spec.full_x = first.full_x;
+    spec.full_y = first.full_y;
+    spec.full_width = first.full_width;
+    spec.full_height = first.full_height;
+    spec.channelnames.clear();
+    std::vector<TypeDesc> formats;
+    bool any_half = false;
+    for (std::size_t c : in_part) {
+        spec.channelnames.push_back(aovs.channel_names()[c]);
+        const bool half = aovs.precision(c) == Precision::Half;
+        formats.push_back(half ? TypeDesc::HALF : TypeDesc::FLOAT);
+        any_half |= half;
+    }
+    if (any_half) spec.channelformats = formats;
+    spec.alpha_channel = -1;
+    spec.attribute("oiio:subimagename", kDataPartName);
+    spec.attribute("DateTime", "");
+    spec.attribute("compression", "zip");
+    return spec;
+}
+
+/// Interleaves channels `in_part` of `aovs` as float pixels.
+std::vector<float> interleave(const AovSet &aovs, const std::vector<std::size_t> &in_part) {
+    std::vector<float> pixels(aovs.pixel_count() * in_part.size());
+    for (std::size_t k = 0; k < in_part.size(); ++k) {
+        const std::vector<float> &plane = aovs.plane(in_part[k]);
+        for (std::size_t i = 0; i < aovs.pixel_count(); ++i) pixels[i * in_part.size() + k] = plane[i];
+    }
+    return pixels;
 }
 
 /// Copies part `part` of `source` (native pixel types) into the open output.
@@ -137,13 +181,6 @@ bool is_known_compression(const std::string &name) {
 
 bool is_lossy_compression(const std::string &name) {
     return name == "dwaa" || name == "dwab";
-}
-
-bool is_colour_channel(const std::string &name) {
-    if (name.rfind("progress.", 0) == 0) return false;  // resumable sums need float
-    const std::size_t dot = name.rfind('.');
-    const std::string suffix = dot == std::string::npos ? name : name.substr(dot + 1);
-    return suffix == "R" || suffix == "G" || suffix == "B" || suffix == "A";
 }
 
 AovSet read_aovs(const std::string &path, ImageLayout *layout) {
@@ -233,19 +270,19 @@ void write_aovs(const AovSet &aovs, const std::string &path, const WriteOptions 
     if (channels == 0) throw InputError(path + ": nothing to write (no channels)");
     if (!is_known_compression(options.compression))
         throw InputError(path + ": unknown compression '" + options.compression + "'");
-    if (is_lossy_compression(options.compression))
-        for (const std::string &name : aovs.channel_names())
-            if (!is_colour_channel(name))
-                throw InputError(path + ": " + options.compression +
-                                 " is lossy and only for colour layers, but '" + name +
-                                 "' is data (use a lossless compression)");
-    const OIIO::ImageSpec spec = first_part_spec(aovs, path, options);
-
-    std::vector<float> pixels(aovs.pixel_count() * std::size_t(channels));
-    for (int c = 0; c < channels; ++c) {
-        const std::vector<float> &plane = aovs.plane(std::size_t(c));
-        for (std::size_t i = 0; i < aovs.pixel_count(); ++i) pixels[i * channels + c] = plane[i];
-    }
+    // Which channels go where: everything in the first part, unless a lossy
+    // compression must leave the data channels to a lossless part of their own.
+    const std::vector<bool> colour = colour_channels(aovs);
+    std::vector<std::size_t> first_channels, data_channels;
+    const bool lossy = is_lossy_compression(options.compression);
+    for (std::size_t c = 0; c < colour.size(); ++c)
+        (lossy && !colour[c] ? data_channels : first_channels).push_back(c);
+    if (first_channels.empty())
+        throw InputError(path + ": " + options.compression +
+                         " is lossy and only for colour layers, and there is no colour to write "
+                         "(use a lossless compression)");
+    const OIIO::ImageSpec spec = first_part_spec(aovs, first_channels, colour, path, options);
+    const std::vector<float> pixels = interleave(aovs, first_channels);
 
     // The other parts of a carried source, copied one at a time.
     std::unique_ptr<OIIO::ImageInput> source;
@@ -258,6 +295,12 @@ void write_aovs(const AovSet &aovs, const std::string &path, const WriteOptions 
         for (int part = 1; part < options.layout->part_count(); ++part)
             specs.push_back(source->spec(part, 0));
     }
+    const std::size_t data_part = specs.size();
+    if (!data_channels.empty()) {
+        specs[0].attribute("oiio:subimagename",
+                           specs[0].get_string_attribute("oiio:subimagename", kColourPartName));
+        specs.push_back(data_part_spec(aovs, data_channels, specs[0]));
+    }
 
     const std::string temporary = temporary_path_for(path);
     std::unique_ptr<OIIO::ImageOutput> output = OIIO::ImageOutput::create("openexr");
@@ -267,7 +310,13 @@ void write_aovs(const AovSet &aovs, const std::string &path, const WriteOptions 
                                               : output->open(temporary, int(specs.size()), specs.data());
         if (!opened || !output->write_image(TypeDesc::FLOAT, pixels.data()))
             throw InputError(output->geterror());
-        for (int part = 1; part < int(specs.size()); ++part) copy_part(*source, part, *output, temporary);
+        for (int part = 1; part < int(data_part); ++part) copy_part(*source, part, *output, temporary);
+        if (!data_channels.empty()) {
+            const std::vector<float> data = interleave(aovs, data_channels);
+            if (!output->open(temporary, specs[data_part], OIIO::ImageOutput::AppendSubimage) ||
+                !output->write_image(TypeDesc::FLOAT, data.data()))
+                throw InputError(output->geterror());
+        }
         if (!output->close()) throw InputError(output->geterror());
     } catch (const InputError &e) {
         output.reset();

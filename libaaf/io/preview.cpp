@@ -9,6 +9,7 @@
 #include <cmath>
 #include <limits>
 
+#include "aaf/core/aov_contract.h"
 #include "aaf/core/error.h"
 #include "default_ocio_config.h"
 #include "false_colour.h"
@@ -83,22 +84,19 @@ void write_false_colour_png(const AovSet &aovs, const std::string &channel, cons
     write_png(rgb, aovs.width(), aovs.height(), path);
 }
 
-bool is_colour_preview_channel(const std::string &name) {
-    const std::size_t dot = name.rfind('.');
-    const std::string suffix = dot == std::string::npos ? name : name.substr(dot + 1);
-    return suffix == "R" || suffix == "G" || suffix == "B" || suffix == "A" || suffix == "Y";
-}
-
 std::string write_preview_png(const AovSet &aovs, const std::vector<std::string> &channels,
                               const std::string &path, const PreviewOptions &options) {
     if (channels.size() != 1 && channels.size() != 3)
         throw Error(path + ": a preview needs one or three channels");
     std::vector<ConstPlaneView> planes;
+    // Data (P, N, distances, Arnold's P.R) is shown as stored; only colour
+    // goes through the display transform.
+    const std::vector<bool> colour_mask = colour_channels(aovs);
     bool colour = true;
     for (const std::string &name : channels) {
         if (!aovs.has_channel(name)) throw Error(path + ": no channel '" + name + "' to preview");
         planes.push_back(aovs.channel(name));
-        colour = colour && is_colour_preview_channel(name);
+        colour = colour && colour_mask[aovs.index_of(name)];
     }
     // Place the data window inside the display window (cropping what lies outside).
     PixelWindow data = options.data_window, shown = options.display_window;

@@ -178,12 +178,61 @@ TEST_CASE("CLI filter: --keep-beauty, --half and --compression choose the output
     CHECK(spec.channelformat(spec.channelindex("P.X")) == TypeDesc::FLOAT);
     CHECK(spec.channelformat(spec.channelindex("aaf.V")) == TypeDesc::FLOAT);
 
-    // DWAA is lossy: refused for a file with data layers, and nothing is written.
-    const auto lossy =
-        run_aaf("filter aaf " + input + " -o " + (dir / "dwaa.exr").string() + " --compression dwaa");
-    CHECK(lossy.exit_code == 3);
-    CHECK_THAT(lossy.output, Catch::Contains("dwaa.exr: dwaa is lossy and only for colour layers"));
-    CHECK_FALSE(fs::exists(dir / "dwaa.exr"));
+    // DWAA is lossy: it compresses the colour part; the data goes to a ZIP
+    // part of its own and reads back bit for bit.
+    REQUIRE(run_aaf("filter aaf " + input + " -o " + (dir / "dwaa.exr").string() + " --compression dwaa")
+                .exit_code == 0);
+    auto dwaa = OIIO::ImageInput::open((dir / "dwaa.exr").string());
+    REQUIRE(dwaa);
+    const OIIO::ImageSpec colour_part = dwaa->spec(0, 0), data_part = dwaa->spec(1, 0);
+    CHECK(std::string(colour_part.get_string_attribute("compression")).rfind("dwaa", 0) == 0);
+    CHECK(colour_part.channelindex("R") >= 0);
+    CHECK(colour_part.channelindex("unshadowed.G") >= 0);
+    CHECK(colour_part.channelindex("P.Y") < 0);
+    CHECK(data_part.get_string_attribute("compression") == "zip");
+    CHECK(data_part.get_string_attribute("name") == aaf::io::kDataPartName);
+    const int visibility = data_part.channelindex("aaf.V"), position_y = data_part.channelindex("P.Y");
+    REQUIRE(visibility >= 0);
+    REQUIRE(position_y >= 0);
+    std::vector<float> data(std::size_t(kWidth) * kHeight * data_part.nchannels);
+    REQUIRE(dwaa->read_image(1, 0, 0, data_part.nchannels, TypeDesc::FLOAT, data.data()));
+    const auto position = original.channel("P.Y");
+    const aaf::AovSet reference = aaf::io::read_aovs((dir / "replaced.exr").string());
+    for (int y = 0; y < kHeight; ++y)
+        for (int x = 0; x < kWidth; ++x) {
+            const std::size_t pixel = std::size_t(y) * kWidth + x;
+            CHECK(data[pixel * data_part.nchannels + position_y] == position(x, y));
+            CHECK(data[pixel * data_part.nchannels + visibility] == reference.channel("aaf.V")(x, y));
+        }
+}
+
+TEST_CASE("CLI filter: --half keeps Arnold's data layers P.R and N.R float", "[cli][pipeline][synonyms]") {
+    const fs::path dir = scratch_dir("pipeline_arnold_half");
+    const aaf::AovSet render = small_render();
+    aaf::AovSet arnold(kWidth, kHeight);
+    arnold.attributes = render.attributes;
+    auto rename = [](const std::string &name) -> std::string {
+        const char *rgb[] = {"R", "G", "B"};
+        for (int axis = 0; axis < 3; ++axis) {
+            if (name == std::string("P.") + "XYZ"[axis]) return std::string("P.") + rgb[axis];
+            if (name == std::string("N.") + "XYZ"[axis]) return std::string("N.") + rgb[axis];
+            if (name == rgb[axis]) return std::string("RGBA.") + rgb[axis];
+        }
+        return name;
+    };
+    for (std::size_t c = 0; c < render.channel_names().size(); ++c) {
+        aaf::PlaneView plane = arnold.add_channel(rename(render.channel_names()[c]));
+        std::copy(render.plane(c).begin(), render.plane(c).end(), plane.data);
+    }
+    const std::string input = (dir / "arnold.exr").string(), output = (dir / "out.exr").string();
+    aaf::io::write_aovs(arnold, input);
+    REQUIRE(run_aaf("filter aaf " + input + " -o " + output + " --half").exit_code == 0);
+    auto file = OIIO::ImageInput::open(output);
+    REQUIRE(file);
+    const OIIO::ImageSpec &spec = file->spec();
+    CHECK(spec.channelformat(spec.channelindex("RGBA.R")) == TypeDesc::HALF);
+    CHECK(spec.channelformat(spec.channelindex("P.R")) == TypeDesc::FLOAT);
+    CHECK(spec.channelformat(spec.channelindex("N.G")) == TypeDesc::FLOAT);
 }
 
 TEST_CASE("CLI filter: Blender view-layer names are found without --map", "[cli][pipeline][synonyms]") {

@@ -56,3 +56,41 @@ TEST_CASE("Missing method inputs are reported by role", "[contract]") {
         for (const std::string &name : map.channels(role)) aovs.add_channel(name);
     CHECK(map.missing_inputs(aaf_method, aovs).empty());
 }
+
+TEST_CASE("Renderer names resolve to roles, and an ambiguous layer prefix is not guessed", "[contract]") {
+    const ChannelMap map;
+    SECTION("Blender: Combined is the beauty even when an AO pass sorts first") {
+        AovSet aovs(1, 1);
+        for (const char *pass : {"AO", "Combined", "DiffCol"})
+            for (const char *c : {"R", "G", "B"})
+                aovs.add_channel(std::string("View Layer.") + pass + "." + c);
+        aovs.add_channel("View Layer.IndexOB.X");
+        const ChannelMap found = map.resolved(aovs);
+        CHECK(found.channels(Role::Beauty) == std::vector<std::string>{"View Layer.Combined.R",
+                                                                       "View Layer.Combined.G",
+                                                                       "View Layer.Combined.B"});
+        CHECK(found.channels(Role::Albedo).front() == "View Layer.DiffCol.R");
+        CHECK(found.channel(Role::ObjectId) == "View Layer.IndexOB.X");
+    }
+    SECTION("Arnold and pbrt-v4 names") {
+        AovSet aovs(1, 1);
+        for (const char *c : {"R", "G", "B"}) {
+            aovs.add_channel(std::string("RGBA.") + c);
+            aovs.add_channel(std::string("P.") + c);
+            aovs.add_channel(std::string("N.") + c);
+            aovs.add_channel(std::string("Albedo.") + c);
+        }
+        const ChannelMap found = map.resolved(aovs);
+        CHECK(found.channels(Role::Beauty).front() == "RGBA.R");
+        CHECK(found.channels(Role::Position) == std::vector<std::string>{"P.R", "P.G", "P.B"});
+        CHECK(found.channels(Role::Normal).back() == "N.B");
+        CHECK(found.channels(Role::Albedo).front() == "Albedo.R");
+    }
+    SECTION("the contract's names under one prefix resolve, under two they stay unresolved") {
+        AovSet aovs(1, 1);
+        aovs.add_channel("layerA.shadow.V");
+        CHECK(map.resolved(aovs).channel(Role::Visibility) == "layerA.shadow.V");
+        aovs.add_channel("layerB.shadow.V");
+        CHECK(map.resolved(aovs).channel(Role::Visibility) == "shadow.V");
+    }
+}

@@ -117,6 +117,14 @@ TEST_CASE("PNG preview encodes colour with the sRGB curve and writes data as it 
     visibility(1, 0) = 0.2140f;
     CHECK(io::write_preview_png(aovs, {"shadow.V"}, path).empty());
     CHECK(io::read_aovs(path).channel("G")(1, 0) == Approx(0.214f).margin(1.0f / 255));
+
+    // Nor are the .Y (or Arnold's .R) components of positions and normals.
+    for (const char *name : {"P.G", "P.B"}) aovs.add_channel(name);
+    for (const char *name : {"P.Y", "N.Y", "motion.Y", "P.R"}) {
+        aovs.add_channel(name)(1, 0) = 0.2140f;
+        CHECK(io::write_preview_png(aovs, {name}, path).empty());
+        CHECK(io::read_aovs(path).channel("G")(1, 0) == Approx(0.214f).margin(1.0f / 255));
+    }
 }
 
 namespace {

@@ -10,7 +10,7 @@
 namespace aaf {
 
 /// What a channel (or group of channels) means to the filters. The one table
-/// of names, units and meanings is `role_table()`; docs/AOVS.md documents it.
+/// of names, units and meanings is `role_table()`; libaaf/AOV_CONTRACT.md documents it.
 enum class Role {
     Beauty,              ///< noisy final image
     Visibility,          ///< noisy light-weighted visibility
@@ -46,7 +46,7 @@ struct RoleInfo {
 };
 
 /// Every role, with its default channels. Read by the I/O layer, the tracer,
-/// the filters and `aaf info`; documented in docs/AOVS.md.
+/// the filters and `aaf info`; documented in libaaf/AOV_CONTRACT.md.
 const std::vector<RoleInfo> &role_table();
 const RoleInfo &role_info(Role role);
 
@@ -124,5 +124,16 @@ class ChannelMap {
     std::map<Role, std::vector<std::string>> names_;
     std::map<Role, bool> overridden_;
 };
+
+/// True for roles whose channels hold colour (radiance, reflectance): what a
+/// display transform, half floats and lossy compression may touch. Positions,
+/// normals, distances, ids, counts and progressive sums are data.
+bool is_colour_role(Role role);
+
+/// Which channels of `aovs` hold colour: those of a colour role as `map`
+/// resolves them in `aovs`, and, among channels no role claims, names ending
+/// in .R/.G/.B/.A and a bare Y (luminance). Data roles win over suffixes, so
+/// Arnold's P.R is data. Indexed like aovs.channel_names().
+std::vector<bool> colour_channels(const AovSet &aovs, const ChannelMap &map = ChannelMap{});
 
 }  // namespace aaf

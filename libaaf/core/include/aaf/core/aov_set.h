@@ -41,6 +41,8 @@ class AovSet {
     ConstPlaneView channel(const std::string &name) const;
 
     const std::vector<std::string> &channel_names() const { return names_; }
+    /// Position of `name` in channel_names(), or std::string::npos when absent.
+    std::size_t index_of(const std::string &name) const;
     /// Storage precision of the i-th channel; set_precision throws aaf::Error
     /// naming a missing channel.
     Precision precision(std::size_t index) const { return precisions_[index]; }
@@ -51,8 +53,6 @@ class AovSet {
     std::map<std::string, AttributeValue> attributes;
 
   private:
-    std::size_t index_of(const std::string &name) const;  // npos when absent
-
     int width_ = 0;
     int height_ = 0;
     std::vector<std::string> names_;

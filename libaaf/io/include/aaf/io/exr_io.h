@@ -63,16 +63,19 @@ bool is_lossy_compression(const std::string &name);
 struct WriteOptions {
     /// Header and other parts to carry over from a source file (read_aovs).
     const ImageLayout *layout = nullptr;
-    /// zip (default), zips, piz, rle, none, or the lossy dwaa/dwab, which
-    /// is refused unless every channel written is a colour channel.
+    /// zip (default), zips, piz, rle, none, or the lossy dwaa/dwab. A lossy
+    /// compression applies to the colour channels only (colour_channels() of
+    /// aov_contract.h): the data channels then go to a part of their own
+    /// named kDataPartName, ZIP-compressed, after any carried parts.
     std::string compression = "zip";
-    /// Stores colour channels (R, G, B, A and LAYER.R/G/B/A, except the
-    /// progress.* sums) as half; data channels always stay as they are.
+    /// Stores colour channels (colour_channels(): beauty, unshadowed, albedo...
+    /// never P, N or Arnold's P.R) as half; data channels stay as they are.
     bool half_colour = false;
 };
 
-/// True for a channel WriteOptions::half_colour treats as colour.
-bool is_colour_channel(const std::string &name);
+/// Part names when a lossy compression splits colour from data.
+inline constexpr const char *kColourPartName = "rgba";
+inline constexpr const char *kDataPartName = "data";
 
 /// Writes all channels as OpenEXR, each as 32-bit float or, where
 /// AovSet::precision says so, 16-bit half; and the attributes as header

@@ -25,9 +25,6 @@ struct PreviewOptions {
     PixelWindow data_window, display_window;
 };
 
-/// True for channels that hold colour: R, G, B, A, Y and LAYER.R/G/B/A/Y.
-bool is_colour_preview_channel(const std::string &name);
-
 /// Writes an 8-bit PNG preview of three channels (or one shown as grey).
 /// Colour channels go through the OpenColorIO display/view of `options`;
 /// data channels (positions, normals, visibility, distances) are never colour
