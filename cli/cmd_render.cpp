@@ -118,15 +118,15 @@ void add_render_command(CLI::App &app) {
         trace::RenderSettings &settings = options->settings;
         if (!options->light.empty()) settings.light_profile = light_profile_from_string(options->light);
         settings.aovs = trace::parse_aov_groups(options->aovs);
-        if (!(options->checkpoint_s > 0)) throw Error("--checkpoint must be positive");
+        if (!(options->checkpoint_s > 0)) throw UsageError("--checkpoint must be positive");
         settings.checkpoint_interval_s = options->checkpoint_s;
 
         const bool sequence = !options->frames.empty();
         if (sequence != io::is_sequence_pattern(options->output))
-            throw Error(sequence ? "--frames needs an output pattern such as shot.####.exr"
+            throw UsageError(sequence ? "--frames needs an output pattern such as shot.####.exr"
                                  : "an output pattern needs --frames");
         if (sequence && !options->resume.empty())
-            throw Error("--resume continues a single render, not a sequence");
+            throw UsageError("--resume continues a single render, not a sequence");
 
         std::optional<AovSet> partial;
         if (!options->resume.empty()) {

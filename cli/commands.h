@@ -2,8 +2,18 @@
 
 #include <CLI/CLI.hpp>
 
+#include "aaf/core/error.h"
+
 namespace aaf::cli {
 
+/// A command line that cannot mean anything (a bad frame range or progress
+/// mode, patterns that do not pair up); `aaf` exits with kExitUsage, as for
+/// CLI11's own parse errors.
+class UsageError : public Error {
+  public:
+    explicit UsageError(const std::string &message) : Error(message) {}
+};
+inline constexpr int kExitUsage = 2;
 /// Thrown by a command that ran to the end but whose check failed
 /// (`aaf compare --fail-above`); `aaf` exits with kExitCheckFailed.
 struct CheckFailed {};

@@ -4,6 +4,7 @@
 
 #include <chrono>
 #include <cstdio>
+#include <exception>
 #include <filesystem>
 #include <iostream>
 #include <nlohmann/json.hpp>
@@ -12,6 +13,7 @@
 #include "aaf/core/error.h"
 #include "aaf/io/exr_io.h"
 #include "aaf/io/sequence.h"
+#include "commands.h"
 #include "input_guard.h"
 
 namespace aaf::cli {
@@ -23,23 +25,32 @@ std::vector<FrameJob> frame_jobs(const std::string &input, const std::string &ou
     const bool input_sequence = io::is_sequence_pattern(input),
                output_sequence = io::is_sequence_pattern(output);
     if (!input_sequence) {
-        if (output_sequence) throw Error(output + ": a frame pattern needs an input pattern too");
+        if (output_sequence) throw UsageError(output + ": a frame pattern needs an input pattern too");
         if (!frames.empty())
-            throw Error("--frames needs sequence patterns (e.g. in.####.exr -o out.####.exr)");
+            throw UsageError("--frames needs sequence patterns (e.g. in.####.exr -o out.####.exr)");
         check_not_same_file(input, output);
         return {{0, input, output}};
     }
     if (!output_sequence)
-        throw Error(output + ": has no frame field (#, @ or %0Nd), so every frame would write this one file");
-    const std::vector<int> numbers =
-        frames.empty() ? io::frames_on_disk(input) : io::parse_frame_range(frames);
-    if (numbers.empty()) throw Error(input + ": no frames found");
+        throw UsageError(output +
+                         ": has no frame field (#, @ or %0Nd), so every frame would write this one file");
+    std::vector<int> numbers;
+    if (frames.empty())
+        numbers = io::frames_on_disk(input);
+    else
+        try {
+            numbers = io::parse_frame_range(frames);
+        } catch (const Error &e) {
+            throw UsageError(e.what());
+        }
+    if (numbers.empty()) throw InputError(input + ": no frames found");
     std::vector<FrameJob> jobs;
     std::set<std::string> outputs;
     for (int frame : numbers) {
         FrameJob job{frame, io::frame_path(input, frame), io::frame_path(output, frame)};
         check_not_same_file(job.input, job.output);
-        if (!outputs.insert(job.output).second) throw Error(job.output + ": two frames map to this output");
+        if (!outputs.insert(job.output).second)
+            throw UsageError(job.output + ": two frames map to this output");
         jobs.push_back(job);
     }
     return jobs;
@@ -51,7 +62,7 @@ Progress progress_from_string(const std::string &name) {
     if (name == "jsonl") return Progress::Jsonl;
     if (name == "openjd") return Progress::OpenJd;
     if (name == "none") return Progress::None;
-    throw Error("unknown progress mode '" + name + "' (auto, lines, jsonl, openjd, none)");
+    throw UsageError("unknown progress mode '" + name + "' (auto, lines, jsonl, openjd, none)");
 }
 
 int run_frames(const std::vector<FrameJob> &jobs, const RunOptions &options,
@@ -65,10 +76,22 @@ int run_frames(const std::vector<FrameJob> &jobs, const RunOptions &options,
     int done = 0, failed = 0, skipped = 0;
     if (mode == Progress::Jsonl)
         std::cout << nlohmann::json{{"event", "start"}, {"frames", jobs.size()}}.dump() << std::endl;
+    const auto summary = [&](bool stopped) {
+        if (mode != Progress::Jsonl) return;
+        nlohmann::json event{{"event", "summary"},
+                             {"frames", jobs.size()},
+                             {"ok", done - failed - skipped},
+                             {"failed", failed},
+                             {"skipped", skipped},
+                             {"seconds", std::chrono::duration<double>(Clock::now() - run_start).count()}};
+        if (stopped) event["not_run"] = int(jobs.size()) - done;  // a failed frame stopped the run
+        std::cout << event.dump() << std::endl;
+    };
 
     for (const FrameJob &job : jobs) {
         const auto start = Clock::now();
         std::string status = "ok", message;
+        std::exception_ptr failure;
         if (options.skip_existing && io::is_readable_image(job.output)) {
             status = "skipped";
             ++skipped;
@@ -78,17 +101,9 @@ int run_frames(const std::vector<FrameJob> &jobs, const RunOptions &options,
             } catch (const std::exception &e) {
                 status = "failed";
                 message = e.what();
+                failure = std::current_exception();
                 ++failed;
-                if (!options.skip_bad_frames) {
-                    if (mode == Progress::Jsonl)
-                        std::cout << nlohmann::json{{"event", "frame_end"}, {"frame", job.frame},
-                                                    {"input", job.input},   {"output", job.output},
-                                                    {"status", status},     {"error", message}}
-                                         .dump()
-                                  << std::endl;
-                    throw;
-                }
-                std::cerr << "aaf: error: " << message << "\n";
+                if (options.skip_bad_frames) std::cerr << "aaf: error: " << message << "\n";
             }
         }
         ++done;
@@ -104,22 +119,18 @@ int run_frames(const std::vector<FrameJob> &jobs, const RunOptions &options,
             const int width = 30, filled = int(width * done / double(jobs.size()));
             std::fprintf(stderr, "\r[%s%s] %d/%zu frames", std::string(filled, '#').c_str(),
                          std::string(width - filled, ' ').c_str(), done, jobs.size());
-            if (done == int(jobs.size())) std::fprintf(stderr, "\n");
+            if (done == int(jobs.size()) || (status == "failed" && !options.skip_bad_frames))
+                std::fprintf(stderr, "\n");
         } else if (mode == Progress::Lines) {
             std::fprintf(stderr, "frame %d (%d/%zu): %s -> %s: %s, %.2f s\n", job.frame, done, jobs.size(),
                          job.input.c_str(), job.output.c_str(), status.c_str(), seconds);
         }
+        if (status == "failed" && !options.skip_bad_frames) {
+            summary(/*stopped=*/true);
+            std::rethrow_exception(failure);  // main prints it; its type sets the exit code
+        }
     }
-    if (mode == Progress::Jsonl)
-        std::cout << nlohmann::json{{"event", "summary"},
-                                    {"frames", jobs.size()},
-                                    {"ok", done - failed - skipped},
-                                    {"failed", failed},
-                                    {"skipped", skipped},
-                                    {"seconds",
-                                     std::chrono::duration<double>(Clock::now() - run_start).count()}}
-                         .dump()
-                  << std::endl;
+    summary(/*stopped=*/false);
     return failed;
 }
 

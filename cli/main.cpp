@@ -2,6 +2,7 @@
 #include <iostream>
 
 #include "aaf/core/error.h"
+#include "aaf/io/atomic_file.h"
 #include "commands.h"
 
 int main(int argc, char **argv) {
@@ -14,6 +15,9 @@ int main(int argc, char **argv) {
     aaf::cli::add_compare_command(app);
     aaf::cli::add_info_command(app);
     aaf::cli::add_preview_command(app);
+    // Ctrl-C or a farm's SIGTERM leaves no hidden temporary behind (a render
+    // installs its own handler: it finishes the round and writes it).
+    aaf::io::remove_temporaries_on_signal();
     try {
         app.parse(argc, argv);
     } catch (const aaf::cli::CheckFailed &) {
@@ -23,9 +27,12 @@ int main(int argc, char **argv) {
     } catch (const aaf::InputError &e) {
         std::cerr << "aaf: error: " << e.what() << "\n";
         return aaf::cli::kExitInputError;
+    } catch (const aaf::cli::UsageError &e) {
+        std::cerr << "aaf: error: " << e.what() << "\n";
+        return aaf::cli::kExitUsage;
     } catch (const CLI::ParseError &e) {
         // Help and version exit 0; usage errors exit 2.
-        return app.exit(e) == 0 ? 0 : 2;
+        return app.exit(e) == 0 ? 0 : aaf::cli::kExitUsage;
     } catch (const std::exception &e) {
         std::cerr << "aaf: error: " << e.what() << "\n";
         return 1;

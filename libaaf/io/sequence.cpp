@@ -21,9 +21,17 @@ struct FrameField {
     int padding = 0;
 };
 
+/// Where the file name starts: the frame field is looked for there only, so
+/// folders named "v@2" or "take#3" are folders, not frame numbers.
+std::size_t file_name_start(const std::string &pattern) {
+    const std::size_t slash = pattern.find_last_of('/');
+    return slash == std::string::npos ? 0 : slash + 1;
+}
+
 FrameField find_field(const std::string &pattern) {
     FrameField field;
-    const std::size_t hash = pattern.find_first_of("#@");
+    const std::size_t name = file_name_start(pattern);
+    const std::size_t hash = pattern.find_first_of("#@", name);
     if (hash != std::string::npos) {
         std::size_t end = hash;
         while (end < pattern.size() && pattern[end] == pattern[hash]) ++end;
@@ -31,27 +39,30 @@ FrameField find_field(const std::string &pattern) {
     }
     static const std::regex printf_field("%(0?)([0-9]*)d");
     std::smatch match;
-    if (std::regex_search(pattern, match, printf_field)) {
-        field.begin = std::size_t(match.position(0));
+    const std::string file = pattern.substr(name);
+    if (std::regex_search(file, match, printf_field)) {
+        field.begin = name + std::size_t(match.position(0));
         field.end = field.begin + std::size_t(match.length(0));
         field.padding = match[2].length() ? std::stoi(match[2].str()) : 0;
     }
     return field;
 }
 
-/// The pattern in OpenImageIO's normalised printf form, with this project's
-/// padding rule: a run of n '#' or '@' is n digits (OIIO's own '#' is 4).
-std::string normalized_pattern(const std::string &pattern) {
+/// The file-name part of the pattern in OpenImageIO's normalised printf form,
+/// with this project's padding rule: a run of n '#' or '@' is n digits (OIIO's
+/// own '#' is 4). The folder part is returned apart, untouched.
+std::pair<std::string, std::string> normalized_pattern(const std::string &pattern) {
     const FrameField field = find_field(pattern);
     if (field.begin == std::string::npos)
-        throw Error(pattern + ": no frame field (#, @ or %0Nd) in the pattern");
+        throw Error(pattern + ": no frame field (#, @ or %0Nd) in the file name of the pattern");
     const bool hashes = pattern[field.begin] == '#' || pattern[field.begin] == '@';
+    const std::size_t name = file_name_start(pattern);
     std::string normalized, framespec;
-    if (!OIIO::Filesystem::parse_pattern(pattern.c_str(), hashes ? field.padding : 0, normalized,
+    if (!OIIO::Filesystem::parse_pattern(pattern.substr(name).c_str(), hashes ? field.padding : 0, normalized,
                                          framespec) ||
         normalized.empty())
         throw Error(pattern + ": cannot read the frame field of the pattern");
-    return normalized;
+    return {pattern.substr(0, name), normalized};
 }
 
 int parse_int(const std::string &text, const std::string &spec) {
@@ -103,11 +114,11 @@ bool is_sequence_pattern(const std::string &path) {
 }
 
 std::string frame_path(const std::string &pattern, int frame) {
+    const auto [directory, file] = normalized_pattern(pattern);
     std::vector<std::string> names;
-    if (!OIIO::Filesystem::enumerate_file_sequence(normalized_pattern(pattern), {frame}, names) ||
-        names.empty())
+    if (!OIIO::Filesystem::enumerate_file_sequence(file, {frame}, names) || names.empty())
         throw Error(pattern + ": cannot make the path of frame " + std::to_string(frame));
-    return names.front();
+    return directory + names.front();
 }
 
 std::vector<int> frames_on_disk(const std::string &pattern) {
@@ -115,11 +126,12 @@ std::vector<int> frames_on_disk(const std::string &pattern) {
     const std::filesystem::path directory = pattern_path.has_parent_path() ? pattern_path.parent_path() : ".";
     std::error_code ec;
     if (!std::filesystem::is_directory(directory, ec))
-        throw Error(directory.string() + ": cannot list the directory: no such directory");
+        throw InputError(directory.string() + ": cannot list the directory: no such directory");
     std::vector<int> numbers;
     std::vector<std::string> names;
-    if (!OIIO::Filesystem::scan_for_matching_filenames(normalized_pattern(pattern), numbers, names))
-        throw Error(directory.string() + ": cannot list the directory");
+    const auto [folder, file] = normalized_pattern(pattern);
+    if (!OIIO::Filesystem::scan_for_matching_filenames(folder + file, numbers, names))
+        throw InputError(directory.string() + ": cannot list the directory");
     // OpenImageIO also matches other paddings (shot.7.exr for shot.####.exr); this rule does not.
     std::vector<int> frames;
     for (std::size_t i = 0; i < numbers.size(); ++i)

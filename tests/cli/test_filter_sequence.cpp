@@ -1,5 +1,7 @@
 #include <catch2/catch.hpp>
 
+#include <csignal>
+
 #include <sys/resource.h>
 #include <cstdio>
 #include <filesystem>
@@ -61,12 +63,28 @@ TEST_CASE("filter: a 4-frame sequence with each frame-range syntax", "[cli][sequ
         CHECK(outputs_present(dir) == expected);
     }
     CHECK(aaf::io::read_aovs((dir / "out.0002.exr").string()).has_channel("aaf.V"));
+    // printf and @ spellings of the same patterns.
+    for (int frame = 1; frame <= 4; ++frame) fs::remove(dir / ("out.000" + std::to_string(frame) + ".exr"));
+    REQUIRE(run_aaf("filter aaf " + (dir / "in.%04d.exr").string() + " -o " +
+                    (dir / "out.@@@@.exr").string() + " --frames 3-4")
+                .exit_code == 0);
+    CHECK(outputs_present(dir) == std::vector<int>{3, 4});
 
     // A plain output for a sequence would receive every frame: refused, nothing written.
     const auto refused = run_aaf("filter aaf " + in + " -o " + (dir / "all.exr").string());
-    CHECK(refused.exit_code == 1);
+    CHECK(refused.exit_code == 2);  // usage
     CHECK_THAT(refused.output, Catch::Contains("all.exr"));
     CHECK(!fs::exists(dir / "all.exr"));
+
+    // Usage errors exit 2, a pattern with no frames on disk is an input error (3).
+    for (const char *usage : {"--frames 5-1", "--frames 1-4 --progress bogus", "--frames 1-4x0"}) {
+        INFO(usage);
+        CHECK(run_aaf("filter aaf " + in + " -o " + out + " " + std::string(usage)).exit_code == 2);
+    }
+    CHECK(run_aaf("filter aaf " + (dir / "in.0001.exr").string() + " -o " + (dir / "x.exr").string() +
+                  " --frames 1-2")
+              .exit_code == 2);
+    CHECK(run_aaf("filter aaf " + (dir / "none.####.exr").string() + " -o " + out).exit_code == 3);
 }
 
 TEST_CASE("filter: a failed frame, then a rerun with --skip-existing completes the job", "[cli][sequence]") {
@@ -83,6 +101,25 @@ TEST_CASE("filter: a failed frame, then a rerun with --skip-existing completes t
     CHECK(outputs_present(dir) == std::vector<int>{1, 2, 4});
     CHECK(!has_temporaries(dir));
 
+    // Without --skip-bad-frames the run stops at frame 3 (exit 3, an input
+    // error) and the JSONL stream still ends with the frame's time and a summary.
+    fs::remove(dir / "out.0004.exr");
+    const auto stopped =
+        run_aaf("filter aaf " + in + " -o " + out + " --frames 1-4 --skip-existing --progress=jsonl");
+    CHECK(stopped.exit_code == 3);
+    std::vector<nlohmann::json> events;
+    std::istringstream stopped_lines(stopped.output);
+    for (std::string line; std::getline(stopped_lines, line);)
+        if (!line.empty() && line.front() == '{') events.push_back(nlohmann::json::parse(line));
+    REQUIRE(events.size() == 5);  // start, frames 1-3, summary
+    CHECK(events[3]["frame"] == 3);
+    CHECK(events[3]["status"] == "failed");
+    CHECK(events[3].contains("seconds"));
+    CHECK(events[4]["event"] == "summary");
+    CHECK(events[4]["failed"] == 1);
+    CHECK(events[4]["not_run"] == 1);
+    CHECK(!fs::exists(dir / "out.0004.exr"));
+
     fs::remove(dir / "in.0003.exr");
     fs::rename(good_frame_3, dir / "in.0003.exr");
     const auto rerun =
@@ -97,8 +134,36 @@ TEST_CASE("filter: a failed frame, then a rerun with --skip-existing completes t
         if (event["event"] == "frame_end") (event["status"] == "skipped" ? skipped : ok)++;
         if (event["event"] == "summary") CHECK(event["failed"] == 0);
     }
-    CHECK(skipped == 3);
-    CHECK(ok == 1);
+    CHECK(skipped == 2);
+    CHECK(ok == 2);
+}
+
+TEST_CASE("filter: a run killed by SIGTERM mid-write leaves no partial or temporary file",
+          "[cli][sequence]") {
+    const fs::path dir = scratch_dir("filter_killed");
+    render_sequence(dir);
+    const std::string in = (dir / "in.####.exr").string(), out = (dir / "out.####.exr").string();
+    // The test hook holds each finished temporary 3 s before its rename; the
+    // kill lands while frame 1's temporary exists.
+    const fs::path script = dir / "kill.sh";
+    std::ofstream(script) << "AAF_TEST_HOLD_BEFORE_RENAME_S=3 " << AAF_EXECUTABLE << " filter aaf " << in
+                          << " -o " << out << " --frames 1-4 >/dev/null 2>&1 &\n"
+                          << "pid=$!\nsleep 1.5\n"
+                          << "ls -a " << dir.string() << " | grep -c 'tmp-' > " << (dir / "seen.txt").string()
+                          << "\nkill -TERM $pid\nwait $pid\necho $? > " << (dir / "status.txt").string()
+                          << "\n";
+    REQUIRE(std::system(("bash " + script.string()).c_str()) == 0);
+    int temporaries_seen = 0, status = 0;
+    std::ifstream(dir / "seen.txt") >> temporaries_seen;
+    std::ifstream(dir / "status.txt") >> status;
+    CHECK(temporaries_seen == 1);  // the kill came mid-write
+    CHECK(status == 128 + SIGTERM);
+    CHECK(outputs_present(dir).empty());
+    CHECK(!has_temporaries(dir));
+
+    REQUIRE(run_aaf("filter aaf " + in + " -o " + out + " --frames 1-4 --skip-existing").exit_code == 0);
+    CHECK(outputs_present(dir) == std::vector<int>{1, 2, 3, 4});
+    CHECK(!has_temporaries(dir));
 }
 
 TEST_CASE("filter: peak memory does not grow with the number of frames", "[cli][sequence][memory]") {

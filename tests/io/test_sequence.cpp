@@ -31,15 +31,24 @@ TEST_CASE("Frame paths: # and @ pad one digit each, printf fields", "[io][sequen
     CHECK(io::is_sequence_pattern("x.####.exr"));
     CHECK(!io::is_sequence_pattern("x.exr"));
     CHECK_THROWS_AS(io::frame_path("plain.exr", 1), Error);
+    // Only the file name holds the frame field: folders may contain # or @.
+    CHECK(io::frame_path("v@2/take#3/b.###.exr", 7) == "v@2/take#3/b.007.exr");
+    CHECK(!io::is_sequence_pattern("v@2/single.exr"));
+    CHECK(!io::is_sequence_pattern("shots_%04d/single.exr"));
 }
 
 TEST_CASE("Frames on disk are found by pattern", "[io][sequence]") {
     const fs::path dir = fs::path(AAF_TEST_BINARY_DIR) / "scratch" / "sequence";
     fs::remove_all(dir);
     fs::create_directories(dir);
-    for (const char *name : {"shot.0001.exr", "shot.0003.exr", "shot.0010.exr", "shot.1.exr", "other.0002.exr",
-                             "shot.0002.exr.tmp"})
+    for (const char *name : {"shot.0001.exr", "shot.0003.exr", "shot.0010.exr", "shot.1.exr",
+                             "other.0002.exr", "shot.0002.exr.tmp"})
         std::ofstream(dir / name) << "x";
     CHECK(io::frames_on_disk((dir / "shot.####.exr").string()) == std::vector<int>{1, 3, 10});
     CHECK(io::frames_on_disk((dir / "shot.#.exr").string()) == std::vector<int>{1});
+
+    const fs::path folder = dir / "v@2#";
+    fs::create_directories(folder);
+    for (const char *name : {"in.0004.exr", "in.0005.exr"}) std::ofstream(folder / name) << "x";
+    CHECK(io::frames_on_disk((folder / "in.####.exr").string()) == std::vector<int>{4, 5});
 }
