@@ -320,7 +320,7 @@ void write_aovs(const AovSet &aovs, const std::string &path, const WriteOptions 
         if (!output->close()) throw InputError(output->geterror());
     } catch (const InputError &e) {
         output.reset();
-        std::remove(temporary.c_str());
+        discard_temporary(temporary);
         throw InputError(path + ": cannot write: " + e.what());
     }
     commit_temporary(temporary, path);

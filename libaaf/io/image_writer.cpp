@@ -17,7 +17,7 @@ void write_image_atomically(const std::string &path, const char *format, const O
     ok = output->close() && ok;
     if (!ok) {
         const std::string message = output->geterror();
-        std::remove(temporary.c_str());
+        discard_temporary(temporary);
         throw InputError(path + ": cannot write: " + message);
     }
     commit_temporary(temporary, path);

@@ -5,11 +5,23 @@
 namespace aaf::io {
 
 /// A temporary path beside `path` (same directory, so the final rename is
-/// atomic), unique to this process and call.
+/// atomic), unique to this process and call. It is remembered until
+/// commit_temporary() or discard_temporary(), so that an interrupt can remove
+/// it (remove_temporaries_on_signal()).
 std::string temporary_path_for(const std::string &path);
 
 /// Renames `temporary` onto `path`; on failure removes `temporary` and throws
 /// aaf::Error "<path>: <problem>".
 void commit_temporary(const std::string &temporary, const std::string &path);
+
+/// Removes `temporary` (if it was written) and forgets it.
+void discard_temporary(const std::string &temporary);
+
+/// Installs SIGINT and SIGTERM handlers that delete every temporary file this
+/// process has not committed yet, then end the process by the same signal (so
+/// a farm sees the usual 130/143). A killed run leaves no partial file under a
+/// final name anyway; this also leaves no hidden `.NAME.tmp-PID-N` behind
+/// (only SIGKILL, which cannot be caught, can still leave one).
+void remove_temporaries_on_signal();
 
 }  // namespace aaf::io
