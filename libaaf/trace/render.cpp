@@ -19,6 +19,7 @@
 #include "renderer.h"
 #include "scene_description.h"
 #include "scene_file.h"
+#include "scene_hash.h"
 
 namespace aaf::trace {
 
@@ -197,6 +198,7 @@ void write_attributes(const SceneDescription &scene, const RenderSettings &setti
     write_light_attributes(scene.key_light(), aovs);
     aovs.attributes[attr::kScene] = scene.name;
     aovs.attributes[attr::kSceneFile] = scene.source;
+    aovs.attributes[attr::kSceneHash] = hash_to_hex(scene_hash(scene, settings));
     aovs.attributes[attr::kLightCount] = int(scene.lights.size());
     aovs.attributes[attr::kApertureRadius] = scene.camera.aperture_radius_m;
     aovs.attributes[attr::kSeed] = int(settings.seed);
@@ -212,7 +214,8 @@ void write_attributes(const SceneDescription &scene, const RenderSettings &setti
 
 /// Restores the per-pixel sums of a partial render and returns its samples
 /// per pixel; throws aaf::InputError when it is not a partial render of the
-/// same scene, seed, size, frame and light.
+/// same scene, seed, size, frame and light, or when the scene's content
+/// changed since (scene_hash.h).
 int restore_progress(const AovSet &partial, const SceneDescription &scene, const RenderSettings &settings,
                      std::vector<ShadowStats> &stats) {
     auto fail = [&](const std::string &problem) {
@@ -236,6 +239,9 @@ int restore_progress(const AovSet &partial, const SceneDescription &scene, const
     expect(attr::kCosineFalloff, int(settings.cosine_falloff));
     expect(attr::kLightKind, std::string(to_string(scene.key_light().profile)));
     if (partial.attributes.count(attr::kAdaptiveMu)) fail("it is an adaptive render");
+    // Checked after the specific attributes above, whose messages say more.
+    if (!(attribute(attr::kSceneHash) == AttributeValue(hash_to_hex(scene_hash(scene, settings)))))
+        fail("the scene changed since it was rendered (header attribute 'aaf:scene_hash' differs)");
     const int *done = std::get_if<int>(&attribute(attr::kSppDone));
     if (!done) fail("header attribute 'aaf:spp_done' is not an int");
     if (*done > settings.spp) fail("it already has " + std::to_string(*done) + " spp, more than --spp");

@@ -103,6 +103,26 @@ TEST_CASE("CLI: a reference rendered in two halves with --resume equals one rend
     CHECK_FALSE(fs::exists(dir / "other.exr"));
 }
 
+TEST_CASE("CLI: --resume refuses a partial render of a scene edited since", "[cli][render][resume]") {
+    const fs::path dir = scratch_dir("render_resume_edited");
+    const fs::path scene = write_moving_light_scene(dir);
+    const std::string partial = (dir / "partial.exr").string();
+    const std::string common = "render " + scene.string() + " --width 24 --height 18 ";
+    REQUIRE(run_aaf(common + "--spp 1024 -o " + partial).exit_code == 0);
+    const std::string before = bytes_of(partial);
+    // Move the light (and its first key, which holds at frame 1): same name,
+    // seed, size, frame and light kind as before.
+    std::string text = bytes_of(scene);
+    for (std::size_t at; (at = text.find("[-0.5, 3, 0]")) != std::string::npos;)
+        text.replace(at, 12, "[-0.4, 3, 0]");
+    std::ofstream(scene) << text;
+    const auto refused = run_aaf(common + "--spp 2048 --resume " + partial + " -o " + partial);
+    CHECK(refused.exit_code == 3);
+    CHECK_THAT(refused.output, Catch::Contains("partial.exr: cannot resume: the scene changed"));
+    CHECK(std::count(refused.output.begin(), refused.output.end(), '\n') == 1);
+    CHECK(bytes_of(partial) == before);
+}
+
 TEST_CASE("CLI: a bad scene file is one error line naming it, exit 3, no output", "[cli][render][errors]") {
     const fs::path dir = scratch_dir("render_bad_scene");
     std::ofstream(dir / "bad.json") << R"({"camera": {"position": [0, 1, 2], "look_at": [0, 0, 0]},

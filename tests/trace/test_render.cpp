@@ -482,3 +482,32 @@ TEST_CASE("A checkpoint written between rounds resumes to the uninterrupted rend
     for (std::size_t i = 0; i < whole.channel_names().size(); ++i)
         CHECK(continued.plane(i) == whole.plane(i));
 }
+
+TEST_CASE("A partial render of an edited scene is refused", "[trace][resume]") {
+    const std::filesystem::path dir = std::filesystem::path(AAF_TEST_BINARY_DIR) / "scratch" / "edited_scene";
+    std::filesystem::create_directories(dir);
+    const std::string path = (dir / "edited.json").string();
+    auto write_scene = [&](const char *light_center) {
+        std::ofstream(path) << R"({"name": "edited", "camera": {"position": [0, 3, 3], "look_at": [0, 0, 0]},
+  "lights": [{"center": )" << light_center
+                            << R"(, "edge_u": [0.5, 0, 0], "edge_v": [0, 0, 0.5]}],
+  "objects": [{"type": "plane", "size": [6, 6]}, {"type": "box", "min": [-0.3, 0.5, -0.3], "max": [0.3, 0.6, 0.3]}]})";
+    };
+    write_scene("[0, 3, 0]");
+    trace::RenderSettings settings;
+    settings.width = 16;
+    settings.height = 12;
+    settings.spp = trace::kSamplesPerRound;
+    const AovSet partial = trace::render_scene(path, settings);
+    const auto &hash = std::get<std::string>(partial.attributes.at(attr::kSceneHash));
+    CHECK(hash.size() == 16);
+    CHECK(hash == std::get<std::string>(trace::render_scene(path, settings).attributes.at(attr::kSceneHash)));
+
+    settings.spp = 2 * trace::kSamplesPerRound;
+    settings.resume = &partial;
+    settings.resume_source = "partial.exr";
+    CHECK_NOTHROW(trace::render_scene(path, settings));
+    write_scene("[0.2, 3, 0]");  // same name, seed, size, frame and light kind; the light moved
+    CHECK_THROWS_WITH(trace::render_scene(path, settings),
+                      Catch::StartsWith("partial.exr: cannot resume: the scene changed"));
+}
