@@ -245,9 +245,6 @@ int restore_progress(const AovSet &partial, const SceneDescription &scene, const
     const int *done = std::get_if<int>(&attribute(attr::kSppDone));
     if (!done) fail("header attribute 'aaf:spp_done' is not an int");
     if (*done > settings.spp) fail("it already has " + std::to_string(*done) + " spp, more than --spp");
-    if (*done % kSamplesPerRound != 0 && *done != settings.spp)
-        fail("its " + std::to_string(*done) + " spp are not whole rounds of " +
-             std::to_string(kSamplesPerRound));
     for (Role role : {Role::SamplesPerPixel, Role::D2Min, Role::D2Max, Role::ProgressWeight,
                       Role::ProgressUnoccluded, Role::ProgressRadiance})
         for (const std::string &name : role_info(role).channels)
@@ -328,7 +325,6 @@ AovSet render_scene(const std::string &scene_name, const RenderSettings &setting
         for (SceneLight &light : scene.lights) light.plane.profile = *settings.light_profile;
     const Camera previous_camera = scene.camera_at(settings.frame - 1);
 
-    const int rounds = (settings.spp + kSamplesPerRound - 1) / kSamplesPerRound;
     unsigned groups = settings.aovs;
     // A reference (a round or more) can always be resumed to more samples.
     if (!settings.adaptive && (settings.spp >= kSamplesPerRound || settings.resume)) groups |= kAovProgress;
@@ -365,10 +361,14 @@ AovSet render_scene(const std::string &scene_name, const RenderSettings &setting
         for_each_pixel_tiled(settings.width, settings.height, [&](int x, int y) {
             primaries[std::size_t(y) * settings.width + x] = renderer.trace_primary(x, y);
         });
-        // Rounds of at most kSamplesPerRound samples, round k with pass k.
+        // Rounds of at most kSamplesPerRound samples, round k with pass k. A
+        // partial render that ends inside a round (a finished render of fewer
+        // samples) has used passes [0, ceil(done / round)); fresh rounds follow
+        // them, so no sample is dropped and no random number used twice.
         auto last_checkpoint = Clock::now();
-        for (int round = spp_done / kSamplesPerRound; spp_done < settings.spp; ++round) {
-            const int count = std::min(kSamplesPerRound, settings.spp - round * kSamplesPerRound);
+        for (int round = (spp_done + kSamplesPerRound - 1) / kSamplesPerRound; spp_done < settings.spp;
+             ++round) {
+            const int count = std::min(kSamplesPerRound, settings.spp - spp_done);
             for_each_pixel_tiled(settings.width, settings.height, [&](int x, int y) {
                 const std::size_t i = std::size_t(y) * settings.width + x;
                 if (primaries[i].found || thin_lens)
@@ -376,9 +376,9 @@ AovSet render_scene(const std::string &scene_name, const RenderSettings &setting
                                            stats[i]);
                 stats[i].round_to_float();
             });
-            spp_done = round * kSamplesPerRound + count;
+            spp_done += count;
             if (settings.on_progress) settings.on_progress(spp_done, settings.spp);
-            if (settings.on_checkpoint && round + 1 < rounds &&
+            if (settings.on_checkpoint && spp_done < settings.spp &&
                 seconds_since(last_checkpoint) >= settings.checkpoint_interval_s) {
                 settings.on_checkpoint(render_so_far(spp_done));
                 last_checkpoint = Clock::now();
