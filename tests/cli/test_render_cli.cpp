@@ -123,6 +123,36 @@ TEST_CASE("CLI: --resume refuses a partial render of a scene edited since", "[cl
     CHECK(bytes_of(partial) == before);
 }
 
+TEST_CASE("CLI: --progress chooses how a single render reports its rounds", "[cli][render][progress]") {
+    const fs::path dir = scratch_dir("render_progress");
+    const std::string common =
+        "render grids --width 16 --height 12 --spp 2048 -o " + (dir / "out.exr").string() + " --progress ";
+    const auto jsonl = run_aaf(common + "jsonl");
+    REQUIRE(jsonl.exit_code == 0);
+    CHECK_THAT(jsonl.output, Catch::Contains(R"("event":"round","seconds":)") &&
+                                 Catch::Contains(R"("spp":2048,"spp_done":1024})") &&
+                                 Catch::Contains(R"("spp":2048,"spp_done":2048})") &&
+                                 Catch::Contains(R"("event":"summary")"));
+    const auto openjd = run_aaf(common + "openjd");
+    REQUIRE(openjd.exit_code == 0);
+    CHECK_THAT(openjd.output,
+               Catch::Contains("openjd_progress: 50\n") && Catch::Contains("openjd_progress: 100\n"));
+    CHECK(run_aaf(common + "none").output.empty());
+
+    // On a terminal (script(1) gives the render one), `lines` still writes lines, `auto` a bar.
+    if (std::system("command -v script >/dev/null 2>&1") != 0) return;
+    auto on_terminal = [&](const std::string &mode) {
+        const fs::path log = dir / ("tty_" + mode + ".txt");
+        const std::string command = std::string(AAF_EXECUTABLE) + " " + common + mode;
+        std::system(("script -qec '" + command + "' /dev/null >" + log.string() + " 2>&1").c_str());
+        return bytes_of(log);
+    };
+    const std::string lines = on_terminal("lines"), bar = on_terminal("auto");
+    CHECK_THAT(lines, Catch::Contains("render: 1024/2048 spp (50%)"));
+    CHECK(lines.find("[") == std::string::npos);
+    CHECK_THAT(bar, Catch::Contains("\rrender: [##########          ] 1024/2048 spp"));
+}
+
 TEST_CASE("CLI: a bad scene file is one error line naming it, exit 3, no output", "[cli][render][errors]") {
     const fs::path dir = scratch_dir("render_bad_scene");
     std::ofstream(dir / "bad.json") << R"({"camera": {"position": [0, 1, 2], "look_at": [0, 0, 0]},
