@@ -1,5 +1,6 @@
 #include <catch2/catch.hpp>
 
+#include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <iterator>
@@ -70,6 +71,41 @@ TEST_CASE("CLI: a 3-frame sequence with a moving light differs only where the li
         CHECK(plane(frames[f], "shadow.V") != plane(frames[f - 1], "shadow.V"));
         CHECK(plane(frames[f], "unshadowed.R") != plane(frames[f - 1], "unshadowed.R"));
     }
+    // Where: the box's shadow on the ground is centred where a ray from the
+    // light's centre through the box's centre (height 0.85 m) meets it:
+    // x = L + (0 - L) 3 / (3 - 0.85), i.e. 0.20, 0, -0.20 m for L = -0.5, 0, 0.5.
+    // It moves against the light, and ground far from the box stays fully lit.
+    std::vector<double> centroid_x;
+    for (const aaf::AovSet &aovs : frames) {
+        const auto v = plane(aovs, "shadow.V"), x = plane(aovs, "P.X"), z = plane(aovs, "P.Z"),
+                   id = plane(aovs, "id.object"), normal_y = plane(aovs, "N.Y");
+        double weight = 0, sum_x = 0;
+        int far_lit = 0, far = 0, box_lit = 0, box = 0;
+        for (std::size_t i = 0; i < v.size(); ++i) {
+            if (id[i] == 2 && normal_y[i] > 0.5f) {  // the box's top sees the light unblocked
+                ++box;
+                box_lit += v[i] == 1.0f;
+            }
+            if (id[i] != 1) continue;
+            if (std::hypot(x[i], z[i]) > 1.2) {  // beyond the penumbra of every frame (0.8 m)
+                ++far;
+                far_lit += v[i] == 1.0f;
+            }
+            weight += 1.0 - v[i];
+            sum_x += (1.0 - v[i]) * x[i];
+        }
+        CHECK(far > 100);
+        CHECK(far_lit == far);
+        CHECK(box > 0);
+        CHECK(box_lit == box);
+        REQUIRE(weight > 5);  // pixels' worth of shadow in view
+        centroid_x.push_back(sum_x / weight);
+    }
+    CHECK(centroid_x[0] == Approx(0.20).margin(0.05));
+    CHECK(centroid_x[1] == Approx(0.0).margin(0.05));
+    CHECK(centroid_x[2] == Approx(-0.20).margin(0.05));
+    CHECK(centroid_x[0] > centroid_x[1]);
+    CHECK(centroid_x[1] > centroid_x[2]);
 }
 
 TEST_CASE("CLI: render output is byte-identical for 1 and 2 threads", "[cli][render][determinism]") {
