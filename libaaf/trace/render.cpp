@@ -2,6 +2,7 @@
 
 #include <pmmintrin.h>  // flush-to-zero and denormals-are-zero
 #include <tbb/blocked_range.h>
+#include <tbb/global_control.h>
 #include <tbb/info.h>
 #include <tbb/parallel_for.h>
 #include <tbb/task_arena.h>
@@ -10,6 +11,7 @@
 #include <array>
 #include <chrono>
 #include <cmath>
+#include <optional>
 #include <sstream>
 #include <type_traits>
 
@@ -352,10 +354,13 @@ AovSet render_scene(const std::string &scene_name, const RenderSettings &setting
         return std::chrono::duration<double>(Clock::now() - start).count();
     };
     RenderTimings measured;
-    // More threads than the machine runs gain nothing (and make oneTBB warn).
-    tbb::task_arena arena(settings.threads == 0
-                              ? tbb::task_arena::automatic
-                              : std::min(settings.threads, tbb::info::default_concurrency()));
+    // oneTBB caps its workers at the hardware's threads (and warns) unless the
+    // process-wide limit is raised: raise it for this render, so `threads`
+    // really run (a 1-core machine still checks 1 vs 2 threads).
+    std::optional<tbb::global_control> allow_threads;
+    if (settings.threads > tbb::info::default_concurrency())
+        allow_threads.emplace(tbb::global_control::max_allowed_parallelism, std::size_t(settings.threads));
+    tbb::task_arena arena(settings.threads == 0 ? tbb::task_arena::automatic : settings.threads);
     arena.execute([&] {
         auto start = Clock::now();
         for_each_pixel_tiled(settings.width, settings.height, [&](int x, int y) {

@@ -1,3 +1,6 @@
+#include <tbb/global_control.h>
+#include <tbb/info.h>
+#include <tbb/task_arena.h>
 #include <catch2/catch.hpp>
 
 #include <algorithm>
@@ -58,6 +61,25 @@ TEST_CASE("Render is bit-identical for any thread count", "[trace]") {
     const AovSet one = render_small(9, 3, 1);
     CHECK(same_channels(one, render_small(9, 3, 4)));
     CHECK(same_channels(one, render_small(9, 3, 0)));
+}
+
+TEST_CASE("Render runs as many threads as asked, even beyond the cores", "[trace][threads]") {
+    // More threads than cores, so the thread-count tests mean something on any machine.
+    const int threads = tbb::info::default_concurrency() + 2;
+    trace::RenderSettings settings;
+    settings.width = 8;
+    settings.height = 6;
+    settings.spp = 2;
+    settings.threads = threads;
+    int arena_threads = 0;
+    std::size_t allowed = 0;
+    settings.on_progress = [&](int, int) {  // called inside the render's arena
+        arena_threads = tbb::this_task_arena::max_concurrency();
+        allowed = tbb::global_control::active_value(tbb::global_control::max_allowed_parallelism);
+    };
+    trace::render_scene("grids", settings);
+    CHECK(arena_threads == threads);
+    CHECK(allowed >= std::size_t(threads));
 }
 
 TEST_CASE("Render depends on the seed and on nothing else", "[trace]") {
