@@ -5,6 +5,7 @@
 #include <cstdio>
 #include <iostream>
 #include <memory>
+#include <nlohmann/json.hpp>
 #include <optional>
 
 #include "aaf/core/aov_contract.h"
@@ -29,18 +30,35 @@ void on_interrupt(int signal) {
     std::signal(signal, SIG_DFL);
 }
 
-/// Reports the rounds of a progressive render on stderr: a bar redrawn in
-/// place on a terminal, otherwise a line at most every 10 % of the samples.
+/// Reports the rounds of a progressive render (more than one round) in the
+/// `--progress` mode: `auto` draws a bar in place on a terminal and writes
+/// lines otherwise; `lines` writes a line at most every 10 % of the samples
+/// (stderr); `jsonl` writes a "round" event per round and `openjd` an
+/// `openjd_progress:` line per round (stdout, beside the frame events).
 class RoundReporter {
   public:
-    RoundReporter(bool enabled) : enabled_(enabled), terminal_(::isatty(STDERR_FILENO)) {}
+    explicit RoundReporter(Progress mode)
+        : mode_(mode), bar_(mode == Progress::Automatic && ::isatty(STDERR_FILENO)) {}
 
     void operator()(int done, int total) {
-        if (!enabled_ || total <= trace::kSamplesPerRound) return;
+        if (mode_ == Progress::None || total <= trace::kSamplesPerRound) return;
         const double seconds =
             std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
         const int percent = int(100.0 * done / total);
-        if (terminal_) {
+        if (mode_ == Progress::Jsonl) {
+            std::cout << nlohmann::json{{"event", "round"},
+                                        {"spp_done", done},
+                                        {"spp", total},
+                                        {"seconds", seconds}}
+                             .dump()
+                      << std::endl;
+            return;
+        }
+        if (mode_ == Progress::OpenJd) {
+            std::cout << "openjd_progress: " << 100.0 * done / total << std::endl;
+            return;
+        }
+        if (bar_) {
             const int filled = percent / 5;
             std::fprintf(stderr, "\rrender: [%-20s] %d/%d spp %.0f s",
                          std::string(std::size_t(filled), '#').c_str(), done, total, seconds);
@@ -53,7 +71,8 @@ class RoundReporter {
     }
 
   private:
-    bool enabled_, terminal_;
+    Progress mode_;
+    bool bar_;
     int last_decile_ = 0;
     std::chrono::steady_clock::time_point start_ = std::chrono::steady_clock::now();
 };
@@ -103,7 +122,9 @@ void add_render_command(CLI::App &app) {
     cmd->add_option("--checkpoint", options->checkpoint_s,
                     "Seconds between checkpoints of a progressive render (written to -o, resumable)")
         ->capture_default_str();
-    cmd->add_option("--progress", options->progress, "auto, lines, jsonl, openjd or none (sequences)")
+    cmd->add_option("--progress", options->progress,
+                    "auto (a bar on a terminal, else lines), lines, jsonl, openjd or none: per frame for "
+                    "a sequence, per round of 1024 spp for a single render")
         ->capture_default_str();
     cmd->add_flag("--skip-existing", options->skip_existing,
                   "Skip frames whose output exists and reads back");
@@ -145,7 +166,7 @@ void add_render_command(CLI::App &app) {
         RunOptions run;
         run.progress = progress_from_string(options->progress);
         run.skip_existing = options->skip_existing;
-        RoundReporter report_rounds(!sequence && run.progress != Progress::None);
+        RoundReporter report_rounds(sequence ? Progress::None : run.progress);
         std::signal(SIGINT, on_interrupt);
         std::signal(SIGTERM, on_interrupt);
         const int failed = run_frames(jobs, run, [&](const FrameJob &job) {

@@ -36,12 +36,12 @@ void check_device(RTCDevice device, const char *what) {
 
 }  // namespace
 
-EmbreeScene::EmbreeScene(const SceneDescription &description, bool high_quality) {
+EmbreeScene::EmbreeScene(const SceneDescription &description, bool high_quality, bool robust) {
     device_ = rtcNewDevice(nullptr);
     if (!device_) throw Error("Embree: cannot create a device");
     try {
         scene_ = rtcNewScene(device_);
-        rtcSetSceneFlags(scene_, RTC_SCENE_FLAG_ROBUST);
+        rtcSetSceneFlags(scene_, robust ? RTC_SCENE_FLAG_ROBUST : RTC_SCENE_FLAG_NONE);
         rtcSetSceneBuildQuality(scene_, high_quality ? RTC_BUILD_QUALITY_HIGH : RTC_BUILD_QUALITY_MEDIUM);
         for (const Mesh &mesh : description.meshes) {
             RTCGeometry geometry = rtcNewGeometry(device_, RTC_GEOMETRY_TYPE_TRIANGLE);

@@ -19,9 +19,10 @@ struct Hit {
 class EmbreeScene {
   public:
     /// Builds with RTC_SCENE_FLAG_ROBUST (no leaks between adjacent
-    /// triangles); `high_quality` selects RTC_BUILD_QUALITY_HIGH (a slower
-    /// build that pays off over the many rays of a reference).
-    EmbreeScene(const SceneDescription &scene, bool high_quality);
+    /// triangles) unless `robust` is false (for benchmarks only);
+    /// `high_quality` selects RTC_BUILD_QUALITY_HIGH (a slower build that pays
+    /// off over the many rays of a reference).
+    EmbreeScene(const SceneDescription &scene, bool high_quality, bool robust = true);
     ~EmbreeScene();
     EmbreeScene(const EmbreeScene &) = delete;
     EmbreeScene &operator=(const EmbreeScene &) = delete;

@@ -2,6 +2,7 @@
 
 #include <pmmintrin.h>  // flush-to-zero and denormals-are-zero
 #include <tbb/blocked_range.h>
+#include <tbb/global_control.h>
 #include <tbb/info.h>
 #include <tbb/parallel_for.h>
 #include <tbb/task_arena.h>
@@ -10,6 +11,7 @@
 #include <array>
 #include <chrono>
 #include <cmath>
+#include <optional>
 #include <sstream>
 #include <type_traits>
 
@@ -19,6 +21,7 @@
 #include "renderer.h"
 #include "scene_description.h"
 #include "scene_file.h"
+#include "scene_hash.h"
 
 namespace aaf::trace {
 
@@ -197,6 +200,7 @@ void write_attributes(const SceneDescription &scene, const RenderSettings &setti
     write_light_attributes(scene.key_light(), aovs);
     aovs.attributes[attr::kScene] = scene.name;
     aovs.attributes[attr::kSceneFile] = scene.source;
+    aovs.attributes[attr::kSceneHash] = hash_to_hex(scene_hash(scene, settings));
     aovs.attributes[attr::kLightCount] = int(scene.lights.size());
     aovs.attributes[attr::kApertureRadius] = scene.camera.aperture_radius_m;
     aovs.attributes[attr::kSeed] = int(settings.seed);
@@ -212,7 +216,8 @@ void write_attributes(const SceneDescription &scene, const RenderSettings &setti
 
 /// Restores the per-pixel sums of a partial render and returns its samples
 /// per pixel; throws aaf::InputError when it is not a partial render of the
-/// same scene, seed, size, frame and light.
+/// same scene, seed, size, frame and light, or when the scene's content
+/// changed since (scene_hash.h).
 int restore_progress(const AovSet &partial, const SceneDescription &scene, const RenderSettings &settings,
                      std::vector<ShadowStats> &stats) {
     auto fail = [&](const std::string &problem) {
@@ -236,12 +241,12 @@ int restore_progress(const AovSet &partial, const SceneDescription &scene, const
     expect(attr::kCosineFalloff, int(settings.cosine_falloff));
     expect(attr::kLightKind, std::string(to_string(scene.key_light().profile)));
     if (partial.attributes.count(attr::kAdaptiveMu)) fail("it is an adaptive render");
+    // Checked after the specific attributes above, whose messages say more.
+    if (!(attribute(attr::kSceneHash) == AttributeValue(hash_to_hex(scene_hash(scene, settings)))))
+        fail("the scene changed since it was rendered (header attribute 'aaf:scene_hash' differs)");
     const int *done = std::get_if<int>(&attribute(attr::kSppDone));
     if (!done) fail("header attribute 'aaf:spp_done' is not an int");
     if (*done > settings.spp) fail("it already has " + std::to_string(*done) + " spp, more than --spp");
-    if (*done % kSamplesPerRound != 0 && *done != settings.spp)
-        fail("its " + std::to_string(*done) + " spp are not whole rounds of " +
-             std::to_string(kSamplesPerRound));
     for (Role role : {Role::SamplesPerPixel, Role::D2Min, Role::D2Max, Role::ProgressWeight,
                       Role::ProgressUnoccluded, Role::ProgressRadiance})
         for (const std::string &name : role_info(role).channels)
@@ -322,7 +327,6 @@ AovSet render_scene(const std::string &scene_name, const RenderSettings &setting
         for (SceneLight &light : scene.lights) light.plane.profile = *settings.light_profile;
     const Camera previous_camera = scene.camera_at(settings.frame - 1);
 
-    const int rounds = (settings.spp + kSamplesPerRound - 1) / kSamplesPerRound;
     unsigned groups = settings.aovs;
     // A reference (a round or more) can always be resumed to more samples.
     if (!settings.adaptive && (settings.spp >= kSamplesPerRound || settings.resume)) groups |= kAovProgress;
@@ -350,19 +354,26 @@ AovSet render_scene(const std::string &scene_name, const RenderSettings &setting
         return std::chrono::duration<double>(Clock::now() - start).count();
     };
     RenderTimings measured;
-    // More threads than the machine runs gain nothing (and make oneTBB warn).
-    tbb::task_arena arena(settings.threads == 0
-                              ? tbb::task_arena::automatic
-                              : std::min(settings.threads, tbb::info::default_concurrency()));
+    // oneTBB caps its workers at the hardware's threads (and warns) unless the
+    // process-wide limit is raised: raise it for this render, so `threads`
+    // really run (a 1-core machine still checks 1 vs 2 threads).
+    std::optional<tbb::global_control> allow_threads;
+    if (settings.threads > tbb::info::default_concurrency())
+        allow_threads.emplace(tbb::global_control::max_allowed_parallelism, std::size_t(settings.threads));
+    tbb::task_arena arena(settings.threads == 0 ? tbb::task_arena::automatic : settings.threads);
     arena.execute([&] {
         auto start = Clock::now();
         for_each_pixel_tiled(settings.width, settings.height, [&](int x, int y) {
             primaries[std::size_t(y) * settings.width + x] = renderer.trace_primary(x, y);
         });
-        // Rounds of at most kSamplesPerRound samples, round k with pass k.
+        // Rounds of at most kSamplesPerRound samples, round k with pass k. A
+        // partial render that ends inside a round (a finished render of fewer
+        // samples) has used passes [0, ceil(done / round)); fresh rounds follow
+        // them, so no sample is dropped and no random number used twice.
         auto last_checkpoint = Clock::now();
-        for (int round = spp_done / kSamplesPerRound; spp_done < settings.spp; ++round) {
-            const int count = std::min(kSamplesPerRound, settings.spp - round * kSamplesPerRound);
+        for (int round = (spp_done + kSamplesPerRound - 1) / kSamplesPerRound; spp_done < settings.spp;
+             ++round) {
+            const int count = std::min(kSamplesPerRound, settings.spp - spp_done);
             for_each_pixel_tiled(settings.width, settings.height, [&](int x, int y) {
                 const std::size_t i = std::size_t(y) * settings.width + x;
                 if (primaries[i].found || thin_lens)
@@ -370,9 +381,9 @@ AovSet render_scene(const std::string &scene_name, const RenderSettings &setting
                                            stats[i]);
                 stats[i].round_to_float();
             });
-            spp_done = round * kSamplesPerRound + count;
+            spp_done += count;
             if (settings.on_progress) settings.on_progress(spp_done, settings.spp);
-            if (settings.on_checkpoint && round + 1 < rounds &&
+            if (settings.on_checkpoint && spp_done < settings.spp &&
                 seconds_since(last_checkpoint) >= settings.checkpoint_interval_s) {
                 settings.on_checkpoint(render_so_far(spp_done));
                 last_checkpoint = Clock::now();

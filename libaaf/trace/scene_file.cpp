@@ -2,6 +2,7 @@
 
 #include <tiny_obj_loader.h>
 
+#include <climits>
 #include <cmath>
 #include <cstdlib>
 #include <filesystem>
@@ -34,6 +35,8 @@ class Node {
     }
 
     bool has(const char *key) const { return value_.is_object() && value_.contains(key); }
+    bool is_object() const { return value_.is_object(); }
+    bool is_string() const { return value_.is_string(); }
     Node at(const char *key) const {
         if (!value_.is_object()) fail("expected an object");
         if (!value_.contains(key)) fail(std::string("missing required field '") + key + "'");
@@ -77,6 +80,12 @@ class Node {
     }
     int integer() const {
         if (!value_.is_number_integer()) fail("expected an integer");
+        // get<int> would wrap a larger value silently.
+        const bool in_range =
+            value_.is_number_unsigned()
+                ? value_.get<std::uint64_t>() <= std::uint64_t(INT_MAX)
+                : value_.get<std::int64_t>() >= INT_MIN && value_.get<std::int64_t>() <= INT_MAX;
+        if (!in_range) fail("integer out of range");
         return value_.get<int>();
     }
     bool boolean() const {
@@ -109,13 +118,55 @@ class Node {
     const std::string &file_;
 };
 
+/// Rejects a key repeated within one JSON object (nlohmann keeps the last
+/// silently, so a second "camera" track would hide the first), naming its path.
+class DuplicateKeyCheck {
+  public:
+    explicit DuplicateKeyCheck(const std::string &file) : file_(file) {}
+
+    bool operator()(int, json::parse_event_t event, json &parsed) {
+        using Event = json::parse_event_t;
+        if ((event == Event::object_start || event == Event::array_start || event == Event::value) &&
+            !levels_.empty() && levels_.back().is_array)
+            ++levels_.back().index;
+        if (event == Event::object_start || event == Event::array_start)
+            levels_.push_back({event == Event::array_start, -1, {}, {}});
+        else if (event == Event::object_end || event == Event::array_end)
+            levels_.pop_back();
+        else if (event == Event::key && !levels_.empty()) {
+            Level &level = levels_.back();
+            level.key = parsed.get<std::string>();
+            if (!level.keys.insert(level.key).second)
+                throw InputError(file_ + ": " + path() + ": duplicate key (give each field once)");
+        }
+        return true;
+    }
+
+  private:
+    struct Level {
+        bool is_array;
+        int index;        ///< arrays: the element being parsed
+        std::string key;  ///< objects: the key being parsed
+        std::set<std::string> keys;
+    };
+    std::string path() const {
+        std::string text;
+        for (const Level &level : levels_)
+            text += level.is_array ? "[" + std::to_string(level.index) + "]"
+                                   : (text.empty() ? "" : ".") + level.key;
+        return text;
+    }
+    const std::string &file_;
+    std::vector<Level> levels_;
+};
+
 json parse_json_file(const std::string &path) {
     std::ifstream in(path, std::ios::binary);
     if (!in) throw InputError(path + ": cannot open scene file");
     std::stringstream text;
     text << in.rdbuf();
     try {
-        return json::parse(text.str());
+        return json::parse(text.str(), DuplicateKeyCheck(path));
     } catch (const json::parse_error &e) {
         // nlohmann's message reads "[json.exception.parse_error.101] parse error at line L, column C: ...".
         std::string message = e.what();
@@ -182,8 +233,20 @@ SceneLight read_light(const Node &node) {
         light.intensity = intensity->number();
         if (light.intensity < 0) intensity->fail("must not be negative");
     }
-    if (auto color = node.find("color")) light.color = color->vec3_or_scalar();
+    if (auto color = node.find("color")) {
+        light.color = color->vec3_or_scalar();
+        if (light.color.x < 0 || light.color.y < 0 || light.color.z < 0) color->fail("must not be negative");
+    }
     return light;
+}
+
+/// The checks a camera key must pass, static or animated; `node` is where
+/// the key was read, `fov` and its field when it gave one.
+void check_camera_key(const Node &node, const CameraKey &key, Vec3 up, const std::optional<Node> &fov) {
+    if (!(length(key.target - key.eye) > 0)) node.fail("position and look_at must differ");
+    if (!(length(cross(normalize(key.target - key.eye), up)) > 1e-4f))
+        node.fail("up must not be parallel to the view");
+    if (fov && !(key.fov_y_deg > 0 && key.fov_y_deg < 180)) fov->fail("must lie in (0, 180)");
 }
 
 Camera read_camera(const Node &node, int width, int height, CameraKey &key, Vec3 &up) {
@@ -194,14 +257,10 @@ Camera read_camera(const Node &node, int width, int height, CameraKey &key, Vec3
         node.at("type").fail("expected \"pinhole\" or \"thin_lens\"");
     key.eye = node.at("position").vec3();
     key.target = node.at("look_at").vec3();
-    if (!(length(key.target - key.eye) > 0)) node.fail("position and look_at must differ");
     if (auto u = node.find("up")) up = u->vec3();
-    if (!(length(cross(normalize(key.target - key.eye), up)) > 1e-4f))
-        node.fail("up must not be parallel to the view");
-    if (auto fov = node.find("fov_y_deg")) {
-        key.fov_y_deg = fov->number();
-        if (!(key.fov_y_deg > 0 && key.fov_y_deg < 180)) fov->fail("must lie in (0, 180)");
-    }
+    const std::optional<Node> fov = node.find("fov_y_deg");
+    if (fov) key.fov_y_deg = fov->number();
+    check_camera_key(node, key, up, fov);
     key.focus_distance_m = length(key.target - key.eye);
     if (auto focus = node.find("focus_distance_m")) key.focus_distance_m = focus->positive();
     Camera camera = Camera::look_at(key.eye, key.target, up, key.fov_y_deg, width, height);
@@ -226,6 +285,7 @@ void load_obj(const Node &node, const fs::path &file, const Mesh &prototype, con
     if (!reader.ParseFromFile(file.string(), config)) node.fail(file.string() + ": " + reader.Error());
     const std::vector<tinyobj::real_t> &vertices = reader.GetAttrib().vertices;
     const std::size_t vertex_count = vertices.size() / 3;
+    const std::size_t meshes_before = meshes.size();
     Mesh mesh = prototype;
     std::vector<std::int64_t> local(vertex_count, -1);  // OBJ vertex -> index in `mesh`
     int shape_index = 0;
@@ -249,7 +309,7 @@ void load_obj(const Node &node, const fs::path &file, const Mesh &prototype, con
         }
     }
     if (!mesh.indices.empty()) meshes.push_back(std::move(mesh));
-    if (meshes.empty() || meshes.back().positions.empty()) node.fail(file.string() + ": no triangles");
+    if (meshes.size() == meshes_before) node.fail(file.string() + ": no triangles");
 }
 
 void read_object(const Node &node, const fs::path &scene_dir,
@@ -263,12 +323,16 @@ void read_object(const Node &node, const fs::path &scene_dir,
         if (mesh.object_id < 1 || mesh.object_id > (1 << 24)) id->fail("must lie in [1, 16777216]");
     }
     if (auto material = node.find("material")) {
-        if (material->has("albedo") || material->has("specular") || material->has("roughness")) {
+        if (material->is_object()) {
+            if (material->keys().empty())
+                material->fail("an inline material needs albedo, specular or roughness (or give a name)");
             mesh.material = read_material(*material);
-        } else {
+        } else if (material->is_string()) {
             auto it = materials.find(material->string());
             if (it == materials.end()) material->fail("unknown material '" + material->string() + "'");
             mesh.material = it->second;
+        } else {
+            material->fail("expected a material name or an object with albedo, specular, roughness");
         }
     }
     const Transform to_world = read_transform(node.find("transform"));
@@ -334,8 +398,10 @@ void read_animation(const Node &node, SceneDescription &scene, const CameraKey &
             CameraKey key = static_camera;
             if (auto p = key_node.find("position")) key.eye = p->vec3();
             if (auto t = key_node.find("look_at")) key.target = t->vec3();
-            if (auto f = key_node.find("fov_y_deg")) key.fov_y_deg = f->number();
+            const std::optional<Node> fov = key_node.find("fov_y_deg");
+            if (fov) key.fov_y_deg = fov->number();
             if (auto f = key_node.find("focus_distance_m")) key.focus_distance_m = f->positive();
+            check_camera_key(key_node, key, scene.animation.camera_up, fov);
             return key;
         });
     if (auto lights = node.find("lights")) {
@@ -346,14 +412,19 @@ void read_animation(const Node &node, SceneDescription &scene, const CameraKey &
             const int index = track.has("light") ? track.at("light").integer() : 0;
             if (index < 0 || std::size_t(index) >= scene.lights.size())
                 track.at("light").fail("no such light");
+            if (!scene.animation.lights[std::size_t(index)].empty())
+                track.fail("light " + std::to_string(index) + " already has a track");
             const SceneLight &light = scene.lights[std::size_t(index)];
             scene.animation.lights[std::size_t(index)] =
                 read_keys<LightKey>(track.at("keys"), [&](const Node &key_node) {
                     key_node.allow_only({"frame", "center", "intensity"});
                     LightKey key;
                     key.center = key_node.has("center") ? key_node.at("center").vec3() : light.plane.center;
-                    key.intensity =
-                        key_node.has("intensity") ? key_node.at("intensity").number() : light.intensity;
+                    key.intensity = light.intensity;
+                    if (auto intensity = key_node.find("intensity")) {
+                        key.intensity = intensity->number();
+                        if (key.intensity < 0) intensity->fail("must not be negative");
+                    }
                     return key;
                 });
         }

@@ -18,10 +18,15 @@
 // (each packet holds consecutive samples of one pixel: same origin, nearby
 // light points, the most coherent grouping shadow rays allow).
 // BM_BuildQuality compares rtcOccluded1 on a MEDIUM and a HIGH quality BVH,
-// and BM_Denormals the tracer with and without flush-to-zero.
+// BM_Robust rtcOccluded1 and rtcIntersect1 with and without
+// RTC_SCENE_FLAG_ROBUST (the tracer's choice), and BM_Denormals the tracer
+// with and without flush-to-zero. BM_Threads times render_scene end to end
+// (a 320x240 grids reference slice of 64 spp) on 1 thread and on all, and
+// reports samples per second per thread.
 #include <benchmark/benchmark.h>
 #include <embree3/rtcore.h>
 #include <pmmintrin.h>  // flush-to-zero and denormals-are-zero
+#include <tbb/info.h>
 
 #include <chrono>
 #include <cmath>
@@ -32,6 +37,7 @@
 #include <memory>
 #include <vector>
 
+#include "aaf/trace/render.h"
 #include "embree_scene.h"
 #include "light_sampler.h"
 #include "random.h"
@@ -338,6 +344,59 @@ void BM_BuildQuality(benchmark::State &state, const std::string &scene_name) {
     state.counters["high_over_medium_rays_s"] = medium_s / high_s;
 }
 
+void BM_Robust(benchmark::State &state, const std::string &scene_name) {
+    Fixture &f = fixture(scene_name);
+    set_flush_to_zero(true);
+    const EmbreeScene robust(f.scene, false, true), plain(f.scene, false, false);
+    double robust_occluded_s = 0, plain_occluded_s = 0, robust_intersect_s = 0, plain_intersect_s = 0;
+    std::size_t robust_blocked = 0, plain_blocked = 0;
+    for (auto _ : state) {
+        auto start = std::chrono::steady_clock::now();
+        robust_blocked = run_occluded1(robust.handle(), f.rays);
+        robust_occluded_s += seconds(start);
+        start = std::chrono::steady_clock::now();
+        plain_blocked = run_occluded1(plain.handle(), f.rays);
+        plain_occluded_s += seconds(start);
+        start = std::chrono::steady_clock::now();
+        benchmark::DoNotOptimize(run_intersect1(robust.handle(), f.rays));
+        robust_intersect_s += seconds(start);
+        start = std::chrono::steady_clock::now();
+        benchmark::DoNotOptimize(run_intersect1(plain.handle(), f.rays));
+        plain_intersect_s += seconds(start);
+    }
+    // rays/s with the flag over rays/s without it: below 1 is its cost.
+    state.counters["robust_over_plain_occluded1"] = plain_occluded_s / robust_occluded_s;
+    state.counters["robust_over_plain_intersect1"] = plain_intersect_s / robust_intersect_s;
+    // Rays whose answer the flag changes (leaks between adjacent triangles).
+    state.counters["blocked_difference"] = double(robust_blocked) - double(plain_blocked);
+}
+
+void BM_Threads(benchmark::State &state) {
+    RenderSettings settings;
+    settings.width = kWidth;
+    settings.height = kHeight;
+    settings.spp = 64;
+    const int all = tbb::info::default_concurrency();
+    double one_s = 0, all_s = 0, samples = 0;
+    for (auto _ : state) {
+        settings.threads = 1;
+        auto start = std::chrono::steady_clock::now();
+        const AovSet aovs = render_scene("grids", settings);
+        one_s += seconds(start);
+        settings.threads = all;
+        start = std::chrono::steady_clock::now();
+        benchmark::DoNotOptimize(render_scene("grids", settings));
+        all_s += seconds(start);
+        const ConstPlaneView spp = aovs.channel("pixel.spp");
+        for (int y = 0; y < kHeight; ++y)
+            for (int x = 0; x < kWidth; ++x) samples += spp(x, y);
+    }
+    state.counters["threads"] = all;
+    state.counters["one_thread_Msamples_s"] = samples / one_s / 1e6;
+    state.counters["all_threads_Msamples_s_per_thread"] = samples / all_s / all / 1e6;
+    state.counters["per_thread_all_over_one"] = one_s / all_s / all;
+}
+
 void BM_Denormals(benchmark::State &state, const std::string &scene_name) {
     Fixture &f = fixture(scene_name);
     double ftz_s = 0, plain_s = 0;
@@ -369,6 +428,11 @@ BENCHMARK_CAPTURE(BM_BuildQuality, grids, std::string("grids"))->Unit(benchmark:
 BENCHMARK_CAPTURE(BM_BuildQuality, dense_mesh, std::string("dense_mesh"))
     ->Unit(benchmark::kMillisecond)
     ->MinTime(2);
+BENCHMARK_CAPTURE(BM_Robust, grids, std::string("grids"))->Unit(benchmark::kMillisecond)->MinTime(2);
+BENCHMARK_CAPTURE(BM_Robust, dense_mesh, std::string("dense_mesh"))
+    ->Unit(benchmark::kMillisecond)
+    ->MinTime(2);
 BENCHMARK_CAPTURE(BM_Denormals, grids, std::string("grids"))->Unit(benchmark::kMillisecond)->MinTime(2);
+BENCHMARK(BM_Threads)->Unit(benchmark::kMillisecond)->MinTime(2);
 
 BENCHMARK_MAIN();

@@ -1,5 +1,6 @@
 #include <catch2/catch.hpp>
 
+#include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <iterator>
@@ -70,6 +71,41 @@ TEST_CASE("CLI: a 3-frame sequence with a moving light differs only where the li
         CHECK(plane(frames[f], "shadow.V") != plane(frames[f - 1], "shadow.V"));
         CHECK(plane(frames[f], "unshadowed.R") != plane(frames[f - 1], "unshadowed.R"));
     }
+    // Where: the box's shadow on the ground is centred where a ray from the
+    // light's centre through the box's centre (height 0.85 m) meets it:
+    // x = L + (0 - L) 3 / (3 - 0.85), i.e. 0.20, 0, -0.20 m for L = -0.5, 0, 0.5.
+    // It moves against the light, and ground far from the box stays fully lit.
+    std::vector<double> centroid_x;
+    for (const aaf::AovSet &aovs : frames) {
+        const auto v = plane(aovs, "shadow.V"), x = plane(aovs, "P.X"), z = plane(aovs, "P.Z"),
+                   id = plane(aovs, "id.object"), normal_y = plane(aovs, "N.Y");
+        double weight = 0, sum_x = 0;
+        int far_lit = 0, far = 0, box_lit = 0, box = 0;
+        for (std::size_t i = 0; i < v.size(); ++i) {
+            if (id[i] == 2 && normal_y[i] > 0.5f) {  // the box's top sees the light unblocked
+                ++box;
+                box_lit += v[i] == 1.0f;
+            }
+            if (id[i] != 1) continue;
+            if (std::hypot(x[i], z[i]) > 1.2) {  // beyond the penumbra of every frame (0.8 m)
+                ++far;
+                far_lit += v[i] == 1.0f;
+            }
+            weight += 1.0 - v[i];
+            sum_x += (1.0 - v[i]) * x[i];
+        }
+        CHECK(far > 100);
+        CHECK(far_lit == far);
+        CHECK(box > 0);
+        CHECK(box_lit == box);
+        REQUIRE(weight > 5);  // pixels' worth of shadow in view
+        centroid_x.push_back(sum_x / weight);
+    }
+    CHECK(centroid_x[0] == Approx(0.20).margin(0.05));
+    CHECK(centroid_x[1] == Approx(0.0).margin(0.05));
+    CHECK(centroid_x[2] == Approx(-0.20).margin(0.05));
+    CHECK(centroid_x[0] > centroid_x[1]);
+    CHECK(centroid_x[1] > centroid_x[2]);
 }
 
 TEST_CASE("CLI: render output is byte-identical for 1 and 2 threads", "[cli][render][determinism]") {
@@ -101,6 +137,56 @@ TEST_CASE("CLI: a reference rendered in two halves with --resume equals one rend
     CHECK(refused.exit_code == 3);
     CHECK_THAT(refused.output, Catch::Contains("whole.exr: cannot resume: header attribute 'aaf:seed'"));
     CHECK_FALSE(fs::exists(dir / "other.exr"));
+}
+
+TEST_CASE("CLI: --resume refuses a partial render of a scene edited since", "[cli][render][resume]") {
+    const fs::path dir = scratch_dir("render_resume_edited");
+    const fs::path scene = write_moving_light_scene(dir);
+    const std::string partial = (dir / "partial.exr").string();
+    const std::string common = "render " + scene.string() + " --width 24 --height 18 ";
+    REQUIRE(run_aaf(common + "--spp 1024 -o " + partial).exit_code == 0);
+    const std::string before = bytes_of(partial);
+    // Move the light (and its first key, which holds at frame 1): same name,
+    // seed, size, frame and light kind as before.
+    std::string text = bytes_of(scene);
+    for (std::size_t at; (at = text.find("[-0.5, 3, 0]")) != std::string::npos;)
+        text.replace(at, 12, "[-0.4, 3, 0]");
+    std::ofstream(scene) << text;
+    const auto refused = run_aaf(common + "--spp 2048 --resume " + partial + " -o " + partial);
+    CHECK(refused.exit_code == 3);
+    CHECK_THAT(refused.output, Catch::Contains("partial.exr: cannot resume: the scene changed"));
+    CHECK(std::count(refused.output.begin(), refused.output.end(), '\n') == 1);
+    CHECK(bytes_of(partial) == before);
+}
+
+TEST_CASE("CLI: --progress chooses how a single render reports its rounds", "[cli][render][progress]") {
+    const fs::path dir = scratch_dir("render_progress");
+    const std::string common =
+        "render grids --width 16 --height 12 --spp 2048 -o " + (dir / "out.exr").string() + " --progress ";
+    const auto jsonl = run_aaf(common + "jsonl");
+    REQUIRE(jsonl.exit_code == 0);
+    CHECK_THAT(jsonl.output, Catch::Contains(R"("event":"round","seconds":)") &&
+                                 Catch::Contains(R"("spp":2048,"spp_done":1024})") &&
+                                 Catch::Contains(R"("spp":2048,"spp_done":2048})") &&
+                                 Catch::Contains(R"("event":"summary")"));
+    const auto openjd = run_aaf(common + "openjd");
+    REQUIRE(openjd.exit_code == 0);
+    CHECK_THAT(openjd.output,
+               Catch::Contains("openjd_progress: 50\n") && Catch::Contains("openjd_progress: 100\n"));
+    CHECK(run_aaf(common + "none").output.empty());
+
+    // On a terminal (script(1) gives the render one), `lines` still writes lines, `auto` a bar.
+    if (std::system("command -v script >/dev/null 2>&1") != 0) return;
+    auto on_terminal = [&](const std::string &mode) {
+        const fs::path log = dir / ("tty_" + mode + ".txt");
+        const std::string command = std::string(AAF_EXECUTABLE) + " " + common + mode;
+        std::system(("script -qec '" + command + "' /dev/null >" + log.string() + " 2>&1").c_str());
+        return bytes_of(log);
+    };
+    const std::string lines = on_terminal("lines"), bar = on_terminal("auto");
+    CHECK_THAT(lines, Catch::Contains("render: 1024/2048 spp (50%)"));
+    CHECK(lines.find("[") == std::string::npos);
+    CHECK_THAT(bar, Catch::Contains("\rrender: [##########          ] 1024/2048 spp"));
 }
 
 TEST_CASE("CLI: a bad scene file is one error line naming it, exit 3, no output", "[cli][render][errors]") {

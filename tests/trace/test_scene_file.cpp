@@ -190,6 +190,70 @@ TEST_CASE("Scene file: errors name the file, the JSON path and the problem", "[t
                       Contains("nope.json: cannot open scene file"));
 }
 
+TEST_CASE("Scene file: animation keys are checked like static values", "[trace][scene][errors]") {
+    using Catch::Contains;
+    auto animated = [](const std::string &animation) {
+        return scene_text(R"([{"type": "sphere", "radius": 1}])", ", \"animation\": " + animation);
+    };
+    CHECK_THAT(load_error("key_fov_0", animated(R"({"camera": [{"frame": 1, "fov_y_deg": 0}]})")),
+               Contains("scene.json: animation.camera[0].fov_y_deg: must lie in (0, 180)"));
+    CHECK_THAT(
+        load_error("key_fov_180", animated(R"({"camera": [{"frame": 1}, {"frame": 2, "fov_y_deg": 180}]})")),
+        Contains("scene.json: animation.camera[1].fov_y_deg: must lie in (0, 180)"));
+    // The static look_at is the origin: a key moving the camera there looks nowhere.
+    CHECK_THAT(load_error("key_look_at", animated(R"({"camera": [{"frame": 1, "position": [0, 0, 0]}]})")),
+               Contains("scene.json: animation.camera[0]: position and look_at must differ"));
+    CHECK_THAT(load_error("key_up", animated(R"({"camera": [{"frame": 1, "position": [0, 5, 0]}]})")),
+               Contains("scene.json: animation.camera[0]: up must not be parallel to the view"));
+    CHECK_THAT(
+        load_error("key_intensity", animated(R"({"lights": [{"keys": [{"frame": 1, "intensity": -1}]}]})")),
+        Contains("scene.json: animation.lights[0].keys[0].intensity: must not be negative"));
+    // Two tracks for one light, or two camera tracks (JSON would keep only the last).
+    CHECK_THAT(load_error("two_tracks", animated(R"({"lights": [{"light": 0, "keys": [{"frame": 1}]},
+                                                               {"keys": [{"frame": 2}]}]})")),
+               Contains("scene.json: animation.lights[1]: light 0 already has a track"));
+    CHECK_THAT(load_error("two_cameras", animated(R"({"camera": [{"frame": 1}], "camera": [{"frame": 2}]})")),
+               Contains("scene.json: animation.camera: duplicate key"));
+    CHECK_THAT(
+        load_error(
+            "duplicate_in_array",
+            scene_text(R"([{"type": "sphere", "radius": 1}, {"type": "sphere", "radius": 1, "radius": 2}])")),
+        Contains("scene.json: objects[1].radius: duplicate key"));
+}
+
+TEST_CASE("Scene file: colours, integers, inline materials and empty OBJs are validated",
+          "[trace][scene][errors]") {
+    using Catch::Contains;
+    CHECK_THAT(load_error("color", R"({"camera": {"position": [0, 2, 5], "look_at": [0, 0, 0]},
+        "lights": [{"center": [0, 3, 0], "edge_u": [1, 0, 0], "edge_v": [0, 0, 1], "color": [1, -0.5, 1]}],
+        "objects": [{"type": "sphere", "radius": 1}]})"),
+               Contains("scene.json: lights[0].color: must not be negative"));
+    // 2^32 + 7 would wrap to 7, a valid id, through a plain int conversion.
+    CHECK_THAT(load_error("id_range", scene_text(R"([{"type": "sphere", "radius": 1, "id": 4294967303}])")),
+               Contains("scene.json: objects[0].id: integer out of range"));
+    CHECK_THAT(load_error("segments_range",
+                          scene_text(R"([{"type": "sphere", "radius": 1, "segments": -4294967292}])")),
+               Contains("scene.json: objects[0].segments: integer out of range"));
+    CHECK_THAT(
+        load_error("empty_material", scene_text(R"([{"type": "sphere", "radius": 1, "material": {}}])")),
+        Contains("scene.json: objects[0].material: an inline material needs albedo, specular or roughness"));
+    CHECK_THAT(
+        load_error("number_material", scene_text(R"([{"type": "sphere", "radius": 1, "material": 3}])")),
+        Contains("scene.json: objects[0].material: expected a material name or an object"));
+    CHECK_THAT(load_error("misspelt_material",
+                          scene_text(R"([{"type": "sphere", "radius": 1, "material": {"albedoo": 0.5}}])")),
+               Contains("scene.json: objects[0].material.albedoo: unknown field"));
+
+    // An OBJ without faces is an error wherever it comes in the object list.
+    const fs::path dir = scratch("empty_obj");
+    write_file(dir / "points.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\n");
+    const std::string path =
+        write_file(dir / "scene.json",
+                   scene_text(R"([{"type": "sphere", "radius": 1}, {"type": "obj", "file": "points.obj"}])"));
+    CHECK_THROWS_WITH(trace::load_scene_file(path, 16, 12),
+                      Contains("objects[1].file: ") && Contains("no triangles"));
+}
+
 TEST_CASE("Scene names resolve to the shipped scene files", "[trace][scene]") {
     for (const char *name : {"grids", "spheres", "tentacles", "bench", "studio"}) {
         const std::string path = trace::resolve_scene(name);

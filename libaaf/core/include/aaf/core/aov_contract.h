@@ -76,6 +76,7 @@ inline constexpr const char *kCosineFalloff = "aaf:cosine_falloff";  // int 0/1,
 inline constexpr const char *kSppDone = "aaf:spp_done";              // int, samples per pixel traced so far
 inline constexpr const char *kFrame = "aaf:frame";                   // float, animation time
 inline constexpr const char *kSceneFile = "aaf:scene_file";          // string, the scene file rendered
+inline constexpr const char *kSceneHash = "aaf:scene_hash";          // string, 16 hex digits (--resume)
 inline constexpr const char *kApertureRadius = "aaf:camera:aperture_radius_m";  // float, 0 = pinhole
 inline constexpr const char *kLightCount =
     "aaf:light_count";  // int, lights in the scene (light = the key light)

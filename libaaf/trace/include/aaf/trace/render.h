@@ -45,7 +45,10 @@ unsigned parse_aov_groups(const std::string &list);
 
 /// Samples per round of a progressive render: round k uses random-number
 /// pass k and its own stratification, so a reference of N * 1024 samples can
-/// be stopped after any round and resumed to the same bytes.
+/// be stopped after any round and resumed to the same bytes. A partial render
+/// that ends inside a round (e.g. 1500 spp) resumes too, keeping its samples
+/// and continuing with the next unused pass; the result is then statistically
+/// equivalent to, but not byte-identical with, a render in one go.
 inline constexpr int kSamplesPerRound = 1024;
 
 /// Settings of one render.
