@@ -8,6 +8,7 @@
 #include <memory>
 #include <nlohmann/json.hpp>
 #include <string>
+#include <tuple>
 #include <vector>
 
 #include "aaf/core/aov_contract.h"
@@ -141,11 +142,12 @@ void add_compare_command(CLI::App &app) {
     cmd->add_option("--fail-above", options->fail_above, "Exit 4 when METRIC=VALUE is exceeded by any pair");
     cmd->add_option("--fail-below", options->fail_below, "Exit 4 when any pair's METRIC falls below VALUE");
     cmd->add_flag("--json", options->json,
-                  "Print JSON: one object for a pair; pairs and summary for a batch");
+                  "Print JSON: one object for two files; pairs and summary for sequences or folders");
     cmd->add_option("--csv", options->csv, "Also write one CSV row per pair to this file");
     cmd->add_flag("--timing", options->timing, "Print the seconds spent reading and measuring to stderr");
     cmd->add_option("--heatmap", options->heatmap,
-                    "Per-pixel error as a false-colour PNG with a colour bar, and as an EXR beside it");
+                    "Per-pixel error as a false-colour PNG with a colour bar, and as an EXR beside it "
+                    "(X.png and X.exr); covers the --crop region, --mask's masked-out pixels black");
     cmd->callback([options] {
         std::vector<const Metric *> chosen;
         for (const std::string &key : options->metric_keys) chosen.push_back(&metric_named(key));
@@ -170,14 +172,34 @@ void add_compare_command(CLI::App &app) {
             const std::string channel =
                 options->mask_channel.empty() ? mask.channel_names().front() : options->mask_channel;
             if (!mask.has_channel(channel))
-                throw Error(options->mask_path + ": no channel '" + channel + "' for the mask");
+                throw InputError(options->mask_path + ": no channel '" + channel + "' for the mask");
             compare.mask = mask.channel(channel);
         }
 
         const std::vector<ImagePair> pairs =
             compare_pairs(options->test, options->reference, options->frames);
+        // A sequence or folder is a batch even when it matches one pair: its output keeps the batch shape.
+        const bool batch = is_batch_input(options->test);
         if (!options->heatmap.empty() && pairs.size() != 1)
             throw Error(options->heatmap + ": --heatmap needs a single pair of images");
+        if (!options->heatmap.empty() && io::heatmap_exr_path(options->heatmap) == options->heatmap)
+            throw CLI::ValidationError(
+                "--heatmap",
+                "'" + options->heatmap + "' ends in .exr: name the PNG, the EXR is written beside it");
+        // Nothing compare writes may replace one of its inputs; checked before anything is written.
+        std::vector<std::string> outputs;
+        if (!options->csv.empty()) outputs.push_back(options->csv);
+        if (!options->heatmap.empty()) {
+            outputs.push_back(options->heatmap);
+            outputs.push_back(io::heatmap_exr_path(options->heatmap));
+        }
+        for (const std::string &output : outputs) {
+            if (!options->mask_path.empty()) check_not_same_file(options->mask_path, output);
+            for (const ImagePair &pair : pairs) {
+                check_not_same_file(pair.test, output);
+                check_not_same_file(pair.reference, output);
+            }
+        }
         std::vector<Result> results;
         using Clock = std::chrono::steady_clock;
         double read_s = 0, measure_s = 0;
@@ -197,14 +219,18 @@ void add_compare_command(CLI::App &app) {
                 for (const std::string &name : test.channel_names())
                     if (name.rfind(options->layer + ".", 0) == 0) compare.channels.push_back(name);
                 if (compare.channels.empty())
-                    throw Error(pair.test + ": no channels in layer '" + options->layer + "'");
+                    throw InputError(pair.test + ": no channels in layer '" + options->layer + "'");
             }
+            if (compare.mask.valid() &&
+                (compare.mask.width != test.width() || compare.mask.height != test.height()))
+                throw InputError(options->mask_path + ": the mask is " + std::to_string(compare.mask.width) +
+                                 "x" + std::to_string(compare.mask.height) + ", " + pair.test + " is " +
+                                 std::to_string(test.width()) + "x" + std::to_string(test.height()));
             with_context(pair.test + " vs " + pair.reference, [&] {
                 results.push_back({pair, compare_images(test, reference, compare), mean_spp_of(test)});
                 measure_s += std::chrono::duration<double>(Clock::now() - measure_start).count();
                 if (!options->heatmap.empty()) {
-                    const float scale =
-                        io::write_error_heatmap(test, reference, compare.channels, options->heatmap);
+                    const float scale = io::write_error_heatmap(test, reference, compare, options->heatmap);
                     std::fprintf(stderr, "heatmap %s: colour bar 0 to %s (99th percentile)\n",
                                  options->heatmap.c_str(), format(scale).c_str());
                 }
@@ -260,7 +286,7 @@ void add_compare_command(CLI::App &app) {
         };
         if (options->json) {
             nlohmann::json out;
-            if (results.size() == 1) {
+            if (!batch) {
                 out = metrics_json(results[0].metrics, results[0].spp);
                 out["test"] = results[0].pair.test;
                 out["reference"] = results[0].pair.reference;
@@ -282,7 +308,7 @@ void add_compare_command(CLI::App &app) {
                 }
             }
             std::cout << out.dump() << "\n";
-        } else if (results.size() == 1) {
+        } else if (!batch) {
             const ErrorMetrics &em = results[0].metrics;
             std::string line;
             for (const Metric *m : chosen)
@@ -311,6 +337,11 @@ void add_compare_command(CLI::App &app) {
                 }
                 std::printf("\n");
             }
+            // Each metric's worst pair may differ: name it under the worst value.
+            std::printf("%-24s", "worst pair");
+            for (const Metric *m : chosen)
+                std::printf(" %12s", std::get<2>(summary_of(*m))->pair.label.c_str());
+            std::printf("\n");
         }
 
         bool failed = false;

@@ -50,4 +50,9 @@ std::vector<ImagePair> compare_pairs(const std::string &test, const std::string 
     return pairs;
 }
 
+bool is_batch_input(const std::string &test) {
+    std::error_code ec;
+    return io::is_sequence_pattern(test) || fs::is_directory(test, ec);
+}
+
 }  // namespace aaf::cli

@@ -21,4 +21,8 @@ struct ImagePair {
 std::vector<ImagePair> compare_pairs(const std::string &test, const std::string &reference,
                                      const std::string &frames);
 
+/// True when compare_pairs treats `test` as a batch (a sequence pattern or a
+/// directory), however many pairs it matches; false for a single file.
+bool is_batch_input(const std::string &test);
+
 }  // namespace aaf::cli

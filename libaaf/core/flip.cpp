@@ -341,15 +341,20 @@ FlipSummary summarize_flip(const std::vector<float> &errors, const std::vector<u
     double total = 0;
     for (float v : values) total += v;
     summary.mean = total / double(values.size());
+    // The weighted median of NVlabs/flip's Python tool (python/flip.py, weighted_percentile, commit
+    // 313517b): sort, take the first index i whose running sum is >= half the total (numpy's
+    // searchsorted, side "left"), and average the values at i and i + 1. Where i is the last index
+    // (one value, or the largest holding more than half the total) the reference indexes past the end;
+    // we take that last value.
     std::sort(values.begin(), values.end());
     double running = 0;
-    for (float v : values) {
-        running += v;
-        if (running > 0.5 * total) {
-            summary.weighted_median = v;
-            break;
-        }
+    std::size_t i = 0;
+    for (; i + 1 < values.size(); ++i) {
+        running += values[i];
+        if (running >= 0.5 * total) break;
     }
+    summary.weighted_median =
+        i + 1 < values.size() ? 0.5 * (double(values[i]) + double(values[i + 1])) : double(values[i]);
     return summary;
 }
 

@@ -40,7 +40,10 @@ std::vector<float> ldr_flip(const RgbPlanes &reference, const RgbPlanes &test, c
 std::vector<float> hdr_flip(const RgbPlanes &reference, const RgbPlanes &test, const FlipParams &params = {});
 
 /// The pooled values FLIP reports for an error map: the mean and the
-/// weighted median (the value below which half of the total error lies).
+/// weighted median (about the value below which half of the total error
+/// lies), by the rule of NVlabs/flip's Python tool: with the values sorted,
+/// the first index i whose running sum reaches half the total, and the mean
+/// of the values at i and i + 1 (the value at i when it is the last).
 struct FlipSummary {
     double mean = 0;
     double weighted_median = 0;
