@@ -45,6 +45,52 @@ TEST_CASE("CLI: render, info, filter and compare chain together", "[cli]") {
     CHECK_THAT(differ.output, Catch::Contains("RMSE"));
 }
 
+TEST_CASE("CLI: render --adaptive takes exactly the samples aaf plan computes from its first pass",
+          "[cli][adaptive]") {
+    // The tracer is one caller of the core's sampling plan (AAF Eq. 21): its
+    // second pass must follow the plan of its own 9 spp first pass, which any
+    // renderer gets from `aaf plan`.
+    const fs::path dir = scratch_dir("cli_adaptive");
+    const std::string first = (dir / "first.exr").string(), plan = (dir / "plan.exr").string(),
+                      adaptive = (dir / "adaptive.exr").string();
+    const std::string view = " --width 64 --height 48 --seed 5";
+    REQUIRE(run_aaf("render grids -o " + first + view + " --spp 9").exit_code == 0);
+    REQUIRE(run_aaf("plan " + first + " -o " + plan + " --mu 2 --max-spp 60").exit_code == 0);
+    const RunResult rendered =
+        run_aaf("render grids -o " + adaptive + view + " --adaptive --mu 2 --max-spp 60");
+    REQUIRE(rendered.exit_code == 0);
+    CHECK_THAT(rendered.output, Catch::Contains("average") || Catch::Contains("avg"));
+
+    const aaf::AovSet planned = aaf::io::read_aovs(plan), taken = aaf::io::read_aovs(adaptive);
+    int above_first_pass = 0;
+    for (int y = 0; y < taken.height(); ++y)
+        for (int x = 0; x < taken.width(); ++x) {
+            if (taken.channel("id.object")(x, y) == 0) continue;  // background: no shadow rays
+            CHECK(taken.channel("pixel.spp")(x, y) == planned.channel("plan.spp")(x, y));
+            above_first_pass += taken.channel("pixel.spp")(x, y) > 9;
+        }
+    CHECK(above_first_pass > 100);
+
+    // Fig. 7's debug pictures: n (and beta) as false-colour PNGs.
+    const std::string picture = (dir / "n.png").string();
+    REQUIRE(run_aaf("preview " + adaptive + " -o " + picture + " --channels pixel.spp --false-colour")
+                .exit_code == 0);
+    const aaf::AovSet png = aaf::io::read_aovs(picture);
+    REQUIRE(png.width() == taken.width());
+    // The fewest samples are dark blue, the most red, background black.
+    int blue = 0, red = 0;
+    for (int y = 0; y < png.height(); ++y)
+        for (int x = 0; x < png.width(); ++x) {
+            const float n = taken.channel("pixel.spp")(x, y), r = png.channel("R")(x, y),
+                        b = png.channel("B")(x, y);
+            if (taken.channel("id.object")(x, y) == 0) CHECK(r + b + png.channel("G")(x, y) == 0);
+            if (n == 9) blue += b > r;
+            if (n == 60) red += r > b;
+        }
+    CHECK(blue > 0);
+    CHECK(red > 0);
+}
+
 TEST_CASE("CLI: bad input is one clear line, exit 3, no output written", "[cli]") {
     const fs::path dir = scratch_dir("cli_errors");
     const std::string missing = (dir / "missing.exr").string(), out = (dir / "out.exr").string();
