@@ -62,7 +62,7 @@ void add_preview_command(CLI::App &app) {
                     "Colour space of the input (default: the config's scene_linear role)");
     cmd->add_option("--exposure", options->preview.exposure_stops, "Exposure, stops")->capture_default_str();
     cmd->add_flag("--false-colour", options->false_colour,
-                  "One channel in false colour, 0 in black (AAF Fig. 7 style for aaf.beta, plan.spp)");
+                  "One channel in false colour, 0 in black (AAF Fig. 7 style for aaf_beta.X, plan.spp)");
     cmd->add_option("--range", options->range,
                     "Value range LOW,HIGH of the false colours (default: data range)")
         ->delimiter(',')

@@ -51,7 +51,7 @@ rmse_adaptive_aaf=$("$aaf" compare "$out/grids_adaptive_aaf.exr" "$reference" | 
 "$aaf" preview "$reference" -o "$out/grids_ref.png"
 "$aaf" preview "$out/grids_adaptive_aaf.exr" -o "$out/grids_adaptive_aaf.png"
 # AAF Fig. 7: filter width beta and samples per pixel n, unfiltered pixels in black.
-"$aaf" preview "$out/grids_aaf.exr" -o "$out/grids_beta.png" --channels aaf.beta --false-colour
+"$aaf" preview "$out/grids_aaf.exr" -o "$out/grids_beta.png" --channels aaf_beta.X --false-colour
 "$aaf" preview "$out/grids_plan.exr" -o "$out/grids_n.png" --channels plan.spp --false-colour
 
 echo

@@ -64,7 +64,7 @@ const std::vector<RoleInfo> &role_table() {
          "output of `aaf filter aaf`: filtered visibility"},
         {Role::FilterWidth,
          "beta",
-         {"aaf.beta"},
+         {"aaf_beta.X"},
          "metres, 0 = not filtered",
          "output of `aaf filter aaf`: filter standard deviation beta (AAF Eq. 13)"},
         {Role::NoisyBeauty,
@@ -248,6 +248,7 @@ const std::vector<RoleSynonym> &role_synonyms() {
         {Role::Albedo, "Blender", {"*.DiffCol.R", "*.DiffCol.G", "*.DiffCol.B"}},
         {Role::Albedo, "pbrt-v4", {"Albedo.R", "Albedo.G", "Albedo.B"}},
         {Role::Albedo, "Arnold", {"albedo.R", "albedo.G", "albedo.B"}},
+        {Role::FilterWidth, "aaf 0.1", {"aaf.beta"}},
     };
     return table;
 }

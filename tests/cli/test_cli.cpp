@@ -22,7 +22,7 @@ TEST_CASE("CLI: render, info, filter and compare chain together", "[cli]") {
 
     REQUIRE(run_aaf("filter aaf " + noisy + " -o " + out).exit_code == 0);
     const aaf::AovSet filtered = aaf::io::read_aovs(out);
-    for (const char *name : {"R", "noisy.R", "aaf.V", "aaf.beta", "shadow.d2max", "P.X", "pixel.spp"})
+    for (const char *name : {"R", "noisy.R", "aaf.V", "aaf_beta.X", "shadow.d2max", "P.X", "pixel.spp"})
         CHECK(filtered.has_channel(name));
 
     const std::string plan = (dir / "plan.exr").string(), exact = (dir / "exact.exr").string();

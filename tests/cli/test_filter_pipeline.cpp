@@ -286,7 +286,7 @@ TEST_CASE("CLI filter: NaN and Inf inputs are replaced and counted, never spread
                                   Catch::Contains("in.exr: replaced 3 NaN/Inf") &&
                                   Catch::Contains("shadow.V 2") && Catch::Contains("P.X 1"));
     const aaf::AovSet out = aaf::io::read_aovs((dir / "out.exr").string());
-    for (const char *name : {"aaf.V", "R", "G", "B", "aaf.beta"})
+    for (const char *name : {"aaf.V", "R", "G", "B", "aaf_beta.X"})
         for (int y = 0; y < kHeight; ++y)
             for (int x = 0; x < kWidth; ++x) CHECK(std::isfinite(out.channel(name)(x, y)));
 }
