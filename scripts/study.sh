@@ -2,7 +2,8 @@
 # Reproduces AAF Fig. 6(c) and the sampling figures of Table 1: for grids and
 # tentacles at 320x240, RMSE against a 4096 spp reference versus average spp for
 # {NAS, AS} x {UF, NAF, AF}; writes out/study/study.csv, a plot and a summary.
-# Extra arguments go to aaf_study (e.g. --scenes grids --width 160 --height 120).
+# Extra arguments go to aaf_study (e.g. --scenes grids --width 160 --height 120);
+# AAF_STUDY_OUT picks another output folder.
 set -euo pipefail
 root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 "$root/scripts/build.sh"
@@ -12,7 +13,7 @@ if ! dpkg -s python3-matplotlib >/dev/null 2>&1; then
   $sudo apt-get update -q
   DEBIAN_FRONTEND=noninteractive $sudo apt-get install -y -q --no-install-recommends python3-matplotlib
 fi
-out="$root/out/study"
+out="${AAF_STUDY_OUT:-$root/out/study}"
 mkdir -p "$out"
 "$root/build/scripts/study/aaf_study" -o "$out/study.csv" "$@"
 /usr/bin/python3 "$root/scripts/plot_study.py" "$out/study.csv" "$out/rmse_vs_spp.png" | tee "$out/summary.txt"
