@@ -157,21 +157,10 @@ void Renderer::trace_shadows(const PrimaryHit &primary, int x, int y, std::uint6
                 // t = 1 reaches the light point; stop just short of it.
                 const Vec3 direction = target - origin;
                 const Hit hit = bvh_.intersect(origin, direction, 0.0f, kShadowRayReach);
-                if (hit.found) {
-                    // The closest hit is the occluder nearest the receiver (the
-                    // ray's largest d2). A ray may cross several occluders (stacked
-                    // lattices); the one nearest the light, its smallest d2, is what
-                    // d2min of AAF Eq. 4 needs: found from the light's side, up to
-                    // the first hit.
-                    const Vec3 blocker = origin + direction * hit.distance;
-                    stats.add_occluder(light.plane_distance_m(blocker));
-                    const Hit from_light = bvh_.intersect(target, blocker - target, 0.0f, 1.0f);
-                    if (from_light.found)
-                        stats.add_occluder(
-                            light.plane_distance_m(target + (blocker - target) * from_light.distance));
-                } else {
+                if (hit.found)
+                    stats.add_occluder(light.plane_distance_m(origin + direction * hit.distance));
+                else
                     stats.unoccluded_weight_sum += weight;
-                }
             }
         }
         if (!separate) continue;
