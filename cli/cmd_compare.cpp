@@ -181,7 +181,7 @@ void add_compare_command(CLI::App &app) {
         // A sequence or folder is a batch even when it matches one pair: its output keeps the batch shape.
         const bool batch = is_batch_input(options->test);
         if (!options->heatmap.empty() && pairs.size() != 1)
-            throw Error(options->heatmap + ": --heatmap needs a single pair of images");
+            throw UsageError(options->heatmap + ": --heatmap needs a single pair of images");
         if (!options->heatmap.empty() && io::heatmap_exr_path(options->heatmap) == options->heatmap)
             throw CLI::ValidationError(
                 "--heatmap",

@@ -75,7 +75,8 @@ void add_preview_command(CLI::App &app) {
         if (!options->layer.empty())
             channels = with_context(options->input, [&] { return layer_channels(aovs, options->layer); });
         if (options->false_colour) {
-            if (channels.size() != 1) throw Error(options->output + ": --false-colour takes one channel");
+            if (channels.size() != 1)
+                throw UsageError(options->output + ": --false-colour takes one channel");
             const float low = options->range.empty() ? 0.0f : options->range[0];
             const float high = options->range.empty() ? 0.0f : options->range[1];
             io::write_false_colour_png(aovs, channels[0], options->output, low, high);

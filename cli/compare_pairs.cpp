@@ -6,6 +6,7 @@
 
 #include "aaf/core/error.h"
 #include "aaf/io/sequence.h"
+#include "commands.h"
 
 namespace aaf::cli {
 
@@ -18,21 +19,30 @@ std::vector<ImagePair> compare_pairs(const std::string &test, const std::string 
                reference_sequence = io::is_sequence_pattern(reference);
     if (test_sequence || reference_sequence) {
         if (!(test_sequence && reference_sequence))
-            throw Error(test + " vs " + reference +
-                        ": compare two sequence patterns or two files, not one of each");
-        const std::vector<int> numbers =
-            frames.empty() ? io::frames_on_disk(test) : io::parse_frame_range(frames);
-        if (numbers.empty()) throw Error(test + ": no frames found");
+            throw UsageError(test + " vs " + reference +
+                             ": compare two sequence patterns or two files, not one of each");
+        std::vector<int> numbers;
+        if (frames.empty())
+            numbers = io::frames_on_disk(test);
+        else
+            try {
+                numbers = io::parse_frame_range(frames);
+            } catch (const Error &e) {
+                throw UsageError(e.what());
+            }
+        if (numbers.empty()) throw InputError(test + ": no frames found");
         for (int frame : numbers)
             pairs.push_back(
                 {std::to_string(frame), io::frame_path(test, frame), io::frame_path(reference, frame)});
         return pairs;
     }
-    if (!frames.empty()) throw Error("--frames needs sequence patterns (e.g. test.####.exr ref.####.exr)");
+    if (!frames.empty())
+        throw UsageError("--frames needs sequence patterns (e.g. test.####.exr ref.####.exr)");
     std::error_code ec;
     const bool test_dir = fs::is_directory(test, ec), reference_dir = fs::is_directory(reference, ec);
     if (test_dir != reference_dir)
-        throw Error(test + " vs " + reference + ": compare two directories or two files, not one of each");
+        throw UsageError(test + " vs " + reference +
+                         ": compare two directories or two files, not one of each");
     if (!test_dir) return {{fs::path(test).filename().string(), test, reference}};
 
     std::set<std::string> reference_names;
@@ -43,8 +53,8 @@ std::vector<ImagePair> compare_pairs(const std::string &test, const std::string 
         if (entry.is_regular_file() && reference_names.count(name))
             pairs.push_back({name, entry.path().string(), (fs::path(reference) / name).string()});
     }
-    if (ec) throw Error(test + ": cannot list the directory: " + ec.message());
-    if (pairs.empty()) throw Error(test + " vs " + reference + ": no file names in common");
+    if (ec) throw InputError(test + ": cannot list the directory: " + ec.message());
+    if (pairs.empty()) throw InputError(test + " vs " + reference + ": no file names in common");
     std::sort(pairs.begin(), pairs.end(),
               [](const ImagePair &a, const ImagePair &b) { return a.label < b.label; });
     return pairs;

@@ -94,6 +94,18 @@ TEST_CASE("compare: --fail-above and --fail-below set the exit code", "[cli][com
     CHECK(run_aaf("compare " + pair + " --fail-below psnr=25").exit_code == 4);  // PSNR is 20 dB
     CHECK(run_aaf("compare " + pair + " --fail-below psnr=15").exit_code == 0);
     CHECK(run_aaf("compare " + pair + " --fail-above nonsense=1").exit_code == 2);
+    // Usage errors exit 2: inputs that do not pair up, --frames without patterns.
+    CHECK(run_aaf("compare " + pair + " --frames 1-3").exit_code == 2);
+    CHECK(run_aaf("compare " + (dir / "test.exr").string() + " " + dir.string()).exit_code == 2);
+    CHECK(run_aaf("compare " + (dir / "t.####.exr").string() + " " + (dir / "ref.exr").string()).exit_code ==
+          2);
+    CHECK(run_aaf("compare " + (dir / "t.####.exr").string() + " " + (dir / "r.####.exr").string() +
+                  " --frames 3-1")
+              .exit_code == 2);
+    // An input problem exits 3: no frames on disk.
+    CHECK(
+        run_aaf("compare " + (dir / "t.####.exr").string() + " " + (dir / "r.####.exr").string()).exit_code ==
+        3);
 }
 
 TEST_CASE("compare: heatmap PNG and EXR, NaN pixels counted", "[cli][compare]") {
