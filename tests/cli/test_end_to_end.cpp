@@ -1,12 +1,9 @@
 #include <catch2/catch.hpp>
 
-#include <filesystem>
-#include <fstream>
-#include <nlohmann/json.hpp>
-
 #include "aaf/core/aaf_filter.h"
 #include "aaf/core/error_metrics.h"
 #include "aaf/trace/render.h"
+#include "grids_closeup.h"
 #include "run_aaf.h"
 
 using namespace aaf;
@@ -19,13 +16,7 @@ using namespace aaf;
 // penumbrae through a 7 degree lens (pixels of ~1 cm, as the 640x480 demo's),
 // where the filter has room to work (measured 0.069 -> 0.022).
 TEST_CASE("AAF halves the error of a 9 spp render of grids at 96x72", "[integration]") {
-    const std::filesystem::path dir = aaf_test::scratch_dir("end_to_end");
-    nlohmann::json scene = nlohmann::json::parse(std::ifstream(std::string(AAF_SCENE_DIR) + "/grids.json"));
-    scene["name"] = "grids_closeup";
-    scene["camera"]["fov_y_deg"] = 7.0;
-    scene["camera"]["look_at"] = {0.6, 0.0, 0.9};
-    const std::string scene_path = (dir / "grids_closeup.json").string();
-    std::ofstream(scene_path) << scene.dump(1);
+    const std::string scene_path = aaf_test::write_grids_closeup(aaf_test::scratch_dir("end_to_end"));
 
     trace::RenderSettings settings;
     settings.width = 96;

@@ -339,6 +339,38 @@ TEST_CASE("AOVs of a hand-checkable scene match its geometry", "[trace][geometry
     CHECK(channel(aovs, Role::Motion, 0)(c, c) == 0.0f);  // a still camera
 }
 
+TEST_CASE("No light leaks through a thin slab onto the ground below it", "[trace][geometry]") {
+    // A 1 cm slab 1 m up, 4 m wide, hides the 0.5 m light (3 m up) from every
+    // ground point within 1 m of the centre; seen from below the slab, each
+    // of those points must be exactly dark, whatever the sample.
+    const std::filesystem::path dir = std::filesystem::path(AAF_TEST_BINARY_DIR) / "scratch" / "probe_scene";
+    std::filesystem::create_directories(dir);
+    const std::string path = (dir / "slab.json").string();
+    std::ofstream(path) << R"({
+  "camera": {"position": [0, 0.5, 3.0], "look_at": [0, 0, 0], "fov_y_deg": 30},
+  "lights": [{"center": [0, 3, 0], "edge_u": [0.5, 0, 0], "edge_v": [0, 0, 0.5], "intensity": 10}],
+  "objects": [
+    {"type": "plane", "size": [10, 10], "id": 1, "material": {"albedo": 0.5}},
+    {"type": "box", "min": [-2, 1.0, -2], "max": [2, 1.01, 2], "id": 2}
+  ]
+})";
+    trace::RenderSettings settings;
+    settings.width = 64;
+    settings.height = 48;
+    settings.spp = 64;
+    const AovSet aovs = trace::render_scene(path, settings);
+    int checked = 0;
+    for (int y = 0; y < aovs.height(); ++y)
+        for (int x = 0; x < aovs.width(); ++x) {
+            const Vec3 p = position(aovs, x, y);
+            if (channel(aovs, Role::ObjectId)(x, y) != 1 || std::abs(p.x) > 1 || std::abs(p.z) > 1) continue;
+            ++checked;
+            CHECK(channel(aovs, Role::Visibility)(x, y) == 0.0f);
+            CHECK(channel(aovs, Role::Beauty, 0)(x, y) == 0.0f);
+        }
+    CHECK(checked > 500);
+}
+
 TEST_CASE("A second light adds its shadowed shading to the beauty, not to the AAF AOVs", "[trace][lights]") {
     trace::RenderSettings settings;
     settings.width = settings.height = 17;
