@@ -37,10 +37,22 @@ void add_info_command(CLI::App &app) {
     CLI::App *cmd = app.add_subcommand("info", "List channels, attributes and which methods a file can feed");
     cmd->add_option("input", options->input, "Image to describe")->required();
     cmd->callback([options] {
-        const AovSet aovs = io::read_aovs(options->input);
+        io::ImageLayout layout;
+        AovSet aovs = io::read_aovs(options->input, &layout);
         std::printf("%s: %d x %d, %zu channels\n", options->input.c_str(), aovs.width(), aovs.height(),
                     aovs.channel_names().size());
-        std::printf("channels:\n");
+        // Other parts: listed, and those of the same size read as `aaf filter` reads them.
+        std::vector<std::string> borrowable;
+        for (const io::PartSummary &part : io::other_parts(options->input, layout)) {
+            std::string names;
+            for (const std::string &name : part.channels) names += " " + name;
+            std::printf("part %d '%s': %d x %d,%s\n", part.index, part.name.c_str(), part.width, part.height,
+                        names.c_str());
+            if (part.width == aovs.width() && part.height == aovs.height())
+                borrowable.insert(borrowable.end(), part.channels.begin(), part.channels.end());
+        }
+        io::add_channels_from_other_parts(options->input, layout, borrowable, aovs);
+        std::printf("channels (the first part's, then those read from other parts):\n");
         for (std::size_t c = 0; c < aovs.channel_names().size(); ++c) {
             const std::vector<float> &plane = aovs.plane(c);
             auto [lo, hi] = std::minmax_element(plane.begin(), plane.end());

@@ -227,6 +227,19 @@ AovSet read_aovs(const std::string &path, ImageLayout *layout) {
     return aovs;
 }
 
+std::vector<PartSummary> other_parts(const std::string &path, const ImageLayout &layout) {
+    std::vector<PartSummary> parts;
+    if (layout.part_count() < 2) return parts;
+    std::unique_ptr<OIIO::ImageInput> input = OIIO::ImageInput::open(path);
+    if (!input) throw InputError(path + ": cannot read image: " + OIIO::geterror());
+    for (int part = 1; part < layout.part_count(); ++part) {
+        const OIIO::ImageSpec spec = input->spec(part, 0);
+        parts.push_back({part, spec.get_string_attribute("name", "#" + std::to_string(part)), spec.width,
+                         spec.height, spec.channelnames});
+    }
+    return parts;
+}
+
 std::vector<std::string> add_channels_from_other_parts(const std::string &path, const ImageLayout &layout,
                                                        const std::vector<std::string> &wanted, AovSet &aovs) {
     std::vector<std::string> added;

@@ -190,6 +190,9 @@ TEST_CASE("CLI filter: --keep-beauty, --half and --compression choose the output
     CHECK(colour_part.channelindex("unshadowed.G") >= 0);
     CHECK(colour_part.channelindex("P.Y") < 0);
     CHECK(data_part.get_string_attribute("compression") == "zip");
+    // aaf info lists the data part and, like aaf filter, reads the AOVs from it.
+    const auto info = run_aaf("info " + (dir / "dwaa.exr").string());
+    CHECK_THAT(info.output, Catch::Contains("part 1 'data'") && Catch::Contains("aaf      ready"));
     CHECK(data_part.get_string_attribute("name") == aaf::io::kDataPartName);
     const int visibility = data_part.channelindex("aaf.V"), position_y = data_part.channelindex("P.Y");
     REQUIRE(visibility >= 0);

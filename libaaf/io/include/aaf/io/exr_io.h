@@ -44,6 +44,17 @@ class ImageLayout {
 /// when the file is missing, unreadable, deep, or has duplicate channel names.
 AovSet read_aovs(const std::string &path, ImageLayout *layout = nullptr);
 
+/// One part of a multi-part file beyond the first, as `aaf info` lists it.
+struct PartSummary {
+    int index = 0;
+    std::string name;
+    int width = 0, height = 0;
+    std::vector<std::string> channels;
+};
+/// The parts of `path` after the first (none for a single-part file).
+/// Throws aaf::InputError "<path>: <problem>" when the file cannot be read.
+std::vector<PartSummary> other_parts(const std::string &path, const ImageLayout &layout);
+
 /// Adds to `aovs` (the first part of `path`, read with `layout`) the channels
 /// of `wanted` that it lacks and that another part of the file holds, as
 /// renderers do that write one AOV per part. Returns the names added.
