@@ -35,7 +35,8 @@ void validate(const RenderSettings &settings) {
     if (settings.width < 1 || settings.width > 16384 || settings.height < 1 || settings.height > 16384)
         throw Error("image size must lie in [1, 16384] pixels per side");
     if (settings.spp < 1 || settings.spp > (1 << 20)) throw Error("spp must lie in [1, 1048576]");
-    if (settings.threads < 0) throw Error("threads must be >= 0");
+    if (settings.threads < 0 || settings.threads > 1024)
+        throw Error("threads must lie in [0, 1024] (0 = all cores)");
     if (!std::isfinite(settings.frame)) throw Error("frame must be finite");
     if (settings.adaptive) {
         if (settings.max_spp < settings.spp || settings.max_spp > (1 << 20))

@@ -211,6 +211,7 @@ TEST_CASE("Render rejects bad settings and unknown scenes", "[trace]") {
     rejects([](trace::RenderSettings &s) { s.spp = 0; });
     rejects([](trace::RenderSettings &s) { s.spp = (1 << 20) + 1; });
     rejects([](trace::RenderSettings &s) { s.threads = -1; });
+    rejects([](trace::RenderSettings &s) { s.threads = 1025; });  // not a million threads by a typo
     CHECK_THROWS_WITH(trace::render_scene("nope", trace::RenderSettings{}), Catch::Contains("grids"));
     const auto names = trace::builtin_scene_names();
     CHECK(std::find(names.begin(), names.end(), "grids") != names.end());
