@@ -145,7 +145,7 @@ void add_render_command(CLI::App &app) {
         const bool sequence = !options->frames.empty();
         if (sequence != io::is_sequence_pattern(options->output))
             throw UsageError(sequence ? "--frames needs an output pattern such as shot.####.exr"
-                                 : "an output pattern needs --frames");
+                                      : "an output pattern needs --frames");
         if (sequence && !options->resume.empty())
             throw UsageError("--resume continues a single render, not a sequence");
 
