@@ -7,6 +7,7 @@
 #include "aaf/core/error.h"
 #include "aaf/io/sequence.h"
 #include "commands.h"
+#include "frame_runner.h"
 
 namespace aaf::cli {
 
@@ -21,17 +22,7 @@ std::vector<ImagePair> compare_pairs(const std::string &test, const std::string 
         if (!(test_sequence && reference_sequence))
             throw UsageError(test + " vs " + reference +
                              ": compare two sequence patterns or two files, not one of each");
-        std::vector<int> numbers;
-        if (frames.empty())
-            numbers = io::frames_on_disk(test);
-        else
-            try {
-                numbers = io::parse_frame_range(frames);
-            } catch (const Error &e) {
-                throw UsageError(e.what());
-            }
-        if (numbers.empty()) throw InputError(test + ": no frames found");
-        for (int frame : numbers)
+        for (int frame : sequence_frames(test, frames))
             pairs.push_back(
                 {std::to_string(frame), io::frame_path(test, frame), io::frame_path(reference, frame)});
         return pairs;

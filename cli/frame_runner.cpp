@@ -20,6 +20,20 @@ namespace aaf::cli {
 
 namespace fs = std::filesystem;
 
+std::vector<int> sequence_frames(const std::string &pattern, const std::string &frames) {
+    std::vector<int> numbers;
+    if (frames.empty())
+        numbers = io::frames_on_disk(pattern);
+    else
+        try {
+            numbers = io::parse_frame_range(frames);
+        } catch (const Error &e) {
+            throw UsageError(e.what());  // the range is the command line's, not a file's
+        }
+    if (numbers.empty()) throw InputError(pattern + ": no frames found");
+    return numbers;
+}
+
 std::vector<FrameJob> frame_jobs(const std::string &input, const std::string &output,
                                  const std::string &frames) {
     const bool input_sequence = io::is_sequence_pattern(input),
@@ -34,16 +48,7 @@ std::vector<FrameJob> frame_jobs(const std::string &input, const std::string &ou
     if (!output_sequence)
         throw UsageError(output +
                          ": has no frame field (#, @ or %0Nd), so every frame would write this one file");
-    std::vector<int> numbers;
-    if (frames.empty())
-        numbers = io::frames_on_disk(input);
-    else
-        try {
-            numbers = io::parse_frame_range(frames);
-        } catch (const Error &e) {
-            throw UsageError(e.what());
-        }
-    if (numbers.empty()) throw InputError(input + ": no frames found");
+    const std::vector<int> numbers = sequence_frames(input, frames);
     std::vector<FrameJob> jobs;
     std::set<std::string> outputs;
     for (int frame : numbers) {

@@ -12,6 +12,11 @@ struct FrameJob {
     std::string input, output;
 };
 
+/// The frames of sequence pattern `pattern`: those of `frames` (a range spec;
+/// a bad one throws UsageError) or, when empty, those found on disk (none
+/// throws InputError naming the pattern).
+std::vector<int> sequence_frames(const std::string &pattern, const std::string &frames);
+
 /// The jobs for `input` and `output`: both sequence patterns (shot.####.exr,
 /// see io::frame_path) with the frames of `frames` (a range spec) or, when
 /// empty, the input frames found on disk; or two plain files. Throws
