@@ -1,3 +1,4 @@
+#include <map>
 #include <memory>
 #include <string>
 #include <vector>
@@ -5,9 +6,10 @@
 #include <algorithm>
 #include <cstdio>
 
-#include "aaf/core/aaf_filter.h"
 #include "aaf/core/aov_contract.h"
 #include "aaf/core/error.h"
+#include "aaf/core/filter_aovs.h"
+#include "aaf/core/method_registry.h"
 #include "aaf/core/non_finite.h"
 #include "aaf/io/exr_io.h"
 #include "channel_options.h"
@@ -19,16 +21,6 @@
 namespace aaf::cli {
 
 namespace {
-
-/// The channels AAF reads, so bad values there are replaced before filtering.
-std::vector<std::string> filter_inputs(const ChannelMap &channels) {
-    std::vector<std::string> names;
-    std::vector<Role> roles = method_table().front().required;
-    roles.insert(roles.end(), {Role::Beauty, Role::SamplesPerPixel, Role::OtherLights});
-    for (Role role : roles)
-        for (const std::string &name : channels.channels(role)) names.push_back(name);
-    return names;
-}
 
 /// One warning line per file that had NaN or infinite inputs.
 void report_non_finite(const std::string &path, const NonFiniteCounts &counts) {
@@ -97,67 +89,130 @@ AovSet without_channels(const AovSet &aovs, const std::vector<std::string> &drop
     return with_channels(aovs, from_to);
 }
 
-void add_aaf_method(CLI::App &filter) {
-    struct Options {
-        std::string input, output;
-        AafParams params;
-        std::vector<std::string> maps;
-        int threads = 0;
-        std::string mode = "separable";
-        std::string frames, progress = "auto";
-        bool skip_existing = false, skip_bad_frames = false;
-        bool replace_beauty = true;
-        io::WriteOptions write;
-    };
-    auto options = std::make_shared<Options>();
-    CLI::App *cmd =
-        filter.add_subcommand("aaf", "Axis-Aligned Filtering of soft shadows (Mehta et al. 2012)");
-    cmd->add_option("input", options->input, "Input EXR with the AAF AOVs, or a sequence (shot.####.exr)")
+/// The command-line spelling of a parameter: --normal-threshold for normal_threshold.
+std::string option_name(const ParameterInfo &parameter) {
+    std::string name = "--" + parameter.name;
+    std::replace(name.begin(), name.end(), '_', '-');
+    return name;
+}
+
+/// One option per declared parameter; values given land in `values` as text.
+void add_parameter_options(CLI::App &cmd, const MethodInfo &method,
+                           std::map<std::string, std::string> &values) {
+    for (const ParameterInfo &parameter : method.parameters) {
+        std::string help = parameter.help;
+        if (!parameter.unit.empty()) help += "; " + parameter.unit;
+        if (parameter.type == ParameterType::Bool) {
+            cmd.add_flag_callback(
+                option_name(parameter), [&values, name = parameter.name] { values[name] = "true"; }, help);
+            continue;
+        }
+        help += "; " + parameter.range_text();
+        const char *type = parameter.type == ParameterType::Int     ? "INT"
+                           : parameter.type == ParameterType::Float ? "FLOAT"
+                                                                    : "TEXT";
+        cmd.add_option_function<std::string>(
+               option_name(parameter),
+               [&values, name = parameter.name](const std::string &v) { values[name] = v; }, help)
+            ->type_name(type)
+            ->default_str(parameter.default_value);
+    }
+}
+
+std::string role_keys(const std::vector<Role> &roles) {
+    std::string text;
+    for (Role role : roles) text += std::string(text.empty() ? "" : " ") + role_info(role).key;
+    return text.empty() ? "-" : text;
+}
+
+/// "  aaf: reads ...; optional ...; writes ..." for the filter command's help.
+std::string method_contract_line(const MethodInfo &method) {
+    return "  " + method.name + ": reads " + role_keys(method.roles.required) + "; optional " +
+           role_keys(method.roles.optional) + "; writes " + role_keys(method.roles.outputs) + "\n";
+}
+
+/// Options every method's subcommand shares: files, sequences, output layout.
+struct FilterOptions {
+    std::string input, output;
+    std::map<std::string, std::string> parameters;  ///< given on the command line, as text
+    std::vector<std::string> maps;
+    int threads = 0;
+    std::string frames, progress = "auto";
+    bool skip_existing = false, skip_bad_frames = false;
+    bool replace_beauty = true;
+    io::WriteOptions write;
+};
+
+void add_common_options(CLI::App &cmd, FilterOptions &options) {
+    cmd.add_option("input", options.input, "Input EXR with the method's AOVs, or a sequence (shot.####.exr)")
         ->required();
-    cmd->add_option("-o,--output", options->output, "Output EXR, or a sequence pattern for a sequence")
+    cmd.add_option("-o,--output", options.output, "Output EXR, or a sequence pattern for a sequence")
         ->required();
-    cmd->add_option("--frames", options->frames, "Frames of a sequence: 1-100, 1-100x2, 1-100:2, 1,5,7-9");
-    cmd->add_option("--progress", options->progress, "auto, lines, jsonl, openjd or none")
+    cmd.add_option("--frames", options.frames, "Frames of a sequence: 1-100, 1-100x2, 1-100:2, 1,5,7-9");
+    cmd.add_option("--progress", options.progress, "auto, lines, jsonl, openjd or none")
         ->capture_default_str();
-    cmd->add_flag("--skip-existing", options->skip_existing,
-                  "Skip frames whose output exists and reads back");
-    cmd->add_flag("--skip-bad-frames", options->skip_bad_frames,
-                  "Report a failed frame and continue (the exit code is still non-zero)");
-    cmd->add_flag("--replace-beauty,!--keep-beauty", options->replace_beauty,
-                  "R,G,B become the filtered image, the input's kept as noisy.R/G/B (default); "
-                  "--keep-beauty leaves R,G,B as they were and adds the filtered image as aaf.R/G/B");
-    cmd->add_flag(
-        "--half", options->write.half_colour,
+    cmd.add_flag("--skip-existing", options.skip_existing, "Skip frames whose output exists and reads back");
+    cmd.add_flag("--skip-bad-frames", options.skip_bad_frames,
+                 "Report a failed frame and continue (the exit code is still non-zero)");
+    cmd.add_flag("--replace-beauty,!--keep-beauty", options.replace_beauty,
+                 "R,G,B become the filtered image, the input's kept as noisy.R/G/B (default); "
+                 "--keep-beauty leaves R,G,B as they were and adds the filtered image as aaf.R/G/B");
+    cmd.add_flag(
+        "--half", options.write.half_colour,
         "Store colour layers (beauty, unshadowed, albedo, unclaimed LAYER.R/G/B/A) as half; data layers "
         "(P, N, ... whatever their names) stay float");
-    cmd->add_option("--compression", options->write.compression,
-                    "EXR compression: zip, zips, piz, rle, none, or the lossy dwaa/dwab (colour layers only: "
-                    "the data layers then go to a ZIP part named 'data')")
+    cmd.add_option("--compression", options.write.compression,
+                   "EXR compression: zip, zips, piz, rle, none, or the lossy dwaa/dwab (colour layers only: "
+                   "the data layers then go to a ZIP part named 'data')")
         ->check(CLI::IsMember({"zip", "zips", "piz", "rle", "none", "dwaa", "dwab"}))
         ->capture_default_str();
-    AafParams &p = options->params;
-    cmd->add_option("--mu", p.mu, "Filter scale for consistency, beta ~ 1/mu (Sec. 5.2)")
-        ->capture_default_str();
-    cmd->add_flag("--mu-from-spp", p.mu_from_spp,
-                  "Per pixel, raise mu until Eq. 21's rate equals the samples taken (consistency, Sec. 5.2)");
-    cmd->add_option("--k", p.k, "Gaussian spread factor of Eq. 13")->capture_default_str();
-    cmd->add_option("--alpha", p.alpha, "Occluder bandlimit over pixel bandlimit, (0,1] (Eq. 5)")
-        ->capture_default_str();
-    cmd->add_option("--normal-threshold", p.normal_threshold_deg,
-                    "Reject taps whose normal turns more, degrees")
-        ->capture_default_str();
-    cmd->add_option("--fill-radius", p.fill_radius_px, "Radius to borrow occluder distances, pixels")
-        ->capture_default_str();
-    cmd->add_option("--max-radius", p.max_radius_px, "Largest filter radius, pixels")->capture_default_str();
-    cmd->add_option(
-           "--filter", options->mode,
-           "separable: two 1D passes (Sec. 6); 2d: exact 2D gather of Eq. 10, to measure the approximation")
-        ->check(CLI::IsMember({"separable", "2d"}))
-        ->capture_default_str();
-    add_map_and_threads_options(*cmd, options->maps, options->threads);
-    cmd->callback([options] {
+    add_map_and_threads_options(cmd, options.maps, options.threads);
+}
+
+/// The method's parameters: defaults, then those given (a bad one is a usage error).
+ParameterSet parameters_from(const Method &method, const std::map<std::string, std::string> &given) {
+    ParameterSet parameters = method.default_parameters();
+    try {
+        for (const auto &entry : given) parameters.set(entry.first, entry.second);
+    } catch (const Error &e) {
+        throw UsageError(e.what());
+    }
+    return parameters;
+}
+
+/// Filters one frame: the input's header (every attribute, the windows) and
+/// its other parts go through to the output unchanged.
+void filter_frame(const Method &method, const ParameterSet &parameters, const ChannelMap &channels,
+                  const FilterOptions &options, const FrameJob &job) {
+    io::ImageLayout layout;
+    AovSet input = io::read_aovs(job.input, &layout);
+    // AOVs the first part lacks may sit in other parts (one AOV per part);
+    // they are read for the filter and stay in their parts in the output.
+    const std::vector<std::string> borrowed = io::add_channels_from_other_parts(
+        job.input, layout, method_input_channels(method, channels.resolved(input)), input);
+    // Resolved again: the borrowed channels may complete a synonym.
+    warn_if_defocused(job.input, input);
+    report_non_finite(job.input,
+                      replace_non_finite(input, method_input_channels(method, channels.resolved(input))));
+    AovSet output;
+    run_with_threads(options.threads, [&] {
+        with_context(job.input, [&] { output = filter_aovs(method, input, channels, parameters); });
+    });
+    if (!options.replace_beauty) output = keep_beauty(output, channels.resolved(input));
+    if (!borrowed.empty()) output = without_channels(output, borrowed);
+    io::WriteOptions write = options.write;
+    write.layout = &layout;
+    io::write_aovs(output, job.output, write);
+}
+
+void add_method_command(CLI::App &filter, const Method &method) {
+    auto options = std::make_shared<FilterOptions>();
+    CLI::App *cmd = filter.add_subcommand(method.info().name, method.info().summary);
+    add_common_options(*cmd, *options);
+    add_parameter_options(*cmd, method.info(), options->parameters);
+    cmd->callback([options, &method] {
         const ChannelMap channels = channel_map_from(options->maps);
-        options->params.mode = options->mode == "2d" ? AafFilterMode::Exact2D : AafFilterMode::Separable;
+        const ParameterSet parameters = parameters_from(method, options->parameters);
         RunOptions run;
         run.progress = progress_from_string(options->progress);
         run.skip_existing = options->skip_existing;
@@ -165,26 +220,7 @@ void add_aaf_method(CLI::App &filter) {
         const std::vector<FrameJob> jobs = frame_jobs(options->input, options->output, options->frames);
         // Frames stream one at a time (bounded memory); the filter itself runs on all threads.
         const int failed = run_frames(jobs, run, [&](const FrameJob &job) {
-            // The input's header (every attribute, the windows) and its other
-            // parts go through to the output unchanged.
-            io::ImageLayout layout;
-            AovSet input = io::read_aovs(job.input, &layout);
-            // AOVs the first part lacks may sit in other parts (one AOV per part);
-            // they are read for the filter and stay in their parts in the output.
-            const std::vector<std::string> borrowed = io::add_channels_from_other_parts(
-                job.input, layout, filter_inputs(channels.resolved(input)), input);
-            // Resolved again: the borrowed channels may complete a synonym.
-            warn_if_defocused(job.input, input);
-            report_non_finite(job.input, replace_non_finite(input, filter_inputs(channels.resolved(input))));
-            AovSet output;
-            run_with_threads(options->threads, [&] {
-                with_context(job.input, [&] { output = aaf_filter_aovs(input, channels, options->params); });
-            });
-            if (!options->replace_beauty) output = keep_beauty(output, channels.resolved(input));
-            if (!borrowed.empty()) output = without_channels(output, borrowed);
-            io::WriteOptions write = options->write;
-            write.layout = &layout;
-            io::write_aovs(output, job.output, write);
+            filter_frame(method, parameters, channels, *options, job);
         });
         if (failed > 0)
             throw Error(std::to_string(failed) + " of " + std::to_string(jobs.size()) + " frames failed");
@@ -196,7 +232,13 @@ void add_aaf_method(CLI::App &filter) {
 void add_filter_command(CLI::App &app) {
     CLI::App *filter = app.add_subcommand("filter", "Filter noisy AOVs with one of the methods");
     filter->require_subcommand(1);
-    add_aaf_method(*filter);
+    std::string contracts =
+        "Roles each method reads and writes (libaaf/AOV_CONTRACT.md; --map role=channel):\n";
+    for (const Method *method : methods()) {
+        add_method_command(*filter, *method);
+        contracts += method_contract_line(method->info());
+    }
+    filter->footer(contracts);
 }
 
 }  // namespace aaf::cli

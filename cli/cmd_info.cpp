@@ -6,6 +6,8 @@
 #include <vector>
 
 #include "aaf/core/aov_contract.h"
+#include "aaf/core/filter_aovs.h"
+#include "aaf/core/method_registry.h"
 #include "aaf/core/sample_statistics.h"
 #include "aaf/io/exr_io.h"
 #include "commands.h"
@@ -70,11 +72,14 @@ void add_info_command(CLI::App &app) {
         for (const auto &[name, value] : aovs.attributes)
             std::printf("  %-24s %s\n", name.c_str(), format_attribute(value).c_str());
         std::printf("methods:\n");
-        for (const MethodInputs &method : method_table()) {
-            std::vector<Role> missing = channels.missing_inputs(method, aovs);
+        for (const Method *method : methods()) {
+            const MissingInputs missing = missing_inputs(*method, aovs, channels);
             std::string line = missing.empty() ? "ready" : "missing";
-            for (Role role : missing) line += std::string(" ") + role_info(role).key;
-            std::printf("  %-8s %s\n", method.name, line.c_str());
+            for (Role role : missing.roles) line += std::string(" ") + role_info(role).key;
+            if (!missing.attributes.empty())
+                line += std::string(missing.roles.empty() ? "" : ";") + " header attributes";
+            for (const std::string &name : missing.attributes) line += " " + name;
+            std::printf("  %-8s %s\n", method->info().name.c_str(), line.c_str());
         }
     });
 }

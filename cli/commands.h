@@ -25,6 +25,11 @@ inline constexpr int kExitInputError = 3;
 struct Interrupted {};
 inline constexpr int kExitInterrupted = 130;
 
+/// The `aaf` tool: parses `argv`, runs the subcommand, maps errors to the
+/// exit codes above (printing `aaf: error: <problem>`). Every method
+/// registered when it runs (method_registry.h) gets its `aaf filter` subcommand.
+int run(int argc, char **argv);
+
 /// Each adds one subcommand (with its options and action) to the `aaf` app.
 void add_render_command(CLI::App &app);
 void add_filter_command(CLI::App &app);

@@ -61,7 +61,7 @@ const std::vector<RoleInfo> &role_table() {
          "filtered_visibility",
          {"aaf.V"},
          "[0,1]",
-         "output of `aaf filter aaf`: filtered visibility"},
+         "output of a visibility filter (`aaf filter aaf`, `gaussian`): filtered visibility"},
         {Role::FilterWidth,
          "beta",
          {"aaf_beta.X"},
@@ -103,21 +103,17 @@ const std::vector<RoleInfo> &role_table() {
          "linear radiance",
          "noisy shadowed shading of every light but the key light (scenes with several lights); "
          "the beauty is r(x) V(x) plus this"},
-        {Role::ProgressWeight,
-         "progress_weight",
-         {"progress.weight"},
-         "sum of weights",
-         "progressive render state: sum of the key light samples' light-function weights"},
+        {Role::ProgressWeight, "progress_weight", {"progress.weight"}, "sum of weights", "TEMPORARY"},
         {Role::ProgressUnoccluded,
          "progress_unoccluded",
          {"progress.unoccluded"},
          "sum of weights",
-         "progressive render state: the same sum over unoccluded samples"},
+         "TEMPORARY"},
         {Role::ProgressRadiance,
          "progress_radiance",
          {"progress.radiance.R", "progress.radiance.G", "progress.radiance.B"},
          "sum of radiance",
-         "progressive render state: sum over samples of the radiance traced apart from r(x) V(x)"},
+         "TEMPORARY"},
     };
     return table;
 }
@@ -128,13 +124,11 @@ const RoleInfo &role_info(Role role) {
     throw Error("internal: role missing from the role table");
 }
 
-const std::vector<MethodInputs> &method_table() {
-    static const std::vector<MethodInputs> table = {
-        {"aaf",
-         {Role::Visibility, Role::D1, Role::D2Min, Role::D2Max, Role::Position, Role::Normal, Role::ObjectId,
-          Role::PixelSize, Role::Unshadowed}},
-    };
-    return table;
+const std::vector<std::string> &light_attribute_names() {
+    static const std::vector<std::string> names = {attr::kLightCenter, attr::kLightNormal, attr::kLightAxisU,
+                                                   attr::kLightAxisV,  attr::kLightWidth,  attr::kLightHeight,
+                                                   attr::kLightSigma,  attr::kLightKind};
+    return names;
 }
 
 void write_light_attributes(const LightPlane &light, AovSet &aovs) {
@@ -151,9 +145,9 @@ void write_light_attributes(const LightPlane &light, AovSet &aovs) {
 namespace {
 
 template <typename T>
-T get_attribute(const AovSet &aovs, const char *name) {
-    auto it = aovs.attributes.find(name);
-    if (it == aovs.attributes.end()) throw InputError("missing header attribute '" + std::string(name) + "'");
+T get_attribute(const std::map<std::string, AttributeValue> &attributes, const char *name) {
+    auto it = attributes.find(name);
+    if (it == attributes.end()) throw InputError("missing header attribute '" + std::string(name) + "'");
     if (const T *value = std::get_if<T>(&it->second)) return *value;
     if constexpr (std::is_same_v<T, float>)
         if (const int *value = std::get_if<int>(&it->second)) return float(*value);
@@ -162,7 +156,7 @@ T get_attribute(const AovSet &aovs, const char *name) {
 
 }  // namespace
 
-LightPlane read_light_attributes(const AovSet &aovs) {
+LightPlane read_light_attributes(const std::map<std::string, AttributeValue> &aovs) {
     LightPlane light;
     light.center = get_attribute<Vec3>(aovs, attr::kLightCenter);
     light.normal = get_attribute<Vec3>(aovs, attr::kLightNormal);
@@ -338,18 +332,6 @@ std::vector<bool> colour_channels(const AovSet &aovs, const ChannelMap &map) {
         colour.push_back(suffix == "R" || suffix == "G" || suffix == "B" || suffix == "A" || name == "Y");
     }
     return colour;
-}
-
-std::vector<Role> ChannelMap::missing_inputs(const MethodInputs &method, const AovSet &aovs) const {
-    const ChannelMap found = resolved(aovs);
-    std::vector<Role> missing;
-    for (Role role : method.required)
-        for (const std::string &name : found.channels(role))
-            if (!aovs.has_channel(name)) {
-                missing.push_back(role);
-                break;
-            }
-    return missing;
 }
 
 }  // namespace aaf

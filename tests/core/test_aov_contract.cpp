@@ -4,6 +4,8 @@
 
 #include "aaf/core/aov_contract.h"
 #include "aaf/core/error.h"
+#include "aaf/core/filter_aovs.h"
+#include "aaf/core/method_registry.h"
 
 using namespace aaf;
 
@@ -47,14 +49,18 @@ TEST_CASE("Light attributes round-trip and missing ones are named", "[contract]"
     CHECK_THROWS_AS(read_light_attributes(aovs), InputError);  // an input problem: CLI exit 3
 }
 
-TEST_CASE("Missing method inputs are reported by role", "[contract]") {
+TEST_CASE("Missing method inputs are reported by role and header attribute", "[contract]") {
     AovSet aovs(2, 2);
     const ChannelMap map;
-    const MethodInputs &aaf_method = method_table().front();
-    CHECK(map.missing_inputs(aaf_method, aovs).size() == aaf_method.required.size());
-    for (Role role : aaf_method.required)
+    const Method &aaf_method = find_method("aaf");
+    const MethodInfo &info = aaf_method.info();
+    CHECK(missing_inputs(aaf_method, aovs, map).roles == info.roles.required);
+    CHECK(missing_inputs(aaf_method, aovs, map).attributes == info.required_attributes);
+    for (Role role : info.roles.required)
         for (const std::string &name : map.channels(role)) aovs.add_channel(name);
-    CHECK(map.missing_inputs(aaf_method, aovs).empty());
+    CHECK(missing_inputs(aaf_method, aovs, map).roles.empty());
+    write_light_attributes(LightPlane{}, aovs);
+    CHECK(missing_inputs(aaf_method, aovs, map).empty());
 }
 
 TEST_CASE("Renderer names resolve to roles, and an ambiguous layer prefix is not guessed", "[contract]") {

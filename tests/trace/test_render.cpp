@@ -14,6 +14,8 @@
 #include "aaf/core/aaf_filter.h"
 #include "aaf/core/aov_contract.h"
 #include "aaf/core/error.h"
+#include "aaf/core/filter_aovs.h"
+#include "aaf/core/method_registry.h"
 #include "aaf/trace/render.h"
 #include "scene_description.h"
 #include "scene_file.h"
@@ -102,7 +104,7 @@ TEST_CASE("Render depends on the seed and on nothing else", "[trace]") {
 TEST_CASE("Render writes every AAF AOV with consistent values", "[trace]") {
     const AovSet aovs = render_small(16, 1, 0);
     const ChannelMap map;
-    for (const MethodInputs &method : method_table()) CHECK(map.missing_inputs(method, aovs).empty());
+    for (const Method *method : methods()) CHECK(missing_inputs(*method, aovs, map).empty());
     const LightPlane light = read_light_attributes(aovs);
     CHECK(light.sigma_m == Approx(0.5f * light.width_m));
     CHECK(std::get<std::string>(aovs.attributes.at(attr::kScene)) == "grids");

@@ -5,6 +5,7 @@
 #include "aaf/core/aaf_params.h"
 #include "aaf/core/aov_contract.h"
 #include "aaf/core/light_plane.h"
+#include "aaf/core/parameters.h"
 #include "aaf/core/plane_view.h"
 
 namespace aaf {
@@ -40,11 +41,13 @@ struct AafOutputs {
 void aaf_filter(const AafInputs &inputs, const LightPlane &light, const AafParams &params,
                 const AafOutputs &outputs);
 
-/// Filters an AOV set that follows the contract: returns every input channel,
-/// with the beauty replaced by r(x) times the filtered visibility (AAF Eq. 1),
-/// the input beauty kept as the NoisyBeauty role, and the filtered visibility
-/// and beta added as their own layers. The light comes from the header
-/// attributes. Throws aaf::Error naming the first missing channel.
+/// The registered "aaf" method's parameters holding `params` (method_registry.h).
+ParameterSet aaf_parameter_set(const AafParams &params);
+
+/// Runs the registered "aaf" method (filter_aovs.h) on an AOV set that follows the contract: returns every
+/// input channel, with the beauty replaced by r(x) times the filtered visibility (AAF Eq. 1), the input
+/// beauty kept as the NoisyBeauty role, and the filtered visibility and beta added as their own layers. The
+/// light comes from the header attributes. Throws aaf::Error naming the first missing channel.
 AovSet aaf_filter_aovs(const AovSet &input, const ChannelMap &channels, const AafParams &params);
 
 }  // namespace aaf

@@ -10,7 +10,9 @@
 namespace aaf {
 
 /// What a channel (or group of channels) means to the filters. The one table
-/// of names, units and meanings is `role_table()`; libaaf/AOV_CONTRACT.md documents it.
+/// of names, units and meanings is `role_table()`; which methods read and
+/// write which roles is each method's declaration (method.h).
+/// libaaf/AOV_CONTRACT.md is generated from both (contract_markdown.h).
 enum class Role {
     Beauty,              ///< noisy final image
     Visibility,          ///< noisy light-weighted visibility
@@ -32,9 +34,9 @@ enum class Role {
     Albedo,              ///< diffuse reflectance
     Motion,              ///< screen-space motion since the previous frame
     OtherLights,         ///< shadowed shading of every light but the key light
-    ProgressWeight,      ///< progressive render: sum of the key light's sample weights
-    ProgressUnoccluded,  ///< progressive render: the same over unoccluded samples
-    ProgressRadiance,    ///< progressive render: sum of the separately traced radiance
+    ProgressWeight,      ///< TEMPORARY until the tracer owns its resume state
+    ProgressUnoccluded,  ///< TEMPORARY
+    ProgressRadiance,    ///< TEMPORARY
 };
 
 struct RoleInfo {
@@ -50,28 +52,21 @@ struct RoleInfo {
 const std::vector<RoleInfo> &role_table();
 const RoleInfo &role_info(Role role);
 
-/// A filter method and the roles it cannot run without.
-struct MethodInputs {
-    const char *name;
-    std::vector<Role> required;
-};
-const std::vector<MethodInputs> &method_table();
-
 /// Per-image attributes, stored as EXR header attributes with the prefix "aaf:".
 namespace attr {
-inline constexpr const char *kLightCenter = "aaf:light:center";      // Vec3, world metres
-inline constexpr const char *kLightNormal = "aaf:light:normal";      // Vec3, unit, emitting side
-inline constexpr const char *kLightAxisU = "aaf:light:axis_u";       // Vec3, unit tangent
-inline constexpr const char *kLightAxisV = "aaf:light:axis_v";       // Vec3, unit tangent
-inline constexpr const char *kLightWidth = "aaf:light:width_m";      // float, extent along axis_u
-inline constexpr const char *kLightHeight = "aaf:light:height_m";    // float, extent along axis_v
-inline constexpr const char *kLightSigma = "aaf:light:sigma_m";      // float, Gaussian sigma before truncation
-inline constexpr const char *kLightKind = "aaf:light:kind";          // "gaussian" or "uniform"
-inline constexpr const char *kScene = "aaf:scene";                   // string
-inline constexpr const char *kSeed = "aaf:seed";                     // int
-inline constexpr const char *kSpp = "aaf:spp";                       // int, (first-pass) samples
-inline constexpr const char *kAdaptiveMu = "aaf:adaptive_mu";        // float, mu of the sampling plan
-inline constexpr const char *kMaxSpp = "aaf:max_spp";                // int, adaptive cap
+inline constexpr const char *kLightCenter = "aaf:light:center";    // Vec3, world metres
+inline constexpr const char *kLightNormal = "aaf:light:normal";    // Vec3, unit, emitting side
+inline constexpr const char *kLightAxisU = "aaf:light:axis_u";     // Vec3, unit tangent
+inline constexpr const char *kLightAxisV = "aaf:light:axis_v";     // Vec3, unit tangent
+inline constexpr const char *kLightWidth = "aaf:light:width_m";    // float, extent along axis_u
+inline constexpr const char *kLightHeight = "aaf:light:height_m";  // float, extent along axis_v
+inline constexpr const char *kLightSigma = "aaf:light:sigma_m";    // float, Gaussian sigma before truncation
+inline constexpr const char *kLightKind = "aaf:light:kind";        // "gaussian" or "uniform"
+inline constexpr const char *kScene = "aaf:scene";                 // string
+inline constexpr const char *kSeed = "aaf:seed";                   // int
+inline constexpr const char *kSpp = "aaf:spp";                     // int, (first-pass) samples
+inline constexpr const char *kAdaptiveMu = "aaf:adaptive_mu";      // float, mu of the sampling plan
+inline constexpr const char *kMaxSpp = "aaf:max_spp";              // int, adaptive cap
 inline constexpr const char *kCosineFalloff = "aaf:cosine_falloff";  // int 0/1, falloff in l(y)
 inline constexpr const char *kSppDone = "aaf:spp_done";              // int, samples per pixel traced so far
 inline constexpr const char *kFrame = "aaf:frame";                   // float, animation time
@@ -83,8 +78,13 @@ inline constexpr const char *kLightCount =
 }  // namespace attr
 
 void write_light_attributes(const LightPlane &light, AovSet &aovs);
+/// The light's attributes (attr::kLight*), in the order read_light_attributes() reads them.
+const std::vector<std::string> &light_attribute_names();
 /// Throws aaf::Error naming the first missing or mistyped attribute.
-LightPlane read_light_attributes(const AovSet &aovs);
+LightPlane read_light_attributes(const std::map<std::string, AttributeValue> &attributes);
+inline LightPlane read_light_attributes(const AovSet &aovs) {
+    return read_light_attributes(aovs.attributes);
+}
 
 /// Other renderers' names for a role's channels, tried when the contract's
 /// names are missing. A leading "*." stands for any prefix (a Blender view
@@ -117,9 +117,6 @@ class ChannelMap {
     /// in full (role_synonyms(); the contract's names under a view-layer
     /// prefix first). Roles found nowhere keep their names.
     ChannelMap resolved(const AovSet &aovs) const;
-
-    /// Roles of `method` whose channels are not all present in `aovs`, after resolved().
-    std::vector<Role> missing_inputs(const MethodInputs &method, const AovSet &aovs) const;
 
   private:
     std::map<Role, std::vector<std::string>> names_;

@@ -1,0 +1,132 @@
+#include "aaf/core/filter_aovs.h"
+
+#include <algorithm>
+
+#include "aaf/core/error.h"
+
+namespace aaf {
+
+namespace {
+
+bool contains(const std::vector<std::string> &names, const std::string &name) {
+    return std::find(names.begin(), names.end(), name) != names.end();
+}
+
+bool has_all(const AovSet &aovs, const std::vector<std::string> &names) {
+    return std::all_of(names.begin(), names.end(), [&](const std::string &n) { return aovs.has_channel(n); });
+}
+
+std::string joined(const std::vector<std::string> &names) {
+    std::string text;
+    for (const std::string &name : names) text += (text.empty() ? "" : ",") + name;
+    return text;
+}
+
+/// Copies every channel and attribute of `input`, leaving out `skip`.
+AovSet copy_except(const AovSet &input, const std::vector<std::string> &skip) {
+    AovSet out(input.width(), input.height());
+    out.attributes = input.attributes;
+    for (std::size_t c = 0; c < input.channel_names().size(); ++c) {
+        const std::string &name = input.channel_names()[c];
+        if (contains(skip, name)) continue;
+        PlaneView dst = out.add_channel(name);
+        std::copy(input.plane(c).begin(), input.plane(c).end(), dst.data);
+    }
+    return out;
+}
+
+void check_inputs(const Method &method, const AovSet &input, const ChannelMap &channels) {
+    const MissingInputs missing = missing_inputs(method, input, channels);
+    if (!missing.roles.empty()) {
+        const RoleInfo &info = role_info(missing.roles.front());
+        throw InputError("missing " + method.info().title + " input '" + info.key + "' (channels " +
+                         joined(channels.resolved(input).channels(info.role)) + ")");
+    }
+    if (!missing.attributes.empty())
+        throw InputError("missing header attribute '" + missing.attributes.front() + "'");
+}
+
+/// The read-only views of every declared input role present in `input`.
+void bind_inputs(const Method &method, const AovSet &input, const ChannelMap &found, MethodImages &images) {
+    std::vector<Role> roles = method.info().roles.required;
+    const std::vector<Role> &optional = method.info().roles.optional;
+    roles.insert(roles.end(), optional.begin(), optional.end());
+    for (Role role : roles) {
+        const std::vector<std::string> &names = found.channels(role);
+        images.set_channel_names(role, joined(names));
+        if (!has_all(input, names)) continue;
+        std::vector<ConstPlaneView> views;
+        for (const std::string &name : names) views.push_back(input.channel(name));
+        images.set_input(role, views);
+    }
+}
+
+}  // namespace
+
+MissingInputs missing_inputs(const Method &method, const AovSet &aovs, const ChannelMap &channels) {
+    const ChannelMap found = channels.resolved(aovs);
+    MissingInputs missing;
+    for (Role role : method.info().roles.required)
+        if (!has_all(aovs, found.channels(role))) missing.roles.push_back(role);
+    for (const std::string &name : method.info().required_attributes)
+        if (!aovs.attributes.count(name)) missing.attributes.push_back(name);
+    return missing;
+}
+
+std::vector<std::string> method_input_channels(const Method &method, const ChannelMap &channels) {
+    std::vector<Role> roles = method.info().roles.required;
+    roles.push_back(Role::Beauty);
+    const std::vector<Role> &optional = method.info().roles.optional;
+    roles.insert(roles.end(), optional.begin(), optional.end());
+    std::vector<std::string> names;
+    for (Role role : roles)
+        for (const std::string &name : channels.channels(role))
+            if (!contains(names, name)) names.push_back(name);
+    return names;
+}
+
+AovSet filter_aovs(const Method &method, const AovSet &input, const ChannelMap &channels,
+                   const ParameterSet &parameters, const ProgressMonitor &monitor) {
+    // Other renderers' names are found through the synonym table.
+    const ChannelMap found = channels.resolved(input);
+    check_inputs(method, input, found);
+    const std::vector<Role> &outputs = method.info().roles.outputs;
+    const bool composes_beauty = std::find(outputs.begin(), outputs.end(), Role::Beauty) != outputs.end();
+
+    // Outputs replace earlier filter outputs rather than piling up beside them.
+    std::vector<std::string> replaced;
+    for (Role role : outputs)
+        for (const std::string &name : found.channels(role)) replaced.push_back(name);
+    if (composes_beauty)
+        for (const std::string &name : found.channels(Role::NoisyBeauty)) replaced.push_back(name);
+    AovSet out = copy_except(input, replaced);
+
+    MethodImages images(input.width(), input.height(), input.attributes);
+    bind_inputs(method, input, found, images);
+    for (Role role : outputs) {
+        if (role == Role::Beauty) continue;
+        std::vector<PlaneView> views;
+        for (const std::string &name : found.channels(role)) views.push_back(out.add_channel(name));
+        images.set_output(role, views);
+    }
+    if (composes_beauty) {
+        // Each new beauty channel is followed by the input's, kept as the noisy beauty.
+        const std::vector<std::string> &beauty = found.channels(Role::Beauty);
+        const std::vector<std::string> &noisy = found.channels(Role::NoisyBeauty);
+        std::vector<PlaneView> views;
+        for (std::size_t c = 0; c < beauty.size(); ++c) {
+            views.push_back(out.add_channel(beauty[c]));
+            if (!input.has_channel(beauty[c])) continue;
+            const std::vector<float> &source = input.plane(input.index_of(beauty[c]));
+            std::copy(source.begin(), source.end(), out.add_channel(noisy[c]).data);
+        }
+        images.set_output(Role::Beauty, views);
+    }
+    Progress progress(monitor);
+    progress.report(0.0);
+    method.run(images, parameters, progress);
+    progress.report(1.0);
+    return out;
+}
+
+}  // namespace aaf

@@ -1,0 +1,39 @@
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "aaf/core/aov_set.h"
+#include "aaf/core/method.h"
+
+namespace aaf {
+
+/// What a method lacks to run on an AOV set.
+struct MissingInputs {
+    std::vector<Role> roles;              ///< required roles with a channel missing
+    std::vector<std::string> attributes;  ///< required header attributes missing
+    bool empty() const { return roles.empty() && attributes.empty(); }
+};
+
+/// The required roles and attributes of `method` that `aovs` lacks, with
+/// the channels found as `channels.resolved(aovs)` finds them.
+MissingInputs missing_inputs(const Method &method, const AovSet &aovs, const ChannelMap &channels);
+
+/// The channels `method` may read, as `channels` names them (resolve it
+/// first): its required roles, the beauty, its optional roles. What a file
+/// pipeline borrows from other parts and scrubs of NaN before filtering.
+std::vector<std::string> method_input_channels(const Method &method, const ChannelMap &channels);
+
+/// Runs `method` on an AOV set that follows the contract (other renderers'
+/// names are found through the synonym table) and returns every input channel
+/// and attribute plus the method's outputs. Output policy, the same for every
+/// method: channels the method writes replace earlier ones of the same name
+/// rather than piling up beside them; outputs follow the kept inputs in the
+/// method's declared order; when the method composes a new beauty, the input
+/// beauty is kept as Role::NoisyBeauty. Throws aaf::InputError naming the
+/// first missing input or attribute, aaf::Error for bad parameters,
+/// aaf::Cancelled when `monitor` asks to stop.
+AovSet filter_aovs(const Method &method, const AovSet &input, const ChannelMap &channels,
+                   const ParameterSet &parameters, const ProgressMonitor &monitor = {});
+
+}  // namespace aaf

@@ -1,0 +1,92 @@
+#pragma once
+
+#include <cstddef>
+#include <vector>
+
+#include "aaf/core/plane_view.h"
+
+namespace aaf {
+
+/// Per-pixel guides of the world-space Gaussian gather that the methods share
+/// (AAF Eq. 10-12, and the filters of the methods built on it): where each
+/// pixel lies in the 2D plane distances are measured in, its normal and
+/// object, and its own Gaussian's width and reach. Planar, row-major,
+/// width x height. `resize` fills every plane with "not filtered".
+struct GatherGuides {
+    int width = 0, height = 0;
+    /// Coordinates in the plane tap distances are measured in, world metres
+    /// (AAF: the light's plane, so du^2 + dv^2 is the distance of AAF Eq. 12).
+    std::vector<float> coord_u_m, coord_v_m;
+    /// Unit normal; zero where unknown (then only the centre itself counts).
+    std::vector<float> normal_x, normal_y, normal_z;
+    /// Taps on another object are rejected; NaN matches nothing, not even itself,
+    /// so a pixel with unusable geometry (non-finite position) is never a tap.
+    std::vector<float> object_id;
+    /// 1 / (2 sigma^2) of the pixel's Gaussian, metres^-2.
+    std::vector<float> inv_two_sigma_sq;
+    /// Taps reach this many pixels along each filtered axis; 0 = the pixel keeps its value.
+    std::vector<int> radius_px;
+
+    void resize(int width, int height);
+    std::size_t index(int x, int y) const { return std::size_t(y) * std::size_t(width) + std::size_t(x); }
+    /// The same guides with rows and columns swapped.
+    GatherGuides transposed() const;
+};
+
+/// How the 2D Gaussian is evaluated.
+enum class GatherMode {
+    Separable,  ///< a vertical then a horizontal 1D pass (AAF Sec. 6); exact where the width is locally
+                ///< constant
+    Full2D,     ///< every tap of the square window (AAF Eq. 10 directly)
+};
+
+struct GatherSettings {
+    /// Taps whose unit normal makes an angle above this with the centre's are
+    /// rejected (AAF Sec. 6 "check on normal variation"); degrees, [0, 180].
+    float normal_threshold_deg = 25.0f;
+    GatherMode mode = GatherMode::Separable;
+
+    /// Throws aaf::Error naming a setting out of range.
+    void validate() const;
+};
+
+/// Gathers K channels with the same weights in one pass: every output pixel
+/// with radius_px > 0 is the normalised sum over its accepted taps of
+/// exp(-(du^2 + dv^2) inv_two_sigma_sq) (AAF Eq. 11-12; the normalisation of
+/// the Gaussian cancels) times the source; the other pixels copy their source.
+/// A tap counts when it lies on the centre's object with a normal within the
+/// threshold; the centre always counts (with weight 1 if its own test fails).
+/// Sums run in a fixed order, so the result does not depend on the thread
+/// count; runs on the current oneTBB arena. `sources[k]` and `outputs[k]` are
+/// guide-sized; an output may not alias any source. Throws aaf::Error on
+/// mismatched sizes or counts.
+void gather(const GatherGuides &guides, const GatherSettings &settings,
+            const std::vector<ConstPlaneView> &sources, const std::vector<PlaneView> &outputs);
+
+/// A per-axis factor of the tap weight: 1, cos(omega delta) or -sin(omega
+/// delta), with delta the tap's displacement from the centre along that axis
+/// of the guides' plane (metres) and omega the centre pixel's frequency
+/// (radians per metre). MAAF's x-side kernels are products of such factors
+/// with a Gaussian (MAAF Eq. 12-13: an offset pair of Gaussians in frequency
+/// is a cos/sin-modulated Gaussian in space).
+struct AxisModulation {
+    enum class Kind { None, Cos, NegSin } kind = Kind::None;
+    ConstPlaneView omega_rad_per_m;  ///< per centre pixel; unused for None
+};
+
+/// Whether a modulated gather divides by the sum of its (unmodulated) Gaussian weights.
+enum class GatherNormalisation {
+    WeightSum,  ///< sum of w m s / sum of w: a constant source under m = 1 stays constant
+    None,       ///< the raw sum of w m s: the caller normalises (MAAF filters f = 1 the same way)
+};
+
+/// The 2D gather over the full square window (GatherMode is ignored: a
+/// product of cosines does not factor into two 1D passes) with each tap's
+/// Gaussian weight w multiplied by m = m_u(du) m_v(dv). With both factors
+/// None and WeightSum it equals gather() in Full2D mode.
+void gather_modulated(const GatherGuides &guides, const GatherSettings &settings,
+                      const std::vector<ConstPlaneView> &sources, const std::vector<PlaneView> &outputs,
+                      const AxisModulation &along_u, const AxisModulation &along_v,
+                      GatherNormalisation normalisation);
+
+}  // namespace aaf

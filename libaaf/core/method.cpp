@@ -1,0 +1,27 @@
+#include "aaf/core/method.h"
+
+#include "aaf/core/error.h"
+
+namespace aaf {
+
+ConstPlaneView MethodImages::input(Role role, std::size_t channel) const {
+    auto it = inputs_.find(role);
+    if (it == inputs_.end() || channel >= it->second.size())
+        throw Error(std::string("input '") + role_info(role).key + "' is not available to this method");
+    return it->second[channel];
+}
+
+PlaneView MethodImages::output(Role role, std::size_t channel) const {
+    auto it = outputs_.find(role);
+    if (it == outputs_.end() || channel >= it->second.size())
+        throw Error(std::string("internal: '") + role_info(role).key + "' is not an output of this method");
+    return it->second[channel];
+}
+
+const std::string &MethodImages::channel_names(Role role) const {
+    static const std::string unknown = "?";
+    auto it = names_.find(role);
+    return it == names_.end() ? unknown : it->second;
+}
+
+}  // namespace aaf

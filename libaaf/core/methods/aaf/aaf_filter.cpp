@@ -1,0 +1,134 @@
+#include "aaf/core/aaf_filter.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <vector>
+
+#include "aaf/core/aaf_bandlimits.h"
+#include "aaf/core/error.h"
+#include "aaf/core/gather.h"
+#include "aaf/core/occluder_fill.h"
+#include "aaf/core/parallel.h"
+
+namespace aaf {
+
+namespace {
+
+/// Taps stop at 3 beta, where the Gaussian weight has fallen to exp(-4.5).
+constexpr float kCutoffSigmas = 3.0f;
+
+void check_size(ConstPlaneView view, int width, int height, const char *what) {
+    if (!view.valid() || view.width != width || view.height != height)
+        throw Error(std::string("AAF input '") + what + "' is missing or has another size");
+}
+
+/// beta of AAF Eq. 13 at pixel (x, y) in world metres, or 0 where AAF does
+/// not filter (background, no occluder nearby, unusable distances).
+float pixel_beta_m(const AafInputs &in, const LightPlane &light, const AafParams &params,
+                   const FilledOccluders &occluders, int x, int y) {
+    const std::size_t i = std::size_t(y) * std::size_t(in.visibility.width) + std::size_t(x);
+    const float d1 = in.d1(x, y), pixel_size = in.pixel_size(x, y);
+    const float d2_min = occluders.d2_min_m[i], d2_max = occluders.d2_max_m[i];
+    if (in.object_id(x, y) == 0 || !(d1 > 0) || !(pixel_size > 0) || !std::isfinite(pixel_size) ||
+        !has_occluder(d2_max))
+        return 0.0f;
+    if (params.fixed_beta_m > 0) return params.fixed_beta_m;
+    AafParams pixel_params = params;
+    if (params.mu_from_spp)  // AAF Sec. 5.2: the filter follows the samples actually taken
+        pixel_params.mu = mu_for_samples(in.spp(x, y), d1, d2_min, d2_max, pixel_size, light.sigma_m, params);
+    return aaf_bandlimits(d1, d2_min, d2_max, pixel_size, light.sigma_m, pixel_params).beta_m;
+}
+
+/// The shared gather's guides for AAF: positions in the light's plane (AAF
+/// Eq. 12), and per pixel the Gaussian of AAF Eq. 11 with the beta of Eq. 13.
+/// `beta_m` receives beta (0 = not filtered).
+GatherGuides build_guides(const AafInputs &in, const LightPlane &light, const AafParams &params,
+                          std::vector<float> &beta_m) {
+    GatherGuides guides;
+    guides.resize(in.visibility.width, in.visibility.height);
+    beta_m.assign(std::size_t(guides.width) * std::size_t(guides.height), 0.0f);
+
+    // AAF Sec. 6: unoccluded pixels take the occluder distances of their neighbours.
+    const FilledOccluders occluders =
+        fill_occluder_distances(in.d2_min, in.d2_max, in.object_id, params.fill_radius_px);
+
+    parallel_for_rows(guides.height, [&](int y) {
+        for (int x = 0; x < guides.width; ++x) {
+            const std::size_t i = guides.index(x, y);
+            // Coordinates along the light's two tangent axes, so du^2 + dv^2 =
+            // |x - x'|^2 - [n . (x - x')]^2 (AAF Eq. 12) for the orthonormal frame.
+            const Vec3 p{in.position[0](x, y), in.position[1](x, y), in.position[2](x, y)};
+            const float u = dot(light.axis_u, p - light.center), v = dot(light.axis_v, p - light.center);
+            if (!std::isfinite(u + v)) {
+                // Unusable geometry: never a tap (NaN id), never filtered.
+                guides.object_id[i] = std::numeric_limits<float>::quiet_NaN();
+                continue;
+            }
+            guides.coord_u_m[i] = u;
+            guides.coord_v_m[i] = v;
+            const Vec3 n{in.normal[0](x, y), in.normal[1](x, y), in.normal[2](x, y)};
+            const float len = length(n);
+            const Vec3 unit = (len > 0 && std::isfinite(len)) ? n / len : Vec3{};
+            guides.normal_x[i] = unit.x;
+            guides.normal_y[i] = unit.y;
+            guides.normal_z[i] = unit.z;
+            guides.object_id[i] = in.object_id(x, y);
+
+            const float beta = pixel_beta_m(in, light, params, occluders, x, y);
+            if (!(beta > 0) || !std::isfinite(beta)) continue;
+            // beta is in world metres; the reach in pixels follows from the pixel's footprint.
+            const float radius =
+                std::min(std::ceil(kCutoffSigmas * beta / in.pixel_size(x, y)), float(params.max_radius_px));
+            beta_m[i] = beta;
+            guides.inv_two_sigma_sq[i] = 1.0f / (2.0f * beta * beta);
+            guides.radius_px[i] = int(radius);
+        }
+    });
+    return guides;
+}
+
+}  // namespace
+
+void aaf_filter(const AafInputs &in, const LightPlane &light, const AafParams &params,
+                const AafOutputs &out) {
+    params.validate();
+    light.validate();
+    const int width = in.visibility.width, height = in.visibility.height;
+    if (width <= 0 || height <= 0) throw Error("AAF input 'visibility' is missing or empty");
+    check_size(in.d1, width, height, "d1");
+    check_size(in.d2_min, width, height, "d2min");
+    check_size(in.d2_max, width, height, "d2max");
+    for (int c = 0; c < 3; ++c) {
+        check_size(in.position[c], width, height, "position");
+        check_size(in.normal[c], width, height, "normal");
+    }
+    check_size(in.object_id, width, height, "object_id");
+    check_size(in.pixel_size, width, height, "pixel_size");
+    if (params.mu_from_spp) check_size(in.spp, width, height, "spp");
+    if (!out.filtered_visibility.valid() || out.filtered_visibility.width != width ||
+        out.filtered_visibility.height != height)
+        throw Error("AAF output 'filtered visibility' is missing or has another size");
+    if (out.beta_m.valid() && (out.beta_m.width != width || out.beta_m.height != height))
+        throw Error("AAF output 'beta' has another size");
+
+    std::vector<float> beta_m;
+    const GatherGuides guides = build_guides(in, light, params, beta_m);
+    GatherSettings settings;
+    settings.normal_threshold_deg = params.normal_threshold_deg;
+    settings.mode = params.mode == AafFilterMode::Separable ? GatherMode::Separable : GatherMode::Full2D;
+
+    // Non-finite visibility (a renderer's NaN) is read as 0, so it cannot spread through the filter.
+    std::vector<float> visibility(std::size_t(width) * std::size_t(height));
+    for (int y = 0; y < height; ++y)
+        for (int x = 0; x < width; ++x) {
+            const float v = in.visibility(x, y);
+            visibility[guides.index(x, y)] = std::isfinite(v) ? v : 0.0f;
+        }
+    gather(guides, settings, {plane_view(visibility.data(), width, height)}, {out.filtered_visibility});
+    if (out.beta_m.valid())
+        for (int y = 0; y < height; ++y)
+            for (int x = 0; x < width; ++x) out.beta_m(x, y) = beta_m[guides.index(x, y)];
+}
+
+}  // namespace aaf

@@ -1,0 +1,154 @@
+// Axis-Aligned Filtering of soft shadows (Mehta, Wang, Ramamoorthi 2012) as a
+// registered method: its declaration (roles, parameters) and the wiring from
+// the images to aaf_filter().
+#include <limits>
+#include <vector>
+
+#include "../builtin_methods.h"
+#include "aaf/core/aaf_filter.h"
+#include "aaf/core/error.h"
+#include "aaf/core/filter_aovs.h"
+#include "aaf/core/method_registry.h"
+#include "aaf/core/shadow_composition.h"
+
+namespace aaf {
+
+namespace {
+
+constexpr double kInf = std::numeric_limits<double>::infinity();
+
+ParameterInfo number(const char *name, ParameterType type, const char *value, const char *unit,
+                     const char *help, double min, double max = kInf, bool min_open = false) {
+    ParameterInfo p;
+    p.name = name;
+    p.type = type;
+    p.default_value = value;
+    p.unit = unit;
+    p.help = help;
+    p.min = min;
+    p.max = max;
+    p.min_open = min_open;
+    return p;
+}
+
+/// The parameters, with AafParams' defaults (AAF Sec. 6) and AafParams::validate()'s ranges.
+std::vector<ParameterInfo> aaf_parameters() {
+    const ParameterType real = ParameterType::Float, integer = ParameterType::Int;
+    std::vector<ParameterInfo> list = {
+        number("mu", real, "2", "", "Filter scale for consistency, beta ~ 1/mu (AAF Sec. 5.2)", 0, kInf,
+               true),
+        number("mu_from_spp", ParameterType::Bool, "false", "",
+               "Per pixel, raise mu until AAF Eq. 21's rate equals the samples taken (consistency, AAF Sec. "
+               "5.2)",
+               -kInf),
+        number("k", real, "3", "", "Gaussian spread factor of AAF Eq. 13", 0, kInf, true),
+        number("alpha", real, "1", "", "Occluder bandlimit over pixel bandlimit (AAF Eq. 5)", 0, 1, true),
+        number("normal_threshold", real, "25", "degrees", "Reject taps whose normal turns more", 0, 180),
+        number("fill_radius", integer, "5", "pixels", "Radius to borrow occluder distances (AAF Sec. 6)", 0,
+               1 << 16),
+        number("max_radius", integer, "64", "pixels", "Largest filter radius", 0, 1 << 16),
+        number("fixed_beta", real, "0", "metres",
+               "Non-adaptive baseline of AAF Fig. 6: this beta everywhere AAF filters; 0 = AAF Eq. 13", 0),
+    };
+    ParameterInfo mode;
+    mode.name = "filter";
+    mode.type = ParameterType::Choice;
+    mode.default_value = "separable";
+    mode.help =
+        "separable: two 1D passes (AAF Sec. 6); 2d: exact 2D gather of AAF Eq. 10, to measure the "
+        "approximation";
+    mode.choices = {"separable", "2d"};
+    list.push_back(mode);
+    return list;
+}
+
+AafParams params_from(const ParameterSet &set) {
+    AafParams p;
+    p.mu = set.get_float("mu");
+    p.mu_from_spp = set.get_bool("mu_from_spp");
+    p.k = set.get_float("k");
+    p.alpha = set.get_float("alpha");
+    p.normal_threshold_deg = set.get_float("normal_threshold");
+    p.fill_radius_px = set.get_int("fill_radius");
+    p.max_radius_px = set.get_int("max_radius");
+    p.fixed_beta_m = set.get_float("fixed_beta");
+    p.mode = set.get_choice("filter") == "2d" ? AafFilterMode::Exact2D : AafFilterMode::Separable;
+    return p;
+}
+
+class AafMethod final : public Method {
+  public:
+    AafMethod() {
+        info_.name = "aaf";
+        info_.title = "AAF";
+        info_.summary = "Axis-Aligned Filtering of soft shadows (Mehta et al. 2012)";
+        info_.reference =
+            "Mehta, Wang, Ramamoorthi: Axis-Aligned Filtering for Interactive Sampled Soft Shadows, 2012";
+        info_.roles.required = {Role::Visibility, Role::D1,        Role::D2Min,
+                                Role::D2Max,      Role::Position,  Role::Normal,
+                                Role::ObjectId,   Role::PixelSize, Role::Unshadowed};
+        info_.roles.optional = {Role::SamplesPerPixel, Role::OtherLights};
+        info_.roles.outputs = {Role::FilteredVisibility, Role::FilterWidth, Role::Beauty};
+        info_.roles.filtered = {{Role::Visibility, Role::FilteredVisibility}};
+        info_.parameters = aaf_parameters();
+        info_.required_attributes = light_attribute_names();
+    }
+
+    const MethodInfo &info() const override { return info_; }
+
+    void run(const MethodImages &images, const ParameterSet &parameters, Progress &progress) const override {
+        const AafParams params = params_from(parameters);
+        AafInputs in;
+        in.visibility = images.input(Role::Visibility);
+        in.d1 = images.input(Role::D1);
+        in.d2_min = images.input(Role::D2Min);
+        in.d2_max = images.input(Role::D2Max);
+        for (std::size_t c = 0; c < 3; ++c) {
+            in.position[c] = images.input(Role::Position, c);
+            in.normal[c] = images.input(Role::Normal, c);
+        }
+        in.object_id = images.input(Role::ObjectId);
+        in.pixel_size = images.input(Role::PixelSize);
+        if (params.mu_from_spp) {
+            if (!images.has(Role::SamplesPerPixel))
+                throw InputError("mu from spp needs the 'spp' input (channel " +
+                                 images.channel_names(Role::SamplesPerPixel) + ")");
+            in.spp = images.input(Role::SamplesPerPixel);
+        }
+        AafOutputs out;
+        out.filtered_visibility = images.output(Role::FilteredVisibility);
+        out.beta_m = images.output(Role::FilterWidth);
+        aaf_filter(in, read_light_attributes(images.attributes()), params, out);
+        progress.report(0.9);
+        compose_shadowed_beauty(images, out.filtered_visibility);  // AAF Eq. 1
+    }
+
+  private:
+    MethodInfo info_;
+};
+
+}  // namespace
+
+std::unique_ptr<Method> make_aaf_method() {
+    return std::make_unique<AafMethod>();
+}
+
+ParameterSet aaf_parameter_set(const AafParams &params) {
+    ParameterSet set("aaf", aaf_parameters());
+    set.set("mu", double(params.mu));
+    set.set("mu_from_spp", params.mu_from_spp);
+    set.set("k", double(params.k));
+    set.set("alpha", double(params.alpha));
+    set.set("normal_threshold", double(params.normal_threshold_deg));
+    set.set("fill_radius", double(params.fill_radius_px));
+    set.set("max_radius", double(params.max_radius_px));
+    set.set("fixed_beta", double(params.fixed_beta_m));
+    set.set("filter", std::string(params.mode == AafFilterMode::Exact2D ? "2d" : "separable"));
+    return set;
+}
+
+AovSet aaf_filter_aovs(const AovSet &input, const ChannelMap &channels, const AafParams &params) {
+    return filter_aovs(find_method("aaf"), input, channels, aaf_parameter_set(params));
+}
+
+}  // namespace aaf

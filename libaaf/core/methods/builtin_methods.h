@@ -1,0 +1,13 @@
+#pragma once
+
+#include <memory>
+
+#include "aaf/core/method.h"
+
+namespace aaf {
+
+/// The built-in methods, each defined in its own folder; registered in registry.cpp.
+std::unique_ptr<Method> make_aaf_method();
+std::unique_ptr<Method> make_gaussian_method();
+
+}  // namespace aaf

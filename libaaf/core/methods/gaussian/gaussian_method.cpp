@@ -1,0 +1,65 @@
+// The fixed-width screen-space Gaussian: the "non-adaptive filter" baseline
+// of AAF Fig. 6 and 10, as a registered method, so every method is compared
+// against it through the same pipeline.
+#include <cmath>
+#include <vector>
+
+#include "../builtin_methods.h"
+#include "aaf/core/fixed_gaussian.h"
+#include "aaf/core/shadow_composition.h"
+
+namespace aaf {
+
+namespace {
+
+class GaussianMethod final : public Method {
+  public:
+    GaussianMethod() {
+        info_.name = "gaussian";
+        info_.title = "Gaussian";
+        info_.summary =
+            "Fixed-width screen-space Gaussian of the visibility (the non-adaptive baseline of AAF Fig. 6)";
+        info_.reference = "baseline; Mehta, Wang, Ramamoorthi 2012, Fig. 6 and 10";
+        info_.roles.required = {Role::Visibility, Role::Unshadowed};
+        info_.roles.optional = {Role::OtherLights};
+        info_.roles.outputs = {Role::FilteredVisibility, Role::Beauty};
+        info_.roles.filtered = {{Role::Visibility, Role::FilteredVisibility}};
+        ParameterInfo sigma;
+        sigma.name = "sigma";
+        sigma.default_value = "2";
+        sigma.unit = "pixels";
+        sigma.help = "Standard deviation of the Gaussian, cut at 3 sigma; 0 copies";
+        sigma.min = 0;
+        sigma.max = 256;
+        info_.parameters = {sigma};
+    }
+
+    const MethodInfo &info() const override { return info_; }
+
+    void run(const MethodImages &images, const ParameterSet &parameters, Progress &progress) const override {
+        const int width = images.width(), height = images.height();
+        // Non-finite visibility is read as 0, so it cannot spread through the blur.
+        std::vector<float> visibility(std::size_t(width) * std::size_t(height));
+        const ConstPlaneView in = images.input(Role::Visibility);
+        for (int y = 0; y < height; ++y)
+            for (int x = 0; x < width; ++x)
+                visibility[std::size_t(y) * std::size_t(width) + std::size_t(x)] =
+                    std::isfinite(in(x, y)) ? in(x, y) : 0.0f;
+        const PlaneView filtered = images.output(Role::FilteredVisibility);
+        fixed_gaussian_filter(plane_view(visibility.data(), width, height), parameters.get_float("sigma"),
+                              filtered);
+        progress.report(0.9);
+        compose_shadowed_beauty(images, filtered);  // AAF Eq. 1
+    }
+
+  private:
+    MethodInfo info_;
+};
+
+}  // namespace
+
+std::unique_ptr<Method> make_gaussian_method() {
+    return std::make_unique<GaussianMethod>();
+}
+
+}  // namespace aaf

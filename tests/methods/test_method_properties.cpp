@@ -1,0 +1,253 @@
+// Properties every registered method must have, run over the registry as
+// pbrt-v4's filters_test.cpp runs over its filters: a method added in one
+// file (see toy_box_blur.cpp) is tested without a line here.
+#include <tbb/global_control.h>
+#include <tbb/task_arena.h>
+
+#include <algorithm>
+#include <catch2/catch.hpp>
+#include <cmath>
+#include <cstring>
+#include <functional>
+#include <set>
+#include <string>
+#include <vector>
+
+#include "aaf/core/error.h"
+#include "aaf/core/filter_aovs.h"
+#include "aaf/core/method_registry.h"
+#include "aaf/trace/render.h"
+
+using namespace aaf;
+
+namespace {
+
+/// A small render with every AOV the tracer writes; roles it cannot write
+/// get a plausible constant, so a future method with its own AOVs still runs.
+const AovSet &realistic_input() {
+    static const AovSet aovs = [] {
+        trace::RenderSettings settings;
+        settings.width = 40;
+        settings.height = 30;
+        settings.spp = 4;
+        settings.aovs = trace::kAovsAll;
+        AovSet rendered = trace::render_scene("grids", settings);
+        for (const RoleInfo &role : role_table())
+            for (const std::string &name : role.channels)
+                if (!rendered.has_channel(name)) rendered.add_channel(name, 0.5f);
+        return rendered;
+    }();
+    return aovs;
+}
+
+std::vector<Role> input_roles(const MethodInfo &info) {
+    std::vector<Role> roles = info.roles.required;
+    roles.insert(roles.end(), info.roles.optional.begin(), info.roles.optional.end());
+    return roles;
+}
+
+AovSet run_method(const Method &method, const AovSet &input, int threads = 0) {
+    AovSet out;
+    // Lets a 1- or 2-core machine still run 3 workers.
+    const tbb::global_control allow(tbb::global_control::max_allowed_parallelism, 4);
+    tbb::task_arena arena(threads == 0 ? tbb::task_arena::automatic : threads);
+    arena.execute([&] { out = filter_aovs(method, input, ChannelMap{}, method.default_parameters()); });
+    return out;
+}
+
+bool same_bytes(const std::vector<float> &a, const std::vector<float> &b) {
+    return a.size() == b.size() && std::memcmp(a.data(), b.data(), a.size() * sizeof(float)) == 0;
+}
+
+const std::vector<float> &plane(const AovSet &aovs, const std::string &name) {
+    return aovs.plane(aovs.index_of(name));
+}
+
+/// Channels `method` may write: its output roles and, when it composes a beauty, the kept noisy beauty.
+std::set<std::string> writable_channels(const MethodInfo &info) {
+    std::set<std::string> names;
+    for (Role role : info.roles.outputs) {
+        for (const std::string &name : role_info(role).channels) names.insert(name);
+        if (role == Role::Beauty)
+            for (const std::string &name : role_info(Role::NoisyBeauty).channels) names.insert(name);
+    }
+    return names;
+}
+
+}  // namespace
+
+TEST_CASE("Every method: the registry holds the built-ins and the test plug-in, with valid declarations",
+          "[methods]") {
+    std::set<std::string> names;
+    for (const Method *method : methods()) {
+        const MethodInfo &info = method->info();
+        INFO(info.name);
+        CHECK(names.insert(info.name).second);
+        CHECK_FALSE(info.summary.empty());
+        CHECK_FALSE(info.roles.outputs.empty());
+        for (const auto &pair : info.roles.filtered) {
+            CHECK(std::count(info.roles.outputs.begin(), info.roles.outputs.end(), pair.second) == 1);
+            const std::vector<Role> inputs = input_roles(info);
+            CHECK(std::count(inputs.begin(), inputs.end(), pair.first) == 1);
+        }
+        const ParameterSet defaults = method->default_parameters();  // throws if a default is invalid
+        for (const ParameterInfo &p : info.parameters) CHECK(defaults.text(p.name) != "");
+    }
+    CHECK(names.count("aaf") == 1);
+    CHECK(names.count("gaussian") == 1);
+    CHECK(names.count("toy_box") == 1);
+    CHECK_THROWS_WITH(find_method("nonesuch"), Catch::Contains("aaf") && Catch::Contains("toy_box"));
+}
+
+TEST_CASE("Every method: a constant input stays that constant", "[methods]") {
+    for (const Method *method : methods()) {
+        const MethodInfo &info = method->info();
+        for (const auto &[from, to] : info.roles.filtered) {
+            INFO(info.name << ": " << role_info(from).key << " -> " << role_info(to).key);
+            AovSet input = realistic_input();
+            const float constant = 0.3725f;
+            for (const std::string &name : role_info(from).channels) {
+                PlaneView view = input.channel(name);
+                std::fill(view.data, view.data + input.pixel_count(), constant);
+            }
+            const AovSet out = run_method(*method, input);
+            for (const std::string &name : role_info(to).channels) {
+                float worst = 0;
+                for (float v : plane(out, name)) worst = std::max(worst, std::abs(v - constant));
+                CHECK(worst <= 2e-6f * constant);
+            }
+        }
+    }
+}
+
+TEST_CASE("Every method: 1 and 3 threads give identical bytes", "[methods]") {
+    for (const Method *method : methods()) {
+        INFO(method->info().name);
+        const AovSet one = run_method(*method, realistic_input(), 1);
+        const AovSet three = run_method(*method, realistic_input(), 3);
+        REQUIRE(one.channel_names() == three.channel_names());
+        for (std::size_t c = 0; c < one.channel_names().size(); ++c) {
+            INFO(one.channel_names()[c]);
+            CHECK(same_bytes(one.plane(c), three.plane(c)));
+        }
+    }
+}
+
+TEST_CASE("Every method: nothing is written outside its output roles", "[methods]") {
+    const AovSet &input = realistic_input();
+    for (const Method *method : methods()) {
+        INFO(method->info().name);
+        const std::set<std::string> writable = writable_channels(method->info());
+        const AovSet out = run_method(*method, input);
+        for (const std::string &name : out.channel_names()) {
+            INFO(name);
+            if (writable.count(name)) continue;
+            REQUIRE(input.has_channel(name));  // no channel appears that is not an output
+            CHECK(same_bytes(plane(out, name), plane(input, name)));
+        }
+        for (const std::string &name : input.channel_names())
+            CHECK(out.has_channel(name));  // nothing dropped
+        CHECK(out.attributes == input.attributes);
+    }
+}
+
+TEST_CASE("Every method: a NaN or infinite input stays in its own pixel", "[methods]") {
+    const AovSet &clean = realistic_input();
+    const int bad_x = 20, bad_y = 22;  // on the ground, inside the grids' shadows
+    for (const Method *method : methods()) {
+        const AovSet reference = run_method(*method, clean);
+        for (Role role : input_roles(method->info()))
+            for (const std::string &name : role_info(role).channels)
+                for (float bad : {std::nanf(""), INFINITY, -INFINITY}) {
+                    INFO(method->info().name << ": " << name << " = " << bad);
+                    AovSet input = clean;
+                    input.channel(name)(bad_x, bad_y) = bad;
+                    const AovSet out = run_method(*method, input);
+                    for (const std::string &written : writable_channels(method->info())) {
+                        if (!out.has_channel(written)) continue;
+                        const ConstPlaneView before = reference.channel(written),
+                                             after = out.channel(written);
+                        int spread = 0;
+                        for (int y = 0; y < out.height(); ++y)
+                            for (int x = 0; x < out.width(); ++x)
+                                if ((x != bad_x || y != bad_y) && std::isfinite(before(x, y)) &&
+                                    !std::isfinite(after(x, y)))
+                                    ++spread;
+                        CHECK(spread == 0);
+                    }
+                }
+    }
+}
+
+TEST_CASE("Every method: unknown or out-of-range parameters give a one-line error", "[methods]") {
+    auto one_line_error = [](const std::function<void()> &call, const std::string &mention) {
+        try {
+            call();
+        } catch (const Error &e) {
+            const std::string message = e.what();
+            CHECK(message.find('\n') == std::string::npos);
+            CHECK_THAT(message, Catch::Contains(mention));
+            return;
+        }
+        FAIL("no error for " << mention);
+    };
+    for (const Method *method : methods()) {
+        const MethodInfo &info = method->info();
+        INFO(info.name);
+        ParameterSet parameters = method->default_parameters();
+        one_line_error([&] { parameters.set("no_such_parameter", std::string("1")); }, "no_such_parameter");
+        for (const ParameterInfo &p : info.parameters) {
+            INFO(p.name);
+            if (p.type == ParameterType::Bool || p.type == ParameterType::Choice) {
+                one_line_error([&] { parameters.set(p.name, std::string("not-a-value")); }, p.name);
+                continue;
+            }
+            one_line_error([&] { parameters.set(p.name, std::string("abc")); }, p.name);
+            if (std::isfinite(p.min)) one_line_error([&] { parameters.set(p.name, p.min - 1); }, p.name);
+            if (std::isfinite(p.max)) one_line_error([&] { parameters.set(p.name, p.max + 1); }, p.name);
+            if (p.type == ParameterType::Int)
+                one_line_error([&] { parameters.set(p.name, p.min + 0.5); }, p.name);
+        }
+        CHECK(parameters.infos().size() == info.parameters.size());  // failed sets changed nothing
+        for (const ParameterInfo &p : info.parameters)
+            CHECK(parameters.text(p.name) == method->default_parameters().text(p.name));
+    }
+}
+
+TEST_CASE("Every method: progress rises to 1, and a monitor that says stop cancels the run", "[methods]") {
+    for (const Method *method : methods()) {
+        INFO(method->info().name);
+        std::vector<double> reported;
+        filter_aovs(*method, realistic_input(), ChannelMap{}, method->default_parameters(), [&](double f) {
+            reported.push_back(f);
+            return true;
+        });
+        REQUIRE(reported.size() >= 2);
+        CHECK(std::is_sorted(reported.begin(), reported.end()));
+        CHECK(reported.front() == 0.0);
+        CHECK(reported.back() == 1.0);
+        CHECK_THROWS_AS(filter_aovs(*method, realistic_input(), ChannelMap{}, method->default_parameters(),
+                                    [](double) { return false; }),
+                        Cancelled);
+    }
+}
+
+TEST_CASE("Every method: a missing required input is named in a one-line input error", "[methods]") {
+    for (const Method *method : methods()) {
+        const MethodInfo &info = method->info();
+        for (Role role : info.roles.required) {
+            INFO(info.name << ": " << role_info(role).key);
+            const AovSet &full = realistic_input();
+            AovSet input(full.width(), full.height());
+            input.attributes = full.attributes;
+            const std::vector<std::string> &drop = role_info(role).channels;
+            for (std::size_t c = 0; c < full.channel_names().size(); ++c)
+                if (std::find(drop.begin(), drop.end(), full.channel_names()[c]) == drop.end())
+                    std::copy(full.plane(c).begin(), full.plane(c).end(),
+                              input.add_channel(full.channel_names()[c]).data);
+            CHECK_THROWS_AS(run_method(*method, input), InputError);
+            CHECK_THROWS_WITH(run_method(*method, input),
+                              Catch::Contains(std::string("'") + role_info(role).key + "'"));
+        }
+    }
+}
