@@ -13,7 +13,8 @@ namespace aaf::trace {
 /// r(x) V(x).
 struct LightSample {
     /// Index of the light in the scene's list; 0 is the key light, whose
-    /// visibility the AAF AOVs describe.
+    /// visibility the AAF AOVs describe. Renderer::trace_shadows emits the
+    /// key light's samples only, with the other lights' shading in `radiance`.
     std::size_t light = 0;
     /// y in the light's stratified unit square [0, 1)^2, before the warp to
     /// its emission profile (s along the light's axis_u, t along axis_v).
