@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "aov_group.h"
 #include "random.h"
 #include "shading.h"
 #include "stratified_grid.h"
@@ -118,8 +119,55 @@ Vec3 Renderer::shade(const Mesh &mesh, Vec3 p, Vec3 n, Vec3 eye, UnitPoint u, st
     return radiance;
 }
 
+void Renderer::trace_key_light(const PrimaryHit &primary, Vec3 origin, float d1, float centre_falloff,
+                               LightSample &sample) const {
+    const LightPlane &light = scene_.key_light();
+    sample.y_u_m = light_samplers_[0].warp_u(sample.y_unit.s);
+    sample.y_v_m = light_samplers_[0].warp_v(sample.y_unit.t);
+    const Vec3 target = light.point_at(sample.y_u_m, sample.y_v_m);  // LightSampler::point
+    const Vec3 p = primary.position;
+    // Samples follow the emission profile; the falloff, when included in
+    // l(y), weights them relative to the centre (AAF Sec. 7).
+    if (settings_.cosine_falloff && centre_falloff > 0)
+        sample.weight = falloff(light, p, primary.normal, target) / centre_falloff;
+    if (dot(primary.normal, target - p) <= 0) {
+        sample.visible = false;  // behind the receiver's own tangent plane
+        sample.d2_m = d1;
+        return;
+    }
+    // t = 1 reaches the light point; stop just short of it.
+    const Vec3 direction = target - origin;
+    const Hit hit = bvh_.intersect(origin, direction, 0.0f, kShadowRayReach);
+    if (hit.found) {
+        sample.visible = false;
+        sample.d2_m = light.plane_distance_m(origin + direction * hit.distance);
+    }
+}
+
+Vec3 Renderer::separate_radiance(const PrimaryHit &primary, Vec3 focus, PixelRng &lens_rng,
+                                 LightSample &sample) const {
+    const Camera &camera = scene_.camera;
+    if (!camera.is_thin_lens())
+        return shade(*primary.mesh, primary.position, primary.normal, camera.eye, sample.y_unit, 1);
+    // A ray from a point of the aperture through the pixel centre's point on
+    // the plane in focus; its hit is shaded by every light.
+    float dx, dy;
+    concentric_disc(lens_rng.next_float(), lens_rng.next_float(), dx, dy);
+    sample.lens_x_m = dx * camera.aperture_radius_m;
+    sample.lens_y_m = dy * camera.aperture_radius_m;
+    const Vec3 lens = camera.eye + (camera.right * dx + camera.up * dy) * camera.aperture_radius_m;
+    const Vec3 direction = focus - lens;
+    const Hit hit = bvh_.intersect(lens, direction, 0.0f, std::numeric_limits<float>::infinity());
+    if (!hit.found) return {};
+    const Vec3 hit_point = lens + direction * hit.distance;
+    Vec3 n = normalize(hit.geometric_normal);
+    n = dot(n, direction) > 0 ? -n : n;
+    return shade(scene_.meshes[hit.mesh_index], hit_point, n, lens, sample.y_unit, 0);
+}
+
 void Renderer::trace_shadows(const PrimaryHit &primary, int x, int y, std::uint64_t pixel_index,
-                             std::uint32_t pass, std::uint32_t count, ShadowStats &stats) const {
+                             std::uint32_t pass, std::uint32_t count, ShadowStats &stats,
+                             const std::vector<AovAccumulator *> &listeners) const {
     const LightPlane &light = scene_.key_light();
     const Camera &camera = scene_.camera;
     PixelRng rng(settings_.seed, pixel_index, pass);
@@ -139,53 +187,15 @@ void Renderer::trace_shadows(const PrimaryHit &primary, int x, int y, std::uint6
     for (std::uint32_t i = 0; i < count; ++i) {
         float u1, u2;
         rng.next_float2(u1, u2);
-        const UnitPoint u = strata.point(i, stratum_key, u1, u2);
-        ++stats.taken;
+        LightSample sample;
+        sample.y_unit = strata.point(i, stratum_key, u1, u2);
         // The key light's visibility at the central hit (none for a thin
         // lens's background pixel, which only gathers lens rays).
-        if (primary.found) {
-            const Vec3 target = light_samplers_[0].point(u);
-            // Samples follow the emission profile; the falloff, when included in
-            // l(y), weights them relative to the centre (AAF Sec. 7).
-            double weight = 1.0;
-            if (settings_.cosine_falloff && centre_falloff > 0)
-                weight = falloff(light, p, primary.normal, target) / centre_falloff;
-            stats.weight_sum += weight;
-            if (dot(primary.normal, target - p) <= 0) {
-                stats.add_occluder(d1);  // behind the receiver's own tangent plane
-            } else {
-                // t = 1 reaches the light point; stop just short of it.
-                const Vec3 direction = target - origin;
-                const Hit hit = bvh_.intersect(origin, direction, 0.0f, kShadowRayReach);
-                if (hit.found)
-                    stats.add_occluder(light.plane_distance_m(origin + direction * hit.distance));
-                else
-                    stats.unoccluded_weight_sum += weight;
-            }
-        }
-        if (!separate) continue;
-
-        Vec3 radiance;
-        if (camera.is_thin_lens()) {
-            // A ray from a point of the aperture through the pixel centre's
-            // point on the plane in focus; its hit is shaded by every light.
-            float dx, dy;
-            concentric_disc(secondary_rng.next_float(), secondary_rng.next_float(), dx, dy);
-            const Vec3 lens = camera.eye + (camera.right * dx + camera.up * dy) * camera.aperture_radius_m;
-            const Vec3 direction = focus - lens;
-            const Hit hit = bvh_.intersect(lens, direction, 0.0f, std::numeric_limits<float>::infinity());
-            if (hit.found) {
-                const Vec3 hit_point = lens + direction * hit.distance;
-                Vec3 n = normalize(hit.geometric_normal);
-                n = dot(n, direction) > 0 ? -n : n;
-                radiance = shade(scene_.meshes[hit.mesh_index], hit_point, n, lens, u, 0);
-            }
-        } else {
-            radiance = shade(*primary.mesh, p, primary.normal, camera.eye, u, 1);
-        }
-        stats.radiance_sum[0] += radiance.x;
-        stats.radiance_sum[1] += radiance.y;
-        stats.radiance_sum[2] += radiance.z;
+        sample.has_receiver = primary.found;
+        if (primary.found) trace_key_light(primary, origin, d1, centre_falloff, sample);
+        if (separate) sample.radiance = separate_radiance(primary, focus, secondary_rng, sample);
+        stats.add(sample);
+        for (AovAccumulator *listener : listeners) listener->add_sample(pixel_index, sample);
     }
 }
 

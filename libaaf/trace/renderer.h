@@ -6,10 +6,14 @@
 
 #include "aaf/trace/render.h"
 #include "embree_scene.h"
+#include "light_sample.h"
 #include "light_sampler.h"
+#include "random.h"
 #include "scene_description.h"
 
 namespace aaf::trace {
+
+class AovAccumulator;
 
 /// What the central (pinhole) primary ray through a pixel's centre sees.
 struct PrimaryHit {
@@ -38,9 +42,29 @@ struct ShadowStats {
         d2_min_m = d2_m < d2_min_m ? d2_m : d2_min_m;
         d2_max_m = d2_m > d2_max_m ? d2_m : d2_max_m;
     }
+    /// Adds one sample: the key light's weights and occluder distance, and
+    /// the radiance traced apart from r(x) V(x).
+    void add(const LightSample &sample) {
+        ++taken;
+        if (sample.has_receiver) {
+            weight_sum += sample.weight;
+            if (sample.visible)
+                unoccluded_weight_sum += sample.weight;
+            else
+                add_occluder(sample.d2_m);
+        }
+        radiance_sum[0] += sample.radiance.x;
+        radiance_sum[1] += sample.radiance.y;
+        radiance_sum[2] += sample.radiance.z;
+    }
     bool occluded_any() const { return d2_max_m > 0; }
     /// Light-weighted visibility in [0, 1]; exactly 1 when no sample was occluded.
     float visibility() const { return weight_sum > 0 ? float(unoccluded_weight_sum / weight_sum) : 1.0f; }
+    /// Mean over the samples of the radiance traced apart from r(x) V(x).
+    Vec3 mean_radiance() const {
+        const double n = taken > 0 ? double(taken) : 1.0;
+        return {float(radiance_sum[0] / n), float(radiance_sum[1] / n), float(radiance_sum[2] / n)};
+    }
     /// Rounds the sums to float, the precision a checkpoint file stores them
     /// in, so a resumed render continues from exactly the same state.
     void round_to_float() {
@@ -58,10 +82,12 @@ class Renderer {
     PrimaryHit trace_primary(int x, int y) const;
 
     /// Traces `count` samples of pass `pass`, stratified among themselves,
-    /// and adds them to `stats`: one key-light shadow ray from the primary
-    /// hit each, plus one per other light and, with a thin lens, a lens ray.
+    /// and adds them to `stats` and to each of `listeners` (add_sample with
+    /// `pixel_index`): one key-light shadow ray from the primary hit each,
+    /// plus one per other light and, with a thin lens, a lens ray.
     void trace_shadows(const PrimaryHit &primary, int x, int y, std::uint64_t pixel_index, std::uint32_t pass,
-                       std::uint32_t count, ShadowStats &stats) const;
+                       std::uint32_t count, ShadowStats &stats,
+                       const std::vector<AovAccumulator *> &listeners) const;
 
     /// True when the beauty is not r(x) times the key light's visibility.
     bool has_separate_radiance() const { return scene_.lights.size() > 1 || scene_.camera.is_thin_lens(); }
@@ -83,6 +109,18 @@ class Renderer {
     /// r(x) times the visibility of one shadow ray towards the light's point
     /// for the unit-square sample `u`.
     Vec3 shade(const Mesh &mesh, Vec3 p, Vec3 n, Vec3 eye, UnitPoint u, std::size_t first_light) const;
+    /// Fills `sample`'s light point (from its y_unit), weight, visibility and
+    /// occluder distance for the key light seen from the primary hit, whose
+    /// offset ray origin is `origin`, plane distance `d1` and falloff
+    /// towards the light's centre `centre_falloff` (0 without the falloff).
+    void trace_key_light(const PrimaryHit &primary, Vec3 origin, float d1, float centre_falloff,
+                         LightSample &sample) const;
+    /// The radiance `sample` traces apart from r(x) V(x): the other lights'
+    /// shading at the primary hit, or with a thin lens that of every light
+    /// seen through a lens ray aimed at `focus` (filling the sample's lens
+    /// point from `lens_rng`).
+    Vec3 separate_radiance(const PrimaryHit &primary, Vec3 focus, PixelRng &lens_rng,
+                           LightSample &sample) const;
     /// Whether a shadow ray from surface point `p` (normal `n`, facing the
     /// ray's side) to `target` is blocked.
     bool occluded(Vec3 p, Vec3 n, Vec3 target) const;

@@ -139,7 +139,7 @@ std::size_t run_tracer(const Fixture &f) {
             const std::size_t i = std::size_t(y) * kWidth + x;
             if (!f.primaries[i].found) continue;
             ShadowStats stats;
-            f.renderer->trace_shadows(f.primaries[i], x, y, i, 0, kSpp, stats);
+            f.renderer->trace_shadows(f.primaries[i], x, y, i, 0, kSpp, stats, {});
             traced += stats.taken;
             benchmark::DoNotOptimize(stats);
         }

@@ -6,15 +6,18 @@
 #include <string>
 #include <vector>
 
+#include "aaf/core/aov_contract.h"
 #include "aaf/core/aov_set.h"
 #include "aaf/core/light_plane.h"
 
 namespace aaf::trace {
 
 /// Groups of AOVs a render can write (`aaf render --aovs`). The beauty R,G,B
-/// is always written. Each group is one block of `write_aovs` in render.cpp:
-/// the place where later methods add theirs (MAAF's cos/sin accumulations,
-/// the ratio estimator's U, S_N, U_N, ISG's hard-shadow and reflection maps).
+/// is always written. Each group is an accumulator (libaaf/trace/aov_group.h,
+/// one file each under libaaf/trace/aov_groups/) that may gather per-pixel
+/// state from every light sample: the place where later methods add theirs
+/// (MAAF's cos/sin accumulations, the ratio estimator's U, S_N, U_N, ISG's
+/// hard-shadow and reflection maps).
 enum AovGroup : unsigned {
     kAovShadow =
         1u << 0,  ///< shadow.V/d1/d2min/d2max, pixel.spp, pixel.size (+ otherlights.* with several lights)
@@ -42,6 +45,9 @@ const std::vector<AovGroupInfo> &aov_group_table();
 /// Parses a comma-separated list of group names, "aaf" (the AAF set) and
 /// "all"; throws aaf::Error naming an unknown entry.
 unsigned parse_aov_groups(const std::string &list);
+/// The groups that write any of `roles` (aov_contract.h), e.g. those a
+/// method's declared inputs need; the progress group writes no role.
+unsigned aov_groups_writing(const std::vector<Role> &roles);
 
 /// Samples per round of a progressive render: round k uses random-number
 /// pass k and its own stratification, so a reference of N * 1024 samples can

@@ -1,0 +1,88 @@
+#include "aov_group.h"
+
+#include <algorithm>
+#include <sstream>
+
+#include "aaf/core/error.h"
+#include "aov_groups/aov_groups.h"
+
+namespace aaf::trace {
+
+namespace {
+
+/// Every group's maker, in channel order; a new group adds one line here.
+using Maker = std::unique_ptr<AovAccumulator> (*)();
+constexpr Maker kGroupMakers[] = {
+    make_shadow_group, make_position_group, make_normal_group, make_object_id_group, make_unshadowed_group,
+    make_depth_group,  make_albedo_group,   make_motion_group, make_progress_group,
+};
+
+}  // namespace
+
+std::vector<std::unique_ptr<AovAccumulator>> make_aov_accumulators(unsigned groups) {
+    std::vector<std::unique_ptr<AovAccumulator>> accumulators;
+    accumulators.push_back(make_beauty_group());
+    for (Maker make : kGroupMakers) {
+        std::unique_ptr<AovAccumulator> group = make();
+        if (groups & group->info().group) accumulators.push_back(std::move(group));
+    }
+    return accumulators;
+}
+
+std::vector<PlaneView> add_role_channels(AovSet &aovs, Role role, Precision precision) {
+    std::vector<PlaneView> views;
+    for (const std::string &name : role_info(role).channels) {
+        views.push_back(aovs.add_channel(name));
+        aovs.set_precision(name, precision);
+    }
+    return views;
+}
+
+const std::vector<AovGroupInfo> &aov_group_table() {
+    static const std::vector<AovGroupInfo> table = [] {
+        std::vector<AovGroupInfo> infos;
+        for (Maker make : kGroupMakers) infos.push_back(make()->info());
+        return infos;
+    }();
+    return table;
+}
+
+unsigned aov_groups_writing(const std::vector<Role> &roles) {
+    unsigned groups = 0;
+    for (Maker make : kGroupMakers) {
+        const std::unique_ptr<AovAccumulator> accumulator = make();
+        for (Role role : accumulator->roles())
+            if (std::find(roles.begin(), roles.end(), role) != roles.end())
+                groups |= accumulator->info().group;
+    }
+    return groups;
+}
+
+unsigned parse_aov_groups(const std::string &list) {
+    unsigned groups = 0;
+    std::stringstream items(list);
+    for (std::string item; std::getline(items, item, ',');) {
+        if (item == "aaf") {
+            groups |= kAovsForAaf;
+            continue;
+        }
+        if (item == "all") {
+            groups |= kAovsAll;
+            continue;
+        }
+        bool found = false;
+        for (const AovGroupInfo &info : aov_group_table())
+            if (item == info.name) {
+                groups |= info.group;
+                found = true;
+            }
+        if (!found) {
+            std::string known = "aaf, all";
+            for (const AovGroupInfo &info : aov_group_table()) known += std::string(", ") + info.name;
+            throw Error("unknown AOV group '" + item + "' (known: " + known + ")");
+        }
+    }
+    return groups;
+}
+
+}  // namespace aaf::trace

@@ -1,0 +1,79 @@
+#include <type_traits>
+
+#include "aov_groups.h"
+
+namespace aaf::trace {
+
+namespace {
+
+/// A group that copies one value of the primary hit per pixel, 0 where
+/// nothing was hit: it needs no samples.
+template <typename Value>
+class PrimaryHitGroup final : public AovAccumulator {
+  public:
+    using Getter = Value (*)(const PrimaryHit &);
+    PrimaryHitGroup(AovGroupInfo info, Role role, Precision precision, Getter value)
+        : info_(info), role_(role), precision_(precision), value_(value) {}
+
+    AovGroupInfo info() const override { return info_; }
+    std::vector<Role> roles() const override { return {role_}; }
+
+    void write(const RenderState &state, AovSet &aovs) const override {
+        const auto views = add_role_channels(aovs, role_, precision_);
+        state.for_each_pixel([&](int x, int y, const PrimaryHit &p, const ShadowStats &) {
+            if (!p.found) return;
+            if constexpr (std::is_same_v<Value, Vec3>)
+                set3(views, x, y, value_(p));
+            else
+                views[0](x, y) = value_(p);
+        });
+    }
+
+  private:
+    AovGroupInfo info_;
+    Role role_;
+    Precision precision_;
+    Getter value_;
+};
+
+}  // namespace
+
+std::unique_ptr<AovAccumulator> make_position_group() {
+    return std::make_unique<PrimaryHitGroup<Vec3>>(AovGroupInfo{kAovPosition, "position", "P.X, P.Y, P.Z"},
+                                                   Role::Position, Precision::Float,
+                                                   [](const PrimaryHit &p) { return p.position; });
+}
+
+std::unique_ptr<AovAccumulator> make_normal_group() {
+    return std::make_unique<PrimaryHitGroup<Vec3>>(AovGroupInfo{kAovNormal, "normal", "N.X, N.Y, N.Z"},
+                                                   Role::Normal, Precision::Float,
+                                                   [](const PrimaryHit &p) { return p.normal; });
+}
+
+std::unique_ptr<AovAccumulator> make_object_id_group() {
+    return std::make_unique<PrimaryHitGroup<float>>(
+        AovGroupInfo{kAovObjectId, "id", "id.object"}, Role::ObjectId, Precision::Float,
+        [](const PrimaryHit &p) { return float(p.mesh->object_id); });
+}
+
+std::unique_ptr<AovAccumulator> make_unshadowed_group() {
+    return std::make_unique<PrimaryHitGroup<Vec3>>(
+        AovGroupInfo{kAovUnshadowed, "unshadowed", "unshadowed.R, unshadowed.G, unshadowed.B"},
+        Role::Unshadowed, Precision::Float, [](const PrimaryHit &p) { return p.unshadowed; });
+}
+
+std::unique_ptr<AovAccumulator> make_depth_group() {
+    return std::make_unique<PrimaryHitGroup<float>>(AovGroupInfo{kAovDepth, "depth", "Z"}, Role::Depth,
+                                                    Precision::Float,
+                                                    [](const PrimaryHit &p) { return p.depth_m; });
+}
+
+// Reflectances in [0, 1] need no more than half's 11 bits; the beauty stays
+// float, since references are compared to 1e-4.
+std::unique_ptr<AovAccumulator> make_albedo_group() {
+    return std::make_unique<PrimaryHitGroup<Vec3>>(
+        AovGroupInfo{kAovAlbedo, "albedo", "albedo.R, albedo.G, albedo.B"}, Role::Albedo, Precision::Half,
+        [](const PrimaryHit &p) { return p.mesh->material.albedo; });
+}
+
+}  // namespace aaf::trace
