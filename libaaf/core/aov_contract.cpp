@@ -103,17 +103,6 @@ const std::vector<RoleInfo> &role_table() {
          "linear radiance",
          "noisy shadowed shading of every light but the key light (scenes with several lights); "
          "the beauty is r(x) V(x) plus this"},
-        {Role::ProgressWeight, "progress_weight", {"progress.weight"}, "sum of weights", "TEMPORARY"},
-        {Role::ProgressUnoccluded,
-         "progress_unoccluded",
-         {"progress.unoccluded"},
-         "sum of weights",
-         "TEMPORARY"},
-        {Role::ProgressRadiance,
-         "progress_radiance",
-         {"progress.radiance.R", "progress.radiance.G", "progress.radiance.B"},
-         "sum of radiance",
-         "TEMPORARY"},
     };
     return table;
 }

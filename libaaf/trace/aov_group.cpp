@@ -4,6 +4,7 @@
 #include <sstream>
 
 #include "aaf/core/error.h"
+#include "aaf/core/method_registry.h"
 #include "aov_groups/aov_groups.h"
 
 namespace aaf::trace {
@@ -16,6 +17,12 @@ constexpr Maker kGroupMakers[] = {
     make_shadow_group, make_position_group, make_normal_group, make_object_id_group, make_unshadowed_group,
     make_depth_group,  make_albedo_group,   make_motion_group, make_progress_group,
 };
+
+bool is_method(const std::string &name) {
+    for (const Method *method : methods())
+        if (method->info().name == name) return true;
+    return false;
+}
 
 }  // namespace
 
@@ -58,12 +65,16 @@ unsigned aov_groups_writing(const std::vector<Role> &roles) {
     return groups;
 }
 
+unsigned aov_groups_for_method(const std::string &method) {
+    return aov_groups_writing(find_method(method).info().roles.required);
+}
+
 unsigned parse_aov_groups(const std::string &list) {
     unsigned groups = 0;
     std::stringstream items(list);
     for (std::string item; std::getline(items, item, ',');) {
-        if (item == "aaf") {
-            groups |= kAovsForAaf;
+        if (is_method(item)) {
+            groups |= aov_groups_for_method(item);
             continue;
         }
         if (item == "all") {
@@ -77,7 +88,8 @@ unsigned parse_aov_groups(const std::string &list) {
                 found = true;
             }
         if (!found) {
-            std::string known = "aaf, all";
+            std::string known = "all";
+            for (const Method *method : methods()) known += ", " + method->info().name;
             for (const AovGroupInfo &info : aov_group_table()) known += std::string(", ") + info.name;
             throw Error("unknown AOV group '" + item + "' (known: " + known + ")");
         }

@@ -217,7 +217,7 @@ unsigned groups_to_write(const RenderSettings &settings) {
 AovSet plan_second_pass(const RenderState &state, const Accumulators &accumulators,
                         const RenderSettings &settings) {
     AovSet first_pass(settings.width, settings.height);
-    write_aovs(state, accumulators, kAovsForAaf, first_pass);
+    write_aovs(state, accumulators, aov_groups_for_method("aaf"), first_pass);
     write_light_attributes(state.scene.key_light(), first_pass);
     AafParams aaf;
     aaf.mu = settings.adaptive_mu;
@@ -245,7 +245,7 @@ AovSet render_scene(const std::string &scene_name, const RenderSettings &setting
 
     const unsigned groups = groups_to_write(settings);
     // The adaptive plan reads the AAF groups, whether written or not.
-    const Accumulators accumulators = make_aov_accumulators(groups | (settings.adaptive ? kAovsForAaf : 0));
+    const Accumulators accumulators = make_aov_accumulators(groups | (settings.adaptive ? aov_groups_for_method("aaf") : 0));
     Tracing tracing(scene, settings, accumulators);
     const RenderState state = tracing.state(previous_camera);
     int spp_done = settings.resume

@@ -4,6 +4,7 @@
 #include <vector>
 
 #include "aaf/core/aov_contract.h"
+#include "aaf/core/method_registry.h"
 #include "aaf/trace/render.h"
 #include "aov_group.h"
 #include "renderer.h"
@@ -151,8 +152,11 @@ TEST_CASE("A group that wants samples sees every sample the shadow sums see", "[
 }
 
 TEST_CASE("The groups AAF reads follow from the roles it declares", "[trace][groups]") {
-    CHECK(aov_groups_writing(method_table().front().required) == kAovsForAaf);
-    CHECK(parse_aov_groups("aaf") == kAovsForAaf);
+    const unsigned aaf_groups = kAovShadow | kAovPosition | kAovNormal | kAovObjectId | kAovUnshadowed;
+    CHECK(aov_groups_writing(find_method("aaf").info().roles.required) == aaf_groups);
+    CHECK(aov_groups_for_method("aaf") == aaf_groups);
+    CHECK(parse_aov_groups("aaf") == aaf_groups);
+    CHECK(parse_aov_groups("gaussian") == (kAovShadow | kAovUnshadowed));
     CHECK(aov_groups_writing({}) == 0);
     unsigned all = 0;
     for (const AovGroupInfo &info : aov_group_table()) all |= info.group;

@@ -154,7 +154,7 @@ TEST_CASE("A stopped reference and its resumption give the golden bytes", "[trac
     settings.width = 16;
     settings.height = 12;
     settings.spp = 2 * trace::kSamplesPerRound + 8;
-    settings.aovs = trace::kAovsForAaf;  // progress is added for a reference
+    settings.aovs = trace::aov_groups_for_method("aaf");  // progress is added for a reference
     settings.stop_requested = [] { return true; };
     const AovSet partial = trace::render_scene(write_two_light_scene(), settings);
     REQUIRE(std::get<int>(partial.attributes.at(attr::kSppDone)) == trace::kSamplesPerRound);

@@ -34,9 +34,6 @@ enum class Role {
     Albedo,              ///< diffuse reflectance
     Motion,              ///< screen-space motion since the previous frame
     OtherLights,         ///< shadowed shading of every light but the key light
-    ProgressWeight,      ///< TEMPORARY until the tracer owns its resume state
-    ProgressUnoccluded,  ///< TEMPORARY
-    ProgressRadiance,    ///< TEMPORARY
 };
 
 struct RoleInfo {

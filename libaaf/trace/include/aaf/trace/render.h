@@ -30,9 +30,6 @@ enum AovGroup : unsigned {
     kAovMotion = 1u << 7,      ///< motion.X/Y
     kAovProgress = 1u << 8,    ///< progress.*: the sums a resumed reference continues from
 };
-/// Everything AAF reads.
-inline constexpr unsigned kAovsForAaf =
-    kAovShadow | kAovPosition | kAovNormal | kAovObjectId | kAovUnshadowed;
 inline constexpr unsigned kAovsAll = (kAovProgress << 1) - 1;
 
 /// Name (as `--aovs` spells it) and contents of each group.
@@ -42,12 +39,17 @@ struct AovGroupInfo {
     const char *contents;
 };
 const std::vector<AovGroupInfo> &aov_group_table();
-/// Parses a comma-separated list of group names, "aaf" (the AAF set) and
-/// "all"; throws aaf::Error naming an unknown entry.
+/// Parses a comma-separated list of group names, names of registered
+/// methods (method_registry.h: "aaf" is the groups AAF reads) and "all";
+/// throws aaf::Error naming an unknown entry.
 unsigned parse_aov_groups(const std::string &list);
 /// The groups that write any of `roles` (aov_contract.h), e.g. those a
 /// method's declared inputs need; the progress group writes no role.
 unsigned aov_groups_writing(const std::vector<Role> &roles);
+/// The groups that write the required inputs of the registered method
+/// `method` (its declaration is the one place that says what it reads);
+/// throws aaf::Error for an unknown method.
+unsigned aov_groups_for_method(const std::string &method);
 
 /// Samples per round of a progressive render: round k uses random-number
 /// pass k and its own stratification, so a reference of N * 1024 samples can
@@ -67,7 +69,7 @@ struct RenderSettings {
     std::uint64_t seed = 1;  ///< with pixel index and pass, fixes every random number
     int threads = 0;         ///< 0 = all hardware threads; the result does not depend on it
     double frame = 1;        ///< animation time (scene keyframes), frames
-    unsigned aovs = kAovsForAaf;
+    unsigned aovs = aov_groups_for_method("aaf");
 
     /// AAF's two-pass adaptive sampling (Sec. 5.1, 6): after the first pass,
     /// each pixel gets the total of Eq. 21 (aaf::plan_samples), capped at max_spp.
