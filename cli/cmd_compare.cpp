@@ -20,7 +20,6 @@
 #include "aaf/io/heatmap.h"
 #include "commands.h"
 #include "compare_pairs.h"
-#include "input_guard.h"
 
 namespace aaf::cli {
 
@@ -194,10 +193,10 @@ void add_compare_command(CLI::App &app) {
             outputs.push_back(io::heatmap_exr_path(options->heatmap));
         }
         for (const std::string &output : outputs) {
-            if (!options->mask_path.empty()) check_not_same_file(options->mask_path, output);
+            if (!options->mask_path.empty()) io::check_not_same_file(options->mask_path, output);
             for (const ImagePair &pair : pairs) {
-                check_not_same_file(pair.test, output);
-                check_not_same_file(pair.reference, output);
+                io::check_not_same_file(pair.test, output);
+                io::check_not_same_file(pair.reference, output);
             }
         }
         std::vector<Result> results;

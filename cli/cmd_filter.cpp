@@ -9,12 +9,11 @@
 #include "aaf/core/aov_contract.h"
 #include "aaf/core/error.h"
 #include "aaf/core/non_finite.h"
+#include "aaf/core/parallel.h"
 #include "aaf/io/exr_io.h"
 #include "channel_options.h"
 #include "commands.h"
 #include "frame_runner.h"
-#include "input_guard.h"
-#include "threads.h"
 
 namespace aaf::cli {
 
