@@ -1,16 +1,13 @@
+#include <cstdio>
 #include <memory>
 #include <string>
 #include <vector>
 
-#include <algorithm>
-#include <cstdio>
-
 #include "aaf/core/aaf_filter.h"
 #include "aaf/core/aov_contract.h"
 #include "aaf/core/error.h"
-#include "aaf/core/non_finite.h"
-#include "aaf/core/parallel.h"
 #include "aaf/io/exr_io.h"
+#include "aaf/io/filter_file.h"
 #include "channel_options.h"
 #include "commands.h"
 #include "frame_runner.h"
@@ -19,7 +16,8 @@ namespace aaf::cli {
 
 namespace {
 
-/// The channels AAF reads, so bad values there are replaced before filtering.
+/// The channels AAF reads, so they are borrowed from other parts and bad
+/// values there are replaced before filtering.
 std::vector<std::string> filter_inputs(const ChannelMap &channels) {
     std::vector<std::string> names;
     std::vector<Role> roles = method_table().front().required;
@@ -29,85 +27,56 @@ std::vector<std::string> filter_inputs(const ChannelMap &channels) {
     return names;
 }
 
-/// One warning line per file that had NaN or infinite inputs.
-void report_non_finite(const std::string &path, const NonFiniteCounts &counts) {
-    if (counts.empty()) return;
-    std::size_t total = 0;
-    std::string detail;
-    for (const auto &[name, count] : counts) {
-        total += count;
-        detail += (detail.empty() ? "" : ", ") + name + " " + std::to_string(count);
-    }
-    std::fprintf(stderr, "aaf: warning: %s: replaced %zu NaN/Inf input values by 0 (%s)\n", path.c_str(),
-                 total, detail.c_str());
+/// AAF as the file pipeline runs it.
+io::FrameFilter aaf_frame_filter(const ChannelMap &channels, const AafParams &params) {
+    io::FrameFilter filter;
+    filter.input_channels = [channels](const AovSet &input) {
+        return filter_inputs(channels.resolved(input));
+    };
+    filter.run = [channels, params](const AovSet &input) { return aaf_filter_aovs(input, channels, params); };
+    return filter;
 }
 
-/// A set with `aovs`' attributes and, in order, the channel `from` of each
-/// (from, to) pair under the name `to` (values and storage precision copied).
-AovSet with_channels(const AovSet &aovs, const std::vector<std::pair<std::string, std::string>> &from_to) {
-    AovSet out(aovs.width(), aovs.height());
-    out.attributes = aovs.attributes;
-    const std::vector<std::string> &names = aovs.channel_names();
-    for (const auto &[from, to] : from_to) {
-        const std::size_t index = std::size_t(std::find(names.begin(), names.end(), from) - names.begin());
-        PlaneView plane = out.add_channel(to);
-        std::copy(aovs.plane(index).begin(), aovs.plane(index).end(), plane.data);
-        out.set_precision(to, aovs.precision(index));
-    }
-    return out;
-}
+/// The command line of `aaf filter aaf`.
+struct Options {
+    std::string input, output;
+    AafParams params;
+    std::vector<std::string> maps;
+    int threads = 0;
+    std::string mode = "separable";
+    std::string frames, progress = "auto";
+    bool skip_existing = false, skip_bad_frames = false;
+    bool replace_beauty = true;
+    io::WriteOptions write;
+};
 
-bool contains(const std::vector<std::string> &names, const std::string &name) {
-    return std::find(names.begin(), names.end(), name) != names.end();
-}
-
-/// AAF models soft shadows only: say so when the input's beauty was defocused.
-void warn_if_defocused(const std::string &path, const AovSet &aovs) {
-    auto it = aovs.attributes.find(attr::kApertureRadius);
-    const float *aperture = it == aovs.attributes.end() ? nullptr : std::get_if<float>(&it->second);
-    if (aperture && *aperture > 0)
-        std::fprintf(stderr,
-                     "aaf: warning: %s: rendered through a thin lens; AAF filters the in-focus shadow, "
-                     "its output R,G,B has no defocus\n",
-                     path.c_str());
-}
-
-/// The filter's output with the input beauty back in R,G,B (or the renderer's
-/// beauty layer) and the filtered image as aaf.R/G/B (--keep-beauty).
-AovSet keep_beauty(const AovSet &filtered, const ChannelMap &channels) {
-    const std::vector<std::string> &beauty = channels.channels(Role::Beauty);
-    const std::vector<std::string> &noisy = channels.channels(Role::NoisyBeauty);
-    const std::vector<std::string> &result = channels.channels(Role::FilteredBeauty);
-    std::vector<std::pair<std::string, std::string>> from_to;
-    for (const std::string &name : filtered.channel_names())
-        if (!contains(beauty, name) && !contains(noisy, name)) from_to.emplace_back(name, name);
-    for (std::size_t c = 0; c < beauty.size(); ++c) {
-        if (filtered.has_channel(noisy[c])) from_to.emplace_back(noisy[c], beauty[c]);
-        from_to.emplace_back(beauty[c], result[c]);
-    }
-    return with_channels(filtered, from_to);
-}
-
-/// `aovs` less the channels in `dropped`.
-AovSet without_channels(const AovSet &aovs, const std::vector<std::string> &dropped) {
-    std::vector<std::pair<std::string, std::string>> from_to;
-    for (const std::string &name : aovs.channel_names())
-        if (!contains(dropped, name)) from_to.emplace_back(name, name);
-    return with_channels(aovs, from_to);
+/// Filters each frame of the command line, printing each frame's warnings.
+void run_filter(const Options &o) {
+    const ChannelMap channels = channel_map_from(o.maps);
+    AafParams params = o.params;
+    params.mode = o.mode == "2d" ? AafFilterMode::Exact2D : AafFilterMode::Separable;
+    RunOptions run;
+    run.progress = progress_from_string(o.progress);
+    run.skip_existing = o.skip_existing;
+    run.skip_bad_frames = o.skip_bad_frames;
+    io::FilterFileOptions file;
+    file.channels = channels;
+    file.keep_beauty = !o.replace_beauty;
+    file.threads = o.threads;
+    file.write = o.write;
+    const io::FrameFilter filter = aaf_frame_filter(channels, params);
+    const std::vector<FrameJob> jobs = frame_jobs(o.input, o.output, o.frames);
+    // Frames stream one at a time (bounded memory); the filter itself runs on all threads.
+    const int failed = run_frames(jobs, run, [&](const FrameJob &job) {
+        const io::FilterFileReport report = io::filter_file(job.input, job.output, filter, file);
+        for (const std::string &warning : report.warnings)
+            std::fprintf(stderr, "aaf: warning: %s\n", warning.c_str());
+    });
+    if (failed > 0)
+        throw Error(std::to_string(failed) + " of " + std::to_string(jobs.size()) + " frames failed");
 }
 
 void add_aaf_method(CLI::App &filter) {
-    struct Options {
-        std::string input, output;
-        AafParams params;
-        std::vector<std::string> maps;
-        int threads = 0;
-        std::string mode = "separable";
-        std::string frames, progress = "auto";
-        bool skip_existing = false, skip_bad_frames = false;
-        bool replace_beauty = true;
-        io::WriteOptions write;
-    };
     auto options = std::make_shared<Options>();
     CLI::App *cmd =
         filter.add_subcommand("aaf", "Axis-Aligned Filtering of soft shadows (Mehta et al. 2012)");
@@ -154,40 +123,7 @@ void add_aaf_method(CLI::App &filter) {
         ->check(CLI::IsMember({"separable", "2d"}))
         ->capture_default_str();
     add_map_and_threads_options(*cmd, options->maps, options->threads);
-    cmd->callback([options] {
-        const ChannelMap channels = channel_map_from(options->maps);
-        options->params.mode = options->mode == "2d" ? AafFilterMode::Exact2D : AafFilterMode::Separable;
-        RunOptions run;
-        run.progress = progress_from_string(options->progress);
-        run.skip_existing = options->skip_existing;
-        run.skip_bad_frames = options->skip_bad_frames;
-        const std::vector<FrameJob> jobs = frame_jobs(options->input, options->output, options->frames);
-        // Frames stream one at a time (bounded memory); the filter itself runs on all threads.
-        const int failed = run_frames(jobs, run, [&](const FrameJob &job) {
-            // The input's header (every attribute, the windows) and its other
-            // parts go through to the output unchanged.
-            io::ImageLayout layout;
-            AovSet input = io::read_aovs(job.input, &layout);
-            // AOVs the first part lacks may sit in other parts (one AOV per part);
-            // they are read for the filter and stay in their parts in the output.
-            const std::vector<std::string> borrowed = io::add_channels_from_other_parts(
-                job.input, layout, filter_inputs(channels.resolved(input)), input);
-            // Resolved again: the borrowed channels may complete a synonym.
-            warn_if_defocused(job.input, input);
-            report_non_finite(job.input, replace_non_finite(input, filter_inputs(channels.resolved(input))));
-            AovSet output;
-            run_with_threads(options->threads, [&] {
-                with_context(job.input, [&] { output = aaf_filter_aovs(input, channels, options->params); });
-            });
-            if (!options->replace_beauty) output = keep_beauty(output, channels.resolved(input));
-            if (!borrowed.empty()) output = without_channels(output, borrowed);
-            io::WriteOptions write = options->write;
-            write.layout = &layout;
-            io::write_aovs(output, job.output, write);
-        });
-        if (failed > 0)
-            throw Error(std::to_string(failed) + " of " + std::to_string(jobs.size()) + " frames failed");
-    });
+    cmd->callback([options] { run_filter(*options); });
 }
 
 }  // namespace
