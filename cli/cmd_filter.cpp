@@ -10,84 +10,15 @@
 #include "aaf/core/error.h"
 #include "aaf/core/filter_aovs.h"
 #include "aaf/core/method_registry.h"
-#include "aaf/core/non_finite.h"
 #include "aaf/io/exr_io.h"
+#include "aaf/io/filter_file.h"
 #include "channel_options.h"
 #include "commands.h"
 #include "frame_runner.h"
-#include "input_guard.h"
-#include "threads.h"
 
 namespace aaf::cli {
 
 namespace {
-
-/// One warning line per file that had NaN or infinite inputs.
-void report_non_finite(const std::string &path, const NonFiniteCounts &counts) {
-    if (counts.empty()) return;
-    std::size_t total = 0;
-    std::string detail;
-    for (const auto &[name, count] : counts) {
-        total += count;
-        detail += (detail.empty() ? "" : ", ") + name + " " + std::to_string(count);
-    }
-    std::fprintf(stderr, "aaf: warning: %s: replaced %zu NaN/Inf input values by 0 (%s)\n", path.c_str(),
-                 total, detail.c_str());
-}
-
-/// A set with `aovs`' attributes and, in order, the channel `from` of each
-/// (from, to) pair under the name `to` (values and storage precision copied).
-AovSet with_channels(const AovSet &aovs, const std::vector<std::pair<std::string, std::string>> &from_to) {
-    AovSet out(aovs.width(), aovs.height());
-    out.attributes = aovs.attributes;
-    const std::vector<std::string> &names = aovs.channel_names();
-    for (const auto &[from, to] : from_to) {
-        const std::size_t index = std::size_t(std::find(names.begin(), names.end(), from) - names.begin());
-        PlaneView plane = out.add_channel(to);
-        std::copy(aovs.plane(index).begin(), aovs.plane(index).end(), plane.data);
-        out.set_precision(to, aovs.precision(index));
-    }
-    return out;
-}
-
-bool contains(const std::vector<std::string> &names, const std::string &name) {
-    return std::find(names.begin(), names.end(), name) != names.end();
-}
-
-/// AAF models soft shadows only: say so when the input's beauty was defocused.
-void warn_if_defocused(const std::string &path, const AovSet &aovs) {
-    auto it = aovs.attributes.find(attr::kApertureRadius);
-    const float *aperture = it == aovs.attributes.end() ? nullptr : std::get_if<float>(&it->second);
-    if (aperture && *aperture > 0)
-        std::fprintf(stderr,
-                     "aaf: warning: %s: rendered through a thin lens; AAF filters the in-focus shadow, "
-                     "its output R,G,B has no defocus\n",
-                     path.c_str());
-}
-
-/// The filter's output with the input beauty back in R,G,B (or the renderer's
-/// beauty layer) and the filtered image as aaf.R/G/B (--keep-beauty).
-AovSet keep_beauty(const AovSet &filtered, const ChannelMap &channels) {
-    const std::vector<std::string> &beauty = channels.channels(Role::Beauty);
-    const std::vector<std::string> &noisy = channels.channels(Role::NoisyBeauty);
-    const std::vector<std::string> &result = channels.channels(Role::FilteredBeauty);
-    std::vector<std::pair<std::string, std::string>> from_to;
-    for (const std::string &name : filtered.channel_names())
-        if (!contains(beauty, name) && !contains(noisy, name)) from_to.emplace_back(name, name);
-    for (std::size_t c = 0; c < beauty.size(); ++c) {
-        if (filtered.has_channel(noisy[c])) from_to.emplace_back(noisy[c], beauty[c]);
-        from_to.emplace_back(beauty[c], result[c]);
-    }
-    return with_channels(filtered, from_to);
-}
-
-/// `aovs` less the channels in `dropped`.
-AovSet without_channels(const AovSet &aovs, const std::vector<std::string> &dropped) {
-    std::vector<std::pair<std::string, std::string>> from_to;
-    for (const std::string &name : aovs.channel_names())
-        if (!contains(dropped, name)) from_to.emplace_back(name, name);
-    return with_channels(aovs, from_to);
-}
 
 /// The command-line spelling of a parameter: --normal-threshold for normal_threshold.
 std::string option_name(const ParameterInfo &parameter) {
@@ -180,31 +111,6 @@ ParameterSet parameters_from(const Method &method, const std::map<std::string, s
     return parameters;
 }
 
-/// Filters one frame: the input's header (every attribute, the windows) and
-/// its other parts go through to the output unchanged.
-void filter_frame(const Method &method, const ParameterSet &parameters, const ChannelMap &channels,
-                  const FilterOptions &options, const FrameJob &job) {
-    io::ImageLayout layout;
-    AovSet input = io::read_aovs(job.input, &layout);
-    // AOVs the first part lacks may sit in other parts (one AOV per part);
-    // they are read for the filter and stay in their parts in the output.
-    const std::vector<std::string> borrowed = io::add_channels_from_other_parts(
-        job.input, layout, method_input_channels(method, channels.resolved(input)), input);
-    // Resolved again: the borrowed channels may complete a synonym.
-    warn_if_defocused(job.input, input);
-    report_non_finite(job.input,
-                      replace_non_finite(input, method_input_channels(method, channels.resolved(input))));
-    AovSet output;
-    run_with_threads(options.threads, [&] {
-        with_context(job.input, [&] { output = filter_aovs(method, input, channels, parameters); });
-    });
-    if (!options.replace_beauty) output = keep_beauty(output, channels.resolved(input));
-    if (!borrowed.empty()) output = without_channels(output, borrowed);
-    io::WriteOptions write = options.write;
-    write.layout = &layout;
-    io::write_aovs(output, job.output, write);
-}
-
 void add_method_command(CLI::App &filter, const Method &method) {
     auto options = std::make_shared<FilterOptions>();
     CLI::App *cmd = filter.add_subcommand(method.info().name, method.info().summary);
@@ -212,7 +118,13 @@ void add_method_command(CLI::App &filter, const Method &method) {
     add_parameter_options(*cmd, method.info(), options->parameters);
     cmd->callback([options, &method] {
         const ChannelMap channels = channel_map_from(options->maps);
-        const ParameterSet parameters = parameters_from(method, options->parameters);
+        const io::FrameFilter filter =
+            io::method_filter(method, parameters_from(method, options->parameters), channels);
+        io::FilterFileOptions file;
+        file.channels = channels;
+        file.keep_beauty = !options->replace_beauty;
+        file.threads = options->threads;
+        file.write = options->write;
         RunOptions run;
         run.progress = progress_from_string(options->progress);
         run.skip_existing = options->skip_existing;
@@ -220,7 +132,9 @@ void add_method_command(CLI::App &filter, const Method &method) {
         const std::vector<FrameJob> jobs = frame_jobs(options->input, options->output, options->frames);
         // Frames stream one at a time (bounded memory); the filter itself runs on all threads.
         const int failed = run_frames(jobs, run, [&](const FrameJob &job) {
-            filter_frame(method, parameters, channels, *options, job);
+            const io::FilterFileReport report = io::filter_file(job.input, job.output, filter, file);
+            for (const std::string &warning : report.warnings)
+                std::fprintf(stderr, "aaf: warning: %s\n", warning.c_str());
         });
         if (failed > 0)
             throw Error(std::to_string(failed) + " of " + std::to_string(jobs.size()) + " frames failed");

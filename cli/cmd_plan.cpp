@@ -3,12 +3,12 @@
 #include <vector>
 
 #include "aaf/core/error.h"
+#include "aaf/core/parallel.h"
 #include "aaf/core/sampling_plan.h"
+#include "aaf/io/atomic_file.h"
 #include "aaf/io/exr_io.h"
 #include "channel_options.h"
 #include "commands.h"
-#include "input_guard.h"
-#include "threads.h"
 
 namespace aaf::cli {
 
@@ -38,7 +38,7 @@ void add_plan_command(CLI::App &app) {
     add_map_and_threads_options(*cmd, options->maps, options->threads);
     cmd->callback([options] {
         const ChannelMap channels = channel_map_from(options->maps);
-        check_not_same_file(options->input, options->output);
+        io::check_not_same_file(options->input, options->output);
         const AovSet input = io::read_aovs(options->input);
         AovSet plan;
         run_with_threads(options->threads, [&] {

@@ -4,10 +4,10 @@
 #include <vector>
 
 #include "aaf/core/error.h"
+#include "aaf/io/atomic_file.h"
 #include "aaf/io/exr_io.h"
 #include "aaf/io/preview.h"
 #include "commands.h"
-#include "input_guard.h"
 
 namespace aaf::cli {
 
@@ -68,7 +68,7 @@ void add_preview_command(CLI::App &app) {
         ->delimiter(',')
         ->expected(2);
     cmd->callback([options] {
-        check_not_same_file(options->input, options->output);
+        io::check_not_same_file(options->input, options->output);
         io::ImageLayout layout;
         const AovSet aovs = io::read_aovs(options->input, &layout);
         std::vector<std::string> channels = options->channels;

@@ -3,13 +3,11 @@
 #include <string>
 #include <vector>
 
+#include "aaf/io/compare_files.h"
+
 namespace aaf::cli {
 
-/// One test image and its reference, with a label for reports.
-struct ImagePair {
-    std::string label;  ///< frame number or file name
-    std::string test, reference;
-};
+using io::ImagePair;
 
 /// The pairs `aaf compare` measures:
 /// - two sequence patterns (`test.####.exr ref.####.exr`): the frames of

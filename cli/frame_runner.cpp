@@ -11,10 +11,10 @@
 #include <set>
 
 #include "aaf/core/error.h"
+#include "aaf/io/atomic_file.h"
 #include "aaf/io/exr_io.h"
 #include "aaf/io/sequence.h"
 #include "commands.h"
-#include "input_guard.h"
 
 namespace aaf::cli {
 
@@ -42,7 +42,7 @@ std::vector<FrameJob> frame_jobs(const std::string &input, const std::string &ou
         if (output_sequence) throw UsageError(output + ": a frame pattern needs an input pattern too");
         if (!frames.empty())
             throw UsageError("--frames needs sequence patterns (e.g. in.####.exr -o out.####.exr)");
-        check_not_same_file(input, output);
+        io::check_not_same_file(input, output);
         return {{0, input, output}};
     }
     if (!output_sequence)
@@ -53,7 +53,7 @@ std::vector<FrameJob> frame_jobs(const std::string &input, const std::string &ou
     std::set<std::string> outputs;
     for (int frame : numbers) {
         FrameJob job{frame, io::frame_path(input, frame), io::frame_path(output, frame)};
-        check_not_same_file(job.input, job.output);
+        io::check_not_same_file(job.input, job.output);
         if (!outputs.insert(job.output).second)
             throw UsageError(job.output + ": two frames map to this output");
         jobs.push_back(job);

@@ -58,6 +58,12 @@ extern "C" void remove_temporaries_and_reraise(int signal) {
 
 }  // namespace
 
+void check_not_same_file(const std::string &input, const std::string &output) {
+    std::error_code ec;
+    if (std::filesystem::exists(output, ec) && std::filesystem::equivalent(input, output, ec))
+        throw InputError(output + ": output would overwrite the input");
+}
+
 std::string temporary_path_for(const std::string &path) {
     static std::atomic<unsigned> counter{0};
     std::filesystem::path target(path);

@@ -20,4 +20,18 @@ class InputError : public Error {
     explicit InputError(const std::string &message) : Error(message) {}
 };
 
+/// Runs `work` and returns what it returns, prefixing any aaf::Error's
+/// message with `context` (a file name) as "<context>: <message>" and keeping
+/// its kind, so that a caller can still tell input errors apart.
+template <typename Work>
+auto with_context(const std::string &context, const Work &work) {
+    try {
+        return work();
+    } catch (const InputError &e) {
+        throw InputError(context + ": " + e.what());
+    } catch (const Error &e) {
+        throw Error(context + ": " + e.what());
+    }
+}
+
 }  // namespace aaf

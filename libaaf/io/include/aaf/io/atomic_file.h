@@ -4,6 +4,11 @@
 
 namespace aaf::io {
 
+/// Refuses to write `output` over `input` (the same file under any name):
+/// throws aaf::InputError "<output>: output would overwrite the input".
+/// Inputs are never modified.
+void check_not_same_file(const std::string &input, const std::string &output);
+
 /// A temporary path beside `path` (same directory, so the final rename is
 /// atomic), unique to this process and call. It is remembered until
 /// commit_temporary() or discard_temporary(), so that an interrupt can remove

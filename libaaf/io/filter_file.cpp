@@ -1,0 +1,121 @@
+#include "aaf/io/filter_file.h"
+
+#include <algorithm>
+#include <utility>
+
+#include "aaf/core/error.h"
+#include "aaf/core/filter_aovs.h"
+#include "aaf/core/parallel.h"
+#include "aaf/io/atomic_file.h"
+
+namespace aaf::io {
+
+namespace {
+
+bool contains(const std::vector<std::string> &names, const std::string &name) {
+    return std::find(names.begin(), names.end(), name) != names.end();
+}
+
+/// A set with `aovs`' attributes and, in order, the channel `from` of each
+/// (from, to) pair under the name `to` (values and storage precision copied).
+AovSet with_channels(const AovSet &aovs, const std::vector<std::pair<std::string, std::string>> &from_to) {
+    AovSet out(aovs.width(), aovs.height());
+    out.attributes = aovs.attributes;
+    for (const auto &[from, to] : from_to) {
+        const std::size_t index = aovs.index_of(from);
+        PlaneView plane = out.add_channel(to);
+        std::copy(aovs.plane(index).begin(), aovs.plane(index).end(), plane.data);
+        out.set_precision(to, aovs.precision(index));
+    }
+    return out;
+}
+
+/// The filter's output with the input beauty back in R,G,B (or the renderer's
+/// beauty layer) and the filtered image as aaf.R/G/B.
+AovSet keep_beauty(const AovSet &filtered, const ChannelMap &channels) {
+    const std::vector<std::string> &beauty = channels.channels(Role::Beauty);
+    const std::vector<std::string> &noisy = channels.channels(Role::NoisyBeauty);
+    const std::vector<std::string> &result = channels.channels(Role::FilteredBeauty);
+    std::vector<std::pair<std::string, std::string>> from_to;
+    for (const std::string &name : filtered.channel_names())
+        if (!contains(beauty, name) && !contains(noisy, name)) from_to.emplace_back(name, name);
+    for (std::size_t c = 0; c < beauty.size(); ++c) {
+        if (filtered.has_channel(noisy[c])) from_to.emplace_back(noisy[c], beauty[c]);
+        from_to.emplace_back(beauty[c], result[c]);
+    }
+    return with_channels(filtered, from_to);
+}
+
+/// `aovs` less the channels in `dropped`.
+AovSet without_channels(const AovSet &aovs, const std::vector<std::string> &dropped) {
+    std::vector<std::pair<std::string, std::string>> from_to;
+    for (const std::string &name : aovs.channel_names())
+        if (!contains(dropped, name)) from_to.emplace_back(name, name);
+    return with_channels(aovs, from_to);
+}
+
+/// AAF models soft shadows only: say so when the input's beauty was defocused.
+void warn_if_defocused(const std::string &path, const AovSet &aovs, FilterFileReport &report) {
+    auto it = aovs.attributes.find(attr::kApertureRadius);
+    const float *aperture = it == aovs.attributes.end() ? nullptr : std::get_if<float>(&it->second);
+    if (aperture && *aperture > 0)
+        report.warnings.push_back(path +
+                                  ": rendered through a thin lens; AAF filters the in-focus shadow, "
+                                  "its output R,G,B has no defocus");
+}
+
+/// One warning per file that had NaN or infinite inputs, with the count per channel.
+void warn_if_non_finite(const std::string &path, FilterFileReport &report) {
+    if (report.non_finite.empty()) return;
+    std::size_t total = 0;
+    std::string detail;
+    for (const auto &[name, count] : report.non_finite) {
+        total += count;
+        detail += (detail.empty() ? "" : ", ") + name + " " + std::to_string(count);
+    }
+    report.warnings.push_back(path + ": replaced " + std::to_string(total) + " NaN/Inf input values by 0 (" +
+                              detail + ")");
+}
+
+}  // namespace
+
+FrameFilter method_filter(const Method &method, const ParameterSet &parameters, const ChannelMap &channels) {
+    FrameFilter filter;
+    filter.input_channels = [&method, channels](const AovSet &input) {
+        return method_input_channels(method, channels.resolved(input));
+    };
+    filter.run = [&method, parameters, channels](const AovSet &input) {
+        return filter_aovs(method, input, channels, parameters);
+    };
+    return filter;
+}
+
+FilterFileReport filter_file(const std::string &input_path, const std::string &output_path,
+                             const FrameFilter &filter, const FilterFileOptions &options) {
+    check_not_same_file(input_path, output_path);
+    FilterFileReport report;
+    // The input's header (every attribute, the windows) and its other parts
+    // go through to the output unchanged.
+    ImageLayout layout;
+    AovSet input = read_aovs(input_path, &layout);
+    // AOVs the first part lacks may sit in other parts (one AOV per part);
+    // they are read for the filter and stay in their parts in the output.
+    report.borrowed = add_channels_from_other_parts(input_path, layout, filter.input_channels(input), input);
+    warn_if_defocused(input_path, input, report);
+    // Asked again: the borrowed channels may complete a synonym.
+    if (options.replace_non_finite)
+        report.non_finite = replace_non_finite(input, filter.input_channels(input));
+    warn_if_non_finite(input_path, report);
+
+    AovSet output;
+    run_with_threads(options.threads,
+                     [&] { output = with_context(input_path, [&] { return filter.run(input); }); });
+    if (options.keep_beauty) output = keep_beauty(output, options.channels.resolved(input));
+    if (!report.borrowed.empty()) output = without_channels(output, report.borrowed);
+    WriteOptions write = options.write;
+    write.layout = &layout;
+    write_aovs(output, output_path, write);
+    return report;
+}
+
+}  // namespace aaf::io

@@ -1,0 +1,119 @@
+#pragma once
+
+#include <cmath>
+#include <cstddef>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "aaf/core/aov_set.h"
+#include "aaf/core/error_metrics.h"
+
+namespace aaf::io {
+
+/// One test image and its reference, with a label for reports.
+struct ImagePair {
+    std::string label;  ///< frame number or file name
+    std::string test, reference;
+};
+
+/// A field of ErrorMetrics that reports name, summarise and gate on.
+struct CompareMetric {
+    const char *key;    ///< spelling on the command line, JSON and CSV key
+    const char *label;  ///< table heading
+    bool higher_is_better;
+    double ErrorMetrics::*value;
+    /// What computing it costs beyond the plain sums (ErrorMetrics holds NaN
+    /// for SSIM and FLIP unless asked for).
+    enum class Needs { Sums, Ssim, Flip } needs;
+};
+
+/// Every metric, in the order help texts list them.
+const std::vector<CompareMetric> &compare_metrics();
+/// The metric spelt `key`, or nullptr when there is none.
+const CompareMetric *find_compare_metric(const std::string &key);
+
+/// The pixels to compare: those where `channel` of `image` is non-zero.
+struct CompareMask {
+    std::string path;  ///< the file it came from, for messages
+    AovSet image;
+    std::string channel;
+};
+/// Reads channel `channel` of image `path` (its first channel when empty) as
+/// a mask. Throws aaf::InputError "<path>: <problem>" for an unreadable file
+/// or a missing channel.
+CompareMask read_compare_mask(const std::string &path, const std::string &channel = "");
+
+/// What compare_files() measures and writes. The defaults compare R, G, B of
+/// the whole images with no metric beyond the plain sums.
+struct CompareFilesOptions {
+    std::vector<std::string> channels{"R", "G", "B"};
+    /// Non-empty: compare every channel of the test image named "<layer>.*"
+    /// instead of `channels`.
+    std::string layer;
+    std::optional<PixelRect> crop;    ///< only pixels inside; must lie within the images
+    std::optional<CompareMask> mask;  ///< only pixels where it is non-zero; same size as the images
+    /// Metrics to be computed (reported or gated on): SSIM and FLIP run only
+    /// when one listed needs them. FLIP is HDR-FLIP for an EXR reference,
+    /// LDR-FLIP for display-encoded files (PNG, JPEG, ...).
+    std::vector<const CompareMetric *> metrics;
+    double psnr_peak = 1.0;                   ///< see CompareOptions::psnr_peak
+    float flip_pixels_per_degree = 67.0206f;  ///< 0.7 m from a 0.7 m wide 4K display
+    /// Non-empty: the error heatmap PNG of the (single) pair, with its EXR
+    /// beside it (write_error_heatmap()); must not end in .exr.
+    std::string heatmap;
+    /// Files the caller writes from the results (a CSV report). Like the
+    /// heatmap, each is refused before anything is read when it names an input.
+    std::vector<std::string> report_paths;
+};
+
+/// The measurement of one pair.
+struct ComparePairResult {
+    ImagePair pair;
+    std::vector<std::string> channels;  ///< the channels compared
+    ErrorMetrics metrics;
+    double spp = std::nan("");  ///< the test image's mean spp over shaded pixels; NaN without those AOVs
+};
+
+struct CompareFilesResult {
+    std::vector<ComparePairResult> pairs;  ///< one per input pair, in order
+    float heatmap_scale = 0;               ///< with a heatmap: its colour bar's top (99th percentile)
+    double read_seconds = 0;               ///< spent reading the images
+    double measure_seconds = 0;            ///< spent computing the metrics
+};
+
+/// Reads and compares each pair (compare_images() of error_metrics.h) and
+/// writes the heatmap, if asked for. Throws aaf::InputError "<file>: <problem>"
+/// for an unreadable image, a layer with no channels, a mask of another size
+/// or an output that would overwrite an input; errors of the comparison
+/// itself (sizes, missing channels, a crop outside the image) are prefixed
+/// "<test> vs <reference>: ". Throws aaf::Error for a heatmap with other
+/// than one pair.
+CompareFilesResult compare_files(const std::vector<ImagePair> &pairs, const CompareFilesOptions &options);
+
+/// One metric over a batch of pairs.
+struct MetricSummary {
+    double mean = 0, median = 0;
+    double worst = 0;             ///< the largest value, or the smallest where higher is better
+    std::size_t worst_index = 0;  ///< the pair it belongs to (the first such pair)
+};
+/// The mean, median and worst of `metric` over `results`. Throws aaf::Error
+/// when `results` is empty.
+MetricSummary summarise(const std::vector<ComparePairResult> &results, const CompareMetric &metric);
+
+/// A pass/fail threshold on a metric.
+struct Gate {
+    const CompareMetric *metric;
+    double limit;
+    bool above;  ///< fails when the value is above (else below) the limit; NaN always fails
+};
+struct GateFailure {
+    std::size_t pair_index;  ///< into the results
+    Gate gate;
+    double value;
+};
+/// Every (pair, gate) that fails, pairs in order and each pair's gates in order.
+std::vector<GateFailure> failed_gates(const std::vector<ComparePairResult> &results,
+                                      const std::vector<Gate> &gates);
+
+}  // namespace aaf::io

@@ -1,0 +1,78 @@
+#pragma once
+
+#include <functional>
+#include <string>
+#include <vector>
+
+#include "aaf/core/aov_contract.h"
+#include "aaf/core/aov_set.h"
+#include "aaf/core/method.h"
+#include "aaf/core/non_finite.h"
+#include "aaf/io/exr_io.h"
+
+namespace aaf::io {
+
+/// A filter method as the file pipeline sees it: which channels it reads and
+/// how it turns an in-memory AOV set into its output. filter_file() knows
+/// nothing else about it.
+struct FrameFilter {
+    /// Channel names, as resolved in `input`, that the filter reads: these
+    /// are borrowed from the file's other parts when the first part lacks
+    /// them, and scrubbed of NaN/Inf. Called again after borrowing, since a
+    /// borrowed channel may complete a renderer's synonym.
+    std::function<std::vector<std::string>(const AovSet &input)> input_channels;
+    /// Runs the filter: returns the full output set (the input channels kept,
+    /// the beauty roles as aov_contract.h names them, plus the outputs).
+    std::function<AovSet(const AovSet &input)> run;
+};
+
+/// The registered method `method` with `parameters` as the pipeline runs it:
+/// it reads method_input_channels() and runs filter_aovs() (filter_aovs.h).
+/// `method` must outlive the result.
+FrameFilter method_filter(const Method &method, const ParameterSet &parameters, const ChannelMap &channels);
+
+/// Every policy of the file pipeline; the defaults are `aaf filter`'s.
+struct FilterFileOptions {
+    /// Role -> channel names (resolved against each input): where keep_beauty
+    /// finds the beauty, the kept noisy beauty and the filtered beauty.
+    ChannelMap channels;
+    /// false: R,G,B become the filtered image, the input's kept as noisy.R/G/B
+    /// (as FrameFilter::run returns it). true: R,G,B stay the input's and the
+    /// filtered image is added as the FilteredBeauty role (aaf.R/G/B).
+    bool keep_beauty = false;
+    /// Replace NaN and +-Inf in FrameFilter::input_channels by 0 before the
+    /// filter runs (counted in the report), so one bad value cannot spread.
+    bool replace_non_finite = true;
+    /// oneTBB workers FrameFilter::run gets, 0 = all; the output does not
+    /// depend on it.
+    int threads = 0;
+    /// Compression and half storage of the output; its `layout` is ignored
+    /// (the input's header and other parts are always carried over).
+    WriteOptions write;
+};
+
+/// What filter_file() did besides writing the output.
+struct FilterFileReport {
+    /// Messages for the user, each "<input>: <problem>", in the order found:
+    /// a thin-lens input (AAF's output has no defocus), NaN/Inf replaced.
+    std::vector<std::string> warnings;
+    /// NaN/Inf values replaced per input channel (only channels that had any).
+    NonFiniteCounts non_finite;
+    /// Channels read from other parts of the input for the filter; they stay
+    /// in their own parts in the output.
+    std::vector<std::string> borrowed;
+};
+
+/// Filters one frame, file to file: reads `input_path` with its layout (every
+/// header attribute, the windows, the other parts), borrows the filter's input
+/// channels the first part lacks from the other parts, scrubs NaN/Inf, runs
+/// `filter` under `options.threads` workers, optionally keeps the beauty, and
+/// writes `output_path` atomically (a temporary renamed into place) with the
+/// input's layout. The input is never modified and a failure leaves no
+/// output. Throws aaf::InputError "<file>: <problem>" for unreadable,
+/// mismatched or unwritable files and `output_path` naming the input, and
+/// the filter's own aaf::Error (kind kept) prefixed with "<input_path>: ".
+FilterFileReport filter_file(const std::string &input_path, const std::string &output_path,
+                             const FrameFilter &filter, const FilterFileOptions &options = {});
+
+}  // namespace aaf::io
