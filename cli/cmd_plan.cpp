@@ -3,7 +3,7 @@
 #include <vector>
 
 #include "aaf/core/error.h"
-#include "aaf/core/parallel.h"
+#include "aaf/core/thread_count.h"
 #include "aaf/core/sampling_plan.h"
 #include "aaf/io/atomic_file.h"
 #include "aaf/io/exr_io.h"

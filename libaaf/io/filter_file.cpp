@@ -5,7 +5,7 @@
 
 #include "aaf/core/error.h"
 #include "aaf/core/filter_aovs.h"
-#include "aaf/core/parallel.h"
+#include "aaf/core/thread_count.h"
 #include "aaf/io/atomic_file.h"
 
 namespace aaf::io {

@@ -3,6 +3,7 @@
 #include <catch2/catch.hpp>
 
 #include <OpenImageIO/imageio.h>
+#include <tbb/parallel_for.h>
 #include <tbb/task_arena.h>
 
 #include <cmath>
@@ -14,7 +15,7 @@
 
 #include "aaf/core/aov_contract.h"
 #include "aaf/core/error.h"
-#include "aaf/core/parallel.h"
+#include "aaf/core/thread_count.h"
 #include "aaf/io/exr_io.h"
 #include "aaf/io/filter_file.h"
 
@@ -66,7 +67,7 @@ io::FrameFilter doubling_filter(int *concurrency = nullptr) {
         AovSet output = input;
         const ConstPlaneView in = input.channel("toy.in");
         PlaneView out = output.add_channel("toy.out");
-        parallel_for_rows(input.height(), [&](int y) {
+        tbb::parallel_for(0, input.height(), [&](int y) {
             for (int x = 0; x < input.width(); ++x) out(x, y) = 2 * in(x, y);
         });
         return output;
