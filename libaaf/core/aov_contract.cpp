@@ -18,7 +18,8 @@ const std::vector<RoleInfo> &role_table() {
          "visibility",
          {"shadow.V"},
          "[0,1]",
-         "noisy light-weighted visibility: sum of l(y) f(x,y) over samples / sum of l(y)"},
+         "noisy light-weighted visibility: sum of l(y) f(x, y) over the samples / sum of l(y) (with samples drawn "
+         "proportionally to l, the unoccluded fraction)"},
         {Role::D1,
          "d1",
          {"shadow.d1"},
@@ -28,7 +29,8 @@ const std::vector<RoleInfo> &role_table() {
          "d2min",
          {"shadow.d2min"},
          "metres, 0 = no occluder",
-         "smallest light-plane distance of an occluder hit by the pixel's shadow rays"},
+         "smallest light-plane distance of an occluder hit by the pixel's shadow rays (0 in both d2 channels where "
+         "none was hit)"},
         {Role::D2Max,
          "d2max",
          {"shadow.d2max"},
@@ -39,7 +41,8 @@ const std::vector<RoleInfo> &role_table() {
          {"P.X", "P.Y", "P.Z"},
          "world metres",
          "world position of the primary hit"},
-        {Role::Normal, "normal", {"N.X", "N.Y", "N.Z"}, "unit vector", "shading normal, facing the camera"},
+        {Role::Normal, "normal", {"N.X", "N.Y", "N.Z"}, "unit vector", "the normal the renderer shades with, facing the camera; the bundled tracer writes the hit triangle's "
+         "geometric normal (flat per triangle: its meshes have no vertex normals), the same one it shades with"},
         {Role::ObjectId,
          "object_id",
          {"id.object"},
@@ -50,13 +53,16 @@ const std::vector<RoleInfo> &role_table() {
          "pixel_size",
          {"pixel.size"},
          "metres",
-         "world length one pixel covers at the receiver, with foreshortening (d of AAF Eq. 6)"},
+         "world length one pixel covers at the receiver, foreshortening included (d of AAF Eq. 6); the tracer "
+         "computes it from ray differentials: sqrt of the area of the pixel's footprint on the hit's tangent plane"},
         {Role::Unshadowed,
          "unshadowed",
          {"unshadowed.R", "unshadowed.G", "unshadowed.B"},
          "linear radiance",
-         "r(x) of AAF Eq. 1: shading with the light's irradiance at its centre, "
-         "without visibility"},
+         "r(x) of AAF Eq. 1 for the key light, without visibility; the bundled tracer writes the full BRDF (Lambert "
+         "albedo / pi plus, for a material with `specular`, the GGX lobe) for the directions to the camera and to "
+         "the light's centre, times the light's colour and intensity and cos(receiver) cos(light) / r^2 towards its "
+         "centre (with `--falloff`, the mean of that factor over the light)"},
         {Role::FilteredVisibility,
          "filtered_visibility",
          {"aaf.V"},
@@ -66,12 +72,14 @@ const std::vector<RoleInfo> &role_table() {
          "beta",
          {"aaf_beta.X"},
          "metres, 0 = not filtered",
-         "output of `aaf filter aaf`: filter standard deviation beta (AAF Eq. 13)"},
+         "output of `aaf filter aaf`: Gaussian standard deviation beta of AAF Eq. 13 (a layer of its own with one "
+         "single-letter channel, so Blender's compositor shows it as a pass; aaf 0.1 named it `aaf.beta`, still "
+         "read)"},
         {Role::NoisyBeauty,
          "noisy_beauty",
          {"noisy.R", "noisy.G", "noisy.B"},
          "linear radiance",
-         "output of a filter: the input beauty, kept"},
+         "output of a filter that composes a new beauty: the input beauty, kept"},
         {Role::FilteredBeauty,
          "filtered_beauty",
          {"aaf.R", "aaf.G", "aaf.B"},
@@ -96,7 +104,8 @@ const std::vector<RoleInfo> &role_table() {
          "motion",
          {"motion.X", "motion.Y"},
          "pixels, y down",
-         "raster position of the pixel's surface point in this frame minus in the previous frame"},
+         "raster position of the pixel's surface point in this frame minus in the previous frame (frame - 1; "
+         "geometry is static, the camera moves)"},
         {Role::OtherLights,
          "other_lights",
          {"otherlights.R", "otherlights.G", "otherlights.B"},

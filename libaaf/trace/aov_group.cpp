@@ -97,4 +97,21 @@ unsigned parse_aov_groups(const std::string &list) {
     return groups;
 }
 
+std::string aov_groups_markdown() {
+    std::string text =
+        "| group (`--aovs`) | channels | roles | in `--aovs METHOD` for |\n| --- | --- | --- | --- |\n";
+    for (Maker make : kGroupMakers) {
+        const std::unique_ptr<AovAccumulator> group = make();
+        std::string roles, users;
+        for (Role role : group->roles())
+            roles += (roles.empty() ? "`" : ", `") + std::string(role_info(role).key) + "`";
+        for (const Method *method : methods())
+            if (aov_groups_for_method(method->info().name) & group->info().group)
+                users += (users.empty() ? "`" : ", `") + method->info().name + "`";
+        text += "| `" + std::string(group->info().name) + "` | " + group->info().contents + " | " +
+                (roles.empty() ? "- (tracer state)" : roles) + " | " + (users.empty() ? "-" : users) + " |\n";
+    }
+    return text;
+}
+
 }  // namespace aaf::trace

@@ -50,6 +50,9 @@ unsigned aov_groups_writing(const std::vector<Role> &roles);
 /// `method` (its declaration is the one place that says what it reads);
 /// throws aaf::Error for an unknown method.
 unsigned aov_groups_for_method(const std::string &method);
+/// The groups as a Markdown table (name, channels, roles, the methods whose
+/// `--aovs METHOD` includes it), a generated block of libaaf/AOV_CONTRACT.md.
+std::string aov_groups_markdown();
 
 /// Samples per round of a progressive render: round k uses random-number
 /// pass k and its own stratification, so a reference of N * 1024 samples can
