@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # Installs Debian's Blender 3.4 (about 300 MB with its dependencies), which the
-# compositor test (tests/blender/compositor_test.sh) needs; without it that
-# test reports itself skipped.
+# compositor test (tests/blender/compositor_test.sh) needs; scripts/test.sh
+# runs it, so the test runs rather than reports itself skipped.
 set -euo pipefail
 if command -v blender >/dev/null; then
   blender --version | head -1
