@@ -58,8 +58,8 @@ struct GatherSettings {
 /// threshold; the centre always counts (with weight 1 if its own test fails).
 /// Sums run in a fixed order, so the result does not depend on the thread
 /// count; runs on the current oneTBB arena. `sources[k]` and `outputs[k]` are
-/// guide-sized; an output may not alias any source. Throws aaf::Error on
-/// mismatched sizes or counts.
+/// guide-sized; an output may alias a source (sources are read first).
+/// Throws aaf::Error on mismatched sizes or counts.
 void gather(const GatherGuides &guides, const GatherSettings &settings,
             const std::vector<ConstPlaneView> &sources, const std::vector<PlaneView> &outputs);
 
