@@ -49,6 +49,49 @@ std::string ParameterInfo::range_text() const {
     return "any";
 }
 
+ParameterInfo ParameterInfo::real(std::string name, std::string default_value, std::string unit,
+                                  std::string help, double min, double max, bool min_open, bool max_open) {
+    ParameterInfo p;
+    p.name = std::move(name);
+    p.type = ParameterType::Float;
+    p.default_value = std::move(default_value);
+    p.unit = std::move(unit);
+    p.help = std::move(help);
+    p.min = min;
+    p.max = max;
+    p.min_open = min_open;
+    p.max_open = max_open;
+    return p;
+}
+
+ParameterInfo ParameterInfo::integer(std::string name, std::string default_value, std::string unit,
+                                     std::string help, int min, int max) {
+    ParameterInfo p =
+        real(std::move(name), std::move(default_value), std::move(unit), std::move(help), min, max);
+    p.type = ParameterType::Int;
+    return p;
+}
+
+ParameterInfo ParameterInfo::flag(std::string name, std::string help) {
+    ParameterInfo p;
+    p.name = std::move(name);
+    p.type = ParameterType::Bool;
+    p.default_value = "false";
+    p.help = std::move(help);
+    return p;
+}
+
+ParameterInfo ParameterInfo::choice(std::string name, std::string default_value,
+                                    std::vector<std::string> choices, std::string help) {
+    ParameterInfo p;
+    p.name = std::move(name);
+    p.type = ParameterType::Choice;
+    p.default_value = std::move(default_value);
+    p.choices = std::move(choices);
+    p.help = std::move(help);
+    return p;
+}
+
 ParameterSet::ParameterSet(std::string owner, std::vector<ParameterInfo> infos)
     : owner_(std::move(owner)), infos_(std::move(infos)) {
     for (const ParameterInfo &info : infos_) set(info.name, info.default_value);

@@ -2,11 +2,13 @@
 
 #include <sys/wait.h>
 #include <unistd.h>
+
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
 #include <string>
+#include "../scratch_dir.h"
 
 /// Helpers for tests that run the `aaf` executable.
 namespace aaf_test {
@@ -31,14 +33,6 @@ inline RunResult run_aaf(const std::string &args, const std::string &executable 
     std::stringstream text;
     text << std::ifstream(log).rdbuf();
     return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, text.str()};
-}
-
-/// A fresh, empty directory under the test build tree.
-inline fs::path scratch_dir(const std::string &name) {
-    fs::path dir = fs::path(AAF_TEST_BINARY_DIR) / "scratch" / name;
-    fs::remove_all(dir);
-    fs::create_directories(dir);
-    return dir;
 }
 
 }  // namespace aaf_test

@@ -10,17 +10,13 @@
 #include "aaf/io/compare_files.h"
 #include "aaf/io/exr_io.h"
 
+#include "../scratch_dir.h"
+
 using namespace aaf;
+using aaf_test::scratch_dir;
 namespace fs = std::filesystem;
 
 namespace {
-
-fs::path scratch_dir(const std::string &name) {
-    fs::path dir = fs::path(AAF_TEST_BINARY_DIR) / "scratch" / name;
-    fs::remove_all(dir);
-    fs::create_directories(dir);
-    return dir;
-}
 
 /// An 8x6 image: R,G,B a ramp plus `offset`, and a shadow layer of two channels.
 AovSet ramp(float offset, int width = 8, int height = 6) {

@@ -9,18 +9,13 @@
 #include "aaf/io/exr_io.h"
 #include "aaf/io/preview.h"
 
+#include "../scratch_dir.h"
+
 using namespace aaf;
+using aaf_test::scratch_dir;
 namespace fs = std::filesystem;
 
 namespace {
-
-/// A fresh, empty directory under the test build tree.
-fs::path scratch_dir(const std::string &name) {
-    fs::path dir = fs::path(AAF_TEST_BINARY_DIR) / "scratch" / name;
-    fs::remove_all(dir);
-    fs::create_directories(dir);
-    return dir;
-}
 
 std::size_t file_count(const fs::path &dir) {
     return std::size_t(std::distance(fs::directory_iterator(dir), fs::directory_iterator()));

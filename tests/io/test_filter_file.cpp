@@ -19,19 +19,15 @@
 #include "aaf/io/exr_io.h"
 #include "aaf/io/filter_file.h"
 
+#include "../scratch_dir.h"
+
 using namespace aaf;
+using aaf_test::scratch_dir;
 namespace fs = std::filesystem;
 
 namespace {
 
 constexpr int kWidth = 7, kHeight = 5;
-
-fs::path scratch_dir(const std::string &name) {
-    fs::path dir = fs::path(AAF_TEST_BINARY_DIR) / "scratch" / name;
-    fs::remove_all(dir);
-    fs::create_directories(dir);
-    return dir;
-}
 
 std::string file_bytes(const fs::path &path) {
     std::ifstream in(path, std::ios::binary);

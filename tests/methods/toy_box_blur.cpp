@@ -20,15 +20,8 @@ class ToyBoxBlur final : public aaf::Method {
         info_.roles.required = {aaf::Role::Visibility};
         info_.roles.outputs = {aaf::Role::FilteredVisibility};
         info_.roles.filtered = {{aaf::Role::Visibility, aaf::Role::FilteredVisibility}};
-        aaf::ParameterInfo radius;
-        radius.name = "radius";
-        radius.type = aaf::ParameterType::Int;
-        radius.default_value = "1";
-        radius.unit = "pixels";
-        radius.help = "Half the box's side";
-        radius.min = 0;
-        radius.max = 16;
-        info_.parameters = {radius};
+        info_.parameters = {
+            aaf::ParameterInfo::integer("radius", "1", "pixels", "Half the box's side", 0, 16)};
     }
 
     const aaf::MethodInfo &info() const override { return info_; }

@@ -15,51 +15,31 @@ namespace aaf {
 
 namespace {
 
-constexpr double kInf = std::numeric_limits<double>::infinity();
-
-ParameterInfo number(const char *name, ParameterType type, const char *value, const char *unit,
-                     const char *help, double min, double max = kInf, bool min_open = false) {
-    ParameterInfo p;
-    p.name = name;
-    p.type = type;
-    p.default_value = value;
-    p.unit = unit;
-    p.help = help;
-    p.min = min;
-    p.max = max;
-    p.min_open = min_open;
-    return p;
-}
-
 /// The parameters, with AafParams' defaults (AAF Sec. 6) and AafParams::validate()'s ranges.
 std::vector<ParameterInfo> aaf_parameters() {
-    const ParameterType real = ParameterType::Float, integer = ParameterType::Int;
-    std::vector<ParameterInfo> list = {
-        number("mu", real, "2", "", "Filter scale for consistency, beta ~ 1/mu (AAF Sec. 5.2)", 0, kInf,
-               true),
-        number("mu_from_spp", ParameterType::Bool, "false", "",
-               "Per pixel, raise mu until AAF Eq. 21's rate equals the samples taken (consistency, AAF Sec. "
-               "5.2)",
-               -kInf),
-        number("k", real, "3", "", "Gaussian spread factor of AAF Eq. 13", 0, kInf, true),
-        number("alpha", real, "1", "", "Occluder bandlimit over pixel bandlimit (AAF Eq. 5)", 0, 1, true),
-        number("normal_threshold", real, "25", "degrees", "Reject taps whose normal turns more", 0, 180),
-        number("fill_radius", integer, "5", "pixels", "Radius to borrow occluder distances (AAF Sec. 6)", 0,
-               1 << 16),
-        number("max_radius", integer, "64", "pixels", "Largest filter radius", 0, 1 << 16),
-        number("fixed_beta", real, "0", "metres",
-               "Non-adaptive baseline of AAF Fig. 6: this beta everywhere AAF filters; 0 = AAF Eq. 13", 0),
+    constexpr double kInf = std::numeric_limits<double>::infinity();
+    return {
+        ParameterInfo::real("mu", "2", "", "Filter scale for consistency, beta ~ 1/mu (AAF Sec. 5.2)", 0,
+                            kInf,
+                            /*min_open=*/true),
+        ParameterInfo::flag("mu_from_spp",
+                            "Per pixel, raise mu until AAF Eq. 21's rate equals the samples taken "
+                            "(consistency, AAF Sec. 5.2)"),
+        ParameterInfo::real("k", "3", "", "Gaussian spread factor of AAF Eq. 13", 0, kInf, /*min_open=*/true),
+        ParameterInfo::real("alpha", "1", "", "Occluder bandlimit over pixel bandlimit (AAF Eq. 5)", 0, 1,
+                            /*min_open=*/true),
+        ParameterInfo::real("normal_threshold", "25", "degrees", "Reject taps whose normal turns more", 0,
+                            180),
+        ParameterInfo::integer("fill_radius", "5", "pixels",
+                               "Radius to borrow occluder distances (AAF Sec. 6)", 0, 1 << 16),
+        ParameterInfo::integer("max_radius", "64", "pixels", "Largest filter radius", 0, 1 << 16),
+        ParameterInfo::real(
+            "fixed_beta", "0", "metres",
+            "Non-adaptive baseline of AAF Fig. 6: this beta everywhere AAF filters; 0 = AAF Eq. 13", 0),
+        ParameterInfo::choice("filter", "separable", {"separable", "2d"},
+                              "separable: two 1D passes (AAF Sec. 6); 2d: exact 2D gather of AAF Eq. 10, to "
+                              "measure the approximation"),
     };
-    ParameterInfo mode;
-    mode.name = "filter";
-    mode.type = ParameterType::Choice;
-    mode.default_value = "separable";
-    mode.help =
-        "separable: two 1D passes (AAF Sec. 6); 2d: exact 2D gather of AAF Eq. 10, to measure the "
-        "approximation";
-    mode.choices = {"separable", "2d"};
-    list.push_back(mode);
-    return list;
 }
 
 AafParams params_from(const ParameterSet &set) {

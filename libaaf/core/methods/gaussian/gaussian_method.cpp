@@ -24,14 +24,8 @@ class GaussianMethod final : public Method {
         info_.roles.optional = {Role::OtherLights};
         info_.roles.outputs = {Role::FilteredVisibility, Role::Beauty};
         info_.roles.filtered = {{Role::Visibility, Role::FilteredVisibility}};
-        ParameterInfo sigma;
-        sigma.name = "sigma";
-        sigma.default_value = "2";
-        sigma.unit = "pixels";
-        sigma.help = "Standard deviation of the Gaussian, cut at 3 sigma; 0 copies";
-        sigma.min = 0;
-        sigma.max = 256;
-        info_.parameters = {sigma};
+        info_.parameters = {ParameterInfo::real(
+            "sigma", "2", "pixels", "Standard deviation of the Gaussian, cut at 3 sigma; 0 copies", 0, 256)};
     }
 
     const MethodInfo &info() const override { return info_; }

@@ -27,6 +27,19 @@ struct ParameterInfo {
 
     /// The valid values in words: "(0, 1]", ">= 0", "separable|2d", "true|false".
     std::string range_text() const;
+
+    /// A Float in [min, max] (an open end excludes its bound).
+    static ParameterInfo real(std::string name, std::string default_value, std::string unit, std::string help,
+                              double min, double max = std::numeric_limits<double>::infinity(),
+                              bool min_open = false, bool max_open = false);
+    /// An Int in [min, max].
+    static ParameterInfo integer(std::string name, std::string default_value, std::string unit,
+                                 std::string help, int min, int max);
+    /// A Bool, off unless given.
+    static ParameterInfo flag(std::string name, std::string help);
+    /// One of `choices`.
+    static ParameterInfo choice(std::string name, std::string default_value, std::vector<std::string> choices,
+                                std::string help);
 };
 
 /// Values of a method's parameters, every one set to its default until
