@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Builds and runs the benchmarks (AAF filter vs a fixed-width Gaussian on the same image).
+# Builds and runs the filter benchmark: AAF and its gather against OpenCV's GaussianBlur and a fixed Gaussian.
 set -euo pipefail
 root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 "$root/scripts/build.sh"

@@ -4,7 +4,7 @@ set -euo pipefail
 packages=(
   cmake ninja-build g++ pkg-config
   libopenimageio-dev openimageio-tools libopenexr-dev libimath-dev
-  libopencv-dev          # OpenImageIO's CMake target names /usr/include/opencv4
+  libopencv-dev          # OpenImageIO's CMake target names /usr/include/opencv4; bench_aaf_filter's GaussianBlur yardstick
   libopencolorio-dev libcli11-dev catch2 libembree-dev libtbb-dev
   libtinyobjloader-dev nlohmann-json3-dev libbenchmark-dev
 )

@@ -1,17 +1,38 @@
-// Speed of the AAF filter (libaaf core) against a fixed-width separable
-// Gaussian of the same mean width, on the same 9 spp render of `grids`, at
-// 640x480 and 1920x1080. Run: ./scripts/bench.sh
+// Speed of the AAF filter (libaaf core) and of its shared world-space gather
+// against OpenCV's cv::GaussianBlur and the project's own fixed-width
+// Gaussian, on the same 9 spp render of `grids`, at 640x480 and 1920x1080.
+// Run: ./scripts/bench.sh
 //
-// BM_AafVsFixed times both filters alternately inside one benchmark, so the
-// ratio it reports (counter `aaf_over_fixed`) comes from one run on one machine.
+// BM_AafVsBaselines times every filter alternately inside each iteration, so
+// the ratios it reports come from one run on one machine:
+//   aaf_ms      aaf_filter with default AafParams (guides + gather)
+//   gather_ms   gather() alone, one channel, on guides built once outside the timing
+//   opencv_ms   cv::GaussianBlur on the visibility (CV_32F), sigma = mean AAF beta in
+//               pixels, kernel size OpenCV's default for that sigma, OpenCV's own threads
+//   fixed_ms    aaf::fixed_gaussian_filter with the same sigma
+//   gather3_ms  gather() of 3 channels with the same weights in one pass
+//   3x_gather1_ms  the same 3 channels as 3 one-channel gathers
+// The OpenCV blur has one width for the whole image, no per-pixel width and
+// no rejection: it is a lower bound on what any filter of that width costs.
+// Rows run with the machine's default threads and with one, the same count
+// for oneTBB and OpenCV (counters tbb_threads, opencv_threads).
 #include <benchmark/benchmark.h>
 
 #include <chrono>
+#include <cmath>
+#include <limits>
 #include <map>
+#include <string>
 #include <vector>
+
+#include <tbb/task_arena.h>
+#include <opencv2/core.hpp>
+#include <opencv2/imgproc.hpp>
 
 #include "aaf/core/aaf_filter.h"
 #include "aaf/core/fixed_gaussian.h"
+#include "aaf/core/gather.h"
+#include "aaf/core/thread_count.h"
 #include "aaf/trace/render.h"
 
 namespace {
@@ -20,19 +41,60 @@ struct Fixture {
     aaf::AovSet aovs;
     aaf::AafInputs inputs;
     aaf::LightPlane light;
+    /// Guides as aaf_filter builds them for default AafParams (built once, untimed).
+    aaf::GatherGuides guides;
+    aaf::GatherSettings settings;
+    /// The visibility as AAF filters it (non-finite read as 0), and two more channels for K = 3.
+    std::vector<float> visibility, second, third;
     float mean_sigma_px = 0;  ///< mean AAF beta in pixels over the filtered pixels
+    bool gather_matches_aaf = false;
 };
+
+/// The guides of aaf_filter's build_guides (aaf_filter.cpp), refilled here
+/// from the public API: beta from aaf_filter's output, the rest from the AOVs
+/// with the same formulas. Checked below against aaf_filter's own result.
+aaf::GatherGuides guides_like_aaf(const aaf::AafInputs &in, const aaf::LightPlane &light,
+                                  const aaf::AafParams &params, const std::vector<float> &beta_m) {
+    constexpr float kCutoffSigmas = 3.0f;  // aaf_filter.cpp: taps stop at 3 beta
+    aaf::GatherGuides g;
+    g.resize(in.visibility.width, in.visibility.height);
+    for (int y = 0; y < g.height; ++y)
+        for (int x = 0; x < g.width; ++x) {
+            const std::size_t i = g.index(x, y);
+            const aaf::Vec3 p{in.position[0](x, y), in.position[1](x, y), in.position[2](x, y)};
+            const float u = dot(light.axis_u, p - light.center), v = dot(light.axis_v, p - light.center);
+            if (!std::isfinite(u + v)) {
+                g.object_id[i] = std::numeric_limits<float>::quiet_NaN();
+                continue;
+            }
+            g.coord_u_m[i] = u;
+            g.coord_v_m[i] = v;
+            const aaf::Vec3 n{in.normal[0](x, y), in.normal[1](x, y), in.normal[2](x, y)};
+            const float len = length(n);
+            const aaf::Vec3 unit = (len > 0 && std::isfinite(len)) ? n / len : aaf::Vec3{};
+            g.normal_x[i] = unit.x;
+            g.normal_y[i] = unit.y;
+            g.normal_z[i] = unit.z;
+            g.object_id[i] = in.object_id(x, y);
+            const float beta = beta_m[i];
+            if (!(beta > 0) || !std::isfinite(beta)) continue;
+            g.inv_two_sigma_sq[i] = 1.0f / (2.0f * beta * beta);
+            g.radius_px[i] = int(
+                std::min(std::ceil(kCutoffSigmas * beta / in.pixel_size(x, y)), float(params.max_radius_px)));
+        }
+    return g;
+}
 
 const Fixture &fixture(int width, int height) {
     static std::map<int, Fixture> cache;
     auto [it, inserted] = cache.try_emplace(width);
     Fixture &f = it->second;
     if (!inserted) return f;
-    aaf::trace::RenderSettings settings;
-    settings.width = width;
-    settings.height = height;
-    settings.spp = 9;
-    f.aovs = aaf::trace::render_scene("grids", settings);
+    aaf::trace::RenderSettings render_settings;
+    render_settings.width = width;
+    render_settings.height = height;
+    render_settings.spp = 9;
+    f.aovs = aaf::trace::render_scene("grids", render_settings);
     const aaf::AovSet &a = f.aovs;
     f.inputs.visibility = a.channel("shadow.V");
     f.inputs.d1 = a.channel("shadow.d1");
@@ -44,47 +106,163 @@ const Fixture &fixture(int width, int height) {
     f.inputs.pixel_size = a.channel("pixel.size");
     f.light = aaf::read_light_attributes(a);
 
-    std::vector<float> filtered(a.pixel_count()), beta(a.pixel_count());
+    const aaf::AafParams params;
+    const std::size_t n = a.pixel_count();
+    std::vector<float> filtered(n), beta(n);
     aaf::aaf_filter(
-        f.inputs, f.light, aaf::AafParams{},
+        f.inputs, f.light, params,
         {aaf::plane_view(filtered.data(), width, height), aaf::plane_view(beta.data(), width, height)});
     double sum = 0;
     std::size_t count = 0;
-    for (std::size_t i = 0; i < beta.size(); ++i)
+    for (std::size_t i = 0; i < n; ++i)
         if (beta[i] > 0) {
             sum += beta[i] / f.inputs.pixel_size.data[i];
             ++count;
         }
     f.mean_sigma_px = float(sum / double(count));
+
+    f.guides = guides_like_aaf(f.inputs, f.light, params, beta);
+    f.settings.normal_threshold_deg = params.normal_threshold_deg;
+    f.settings.mode = aaf::GatherMode::Separable;  // AafParams' default mode
+    f.visibility.resize(n);
+    f.second.resize(n);
+    f.third.resize(n);
+    for (int y = 0; y < height; ++y)
+        for (int x = 0; x < width; ++x) {
+            const std::size_t i = f.guides.index(x, y);
+            const float v = f.inputs.visibility(x, y);
+            f.visibility[i] = std::isfinite(v) ? v : 0.0f;
+            f.second[i] = 1.0f - f.visibility[i];
+            f.third[i] = 0.5f * f.visibility[i];
+        }
+
+    // The gather timed alone must be the gather aaf_filter runs: same result, bit for bit.
+    std::vector<float> gathered(n);
+    aaf::gather(f.guides, f.settings, {aaf::plane_view(f.visibility.data(), width, height)},
+                {aaf::plane_view(gathered.data(), width, height)});
+    f.gather_matches_aaf = gathered == filtered;
     return f;
 }
 
-void BM_AafVsFixed(benchmark::State &state) {
+double ms_since(std::chrono::steady_clock::time_point start) {
+    return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+}
+
+void BM_AafVsBaselines(benchmark::State &state) {
     const int width = int(state.range(0)), height = int(state.range(1));
+    const int threads = int(state.range(2));  // 0 = the machine default, for oneTBB and OpenCV alike
     const Fixture &f = fixture(width, height);
-    std::vector<float> out(f.aovs.pixel_count()), beta(f.aovs.pixel_count());
-    const aaf::AafOutputs outputs{aaf::plane_view(out.data(), width, height),
-                                  aaf::plane_view(beta.data(), width, height)};
-    double aaf_seconds = 0, fixed_seconds = 0;
-    for (auto _ : state) {
-        const auto t0 = std::chrono::steady_clock::now();
-        aaf::aaf_filter(f.inputs, f.light, aaf::AafParams{}, outputs);
-        const auto t1 = std::chrono::steady_clock::now();
-        aaf::fixed_gaussian_filter(f.inputs.visibility, f.mean_sigma_px, outputs.filtered_visibility);
-        const auto t2 = std::chrono::steady_clock::now();
-        aaf_seconds += std::chrono::duration<double>(t1 - t0).count();
-        fixed_seconds += std::chrono::duration<double>(t2 - t1).count();
-        benchmark::DoNotOptimize(out.data());
+    if (!f.gather_matches_aaf) {
+        state.SkipWithError("gather on the benchmark's guides differs from aaf_filter's result");
+        return;
     }
-    const double n = double(state.iterations()), megapixels = double(f.aovs.pixel_count()) / 1e6;
-    state.counters["aaf_ms"] = 1e3 * aaf_seconds / n;
-    state.counters["fixed_ms"] = 1e3 * fixed_seconds / n;
-    state.counters["aaf_ms_per_MP"] = 1e3 * aaf_seconds / n / megapixels;
-    state.counters["aaf_over_fixed"] = aaf_seconds / fixed_seconds;
+    const std::size_t n = f.aovs.pixel_count();
+    std::vector<float> out(n), beta(n), out2(n), out3(n);
+    const aaf::AafOutputs aaf_outputs{aaf::plane_view(out.data(), width, height),
+                                      aaf::plane_view(beta.data(), width, height)};
+    const aaf::ConstPlaneView vis = aaf::plane_view(f.visibility.data(), width, height);
+    const std::vector<aaf::ConstPlaneView> sources3{vis, aaf::plane_view(f.second.data(), width, height),
+                                                    aaf::plane_view(f.third.data(), width, height)};
+    const std::vector<aaf::PlaneView> outputs3{aaf::plane_view(out.data(), width, height),
+                                               aaf::plane_view(out2.data(), width, height),
+                                               aaf::plane_view(out3.data(), width, height)};
+
+    // OpenCV reads the same sanitised visibility the gather reads; Size(0, 0)
+    // lets OpenCV pick the kernel size for sigma (for CV_32F: 2 * round(4 sigma) + 1).
+    const cv::Mat cv_src(height, width, CV_32F, const_cast<float *>(f.visibility.data()));
+    cv::Mat cv_dst(height, width, CV_32F);
+    const double sigma = f.mean_sigma_px;
+    const auto opencv_blur = [&] { cv::GaussianBlur(cv_src, cv_dst, cv::Size(0, 0), sigma, sigma); };
+    const int opencv_default = threads == 0 ? -1 : threads;  // -1: OpenCV's default count
+    cv::setNumThreads(opencv_default);
+    const int opencv_threads = cv::getNumThreads();
+    int tbb_threads = 0;
+    double aaf_ms = 0, gather_ms = 0, opencv_ms = 0, opencv_1t_ms = 0, fixed_ms = 0, gather3_ms = 0,
+           gather1x3_ms = 0;
+    aaf::run_with_threads(threads, [&] {
+        tbb_threads = tbb::this_task_arena::max_concurrency();
+
+        // Warm-up, untimed: every filter once, so first-touch and allocations are out of the timing.
+        opencv_blur();
+        aaf::gather(f.guides, f.settings, {vis}, {outputs3[0]});
+        aaf::fixed_gaussian_filter(vis, f.mean_sigma_px, outputs3[0]);
+
+        for (auto _ : state) {
+            auto t = std::chrono::steady_clock::now();
+            aaf::aaf_filter(f.inputs, f.light, aaf::AafParams{}, aaf_outputs);
+            aaf_ms += ms_since(t);
+            benchmark::DoNotOptimize(out.data());
+            benchmark::ClobberMemory();
+
+            t = std::chrono::steady_clock::now();
+            aaf::gather(f.guides, f.settings, {vis}, {outputs3[0]});
+            gather_ms += ms_since(t);
+            benchmark::DoNotOptimize(out.data());
+            benchmark::ClobberMemory();
+
+            t = std::chrono::steady_clock::now();
+            opencv_blur();
+            opencv_ms += ms_since(t);
+            benchmark::DoNotOptimize(cv_dst.data);
+            benchmark::ClobberMemory();
+
+            // The same blur on one OpenCV thread: shows how much OpenCV's threading buys.
+            cv::setNumThreads(1);
+            t = std::chrono::steady_clock::now();
+            opencv_blur();
+            opencv_1t_ms += ms_since(t);
+            benchmark::DoNotOptimize(cv_dst.data);
+            benchmark::ClobberMemory();
+            cv::setNumThreads(opencv_default);
+
+            t = std::chrono::steady_clock::now();
+            aaf::fixed_gaussian_filter(vis, f.mean_sigma_px, outputs3[0]);
+            fixed_ms += ms_since(t);
+            benchmark::DoNotOptimize(out.data());
+            benchmark::ClobberMemory();
+
+            t = std::chrono::steady_clock::now();
+            aaf::gather(f.guides, f.settings, sources3, outputs3);
+            gather3_ms += ms_since(t);
+            benchmark::DoNotOptimize(out3.data());
+            benchmark::ClobberMemory();
+
+            t = std::chrono::steady_clock::now();
+            for (int k = 0; k < 3; ++k) aaf::gather(f.guides, f.settings, {sources3[k]}, {outputs3[k]});
+            gather1x3_ms += ms_since(t);
+            benchmark::DoNotOptimize(out3.data());
+            benchmark::ClobberMemory();
+        }
+    });
+    const double iters = double(state.iterations());
+    state.counters["aaf_ms"] = aaf_ms / iters;
+    state.counters["gather_ms"] = gather_ms / iters;
+    state.counters["opencv_ms"] = opencv_ms / iters;
+    state.counters["opencv_1thread_ms"] = opencv_1t_ms / iters;
+    state.counters["fixed_ms"] = fixed_ms / iters;
+    state.counters["gather3_ms"] = gather3_ms / iters;
+    state.counters["3x_gather1_ms"] = gather1x3_ms / iters;
+    state.counters["gather_over_opencv"] = gather_ms / opencv_ms;
+    state.counters["aaf_over_opencv"] = aaf_ms / opencv_ms;
+    state.counters["fixed_over_opencv"] = fixed_ms / opencv_ms;
+    state.counters["aaf_over_fixed"] = aaf_ms / fixed_ms;
+    state.counters["gather3_over_3x_gather1"] = gather3_ms / gather1x3_ms;
     state.counters["mean_sigma_px"] = f.mean_sigma_px;
+    state.counters["tbb_threads"] = tbb_threads;
+    state.counters["opencv_threads"] = opencv_threads;
 }
 
 }  // namespace
 
-BENCHMARK(BM_AafVsFixed)->Args({640, 480})->Args({1920, 1080})->Unit(benchmark::kMillisecond)->UseRealTime();
+// Third argument: threads for oneTBB and OpenCV, 0 = the machine default. The
+// one-thread rows compare like with like where OpenCV's blur runs on one
+// thread whatever it is given (see opencv_1thread_ms).
+BENCHMARK(BM_AafVsBaselines)
+    ->ArgNames({"width", "height", "threads"})
+    ->Args({640, 480, 0})
+    ->Args({1920, 1080, 0})
+    ->Args({640, 480, 1})
+    ->Args({1920, 1080, 1})
+    ->Unit(benchmark::kMillisecond)
+    ->UseRealTime();
 BENCHMARK_MAIN();
