@@ -41,7 +41,7 @@ struct Fixture {
     aaf::AovSet aovs;
     aaf::AafInputs inputs;
     aaf::LightPlane light;
-    /// Guides as aaf_filter builds them for default AafParams (built once, untimed).
+    /// aaf_filter's guides for default AafParams (built once, untimed).
     aaf::GatherGuides guides;
     aaf::GatherSettings settings;
     /// The visibility as AAF filters it (non-finite read as 0), and two more channels for K = 3.
@@ -49,41 +49,6 @@ struct Fixture {
     float mean_sigma_px = 0;  ///< mean AAF beta in pixels over the filtered pixels
     bool gather_matches_aaf = false;
 };
-
-/// The guides of aaf_filter's build_guides (aaf_filter.cpp), refilled here
-/// from the public API: beta from aaf_filter's output, the rest from the AOVs
-/// with the same formulas. Checked below against aaf_filter's own result.
-aaf::GatherGuides guides_like_aaf(const aaf::AafInputs &in, const aaf::LightPlane &light,
-                                  const aaf::AafParams &params, const std::vector<float> &beta_m) {
-    constexpr float kCutoffSigmas = 3.0f;  // aaf_filter.cpp: taps stop at 3 beta
-    aaf::GatherGuides g;
-    g.resize(in.visibility.width, in.visibility.height);
-    for (int y = 0; y < g.height; ++y)
-        for (int x = 0; x < g.width; ++x) {
-            const std::size_t i = g.index(x, y);
-            const aaf::Vec3 p{in.position[0](x, y), in.position[1](x, y), in.position[2](x, y)};
-            const float u = dot(light.axis_u, p - light.center), v = dot(light.axis_v, p - light.center);
-            if (!std::isfinite(u + v)) {
-                g.object_id[i] = std::numeric_limits<float>::quiet_NaN();
-                continue;
-            }
-            g.coord_u_m[i] = u;
-            g.coord_v_m[i] = v;
-            const aaf::Vec3 n{in.normal[0](x, y), in.normal[1](x, y), in.normal[2](x, y)};
-            const float len = length(n);
-            const aaf::Vec3 unit = (len > 0 && std::isfinite(len)) ? n / len : aaf::Vec3{};
-            g.normal_x[i] = unit.x;
-            g.normal_y[i] = unit.y;
-            g.normal_z[i] = unit.z;
-            g.object_id[i] = in.object_id(x, y);
-            const float beta = beta_m[i];
-            if (!(beta > 0) || !std::isfinite(beta)) continue;
-            g.inv_two_sigma_sq[i] = 1.0f / (2.0f * beta * beta);
-            g.radius_px[i] = int(
-                std::min(std::ceil(kCutoffSigmas * beta / in.pixel_size(x, y)), float(params.max_radius_px)));
-        }
-    return g;
-}
 
 const Fixture &fixture(int width, int height) {
     static std::map<int, Fixture> cache;
@@ -121,9 +86,8 @@ const Fixture &fixture(int width, int height) {
         }
     f.mean_sigma_px = float(sum / double(count));
 
-    f.guides = guides_like_aaf(f.inputs, f.light, params, beta);
-    f.settings.normal_threshold_deg = params.normal_threshold_deg;
-    f.settings.mode = aaf::GatherMode::Separable;  // AafParams' default mode
+    f.guides = aaf::aaf_gather_guides(f.inputs, f.light, params);
+    f.settings = aaf::aaf_gather_settings(params);
     f.visibility.resize(n);
     f.second.resize(n);
     f.third.resize(n);

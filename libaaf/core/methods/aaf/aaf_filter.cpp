@@ -23,6 +23,23 @@ void check_size(ConstPlaneView view, int width, int height, const char *what) {
         throw Error(std::string("AAF input '") + what + "' is missing or has another size");
 }
 
+void check_inputs(const AafInputs &in, const LightPlane &light, const AafParams &params) {
+    params.validate();
+    light.validate();
+    const int width = in.visibility.width, height = in.visibility.height;
+    if (width <= 0 || height <= 0) throw Error("AAF input 'visibility' is missing or empty");
+    check_size(in.d1, width, height, "d1");
+    check_size(in.d2_min, width, height, "d2min");
+    check_size(in.d2_max, width, height, "d2max");
+    for (int c = 0; c < 3; ++c) {
+        check_size(in.position[c], width, height, "position");
+        check_size(in.normal[c], width, height, "normal");
+    }
+    check_size(in.object_id, width, height, "object_id");
+    check_size(in.pixel_size, width, height, "pixel_size");
+    if (params.mu_from_spp) check_size(in.spp, width, height, "spp");
+}
+
 /// beta of AAF Eq. 13 at pixel (x, y) in world metres, or 0 where AAF does
 /// not filter (background, no occluder nearby, unusable distances).
 float pixel_beta_m(const AafInputs &in, const LightPlane &light, const AafParams &params,
@@ -40,11 +57,13 @@ float pixel_beta_m(const AafInputs &in, const LightPlane &light, const AafParams
     return aaf_bandlimits(d1, d2_min, d2_max, pixel_size, light.sigma_m, pixel_params).beta_m;
 }
 
-/// The shared gather's guides for AAF: positions in the light's plane (AAF
-/// Eq. 12), and per pixel the Gaussian of AAF Eq. 11 with the beta of Eq. 13.
-/// `beta_m` receives beta (0 = not filtered).
-GatherGuides build_guides(const AafInputs &in, const LightPlane &light, const AafParams &params,
-                          std::vector<float> &beta_m) {
+}  // namespace
+
+GatherGuides aaf_gather_guides(const AafInputs &in, const LightPlane &light, const AafParams &params,
+                               std::vector<float> *beta_out_m) {
+    check_inputs(in, light, params);
+    std::vector<float> local_beta;
+    std::vector<float> &beta_m = beta_out_m ? *beta_out_m : local_beta;
     GatherGuides guides;
     guides.resize(in.visibility.width, in.visibility.height);
     beta_m.assign(std::size_t(guides.width) * std::size_t(guides.height), 0.0f);
@@ -88,24 +107,17 @@ GatherGuides build_guides(const AafInputs &in, const LightPlane &light, const Aa
     return guides;
 }
 
-}  // namespace
+GatherSettings aaf_gather_settings(const AafParams &params) {
+    GatherSettings settings;
+    settings.normal_threshold_deg = params.normal_threshold_deg;
+    settings.mode = params.mode == AafFilterMode::Separable ? GatherMode::Separable : GatherMode::Full2D;
+    return settings;
+}
 
 void aaf_filter(const AafInputs &in, const LightPlane &light, const AafParams &params,
                 const AafOutputs &out) {
-    params.validate();
-    light.validate();
+    check_inputs(in, light, params);
     const int width = in.visibility.width, height = in.visibility.height;
-    if (width <= 0 || height <= 0) throw Error("AAF input 'visibility' is missing or empty");
-    check_size(in.d1, width, height, "d1");
-    check_size(in.d2_min, width, height, "d2min");
-    check_size(in.d2_max, width, height, "d2max");
-    for (int c = 0; c < 3; ++c) {
-        check_size(in.position[c], width, height, "position");
-        check_size(in.normal[c], width, height, "normal");
-    }
-    check_size(in.object_id, width, height, "object_id");
-    check_size(in.pixel_size, width, height, "pixel_size");
-    if (params.mu_from_spp) check_size(in.spp, width, height, "spp");
     if (!out.filtered_visibility.valid() || out.filtered_visibility.width != width ||
         out.filtered_visibility.height != height)
         throw Error("AAF output 'filtered visibility' is missing or has another size");
@@ -113,10 +125,7 @@ void aaf_filter(const AafInputs &in, const LightPlane &light, const AafParams &p
         throw Error("AAF output 'beta' has another size");
 
     std::vector<float> beta_m;
-    const GatherGuides guides = build_guides(in, light, params, beta_m);
-    GatherSettings settings;
-    settings.normal_threshold_deg = params.normal_threshold_deg;
-    settings.mode = params.mode == AafFilterMode::Separable ? GatherMode::Separable : GatherMode::Full2D;
+    const GatherGuides guides = aaf_gather_guides(in, light, params, &beta_m);
 
     // Non-finite visibility (a renderer's NaN) is read as 0, so it cannot spread through the filter.
     std::vector<float> visibility(std::size_t(width) * std::size_t(height));
@@ -125,7 +134,8 @@ void aaf_filter(const AafInputs &in, const LightPlane &light, const AafParams &p
             const float v = in.visibility(x, y);
             visibility[guides.index(x, y)] = std::isfinite(v) ? v : 0.0f;
         }
-    gather(guides, settings, {plane_view(visibility.data(), width, height)}, {out.filtered_visibility});
+    gather(guides, aaf_gather_settings(params), {plane_view(visibility.data(), width, height)},
+           {out.filtered_visibility});
     if (out.beta_m.valid())
         for (int y = 0; y < height; ++y)
             for (int x = 0; x < width; ++x) out.beta_m(x, y) = beta_m[guides.index(x, y)];

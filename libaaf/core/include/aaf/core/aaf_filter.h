@@ -1,9 +1,11 @@
 #pragma once
 
 #include <array>
+#include <vector>
 
 #include "aaf/core/aaf_params.h"
 #include "aaf/core/aov_contract.h"
+#include "aaf/core/gather.h"
 #include "aaf/core/light_plane.h"
 #include "aaf/core/parameters.h"
 #include "aaf/core/plane_view.h"
@@ -40,6 +42,16 @@ struct AafOutputs {
 /// Throws aaf::Error on mismatched sizes or bad parameters.
 void aaf_filter(const AafInputs &inputs, const LightPlane &light, const AafParams &params,
                 const AafOutputs &outputs);
+
+/// AAF as inputs to the shared gather (gather.h): positions in the light's
+/// plane (AAF Eq. 12) and, per pixel, the Gaussian of AAF Eq. 11 with the
+/// beta of AAF Eq. 13 and a reach of ceil(3 beta / pixel size) pixels;
+/// `beta_m`, when given, receives beta (world metres, 0 = not filtered).
+/// aaf_filter() is this, then gather() of the visibility. Throws as aaf_filter.
+GatherGuides aaf_gather_guides(const AafInputs &inputs, const LightPlane &light, const AafParams &params,
+                               std::vector<float> *beta_m = nullptr);
+/// The gather settings AafParams selects (normal threshold, separable or 2D).
+GatherSettings aaf_gather_settings(const AafParams &params);
 
 /// The registered "aaf" method's parameters holding `params` (method_registry.h).
 ParameterSet aaf_parameter_set(const AafParams &params);
