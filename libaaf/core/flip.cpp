@@ -237,8 +237,10 @@ std::vector<float> ldr_flip_planes(const std::array<Plane, 3> &reference_srgb,
     };
 
     const FeatureKernels fk = feature_kernels(ppd);
-    const auto [ref_edges, ref_points] = features(ref[0], fk);
-    const auto [test_edges, test_points] = features(test[0], fk);
+    // Named, not structured bindings: C++17 lambdas cannot capture those (clang rejects it).
+    const auto ref_features = features(ref[0], fk), test_features = features(test[0], fk);
+    const auto &ref_edges = ref_features.first, &ref_points = ref_features.second;
+    const auto &test_edges = test_features.first, &test_points = test_features.second;
 
     std::vector<float> errors(ref[0].data.size());
     const int width = ref[0].width;
