@@ -1,5 +1,6 @@
 #pragma once
 
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -22,6 +23,12 @@ inline ChannelMap channel_map_from(const std::vector<std::string> &specs) {
     ChannelMap map;
     for (const std::string &spec : specs) map.set_override(spec);
     return map;
+}
+
+/// The text of `option` when it was given on the command line (even as ''),
+/// else nullopt.
+inline std::optional<std::string> given(const CLI::Option *option, const std::string &text) {
+    return option->count() > 0 ? std::optional<std::string>(text) : std::nullopt;
 }
 
 }  // namespace aaf::cli

@@ -14,6 +14,7 @@
 #include "aaf/io/atomic_file.h"
 #include "aaf/io/compare_files.h"
 #include "aaf/io/heatmap.h"
+#include "channel_options.h"
 #include "commands.h"
 #include "compare_pairs.h"
 
@@ -167,6 +168,7 @@ struct Options {
     std::vector<std::string> metric_keys{"rmse", "mse", "psnr"};
     std::vector<int> crop;
     std::vector<std::string> fail_above, fail_below;
+    const CLI::Option *frames_option = nullptr;  ///< tells `--frames ''` from no --frames
     double peak = 1.0;
     float ppd = 67.0206f;
     bool json = false;
@@ -199,7 +201,7 @@ void run_compare(const Options &o) {
     for (const std::string &spec : o.fail_below) gates.push_back(parse_gate(spec, false));
     const io::CompareFilesOptions compare = library_options(o, chosen, gates);
 
-    const std::vector<io::ImagePair> pairs = compare_pairs(o.test, o.reference, o.frames);
+    const io::ImagePairs pairs = compare_pairs(o.test, o.reference, given(o.frames_option, o.frames));
     // A sequence or folder is a batch even when it matches one pair: its output keeps the batch shape.
     const bool batch = is_batch_input(o.test);
     if (!o.heatmap.empty() && pairs.size() != 1)
@@ -232,8 +234,8 @@ void add_compare_command(CLI::App &app) {
         "compare", "Error of images against references: one pair, two sequences or two folders");
     cmd->add_option("test", options->test, "Image, sequence pattern (shot.####.exr) or folder")->required();
     cmd->add_option("reference", options->reference, "Reference image, pattern or folder")->required();
-    cmd->add_option("--frames", options->frames,
-                    "Frame range of the sequences: 1-100, 1-100x2, 1-100:2, 1,5,7-9");
+    options->frames_option = cmd->add_option(
+        "--frames", options->frames, "Frame range of the sequences: 1-100, 1-100x2, 1-100:2, 1,5,7-9");
     cmd->add_option("--metric", options->metric_keys,
                     "Metrics: rmse, mse, mae, relmse, psnr, ssim, flip (mean), flip_median (weighted median)")
         ->delimiter(',')
