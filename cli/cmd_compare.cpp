@@ -185,7 +185,13 @@ io::CompareFilesOptions library_options(const Options &o, const Metrics &chosen,
     for (const io::Gate &gate : gates) compare.metrics.push_back(gate.metric);
     compare.psnr_peak = o.peak;
     compare.flip_pixels_per_degree = o.ppd;
-    if (!o.crop.empty()) compare.crop = PixelRect{o.crop[0], o.crop[1], o.crop[2], o.crop[3]};
+    if (!o.crop.empty()) {
+        // Where it lies is the images' business (exit 3 when outside); a size is not.
+        if (o.crop[2] <= 0 || o.crop[3] <= 0)
+            throw UsageError("--crop: width and height must be positive, got " + std::to_string(o.crop[2]) +
+                             "x" + std::to_string(o.crop[3]));
+        compare.crop = PixelRect{o.crop[0], o.crop[1], o.crop[2], o.crop[3]};
+    }
     if (!o.mask_path.empty()) compare.mask = io::read_compare_mask(o.mask_path, o.mask_channel);
     if (!o.csv.empty()) compare.report_paths.push_back(o.csv);
     compare.heatmap = o.heatmap;
@@ -206,9 +212,8 @@ void run_compare(const Options &o) {
     const bool batch = is_batch_input(o.test);
     if (!o.heatmap.empty() && pairs.size() != 1)
         throw UsageError(o.heatmap + ": --heatmap needs a single pair of images");
-    if (!o.heatmap.empty() && io::heatmap_exr_path(o.heatmap) == o.heatmap)
-        throw CLI::ValidationError(
-            "--heatmap", "'" + o.heatmap + "' ends in .exr: name the PNG, the EXR is written beside it");
+    // The PNG's name; its EXR is written beside it.
+    if (!o.heatmap.empty()) require_png_name(o.heatmap, "--heatmap");
     const io::CompareFilesResult result = io::compare_files(pairs, compare);
     if (!o.heatmap.empty())
         std::fprintf(stderr, "heatmap %s: colour bar 0 to %s (99th percentile)\n", o.heatmap.c_str(),
@@ -250,9 +255,11 @@ void add_compare_command(CLI::App &app) {
     cmd->add_option("--mask", options->mask_path, "Only pixels where this image is non-zero");
     cmd->add_option("--mask-channel", options->mask_channel, "Channel of the mask (default: its first)");
     cmd->add_option("--peak", options->peak, "PSNR peak value (linear HDR images have no white)")
+        ->check(finite_number(0))
         ->capture_default_str();
     cmd->add_option("--ppd", options->ppd,
                     "FLIP pixels per degree (default: 0.7 m from a 0.7 m wide 4K display)")
+        ->check(finite_number(0))
         ->capture_default_str();
     cmd->add_option("--fail-above", options->fail_above, "Exit 4 when METRIC=VALUE is exceeded by any pair");
     cmd->add_option("--fail-below", options->fail_below, "Exit 4 when any pair's METRIC falls below VALUE");
