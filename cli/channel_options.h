@@ -1,27 +1,74 @@
 #pragma once
 
+#include <cctype>
+#include <cmath>
+#include <filesystem>
+#include <optional>
 #include <string>
 #include <vector>
 
 #include <CLI/CLI.hpp>
 
 #include "aaf/core/aov_contract.h"
+#include "aaf/core/error.h"
+#include "commands.h"
 
 namespace aaf::cli {
+
+/// A CLI11 check that the value is a finite number x with `low` < x (or
+/// `low` <= x when `low_allowed`) and x <= `high`. CLI11's own Range and
+/// PositiveNumber let NaN through; a failed check is a usage error (exit 2).
+inline CLI::Validator finite_number(double low, double high = HUGE_VAL, bool low_allowed = false) {
+    const std::string bounds = std::isinf(low) && std::isinf(high)
+                                   ? std::string()
+                                   : std::string(" in ") + (low_allowed ? "[" : "(") +
+                                         CLI::detail::to_string(low) + ", " +
+                                         (std::isinf(high) ? "inf)" : CLI::detail::to_string(high) + "]");
+    return CLI::Validator(
+        [low, high, low_allowed, bounds](std::string &text) -> std::string {
+            double value = 0;
+            const bool number = CLI::detail::lexical_cast(text, value);
+            if (number && std::isfinite(value) && (low_allowed ? value >= low : value > low) && value <= high)
+                return {};
+            return "'" + text + "' is not a finite number" + bounds;
+        },
+        "NUMBER" + bounds);
+}
 
 /// Adds the options every command that reads AOVs shares: `--map` overrides
 /// and `--threads`.
 inline void add_map_and_threads_options(CLI::App &cmd, std::vector<std::string> &maps, int &threads) {
     cmd.add_option("--map", maps, "Override a channel name: role=channel[,channel...]");
     cmd.add_option("--threads", threads, "Worker threads, 0 = all (output is identical)")
+        ->check(finite_number(0, HUGE_VAL, /*low_allowed=*/true))
         ->capture_default_str();
 }
 
-/// The default channel map with every `--map role=channel` override applied.
+/// The default channel map with every `--map role=channel` override applied;
+/// a bad override is a usage error.
 inline ChannelMap channel_map_from(const std::vector<std::string> &specs) {
     ChannelMap map;
-    for (const std::string &spec : specs) map.set_override(spec);
+    for (const std::string &spec : specs) try {
+            map.set_override(spec);
+        } catch (const Error &e) {
+            throw UsageError(std::string("--map: ") + e.what());
+        }
     return map;
+}
+
+/// Refuses an `option` path that does not end in .png (any case): PNG bytes
+/// under an .exr name (or any other) make a file every reader misreads.
+inline void require_png_name(const std::string &path, const std::string &option) {
+    std::string extension = std::filesystem::path(path).extension().string();
+    for (char &c : extension) c = char(std::tolower(static_cast<unsigned char>(c)));
+    if (extension != ".png")
+        throw UsageError(option + ": '" + path + "' must end in .png (a PNG is written there)");
+}
+
+/// The text of `option` when it was given on the command line (even as ''),
+/// else nullopt.
+inline std::optional<std::string> given(const CLI::Option *option, const std::string &text) {
+    return option->count() > 0 ? std::optional<std::string>(text) : std::nullopt;
 }
 
 }  // namespace aaf::cli

@@ -14,6 +14,7 @@
 #include "aaf/io/atomic_file.h"
 #include "aaf/io/compare_files.h"
 #include "aaf/io/heatmap.h"
+#include "channel_options.h"
 #include "commands.h"
 #include "compare_pairs.h"
 
@@ -167,6 +168,7 @@ struct Options {
     std::vector<std::string> metric_keys{"rmse", "mse", "psnr"};
     std::vector<int> crop;
     std::vector<std::string> fail_above, fail_below;
+    const CLI::Option *frames_option = nullptr;  ///< tells `--frames ''` from no --frames
     double peak = 1.0;
     float ppd = 67.0206f;
     bool json = false;
@@ -183,7 +185,13 @@ io::CompareFilesOptions library_options(const Options &o, const Metrics &chosen,
     for (const io::Gate &gate : gates) compare.metrics.push_back(gate.metric);
     compare.psnr_peak = o.peak;
     compare.flip_pixels_per_degree = o.ppd;
-    if (!o.crop.empty()) compare.crop = PixelRect{o.crop[0], o.crop[1], o.crop[2], o.crop[3]};
+    if (!o.crop.empty()) {
+        // Where it lies is the images' business (exit 3 when outside); a size is not.
+        if (o.crop[2] <= 0 || o.crop[3] <= 0)
+            throw UsageError("--crop: width and height must be positive, got " + std::to_string(o.crop[2]) +
+                             "x" + std::to_string(o.crop[3]));
+        compare.crop = PixelRect{o.crop[0], o.crop[1], o.crop[2], o.crop[3]};
+    }
     if (!o.mask_path.empty()) compare.mask = io::read_compare_mask(o.mask_path, o.mask_channel);
     if (!o.csv.empty()) compare.report_paths.push_back(o.csv);
     compare.heatmap = o.heatmap;
@@ -199,14 +207,13 @@ void run_compare(const Options &o) {
     for (const std::string &spec : o.fail_below) gates.push_back(parse_gate(spec, false));
     const io::CompareFilesOptions compare = library_options(o, chosen, gates);
 
-    const std::vector<io::ImagePair> pairs = compare_pairs(o.test, o.reference, o.frames);
+    const io::ImagePairs pairs = compare_pairs(o.test, o.reference, given(o.frames_option, o.frames));
     // A sequence or folder is a batch even when it matches one pair: its output keeps the batch shape.
     const bool batch = is_batch_input(o.test);
     if (!o.heatmap.empty() && pairs.size() != 1)
         throw UsageError(o.heatmap + ": --heatmap needs a single pair of images");
-    if (!o.heatmap.empty() && io::heatmap_exr_path(o.heatmap) == o.heatmap)
-        throw CLI::ValidationError(
-            "--heatmap", "'" + o.heatmap + "' ends in .exr: name the PNG, the EXR is written beside it");
+    // The PNG's name; its EXR is written beside it.
+    if (!o.heatmap.empty()) require_png_name(o.heatmap, "--heatmap");
     const io::CompareFilesResult result = io::compare_files(pairs, compare);
     if (!o.heatmap.empty())
         std::fprintf(stderr, "heatmap %s: colour bar 0 to %s (99th percentile)\n", o.heatmap.c_str(),
@@ -232,8 +239,8 @@ void add_compare_command(CLI::App &app) {
         "compare", "Error of images against references: one pair, two sequences or two folders");
     cmd->add_option("test", options->test, "Image, sequence pattern (shot.####.exr) or folder")->required();
     cmd->add_option("reference", options->reference, "Reference image, pattern or folder")->required();
-    cmd->add_option("--frames", options->frames,
-                    "Frame range of the sequences: 1-100, 1-100x2, 1-100:2, 1,5,7-9");
+    options->frames_option = cmd->add_option(
+        "--frames", options->frames, "Frame range of the sequences: 1-100, 1-100x2, 1-100:2, 1,5,7-9");
     cmd->add_option("--metric", options->metric_keys,
                     "Metrics: rmse, mse, mae, relmse, psnr, ssim, flip (mean), flip_median (weighted median)")
         ->delimiter(',')
@@ -248,9 +255,11 @@ void add_compare_command(CLI::App &app) {
     cmd->add_option("--mask", options->mask_path, "Only pixels where this image is non-zero");
     cmd->add_option("--mask-channel", options->mask_channel, "Channel of the mask (default: its first)");
     cmd->add_option("--peak", options->peak, "PSNR peak value (linear HDR images have no white)")
+        ->check(finite_number(0))
         ->capture_default_str();
     cmd->add_option("--ppd", options->ppd,
                     "FLIP pixels per degree (default: 0.7 m from a 0.7 m wide 4K display)")
+        ->check(finite_number(0))
         ->capture_default_str();
     cmd->add_option("--fail-above", options->fail_above, "Exit 4 when METRIC=VALUE is exceeded by any pair");
     cmd->add_option("--fail-below", options->fail_below, "Exit 4 when any pair's METRIC falls below VALUE");

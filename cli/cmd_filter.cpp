@@ -69,6 +69,7 @@ struct FilterOptions {
     std::vector<std::string> maps;
     int threads = 0;
     std::string frames, progress = "auto";
+    const CLI::Option *frames_option = nullptr;  ///< tells `--frames ''` from no --frames
     bool skip_existing = false, skip_bad_frames = false;
     bool replace_beauty = true;
     io::WriteOptions write;
@@ -79,7 +80,8 @@ void add_common_options(CLI::App &cmd, FilterOptions &options) {
         ->required();
     cmd.add_option("-o,--output", options.output, "Output EXR, or a sequence pattern for a sequence")
         ->required();
-    cmd.add_option("--frames", options.frames, "Frames of a sequence: 1-100, 1-100x2, 1-100:2, 1,5,7-9");
+    options.frames_option =
+        cmd.add_option("--frames", options.frames, "Frames of a sequence: 1-100, 1-100x2, 1-100:2, 1,5,7-9");
     cmd.add_option("--progress", options.progress, "auto, lines, jsonl, openjd or none")
         ->capture_default_str();
     cmd.add_flag("--skip-existing", options.skip_existing, "Skip frames whose output exists and reads back");
@@ -129,9 +131,10 @@ void add_method_command(CLI::App &filter, const Method &method) {
         run.progress = progress_from_string(options->progress);
         run.skip_existing = options->skip_existing;
         run.skip_bad_frames = options->skip_bad_frames;
-        const std::vector<FrameJob> jobs = frame_jobs(options->input, options->output, options->frames);
+        const FrameJobs jobs =
+            frame_jobs(options->input, options->output, given(options->frames_option, options->frames));
         // Frames stream one at a time (bounded memory); the filter itself runs on all threads.
-        const int failed = run_frames(jobs, run, [&](const FrameJob &job) {
+        const std::size_t failed = run_frames(jobs, run, [&](const FrameJob &job) {
             const io::FilterFileReport report = io::filter_file(job.input, job.output, filter, file);
             for (const std::string &warning : report.warnings)
                 std::fprintf(stderr, "aaf: warning: %s\n", warning.c_str());

@@ -3,8 +3,8 @@
 #include <vector>
 
 #include "aaf/core/error.h"
-#include "aaf/core/thread_count.h"
 #include "aaf/core/sampling_plan.h"
+#include "aaf/core/thread_count.h"
 #include "aaf/io/atomic_file.h"
 #include "aaf/io/exr_io.h"
 #include "channel_options.h"
@@ -26,17 +26,27 @@ void add_plan_command(CLI::App &app) {
     cmd->add_option("input", options->input, "First-pass EXR with d1, d2min, d2max, object id, pixel size")
         ->required();
     cmd->add_option("-o,--output", options->output, "Output EXR with the plan.spp channel")->required();
-    cmd->add_option("--mu", options->aaf.mu, "mu of Eq. 21 (use the filter's)")->capture_default_str();
+    cmd->add_option("--mu", options->aaf.mu, "mu of Eq. 21 (use the filter's)")
+        ->check(finite_number(0))
+        ->capture_default_str();
     cmd->add_option("--alpha", options->aaf.alpha, "Occluder bandlimit over pixel bandlimit, (0,1] (Eq. 5)")
+        ->check(finite_number(0, 1))
         ->capture_default_str();
     cmd->add_option("--first-pass", options->plan.first_pass_spp, "Samples the first pass took per pixel")
+        ->check(finite_number(1, HUGE_VAL, /*low_allowed=*/true))
         ->capture_default_str();
-    cmd->add_option("--max-spp", options->plan.max_spp, "Cap on the total per pixel")->capture_default_str();
+    cmd->add_option("--max-spp", options->plan.max_spp, "Cap on the total per pixel")
+        ->check(finite_number(1, HUGE_VAL, /*low_allowed=*/true))
+        ->capture_default_str();
     cmd->add_option("--fill-radius", options->aaf.fill_radius_px,
                     "Radius to borrow occluder distances, pixels")
+        ->check(finite_number(0, HUGE_VAL, /*low_allowed=*/true))
         ->capture_default_str();
     add_map_and_threads_options(*cmd, options->maps, options->threads);
     cmd->callback([options] {
+        if (options->plan.first_pass_spp > options->plan.max_spp)
+            throw UsageError("--first-pass " + std::to_string(options->plan.first_pass_spp) +
+                             " is above --max-spp " + std::to_string(options->plan.max_spp));
         const ChannelMap channels = channel_map_from(options->maps);
         io::check_not_same_file(options->input, options->output);
         const AovSet input = io::read_aovs(options->input);

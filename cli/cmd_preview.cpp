@@ -7,6 +7,7 @@
 #include "aaf/io/atomic_file.h"
 #include "aaf/io/exr_io.h"
 #include "aaf/io/preview.h"
+#include "channel_options.h"
 #include "commands.h"
 
 namespace aaf::cli {
@@ -35,6 +36,19 @@ std::vector<std::string> layer_channels(const AovSet &aovs, const std::string &l
                      (listed.empty() ? " (no such layer)" : " (it has " + listed + ")"));
 }
 
+/// Refuses channels `input` does not have, naming the input (the output is
+/// not at fault) and listing what it has.
+void check_channels_present(const AovSet &aovs, const std::vector<std::string> &channels,
+                            const std::string &input) {
+    for (const std::string &name : channels)
+        if (!aovs.has_channel(name)) {
+            std::string listed;
+            for (const std::string &present : aovs.channel_names())
+                listed += (listed.empty() ? "" : ", ") + present;
+            throw InputError(input + ": no channel '" + name + "' to preview (it has " + listed + ")");
+        }
+}
+
 }  // namespace
 
 void add_preview_command(CLI::App &app) {
@@ -60,20 +74,25 @@ void add_preview_command(CLI::App &app) {
     cmd->add_option("--view", options->preview.view, "OCIO view (default: the display's default)");
     cmd->add_option("--colorspace", options->preview.input_space,
                     "Colour space of the input (default: the config's scene_linear role)");
-    cmd->add_option("--exposure", options->preview.exposure_stops, "Exposure, stops")->capture_default_str();
+    cmd->add_option("--exposure", options->preview.exposure_stops, "Exposure, stops")
+        ->check(finite_number(-HUGE_VAL, HUGE_VAL, /*low_allowed=*/true))
+        ->capture_default_str();
     cmd->add_flag("--false-colour", options->false_colour,
                   "One channel in false colour, 0 in black (AAF Fig. 7 style for aaf_beta.X, plan.spp)");
     cmd->add_option("--range", options->range,
                     "Value range LOW,HIGH of the false colours (default: data range)")
         ->delimiter(',')
-        ->expected(2);
+        ->expected(2)
+        ->check(finite_number(-HUGE_VAL, HUGE_VAL, /*low_allowed=*/true));
     cmd->callback([options] {
+        require_png_name(options->output, "--output");
         io::check_not_same_file(options->input, options->output);
         io::ImageLayout layout;
         const AovSet aovs = io::read_aovs(options->input, &layout);
         std::vector<std::string> channels = options->channels;
         if (!options->layer.empty())
             channels = with_context(options->input, [&] { return layer_channels(aovs, options->layer); });
+        check_channels_present(aovs, channels, options->input);
         if (options->false_colour) {
             if (channels.size() != 1)
                 throw UsageError(options->output + ": --false-colour takes one channel");

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <filesystem>
 #include <set>
+#include <utility>
 
 #include "aaf/core/error.h"
 #include "aaf/io/sequence.h"
@@ -13,22 +14,24 @@ namespace aaf::cli {
 
 namespace fs = std::filesystem;
 
-std::vector<ImagePair> compare_pairs(const std::string &test, const std::string &reference,
-                                     const std::string &frames) {
-    std::vector<ImagePair> pairs;
+io::ImagePairs compare_pairs(const std::string &test, const std::string &reference,
+                             const std::optional<std::string> &frames) {
     const bool test_sequence = io::is_sequence_pattern(test),
                reference_sequence = io::is_sequence_pattern(reference);
     if (test_sequence || reference_sequence) {
         if (!(test_sequence && reference_sequence))
             throw UsageError(test + " vs " + reference +
                              ": compare two sequence patterns or two files, not one of each");
-        for (int frame : sequence_frames(test, frames))
-            pairs.push_back(
-                {std::to_string(frame), io::frame_path(test, frame), io::frame_path(reference, frame)});
-        return pairs;
+        io::FrameRange range = sequence_frames(test, frames);
+        const std::size_t count = range.size();
+        return io::ImagePairs(count, [range = std::move(range), test,
+                                      reference](const io::ImagePairs::Visit &visit) {
+            range.for_each([&](int frame) {
+                visit({std::to_string(frame), io::frame_path(test, frame), io::frame_path(reference, frame)});
+            });
+        });
     }
-    if (!frames.empty())
-        throw UsageError("--frames needs sequence patterns (e.g. test.####.exr ref.####.exr)");
+    if (frames) throw UsageError("--frames needs sequence patterns (e.g. test.####.exr ref.####.exr)");
     std::error_code ec;
     const bool test_dir = fs::is_directory(test, ec), reference_dir = fs::is_directory(reference, ec);
     if (test_dir != reference_dir)
@@ -36,6 +39,7 @@ std::vector<ImagePair> compare_pairs(const std::string &test, const std::string 
                          ": compare two directories or two files, not one of each");
     if (!test_dir) return {{fs::path(test).filename().string(), test, reference}};
 
+    std::vector<ImagePair> pairs;
     std::set<std::string> reference_names;
     for (const auto &entry : fs::directory_iterator(reference, ec))
         if (entry.is_regular_file()) reference_names.insert(entry.path().filename().string());

@@ -8,7 +8,7 @@
 #include <filesystem>
 #include <iostream>
 #include <nlohmann/json.hpp>
-#include <set>
+#include <utility>
 
 #include "aaf/core/error.h"
 #include "aaf/io/atomic_file.h"
@@ -20,45 +20,58 @@ namespace aaf::cli {
 
 namespace fs = std::filesystem;
 
-std::vector<int> sequence_frames(const std::string &pattern, const std::string &frames) {
-    std::vector<int> numbers;
-    if (frames.empty())
-        numbers = io::frames_on_disk(pattern);
+io::FrameRange sequence_frames(const std::string &pattern, const std::optional<std::string> &frames) {
+    io::FrameRange range;
+    if (!frames)
+        range = io::FrameRange::of(io::frames_on_disk(pattern));
+    else if (frames->empty())
+        throw UsageError("--frames: empty range (leave --frames out for every frame on disk)");
     else
         try {
-            numbers = io::parse_frame_range(frames);
+            range = io::FrameRange::parse(*frames);
         } catch (const Error &e) {
-            throw UsageError(e.what());  // the range is the command line's, not a file's
+            throw UsageError(std::string("--frames: ") + e.what());  // the command line's, not a file's
         }
-    if (numbers.empty()) throw InputError(pattern + ": no frames found");
-    return numbers;
+    if (range.empty()) throw InputError(pattern + ": no frames found");
+    return range;
 }
 
-std::vector<FrameJob> frame_jobs(const std::string &input, const std::string &output,
-                                 const std::string &frames) {
+FrameJobs::FrameJobs(std::vector<FrameJob> jobs) : list_(std::move(jobs)), size_(list_.size()) {}
+
+FrameJobs::FrameJobs(std::string input, std::string output, io::FrameRange frames)
+    : input_(std::move(input)),
+      output_(std::move(output)),
+      frames_(std::move(frames)),
+      size_(frames_.size()) {}
+
+void FrameJobs::for_each(const std::function<void(const FrameJob &)> &visit) const {
+    for (const FrameJob &job : list_) visit(job);
+    // Distinct frames give distinct paths of one pattern: no two jobs share an output.
+    frames_.for_each([&](int frame) {
+        const FrameJob job{frame, io::frame_path(input_, frame), io::frame_path(output_, frame)};
+        io::check_not_same_file(job.input, job.output);
+        visit(job);
+    });
+}
+
+FrameJobs frame_jobs(const std::string &input, const std::string &output,
+                     const std::optional<std::string> &frames) {
     const bool input_sequence = io::is_sequence_pattern(input),
                output_sequence = io::is_sequence_pattern(output);
     if (!input_sequence) {
         if (output_sequence) throw UsageError(output + ": a frame pattern needs an input pattern too");
-        if (!frames.empty())
-            throw UsageError("--frames needs sequence patterns (e.g. in.####.exr -o out.####.exr)");
+        if (frames) throw UsageError("--frames needs sequence patterns (e.g. in.####.exr -o out.####.exr)");
         io::check_not_same_file(input, output);
-        return {{0, input, output}};
+        return FrameJobs({{0, input, output}});
     }
     if (!output_sequence)
         throw UsageError(output +
                          ": has no frame field (#, @ or %0Nd), so every frame would write this one file");
-    const std::vector<int> numbers = sequence_frames(input, frames);
-    std::vector<FrameJob> jobs;
-    std::set<std::string> outputs;
-    for (int frame : numbers) {
-        FrameJob job{frame, io::frame_path(input, frame), io::frame_path(output, frame)};
-        io::check_not_same_file(job.input, job.output);
-        if (!outputs.insert(job.output).second)
-            throw UsageError(job.output + ": two frames map to this output");
-        jobs.push_back(job);
-    }
-    return jobs;
+    io::FrameRange range = sequence_frames(input, frames);
+    // The first frame is checked before anything runs (patterns that differ
+    // only in spelling map every frame onto its input); the others as they come.
+    io::check_not_same_file(io::frame_path(input, range.front()), io::frame_path(output, range.front()));
+    return FrameJobs(input, output, std::move(range));
 }
 
 Progress progress_from_string(const std::string &name) {
@@ -70,15 +83,15 @@ Progress progress_from_string(const std::string &name) {
     throw UsageError("unknown progress mode '" + name + "' (auto, lines, jsonl, openjd, none)");
 }
 
-int run_frames(const std::vector<FrameJob> &jobs, const RunOptions &options,
-               const std::function<void(const FrameJob &)> &work) {
+std::size_t run_frames(const FrameJobs &jobs, const RunOptions &options,
+                       const std::function<void(const FrameJob &)> &work) {
     using Clock = std::chrono::steady_clock;
     Progress mode = options.progress;
     if (mode == Progress::Automatic) mode = jobs.size() == 1 ? Progress::None : Progress::Lines;
     const bool bar =
         options.progress == Progress::Automatic && mode == Progress::Lines && ::isatty(STDERR_FILENO);
     const auto run_start = Clock::now();
-    int done = 0, failed = 0, skipped = 0;
+    std::size_t done = 0, failed = 0, skipped = 0;
     if (mode == Progress::Jsonl)
         std::cout << nlohmann::json{{"event", "start"}, {"frames", jobs.size()}}.dump() << std::endl;
     const auto summary = [&](bool stopped) {
@@ -89,11 +102,11 @@ int run_frames(const std::vector<FrameJob> &jobs, const RunOptions &options,
                              {"failed", failed},
                              {"skipped", skipped},
                              {"seconds", std::chrono::duration<double>(Clock::now() - run_start).count()}};
-        if (stopped) event["not_run"] = int(jobs.size()) - done;  // a failed frame stopped the run
+        if (stopped) event["not_run"] = jobs.size() - done;  // a failed frame stopped the run
         std::cout << event.dump() << std::endl;
     };
 
-    for (const FrameJob &job : jobs) {
+    jobs.for_each([&](const FrameJob &job) {
         const auto start = Clock::now();
         std::string status = "ok", message;
         std::exception_ptr failure;
@@ -122,19 +135,19 @@ int run_frames(const std::vector<FrameJob> &jobs, const RunOptions &options,
             std::cout << "openjd_progress: " << (100.0 * done / double(jobs.size())) << std::endl;
         } else if (bar) {
             const int width = 30, filled = int(width * done / double(jobs.size()));
-            std::fprintf(stderr, "\r[%s%s] %d/%zu frames", std::string(filled, '#').c_str(),
+            std::fprintf(stderr, "\r[%s%s] %zu/%zu frames", std::string(filled, '#').c_str(),
                          std::string(width - filled, ' ').c_str(), done, jobs.size());
-            if (done == int(jobs.size()) || (status == "failed" && !options.skip_bad_frames))
+            if (done == jobs.size() || (status == "failed" && !options.skip_bad_frames))
                 std::fprintf(stderr, "\n");
         } else if (mode == Progress::Lines) {
-            std::fprintf(stderr, "frame %d (%d/%zu): %s -> %s: %s, %.2f s\n", job.frame, done, jobs.size(),
+            std::fprintf(stderr, "frame %d (%zu/%zu): %s -> %s: %s, %.2f s\n", job.frame, done, jobs.size(),
                          job.input.c_str(), job.output.c_str(), status.c_str(), seconds);
         }
         if (status == "failed" && !options.skip_bad_frames) {
             summary(/*stopped=*/true);
             std::rethrow_exception(failure);  // main prints it; its type sets the exit code
         }
-    }
+    });
     summary(/*stopped=*/false);
     return failed;
 }

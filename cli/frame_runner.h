@@ -1,8 +1,12 @@
 #pragma once
 
+#include <cstddef>
 #include <functional>
+#include <optional>
 #include <string>
 #include <vector>
+
+#include "aaf/io/sequence.h"
 
 namespace aaf::cli {
 
@@ -13,17 +17,40 @@ struct FrameJob {
 };
 
 /// The frames of sequence pattern `pattern`: those of `frames` (a range spec;
-/// a bad one throws UsageError) or, when empty, those found on disk (none
-/// throws InputError naming the pattern).
-std::vector<int> sequence_frames(const std::string &pattern, const std::string &frames);
+/// a bad or empty one throws UsageError) or, when not given, those found on
+/// disk (none throws InputError naming the pattern).
+io::FrameRange sequence_frames(const std::string &pattern, const std::optional<std::string> &frames);
+
+/// The jobs of a command, produced one at a time: `--frames 1-2000000000`
+/// costs no more memory than one frame.
+class FrameJobs {
+  public:
+    /// These jobs, as they are (a render's list, a single file).
+    explicit FrameJobs(std::vector<FrameJob> jobs);
+    /// One job per frame of `frames`: that frame's path of the `input` and of
+    /// the `output` pattern.
+    FrameJobs(std::string input, std::string output, io::FrameRange frames);
+
+    std::size_t size() const { return size_; }
+    /// Calls `visit` with each job in order. A sequence job whose output is
+    /// its input throws aaf::InputError before `visit` sees it.
+    void for_each(const std::function<void(const FrameJob &)> &visit) const;
+
+  private:
+    std::vector<FrameJob> list_;
+    std::string input_, output_;
+    io::FrameRange frames_;
+    std::size_t size_ = 0;
+};
 
 /// The jobs for `input` and `output`: both sequence patterns (shot.####.exr,
 /// see io::frame_path) with the frames of `frames` (a range spec) or, when
-/// empty, the input frames found on disk; or two plain files. Throws
-/// aaf::Error for a pattern on one side only (a plain output would receive
-/// every frame), an output that maps to an input, or no frames.
-std::vector<FrameJob> frame_jobs(const std::string &input, const std::string &output,
-                                 const std::string &frames);
+/// not given, the input frames found on disk; or two plain files. Throws
+/// UsageError for a pattern on one side only (a plain output would receive
+/// every frame) or a bad range, aaf::InputError for an output that is the
+/// input (of the first frame; later frames are checked as they come) or no frames.
+FrameJobs frame_jobs(const std::string &input, const std::string &output,
+                     const std::optional<std::string> &frames);
 
 /// How progress is reported.
 enum class Progress {
@@ -44,7 +71,11 @@ struct RunOptions {
 /// Runs `work` on each job in order, one frame in memory at a time, and
 /// reports progress. Returns the number of failed frames; without
 /// skip_bad_frames the first failure is rethrown after reporting it.
-int run_frames(const std::vector<FrameJob> &jobs, const RunOptions &options,
-               const std::function<void(const FrameJob &)> &work);
+std::size_t run_frames(const FrameJobs &jobs, const RunOptions &options,
+                       const std::function<void(const FrameJob &)> &work);
+inline std::size_t run_frames(const std::vector<FrameJob> &jobs, const RunOptions &options,
+                              const std::function<void(const FrameJob &)> &work) {
+    return run_frames(FrameJobs(jobs), options, work);
+}
 
 }  // namespace aaf::cli

@@ -1,11 +1,42 @@
+#include <cstdio>
 #include <exception>
 #include <iostream>
+#include <string>
 
 #include "aaf/core/error.h"
 #include "aaf/io/atomic_file.h"
 #include "commands.h"
 
 namespace aaf::cli {
+
+namespace {
+
+/// `message` on one line: line breaks (a library's multi-line text) become
+/// "; ", other control characters (raw bytes in a channel name) \xNN.
+std::string one_line(const std::string &message) {
+    std::string line;
+    for (std::size_t i = 0; i < message.size(); ++i) {
+        const auto byte = static_cast<unsigned char>(message[i]);
+        if (byte == '\n' || byte == '\r') {
+            if (i + 1 < message.size() && message[i + 1] != '\n' && message[i + 1] != '\r') line += "; ";
+        } else if (byte < 0x20 || byte == 0x7f) {
+            char escaped[8];
+            std::snprintf(escaped, sizeof escaped, "\\x%02x", byte);
+            line += escaped;
+        } else {
+            line += message[i];
+        }
+    }
+    return line;
+}
+
+/// Prints the one line of an error, `aaf: error: <message>`, and returns `code`.
+int report(const std::string &message, int code) {
+    std::cerr << "aaf: error: " << one_line(message) << "\n";
+    return code;
+}
+
+}  // namespace
 
 int run(int argc, char **argv) {
     CLI::App app{"aaf: image-space reconstruction of ray-traced distribution effects"};
@@ -27,17 +58,16 @@ int run(int argc, char **argv) {
     } catch (const Interrupted &) {
         return kExitInterrupted;
     } catch (const InputError &e) {
-        std::cerr << "aaf: error: " << e.what() << "\n";
-        return kExitInputError;
+        return report(e.what(), kExitInputError);
     } catch (const UsageError &e) {
-        std::cerr << "aaf: error: " << e.what() << "\n";
-        return kExitUsage;
+        return report(e.what(), kExitUsage);
     } catch (const CLI::ParseError &e) {
-        // Help and version exit 0; usage errors exit 2.
-        return app.exit(e) == 0 ? 0 : kExitUsage;
+        // --help and --version print as CLI11 prints them and exit 0; a parse
+        // error is one line, like every other error, and exits 2.
+        if (e.get_exit_code() == static_cast<int>(CLI::ExitCodes::Success)) return app.exit(e);
+        return report(e.what(), kExitUsage);
     } catch (const std::exception &e) {
-        std::cerr << "aaf: error: " << e.what() << "\n";
-        return 1;
+        return report(e.what(), 1);
     }
     return 0;
 }

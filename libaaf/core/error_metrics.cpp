@@ -67,6 +67,12 @@ std::vector<float> ssim_map(std::vector<float> a, std::vector<float> b, int widt
 
 }  // namespace
 
+bool rect_within(const PixelRect &rect, int width, int height) {
+    using Wide = long long;
+    return rect.width > 0 && rect.height > 0 && rect.x >= 0 && rect.y >= 0 &&
+           Wide(rect.x) + rect.width <= width && Wide(rect.y) + rect.height <= height;
+}
+
 ErrorMetrics compare_images(const AovSet &test, const AovSet &reference, const CompareOptions &options) {
     if (test.width() != reference.width() || test.height() != reference.height())
         throw InputError("image sizes differ: " + size_text(test) + " vs " + size_text(reference));
@@ -82,11 +88,10 @@ ErrorMetrics compare_images(const AovSet &test, const AovSet &reference, const C
     PixelRect rect{0, 0, width, height};
     if (options.crop) {
         rect = *options.crop;
-        if (rect.width <= 0 || rect.height <= 0 || rect.x < 0 || rect.y < 0 || rect.x + rect.width > width ||
-            rect.y + rect.height > height)
-            throw Error("crop " + std::to_string(rect.width) + "x" + std::to_string(rect.height) + "+" +
-                        std::to_string(rect.x) + "+" + std::to_string(rect.y) + " lies outside the " +
-                        size_text(test) + " image");
+        if (!rect_within(rect, width, height))
+            throw InputError("crop " + std::to_string(rect.width) + "x" + std::to_string(rect.height) + "+" +
+                             std::to_string(rect.x) + "+" + std::to_string(rect.y) + " lies outside the " +
+                             size_text(test) + " image");
     }
     if (options.mask.valid() && (options.mask.width != width || options.mask.height != height))
         throw InputError("mask is " + std::to_string(options.mask.width) + "x" +

@@ -267,11 +267,16 @@ std::array<Plane, 3> copy_planes(const RgbPlanes &planes) {
     return out;
 }
 
-void check_sizes(const RgbPlanes &a, const RgbPlanes &b) {
+/// Refuses images of different sizes and a viewing distance with no meaning:
+/// at 0 pixels per degree every filter kernel is a single NaN tap.
+void check_inputs(const RgbPlanes &a, const RgbPlanes &b, const FlipParams &params) {
     for (int c = 0; c < 3; ++c)
         if (!a[c].valid() || !b[c].valid() || a[c].width != a[0].width || a[c].height != a[0].height ||
             b[c].width != a[0].width || b[c].height != a[0].height)
             throw Error("FLIP: the images and channels must all have one size");
+    if (!(params.pixels_per_degree > 0) || !std::isfinite(params.pixels_per_degree))
+        throw Error("FLIP: pixels per degree must be a positive finite number, not " +
+                    std::to_string(params.pixels_per_degree));
 }
 
 float aces(float x) {
@@ -283,12 +288,12 @@ float aces(float x) {
 }  // namespace
 
 std::vector<float> ldr_flip(const RgbPlanes &reference, const RgbPlanes &test, const FlipParams &params) {
-    check_sizes(reference, test);
+    check_inputs(reference, test, params);
     return ldr_flip_planes(copy_planes(reference), copy_planes(test), params.pixels_per_degree);
 }
 
 std::vector<float> hdr_flip(const RgbPlanes &reference, const RgbPlanes &test, const FlipParams &params) {
-    check_sizes(reference, test);
+    check_inputs(reference, test, params);
     const std::array<Plane, 3> ref = copy_planes(reference), tst = copy_planes(test);
     const std::size_t n = ref[0].data.size();
 

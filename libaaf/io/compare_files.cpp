@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <chrono>
 #include <filesystem>
+#include <utility>
 
 #include "aaf/core/aov_contract.h"
 #include "aaf/core/error.h"
@@ -34,10 +35,9 @@ double mean_spp_of(const AovSet &image) {
     return mean_spp_over_shaded(image.channel(spp), image.channel(id));
 }
 
-/// Refuses a heatmap compare_files() cannot write, and any output (reports
-/// first, then the heatmap's two files) that would replace an input, before
-/// anything is read.
-void check_outputs(const std::vector<ImagePair> &pairs, const CompareFilesOptions &options) {
+/// The files compare_files() writes (reports, the heatmap's two files);
+/// refuses a heatmap it cannot write.
+std::vector<std::string> checked_outputs(const ImagePairs &pairs, const CompareFilesOptions &options) {
     std::vector<std::string> outputs = options.report_paths;
     if (!options.heatmap.empty()) {
         if (pairs.size() != 1) throw Error(options.heatmap + ": a heatmap needs a single pair of images");
@@ -46,12 +46,16 @@ void check_outputs(const std::vector<ImagePair> &pairs, const CompareFilesOption
         outputs.push_back(options.heatmap);
         outputs.push_back(heatmap_exr_path(options.heatmap));
     }
-    for (const std::string &output : outputs) {
+    for (const std::string &output : outputs)
         if (options.mask) check_not_same_file(options.mask->path, output);
-        for (const ImagePair &pair : pairs) {
-            check_not_same_file(pair.test, output);
-            check_not_same_file(pair.reference, output);
-        }
+    return outputs;
+}
+
+/// Refuses a pair that one of `outputs` would replace.
+void check_pair_not_output(const ImagePair &pair, const std::vector<std::string> &outputs) {
+    for (const std::string &output : outputs) {
+        check_not_same_file(pair.test, output);
+        check_not_same_file(pair.reference, output);
     }
 }
 
@@ -139,10 +143,25 @@ CompareMask read_compare_mask(const std::string &path, const std::string &channe
     return mask;
 }
 
-CompareFilesResult compare_files(const std::vector<ImagePair> &pairs, const CompareFilesOptions &options) {
-    check_outputs(pairs, options);
+ImagePairs::ImagePairs(std::vector<ImagePair> pairs) : list_(std::move(pairs)), count_(list_.size()) {}
+
+ImagePairs::ImagePairs(std::size_t count, std::function<void(const Visit &)> produce)
+    : count_(count), produce_(std::move(produce)) {}
+
+void ImagePairs::for_each(const Visit &visit) const {
+    for (const ImagePair &pair : list_) visit(pair);
+    if (produce_) produce_(visit);
+}
+
+CompareFilesResult compare_files(const ImagePairs &pairs, const CompareFilesOptions &options) {
+    const std::vector<std::string> outputs = checked_outputs(pairs, options);
     CompareFilesResult result;
-    for (const ImagePair &pair : pairs) result.pairs.push_back(compare_pair(pair, options, result));
+    // Outputs are written after every pair is read: checking each pair just
+    // before reading it refuses an overwrite before anything is written.
+    pairs.for_each([&](const ImagePair &pair) {
+        check_pair_not_output(pair, outputs);
+        result.pairs.push_back(compare_pair(pair, options, result));
+    });
     return result;
 }
 

@@ -57,9 +57,8 @@ float write_error_heatmap(const AovSet &test, const AovSet &reference, const Com
     if (heatmap_exr_path(png_path) == png_path)
         throw Error(png_path + ": the heatmap PNG needs a name that does not end in .exr");
     const PixelRect rect = region.crop.value_or(PixelRect{0, 0, test.width(), test.height()});
-    if (rect.width <= 0 || rect.height <= 0 || rect.x < 0 || rect.y < 0 ||
-        rect.x + rect.width > test.width() || rect.y + rect.height > test.height())
-        throw Error(png_path + ": the crop lies outside the image");
+    if (!rect_within(rect, test.width(), test.height()))
+        throw InputError(png_path + ": the crop lies outside the image");
     const ConstPlaneView &mask = region.mask;
     if (mask.valid() && (mask.width != test.width() || mask.height != test.height()))
         throw Error(png_path + ": the mask differs in size from the images");

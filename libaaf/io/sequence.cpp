@@ -2,10 +2,11 @@
 
 #include <algorithm>
 #include <cctype>
+#include <charconv>
 #include <cstdio>
 #include <filesystem>
+#include <limits>
 #include <regex>
-#include <set>
 
 #include <OpenImageIO/filesystem.h>
 
@@ -69,44 +70,94 @@ int parse_int(const std::string &text, const std::string &spec) {
     if (text.empty() || !std::all_of(text.begin() + (text[0] == '-' ? 1 : 0), text.end(), ::isdigit) ||
         text == "-")
         throw Error("bad frame range '" + spec + "': '" + text + "' is not a frame number");
-    return std::stoi(text);
+    long long value = 0;
+    const auto [end, error] = std::from_chars(text.data(), text.data() + text.size(), value);
+    if (error != std::errc() || end != text.data() + text.size() || value < std::numeric_limits<int>::min() ||
+        value > std::numeric_limits<int>::max())
+        throw Error("bad frame range '" + spec + "': frame " + text + " is out of range (" +
+                    std::to_string(std::numeric_limits<int>::min()) + " to " +
+                    std::to_string(std::numeric_limits<int>::max()) + ")");
+    return int(value);
+}
+
+/// One comma-separated item, first[-last[(x|:)step]]; a '-' after position 0
+/// separates first and last.
+FrameRange::Item parse_item(const std::string &part, const std::string &spec) {
+    if (part.empty()) throw Error("bad frame range '" + spec + "': empty item");
+    const std::size_t step_at = part.find_first_of("x:");
+    const std::string span = part.substr(0, step_at);
+    const int step = step_at == std::string::npos ? 1 : parse_int(part.substr(step_at + 1), spec);
+    const std::size_t dash = span.find('-', 1);
+    const int first = parse_int(span.substr(0, dash), spec);
+    const int last = dash == std::string::npos ? first : parse_int(span.substr(dash + 1), spec);
+    if (step <= 0) throw Error("bad frame range '" + spec + "': the step must be positive");
+    if (last < first) throw Error("bad frame range '" + spec + "': " + part + " ends before it starts");
+    if (dash == std::string::npos && step_at != std::string::npos)
+        throw Error("bad frame range '" + spec + "': a step needs a range (first-last)");
+    return {first, last, step};
+}
+
+/// True when no two items' [first, last] spans overlap.
+bool spans_disjoint(std::vector<FrameRange::Item> items) {
+    std::sort(items.begin(), items.end(),
+              [](const FrameRange::Item &a, const FrameRange::Item &b) { return a.first < b.first; });
+    for (std::size_t i = 1; i < items.size(); ++i)
+        if (items[i].first <= items[i - 1].last) return false;
+    return true;
 }
 
 }  // namespace
 
-std::vector<int> parse_frame_range(const std::string &spec) {
-    std::vector<int> frames;
-    std::set<int> seen;
+FrameRange FrameRange::parse(const std::string &spec) {
+    FrameRange range;
     std::size_t start = 0;
     while (start <= spec.size()) {
         const std::size_t comma = spec.find(',', start);
-        const std::string part =
-            spec.substr(start, comma == std::string::npos ? std::string::npos : comma - start);
-        if (part.empty()) throw Error("bad frame range '" + spec + "': empty item");
-        // first[-last[(x|:)step]]; a '-' after position 0 separates first and last.
-        const std::size_t step_at = part.find_first_of("x:");
-        const std::string span = part.substr(0, step_at);
-        const int step = step_at == std::string::npos ? 1 : parse_int(part.substr(step_at + 1), spec);
-        const std::size_t dash = span.find('-', 1);
-        const int first = parse_int(span.substr(0, dash), spec);
-        const int last = dash == std::string::npos ? first : parse_int(span.substr(dash + 1), spec);
-        if (step <= 0) throw Error("bad frame range '" + spec + "': the step must be positive");
-        if (last < first) throw Error("bad frame range '" + spec + "': " + part + " ends before it starts");
-        if (dash == std::string::npos && step_at != std::string::npos)
-            throw Error("bad frame range '" + spec + "': a step needs a range (first-last)");
-        // Checked above (OIIO would accept a descending span and ignore ":2");
-        // OpenImageIO enumerates the item in its own syntax, "first-lastxstep".
-        const std::string item =
-            std::to_string(first) + "-" + std::to_string(last) + "x" + std::to_string(step);
-        std::vector<int> numbers;
-        if (!OIIO::Filesystem::enumerate_sequence(item, numbers))
-            throw Error("bad frame range '" + spec + "': cannot enumerate " + part);
-        for (int frame : numbers)
-            if (seen.insert(frame).second) frames.push_back(frame);
+        range.items_.push_back(parse_item(
+            spec.substr(start, comma == std::string::npos ? std::string::npos : comma - start), spec));
         if (comma == std::string::npos) break;
         start = comma + 1;
     }
+    range.disjoint_ = spans_disjoint(range.items_);
+    return range;
+}
+
+FrameRange FrameRange::of(const std::vector<int> &frames) {
+    FrameRange range;
+    for (int frame : frames) range.items_.push_back({frame, frame, 1});
+    range.disjoint_ = spans_disjoint(range.items_);
+    return range;
+}
+
+bool FrameRange::given_before(std::size_t item, int frame) const {
+    for (std::size_t i = 0; i < item; ++i) {
+        const Item &earlier = items_[i];
+        if (frame >= earlier.first && frame <= earlier.last &&
+            (static_cast<long long>(frame) - earlier.first) % earlier.step == 0)
+            return true;
+    }
+    return false;
+}
+
+std::size_t FrameRange::size() const {
+    std::size_t count = 0;
+    if (disjoint_) {
+        for (const Item &item : items_)
+            count += std::size_t((static_cast<long long>(item.last) - item.first) / item.step + 1);
+    } else {
+        for_each([&count](int) { ++count; });
+    }
+    return count;
+}
+
+std::vector<int> FrameRange::to_vector() const {
+    std::vector<int> frames;
+    for_each([&frames](int frame) { frames.push_back(frame); });
     return frames;
+}
+
+std::vector<int> parse_frame_range(const std::string &spec) {
+    return FrameRange::parse(spec).to_vector();
 }
 
 bool is_sequence_pattern(const std::string &path) {

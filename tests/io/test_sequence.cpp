@@ -21,6 +21,29 @@ TEST_CASE("Frame ranges: single, span, steps with x and :, lists", "[io][sequenc
         CHECK_THROWS_AS(io::parse_frame_range(bad), Error);
 }
 
+TEST_CASE("a frame range holds its items, not its frames: two billion frames cost nothing up front",
+          "[io][sequence]") {
+    const io::FrameRange huge = io::FrameRange::parse("1-2000000000");
+    CHECK(huge.size() == 2000000000u);
+    CHECK(huge.front() == 1);
+    CHECK(io::FrameRange::parse("1-9x3,20-21").size() == 5);
+    CHECK(io::FrameRange::parse("3,1-3").size() == 3);  // overlapping items: counted without duplicates
+    CHECK(io::FrameRange::of({4, 2, 4}).to_vector() == std::vector<int>{4, 2});
+    // The last frames below INT_MAX end the item instead of wrapping round.
+    CHECK(io::FrameRange::parse("2147483645-2147483647").to_vector() ==
+          std::vector<int>{2147483645, 2147483646, 2147483647});
+    CHECK(io::FrameRange::parse("-2147483648--2147483647x5").to_vector() == std::vector<int>{-2147483648});
+}
+
+TEST_CASE("a frame number past the int range is an error saying so, not 'stoi'", "[io][sequence]") {
+    for (const char *spec : {"1-99999999999", "99999999999", "1-10x99999999999", "-99999999999-1"}) {
+        INFO(spec);
+        CHECK_THROWS_AS(io::FrameRange::parse(spec), Error);
+        CHECK_THROWS_WITH(io::FrameRange::parse(spec),
+                          Catch::Contains("out of range") && !Catch::Contains("stoi"));
+    }
+}
+
 TEST_CASE("Frame paths: # and @ pad one digit each, printf fields", "[io][sequence]") {
     CHECK(io::frame_path("shot.####.exr", 7) == "shot.0007.exr");
     CHECK(io::frame_path("shot.#.exr", 12) == "shot.12.exr");

@@ -13,6 +13,10 @@ struct PixelRect {
     int x = 0, y = 0, width = 0, height = 0;
 };
 
+/// True when `rect` is non-empty and lies within a `width` x `height` image;
+/// computed in 64 bits, so no x + width wraps past INT_MAX into the image.
+bool rect_within(const PixelRect &rect, int width, int height);
+
 /// What to compare and how. The defaults measure R, G, B over the whole image.
 struct CompareOptions {
     std::vector<std::string> channels{"R", "G", "B"};
@@ -52,8 +56,9 @@ struct ErrorMetrics {
 /// Compares the selected channels of `test` against the same channels of
 /// `reference`. Pixels with a NaN or Inf in any compared channel of either
 /// image are counted in `nonfinite_pixels` and left out of every average.
-/// Throws aaf::Error on a size mismatch, a missing channel (naming it and the
-/// image), a crop outside the image or a mask of another size.
+/// Throws aaf::InputError on a size mismatch, a missing channel (naming it and
+/// the image), a crop that is empty or outside the image or a mask of another
+/// size.
 ErrorMetrics compare_images(const AovSet &test, const AovSet &reference, const CompareOptions &options = {});
 
 /// compare_images over `channels`, whole image.

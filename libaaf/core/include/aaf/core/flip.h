@@ -28,7 +28,8 @@ using RgbPlanes = std::array<ConstPlaneView, 3>;
 /// in YCxCz, clamp to the RGB cube, Hunt-adjusted L*a*b*, HyAB, qc = 0.7,
 /// redistribution with pc = 0.4, pt = 0.95) and feature pipeline (edges and
 /// points on the normalised Y, w = 0.082 deg, qf = 0.5); error = dEc^(1 - dEf).
-/// Borders replicate the edge pixels. Throws aaf::Error on mismatched sizes.
+/// Borders replicate the edge pixels. Throws aaf::Error on mismatched sizes or
+/// pixels per degree that are not positive and finite.
 std::vector<float> ldr_flip(const RgbPlanes &reference, const RgbPlanes &test, const FlipParams &params = {});
 
 /// HDR-FLIP error map of two linear HDR images: each is exposed by 2^e for

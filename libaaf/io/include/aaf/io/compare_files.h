@@ -2,6 +2,8 @@
 
 #include <cmath>
 #include <cstddef>
+#include <functional>
+#include <initializer_list>
 #include <optional>
 #include <string>
 #include <vector>
@@ -15,6 +17,26 @@ namespace aaf::io {
 struct ImagePair {
     std::string label;  ///< frame number or file name
     std::string test, reference;
+};
+
+/// The pairs to compare, produced one at a time: a sequence of two billion
+/// frames costs no memory before its pairs are measured.
+class ImagePairs {
+  public:
+    using Visit = std::function<void(const ImagePair &)>;
+    /// These pairs, as they are.
+    ImagePairs(std::vector<ImagePair> pairs);  // NOLINT: implicit, a list is a source of pairs
+    ImagePairs(std::initializer_list<ImagePair> pairs) : ImagePairs(std::vector<ImagePair>(pairs)) {}
+    /// `count` pairs that `produce` passes to its argument one by one, in order.
+    ImagePairs(std::size_t count, std::function<void(const Visit &)> produce);
+
+    std::size_t size() const { return count_; }
+    void for_each(const Visit &visit) const;
+
+  private:
+    std::vector<ImagePair> list_;
+    std::size_t count_ = 0;
+    std::function<void(const Visit &)> produce_;
 };
 
 /// A field of ErrorMetrics that reports name, summarise and gate on.
@@ -82,14 +104,15 @@ struct CompareFilesResult {
     double measure_seconds = 0;            ///< spent computing the metrics
 };
 
-/// Reads and compares each pair (compare_images() of error_metrics.h) and
-/// writes the heatmap, if asked for. Throws aaf::InputError "<file>: <problem>"
-/// for an unreadable image, a layer with no channels, a mask of another size
-/// or an output that would overwrite an input; errors of the comparison
-/// itself (sizes, missing channels, a crop outside the image) are prefixed
-/// "<test> vs <reference>: ". Throws aaf::Error for a heatmap with other
-/// than one pair.
-CompareFilesResult compare_files(const std::vector<ImagePair> &pairs, const CompareFilesOptions &options);
+/// Reads and compares each pair in turn (compare_images() of
+/// error_metrics.h) and writes the heatmap, if asked for. Throws
+/// aaf::InputError "<file>: <problem>" for an unreadable image, a layer with
+/// no channels, a mask of another size or an output that would overwrite an
+/// input (checked for each pair before it is read, so before anything is
+/// written); errors of the comparison itself (sizes, missing channels, a crop
+/// outside the image) are prefixed "<test> vs <reference>: ". Throws
+/// aaf::Error for a heatmap with other than one pair.
+CompareFilesResult compare_files(const ImagePairs &pairs, const CompareFilesOptions &options);
 
 /// One metric over a batch of pairs.
 struct MetricSummary {
