@@ -202,7 +202,7 @@ class DuplicateKeyCheck {
             Level &level = levels_.back();
             level.key = parsed.get<std::string>();
             if (!level.keys.insert(level.key).second)
-                throw InputError(file_ + ": " + path() + ": duplicate key (give each field once)");
+                throw InputError(one_line(file_ + ": " + path() + ": duplicate key (give each field once)"));
         }
         return true;
     }
@@ -227,7 +227,7 @@ class DuplicateKeyCheck {
 
 json parse_json_file(const std::string &path) {
     std::ifstream in(path, std::ios::binary);
-    if (!in) throw InputError(path + ": cannot open scene file");
+    if (!in) throw InputError(one_line(path + ": cannot open scene file"));
     std::stringstream text;
     text << in.rdbuf();
     try {

@@ -341,6 +341,13 @@ TEST_CASE("Scene file: a JSON number beyond double's range is one line naming th
         load_error("raw_newline", scene_text("[{\"type\": \"sph\nere\", \"radius\": 1}]"));
     CHECK_THAT(raw, Catch::Contains("scene.json: invalid JSON at line"));
     CHECK(raw.find('\n') == std::string::npos);
+    // An escaped newline in a key is a real one once parsed: it stays escaped in the message.
+    for (const char *objects : {R"([{"type": "sphere", "radius": 1, "a\nb": 2}])",
+                                R"([{"type": "sphere", "radius": 1, "a\nb": 2, "a\nb": 3}])"}) {
+        const std::string key = load_error("newline_key", scene_text(objects));
+        CHECK_THAT(key, Catch::Contains("objects[0].a\\x0ab: "));
+        CHECK(key.find('\n') == std::string::npos);
+    }
 }
 
 TEST_CASE("Scene file: OBJ errors are one line naming the OBJ and the object",
