@@ -172,7 +172,14 @@ void add_render_command(CLI::App &app) {
     cmd->add_option("--spp", options->settings.spp,
                     "Light samples per pixel, stratified over the light, in rounds of 1024")
         ->capture_default_str();
-    cmd->add_option("--seed", options->settings.seed, "Random seed")->capture_default_str();
+    // Unchecked, CLI11 reads "-1" into the unsigned seed as 2^64 - 1.
+    cmd->add_option("--seed", options->settings.seed, "Random seed")
+        ->check(CLI::Validator(
+            [](std::string &value) {
+                return value.find('-') == std::string::npos ? std::string() : "must not be negative";
+            },
+            ""))
+        ->capture_default_str();
     cmd->add_option("--threads", options->settings.threads, "Worker threads, 0 = all (output is identical)")
         ->capture_default_str();
     cmd->add_option("--frame", options->settings.frame, "Animation time of a single render, frames")
@@ -204,7 +211,7 @@ void add_render_command(CLI::App &app) {
     cmd->add_flag("--skip-existing", options->skip_existing,
                   "Skip frames whose output exists and reads back");
     cmd->add_flag("--list", options->list, "List the scenes found by name and exit");
-    cmd->callback([options] {
+    cmd->callback([options, cmd] {
         if (options->list) {
             for (const std::string &name : trace::builtin_scene_names()) std::cout << name << "\n";
             return;
@@ -222,6 +229,9 @@ void add_render_command(CLI::App &app) {
         if (!(options->checkpoint_s > 0)) throw UsageError("--checkpoint must be positive");
         settings.checkpoint_interval_s = options->checkpoint_s;
 
+        // An empty --frames would otherwise mean a single render.
+        if (cmd->count("--frames") > 0 && options->frames.empty())
+            throw UsageError("--frames: empty frame range (e.g. 1-24)");
         const bool sequence = !options->frames.empty();
         if (sequence != io::is_sequence_pattern(options->output))
             throw UsageError(sequence ? "--frames needs an output pattern such as shot.####.exr"

@@ -170,6 +170,10 @@ TEST_CASE("render option values out of range are usage errors: exit 2, one line,
         check_refused("render " + scene + " -o " + (dir / "out.exr").string() + " " + option, 2, message);
     check_refused("render " + scene + " --frames 3-1 -o " + (dir / "f.####.exr").string(), 2,
                   "3-1 ends before it starts");
+    check_refused("render " + scene + " --frames '' -o " + (dir / "out.exr").string(), 2,
+                  "--frames: empty frame range");
+    // CLI11 reports its own validation (its message format is run.cpp's).
+    CHECK(run_aaf("render " + scene + " -o " + (dir / "out.exr").string() + " --seed -1").exit_code == 2);
     CHECK(fs::is_empty(dir));
 }
 
