@@ -226,6 +226,12 @@ class DuplicateKeyCheck {
 };
 
 json parse_json_file(const std::string &path) {
+    // A folder reads as empty and a device such as /dev/zero never ends; a
+    // pipe (a scene from process substitution) is fine.
+    std::error_code error;
+    const fs::file_type type = fs::status(path, error).type();
+    if (type != fs::file_type::regular && type != fs::file_type::fifo && type != fs::file_type::not_found)
+        throw InputError(one_line(path + ": cannot open scene file (a folder or device, not a file)"));
     std::ifstream in(path, std::ios::binary);
     if (!in) throw InputError(one_line(path + ": cannot open scene file"));
     std::stringstream text;
@@ -573,8 +579,11 @@ SceneDescription load_scene_file(const std::string &path, int width, int height)
 }
 
 std::vector<std::string> scene_file_inputs(const std::string &path) {
-    const json document = parse_json_file(path);
     std::vector<std::string> files{path};
+    // A pipe can be read once, by the loader; its OBJ paths could only be absolute.
+    std::error_code error;
+    if (fs::status(path, error).type() == fs::file_type::fifo) return files;
+    const json document = parse_json_file(path);
     const auto objects = document.is_object() ? document.find("objects") : document.end();
     if (objects == document.end() || !objects->is_array()) return files;
     const fs::path scene_dir = fs::path(path).parent_path();

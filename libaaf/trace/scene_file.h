@@ -21,7 +21,8 @@ SceneDescription load_scene_file(const std::string &path, int width, int height)
 /// The files loading the scene file `path` reads: `path` itself, then the
 /// file of every `obj` object (relative to the scene's folder), in the order
 /// written. Reads only the JSON (a malformed one throws as load_scene_file()
-/// does); an entry may name a file that does not exist.
+/// does), and not even that from a pipe, which only the loader may read (the
+/// list is then `path` alone); an entry may name a file that does not exist.
 std::vector<std::string> scene_file_inputs(const std::string &path);
 
 /// Directories searched for scenes given by name, in order: each entry of

@@ -87,9 +87,15 @@ TEST_CASE("render refuses an output that is its scene file or an OBJ it loads",
         "render " + (dir / "s2.json").string() + " --frames 1-3 -o " + (dir / "m.#.obj").string() + kSmall, 3,
         (dir / "m.2.obj").string() + ": output would overwrite the input");
     CHECK(snapshot(dir) == before_sequence);
-    // The same scene to another file renders.
+    // The same scene to another file renders, also from a pipe (read once, by the loader).
     CHECK(run_aaf("render " + scene + " -o " + (dir / "out.exr").string() + kSmall).exit_code == 0);
     CHECK(fs::exists(dir / "out.exr"));
+    const fs::path piped = dir / "pipe.json";
+    write_file(piped, scene_json(R"([{"type": "sphere", "radius": 1}])"));
+    const std::string through_pipe = "cat " + piped.string() + " | " + AAF_EXECUTABLE;
+    CHECK(run_aaf("render /dev/stdin -o " + (dir / "piped.exr").string() + kSmall, through_pipe).exit_code ==
+          0);
+    CHECK(fs::exists(dir / "piped.exr"));
 }
 
 TEST_CASE("render refuses crafted bad scenes: exit 3, one line naming the scene, nothing written",

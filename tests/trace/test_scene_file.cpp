@@ -192,6 +192,10 @@ TEST_CASE("Scene file: errors name the file, the JSON path and the problem", "[t
                Contains("animation.camera[1].frame: frames must increase"));
     CHECK_THROWS_WITH(trace::load_scene_file((scratch("none") / "nope.json").string(), 8, 8),
                       Contains("nope.json: cannot open scene file"));
+    // A folder read as empty JSON; /dev/zero never ended.
+    for (const std::string &path : {scratch("folder.json").string(), std::string("/dev/zero")})
+        CHECK_THROWS_WITH(trace::load_scene_file(path, 8, 8),
+                          path + ": cannot open scene file (a folder or device, not a file)");
 }
 
 TEST_CASE("Scene file: animation keys are checked like static values", "[trace][scene][errors]") {
