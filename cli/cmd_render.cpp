@@ -1,16 +1,21 @@
 #include <unistd.h>
 
+#include <cerrno>
 #include <chrono>
+#include <climits>
 #include <csignal>
 #include <cstdio>
+#include <cstdlib>
 #include <iostream>
 #include <memory>
 #include <nlohmann/json.hpp>
 #include <optional>
+#include <sstream>
 
 #include "aaf/core/aov_contract.h"
 #include "aaf/core/error.h"
 #include "aaf/core/sample_statistics.h"
+#include "aaf/io/atomic_file.h"
 #include "aaf/io/exr_io.h"
 #include "aaf/io/sequence.h"
 #include "aaf/trace/render.h"
@@ -77,6 +82,76 @@ class RoundReporter {
     std::chrono::steady_clock::time_point start_ = std::chrono::steady_clock::now();
 };
 
+/// The most frames one `render --frames` may ask for (a million frames are
+/// 11.6 hours at 24 fps): every frame's job is held in memory, since
+/// io::parse_frame_range returns all frame numbers at once.
+constexpr long long kMaxFrames = 1000000;
+
+/// A frame number of `spec`, or nothing when `text` is not an integer (left
+/// to io::parse_frame_range to report); a number beyond int is a UsageError.
+std::optional<long long> frame_number(const std::string &text, const std::string &spec) {
+    char *end = nullptr;
+    errno = 0;
+    const long long value = std::strtoll(text.c_str(), &end, 10);
+    if (text.empty() || *end != '\0') return std::nullopt;
+    if (errno == ERANGE || value < INT_MIN || value > INT_MAX)
+        throw UsageError("bad frame range '" + spec + "': " + text + " lies beyond the frame numbers [" +
+                         std::to_string(INT_MIN) + ", " + std::to_string(INT_MAX) + "]");
+    return value;
+}
+
+/// Refuses a range spec (io::parse_frame_range's syntax: first[-last[(x|:)step]],
+/// comma-separated) of more than kMaxFrames frames before anything expands it.
+void check_frame_count(const std::string &spec) {
+    long long total = 0;
+    std::stringstream items(spec);
+    for (std::string item; std::getline(items, item, ',');) {
+        const std::size_t step_at = item.find_first_of("x:");
+        const std::string span = item.substr(0, step_at);
+        const std::size_t dash = span.find('-', 1);
+        const auto first = frame_number(span.substr(0, dash), spec);
+        const auto last = dash == std::string::npos ? first : frame_number(span.substr(dash + 1), spec);
+        const auto step = step_at == std::string::npos ? std::optional<long long>(1)
+                                                       : frame_number(item.substr(step_at + 1), spec);
+        if (!first || !last || !step || *step <= 0 || *last < *first)
+            continue;  // parse_frame_range reports it
+        total += (*last - *first) / *step + 1;
+        if (total > kMaxFrames)
+            throw UsageError("bad frame range '" + spec + "': more than " + std::to_string(kMaxFrames) +
+                             " frames in one run (split the range)");
+    }
+}
+
+/// Checks the settings the command line gave as usage errors (exit 2), with
+/// the library's ranges (trace::validate_render_settings).
+void check_settings(const trace::RenderSettings &settings, bool resume) {
+    try {
+        trace::validate_render_settings(settings);
+    } catch (const Error &e) {
+        throw UsageError(e.what());
+    }
+    if (resume && settings.adaptive)
+        throw UsageError("--resume continues a reference, not an adaptive render");
+}
+
+/// Refuses (aaf::InputError, exit 3) to write any job's output over a file
+/// the scene reads, the scene file or one of its OBJs, under any name.
+void check_outputs_spare_inputs(const std::string &scene, const std::vector<FrameJob> &jobs) {
+    for (const std::string &input : trace::scene_input_files(scene))
+        for (const FrameJob &job : jobs) io::check_not_same_file(input, job.output);
+}
+
+/// One job per frame of `frames` for a sequence, or the single job.
+std::vector<FrameJob> render_jobs(const std::string &scene, const std::string &output,
+                                  const std::string &frames) {
+    if (frames.empty()) return {{0, scene, output}};
+    check_frame_count(frames);
+    std::vector<FrameJob> jobs;
+    for (int frame : sequence_frames(output, frames))
+        jobs.push_back({frame, scene, io::frame_path(output, frame)});
+    return jobs;
+}
+
 }  // namespace
 
 void add_render_command(CLI::App &app) {
@@ -97,7 +172,14 @@ void add_render_command(CLI::App &app) {
     cmd->add_option("--spp", options->settings.spp,
                     "Light samples per pixel, stratified over the light, in rounds of 1024")
         ->capture_default_str();
-    cmd->add_option("--seed", options->settings.seed, "Random seed")->capture_default_str();
+    // Unchecked, CLI11 reads "-1" into the unsigned seed as 2^64 - 1.
+    cmd->add_option("--seed", options->settings.seed, "Random seed")
+        ->check(CLI::Validator(
+            [](std::string &value) {
+                return value.find('-') == std::string::npos ? std::string() : "must not be negative";
+            },
+            ""))
+        ->capture_default_str();
     cmd->add_option("--threads", options->settings.threads, "Worker threads, 0 = all (output is identical)")
         ->capture_default_str();
     cmd->add_option("--frame", options->settings.frame, "Animation time of a single render, frames")
@@ -129,7 +211,7 @@ void add_render_command(CLI::App &app) {
     cmd->add_flag("--skip-existing", options->skip_existing,
                   "Skip frames whose output exists and reads back");
     cmd->add_flag("--list", options->list, "List the scenes found by name and exit");
-    cmd->callback([options] {
+    cmd->callback([options, cmd] {
         if (options->list) {
             for (const std::string &name : trace::builtin_scene_names()) std::cout << name << "\n";
             return;
@@ -138,10 +220,18 @@ void add_render_command(CLI::App &app) {
         if (options->output.empty()) throw CLI::RequiredError("--output");
         trace::RenderSettings &settings = options->settings;
         if (!options->light.empty()) settings.light_profile = light_profile_from_string(options->light);
-        settings.aovs = trace::parse_aov_groups(options->aovs);
+        try {
+            settings.aovs = trace::parse_aov_groups(options->aovs);
+        } catch (const Error &e) {
+            throw UsageError(std::string("--aovs: ") + e.what());
+        }
+        check_settings(settings, !options->resume.empty());
         if (!(options->checkpoint_s > 0)) throw UsageError("--checkpoint must be positive");
         settings.checkpoint_interval_s = options->checkpoint_s;
 
+        // An empty --frames would otherwise mean a single render.
+        if (cmd->count("--frames") > 0 && options->frames.empty())
+            throw UsageError("--frames: empty frame range (e.g. 1-24)");
         const bool sequence = !options->frames.empty();
         if (sequence != io::is_sequence_pattern(options->output))
             throw UsageError(sequence ? "--frames needs an output pattern such as shot.####.exr"
@@ -149,19 +239,13 @@ void add_render_command(CLI::App &app) {
         if (sequence && !options->resume.empty())
             throw UsageError("--resume continues a single render, not a sequence");
 
+        const std::vector<FrameJob> jobs = render_jobs(options->scene, options->output, options->frames);
+        check_outputs_spare_inputs(options->scene, jobs);
         std::optional<AovSet> partial;
         if (!options->resume.empty()) {
             partial = io::read_aovs(options->resume);
             settings.resume = &*partial;
             settings.resume_source = options->resume;
-        }
-
-        std::vector<FrameJob> jobs;
-        if (sequence) {
-            for (int frame : io::parse_frame_range(options->frames))
-                jobs.push_back({frame, options->scene, io::frame_path(options->output, frame)});
-        } else {
-            jobs.push_back({0, options->scene, options->output});
         }
         RunOptions run;
         run.progress = progress_from_string(options->progress);

@@ -30,21 +30,6 @@ constexpr int kTileSize = 16;
 /// Random-number pass of the adaptive second pass, apart from the rounds' passes.
 constexpr std::uint32_t kAdaptiveSecondPass = 1u << 30;
 
-void validate(const RenderSettings &settings) {
-    if (settings.width < 1 || settings.width > 16384 || settings.height < 1 || settings.height > 16384)
-        throw Error("image size must lie in [1, 16384] pixels per side");
-    if (settings.spp < 1 || settings.spp > (1 << 20)) throw Error("spp must lie in [1, 1048576]");
-    if (settings.threads < 0 || settings.threads > 1024)
-        throw Error("threads must lie in [0, 1024] (0 = all cores)");
-    if (!std::isfinite(settings.frame)) throw Error("frame must be finite");
-    if (settings.adaptive) {
-        if (settings.max_spp < settings.spp || settings.max_spp > (1 << 20))
-            throw Error("max spp must lie in [spp, 1048576] for adaptive sampling");
-        if (!(settings.adaptive_mu > 0)) throw Error("adaptive mu must be positive");
-        if (settings.resume) throw Error("an adaptive render cannot be resumed");
-    }
-}
-
 /// Calls `body(x, y)` for every pixel, one 16x16 tile (clipped at the image's
 /// edges) per task index over oneTBB. Each pixel is written by exactly one
 /// call, so results do not depend on the schedule.
@@ -235,8 +220,28 @@ double seconds_since(Clock::time_point start) {
 
 }  // namespace
 
+std::vector<std::string> scene_input_files(const std::string &scene) {
+    return scene_file_inputs(resolve_scene(scene));
+}
+
+void validate_render_settings(const RenderSettings &settings) {
+    if (settings.width < 1 || settings.width > 16384 || settings.height < 1 || settings.height > 16384)
+        throw Error("image width and height must lie in [1, 16384] pixels");
+    if (settings.spp < 1 || settings.spp > (1 << 20)) throw Error("spp must lie in [1, 1048576]");
+    if (settings.threads < 0 || settings.threads > 1024)
+        throw Error("threads must lie in [0, 1024] (0 = all cores)");
+    if (!std::isfinite(settings.frame)) throw Error("frame must be finite");
+    if (settings.adaptive) {
+        if (settings.max_spp < settings.spp || settings.max_spp > (1 << 20))
+            throw Error("max spp must lie in [spp, 1048576] for adaptive sampling");
+        if (!(settings.adaptive_mu > 0) || !std::isfinite(settings.adaptive_mu))
+            throw Error("adaptive mu must be positive and finite");
+        if (settings.resume) throw Error("an adaptive render cannot be resumed");
+    }
+}
+
 AovSet render_scene(const std::string &scene_name, const RenderSettings &settings, RenderTimings *timings) {
-    validate(settings);
+    validate_render_settings(settings);
     SceneDescription scene = load_scene_file(resolve_scene(scene_name), settings.width, settings.height);
     scene.set_frame(settings.frame);
     if (settings.light_profile)
@@ -245,7 +250,8 @@ AovSet render_scene(const std::string &scene_name, const RenderSettings &setting
 
     const unsigned groups = groups_to_write(settings);
     // The adaptive plan reads the AAF groups, whether written or not.
-    const Accumulators accumulators = make_aov_accumulators(groups | (settings.adaptive ? aov_groups_for_method("aaf") : 0));
+    const Accumulators accumulators =
+        make_aov_accumulators(groups | (settings.adaptive ? aov_groups_for_method("aaf") : 0));
     Tracing tracing(scene, settings, accumulators);
     const RenderState state = tracing.state(previous_camera);
     int spp_done = settings.resume

@@ -16,6 +16,8 @@ constexpr float kPi = 3.14159265358979323846f;
 constexpr int kFalloffQuadrature = 16;  // per axis
 /// Shadow rays end at this fraction of the way to the light point.
 constexpr float kShadowRayReach = 1.0f - 1e-4f;
+/// Floor of a squared receiver-light distance, (1e-6 m)^2.
+constexpr float kMinDistanceSq_m2 = 1e-12f;
 /// Distinguishes the lens and other-light random numbers from the key light's.
 constexpr std::uint64_t kSecondaryStream = 0x5bd1e9955bd1e995ull;
 
@@ -59,10 +61,13 @@ Renderer::Renderer(const SceneDescription &scene, const RenderSettings &settings
 float Renderer::falloff(const LightPlane &light, Vec3 p, Vec3 n, Vec3 light_point) const {
     Vec3 to_light = light_point - p;
     const float distance_sq = dot(to_light, to_light);
+    if (!(distance_sq > 0)) return 0;  // a receiver on the light point: no direction
     to_light = to_light / std::sqrt(distance_sq);
     const float cos_receiver = std::max(0.0f, dot(n, to_light));
     const float cos_light = std::max(0.0f, -dot(light.normal, to_light));
-    return cos_receiver * cos_light / distance_sq;
+    // The scene's shortest length (1e-6 m, SCENE_FORMAT.md "Limits") bounds
+    // 1 / r^2 at 1e12, so the radiance stays finite (its intensity bound's reason).
+    return cos_receiver * cos_light / std::max(distance_sq, kMinDistanceSq_m2);
 }
 
 float Renderer::mean_falloff(Vec3 p, Vec3 n) const {

@@ -4,10 +4,12 @@
 
 #include <climits>
 #include <cmath>
+#include <cstdio>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <initializer_list>
+#include <limits>
 #include <nlohmann/json.hpp>
 #include <optional>
 #include <set>
@@ -23,6 +25,46 @@ using nlohmann::json;
 
 namespace {
 
+// The bounds every scene value keeps before it reaches Embree (SCENE_FORMAT.md,
+// "Limits"). Embree asserts on rays whose origin or extent is too large for its
+// float arithmetic (|origin| about 1.8e18), and a float's spacing at 1e6 m is
+// already 6 cm, so a scene fits a cube of +-1e6 m; lengths below 1 micrometre
+// make the pixel footprints and light pdfs underflow.
+constexpr double kMaxCoordinate_m = 1e6;
+constexpr double kMinLength_m = 1e-6;
+constexpr double kMaxApertureRadius_m = 1e3;
+constexpr double kMaxRotation_deg = 1e6;
+// Radiance = intensity x colour x BRDF x cos x cos / r^2: with r >= 1e-6 m
+// (1e12), a GGX peak of 1 / (pi 0.01^4) (3e7) and 1048576 samples summed,
+// intensity x colour <= 1e12 keeps every sum below float's 3.4e38.
+constexpr double kMaxIntensity_W_sr = 1e9;
+constexpr double kMaxColor = 1e3;
+
+/// `text` on one line: control characters (a raw newline from a parser or an
+/// OBJ loader's message) become `\xNN`, a trailing newline goes.
+std::string one_line(std::string text) {
+    while (!text.empty() && (text.back() == '\n' || text.back() == '\r')) text.pop_back();
+    std::string line;
+    for (const char c : text) {
+        const auto byte = static_cast<unsigned char>(c);
+        if (byte >= 0x20 && byte != 0x7f) {
+            line += c;
+            continue;
+        }
+        char escaped[8];
+        std::snprintf(escaped, sizeof escaped, "\\x%02x", byte);
+        line += escaped;
+    }
+    return line;
+}
+
+/// A bound as the messages print it: 1e+06 -> "1e+06", 0.001 -> "0.001".
+std::string bound_text(double value) {
+    char text[32];
+    std::snprintf(text, sizeof text, "%g", value);
+    return text;
+}
+
 /// A JSON value with the path that leads to it, so every error can say where
 /// in which file the problem is ("scene.json: objects[2].radius: ...").
 class Node {
@@ -31,7 +73,7 @@ class Node {
         : value_(value), path_(std::move(path)), file_(file) {}
 
     [[noreturn]] void fail(const std::string &problem) const {
-        throw InputError(file_ + ": " + (path_.empty() ? "" : path_ + ": ") + problem);
+        throw InputError(one_line(file_ + ": " + (path_.empty() ? "" : path_ + ": ") + problem));
     }
 
     bool has(const char *key) const { return value_.is_object() && value_.contains(key); }
@@ -70,13 +112,26 @@ class Node {
     float number() const {
         if (!value_.is_number()) fail("expected a number");
         const double v = value_.get<double>();
-        if (!std::isfinite(v)) fail("expected a finite number");
+        // Beyond float's range the value would become infinite on conversion.
+        if (!(std::fabs(v) <= std::numeric_limits<float>::max())) fail("expected a finite number");
         return float(v);
     }
     float positive() const {
         const float v = number();
         if (!(v > 0)) fail("must be positive");
         return v;
+    }
+    /// A number in [lo, hi]; `unit` follows the bounds in the message.
+    float number_in(double lo, double hi, const char *unit = "") const {
+        const float v = number();
+        if (!(v >= float(lo) && v <= float(hi)))
+            fail("must lie in [" + bound_text(lo) + ", " + bound_text(hi) + "]" + unit);
+        return v;
+    }
+    /// A length in metres: positive, in [kMinLength_m, max_m].
+    float length_m(double max_m = kMaxCoordinate_m) const {
+        positive();  // a zero or negative length says so first
+        return number_in(kMinLength_m, max_m, " m");
     }
     int integer() const {
         if (!value_.is_number_integer()) fail("expected an integer");
@@ -100,6 +155,16 @@ class Node {
         if (!value_.is_array() || value_.size() != 3) fail("expected an array of 3 numbers");
         return {(*this)[0].number(), (*this)[1].number(), (*this)[2].number()};
     }
+    /// A 3-vector whose components lie in [-bound, bound].
+    Vec3 vec3_within(double bound, const char *unit) const {
+        const Vec3 v = vec3();
+        for (int c = 0; c < 3; ++c)
+            if (!(std::fabs(v[c]) <= bound))
+                fail("components must lie in [-" + bound_text(bound) + ", " + bound_text(bound) + "]" + unit);
+        return v;
+    }
+    /// A point or offset in world metres, within kMaxCoordinate_m per axis.
+    Vec3 point() const { return vec3_within(kMaxCoordinate_m, " m"); }
     /// A 3-vector, or one number for all three components.
     Vec3 vec3_or_scalar() const {
         if (value_.is_number()) {
@@ -137,7 +202,7 @@ class DuplicateKeyCheck {
             Level &level = levels_.back();
             level.key = parsed.get<std::string>();
             if (!level.keys.insert(level.key).second)
-                throw InputError(file_ + ": " + path() + ": duplicate key (give each field once)");
+                throw InputError(one_line(file_ + ": " + path() + ": duplicate key (give each field once)"));
         }
         return true;
     }
@@ -161,18 +226,30 @@ class DuplicateKeyCheck {
 };
 
 json parse_json_file(const std::string &path) {
+    // A folder reads as empty and a device such as /dev/zero never ends; a
+    // pipe (a scene from process substitution) is fine.
+    std::error_code error;
+    const fs::file_type type = fs::status(path, error).type();
+    if (type != fs::file_type::regular && type != fs::file_type::fifo && type != fs::file_type::not_found)
+        throw InputError(one_line(path + ": cannot open scene file (a folder or device, not a file)"));
     std::ifstream in(path, std::ios::binary);
-    if (!in) throw InputError(path + ": cannot open scene file");
+    if (!in) throw InputError(one_line(path + ": cannot open scene file"));
     std::stringstream text;
     text << in.rdbuf();
     try {
         return json::parse(text.str(), DuplicateKeyCheck(path));
-    } catch (const json::parse_error &e) {
-        // nlohmann's message reads "[json.exception.parse_error.101] parse error at line L, column C: ...".
+    } catch (const json::exception &e) {
+        // nlohmann's messages read "[json.exception.parse_error.101] parse error at
+        // line L, column C: ..." or, for a number beyond double's range such as
+        // 1e400, "[json.exception.out_of_range.406] number overflow parsing '1e400'".
         std::string message = e.what();
         const auto at = message.find("at line");
-        message = at == std::string::npos ? message : message.substr(at);
-        throw InputError(path + ": invalid JSON " + message);
+        const auto tag_end = message.find("] ");
+        if (at != std::string::npos)
+            message = " " + message.substr(at);
+        else
+            message = ": " + (tag_end == std::string::npos ? message : message.substr(tag_end + 2));
+        throw InputError(one_line(path + ": invalid JSON" + message));
     }
 }
 
@@ -198,21 +275,38 @@ Transform read_transform(const std::optional<Node> &node) {
     if (auto s = node->find("scale")) {
         scale = s->vec3_or_scalar();
         if (!(scale.x > 0 && scale.y > 0 && scale.z > 0)) s->fail("scale must be positive");
+        // A scale is a ratio of lengths: it keeps to the lengths' range.
+        const double max_scale = kMaxCoordinate_m / kMinLength_m;
+        for (int c = 0; c < 3; ++c)
+            if (!(scale[c] >= float(1 / max_scale) && scale[c] <= float(max_scale)))
+                s->fail("scale must lie in [" + bound_text(1 / max_scale) + ", " + bound_text(max_scale) +
+                        "]");
     }
-    if (auto r = node->find("rotate_deg")) rotate = r->vec3();
-    if (auto t = node->find("translate")) translate = t->vec3();
+    if (auto r = node->find("rotate_deg")) rotate = r->vec3_within(kMaxRotation_deg, " degrees");
+    if (auto t = node->find("translate")) translate = t->point();
     return Transform::from(scale, rotate, translate);
+}
+
+/// A light's intensity, W/sr: in [0, kMaxIntensity_W_sr].
+float read_intensity(const Node &node) {
+    const float intensity = node.number();
+    if (intensity < 0) node.fail("must not be negative");
+    if (!(intensity <= kMaxIntensity_W_sr))
+        node.fail("must not exceed " + bound_text(kMaxIntensity_W_sr) +
+                  " W/sr (see SCENE_FORMAT.md, Limits)");
+    return intensity;
 }
 
 SceneLight read_light(const Node &node) {
     node.allow_only({"center", "edge_u", "edge_v", "intensity", "color", "profile", "sigma_m"});
     SceneLight light;
     LightPlane &plane = light.plane;
-    plane.center = node.at("center").vec3();
-    const Vec3 edge_u = node.at("edge_u").vec3(), edge_v = node.at("edge_v").vec3();
+    plane.center = node.at("center").point();
+    const Vec3 edge_u = node.at("edge_u").point(), edge_v = node.at("edge_v").point();
     plane.width_m = length(edge_u);
     plane.height_m = length(edge_v);
-    if (!(plane.width_m > 0) || !(plane.height_m > 0)) node.fail("edge_u and edge_v must be non-zero");
+    if (!(plane.width_m >= float(kMinLength_m)) || !(plane.height_m >= float(kMinLength_m)))
+        node.fail("edge_u and edge_v must be non-zero (" + bound_text(kMinLength_m) + " m or longer)");
     plane.axis_u = edge_u / plane.width_m;
     plane.axis_v = edge_v / plane.height_m;
     if (std::fabs(dot(plane.axis_u, plane.axis_v)) > 1e-3f) node.fail("edge_u and edge_v must be orthogonal");
@@ -220,7 +314,7 @@ SceneLight read_light(const Node &node) {
     plane.normal = normalize(cross(plane.axis_u, plane.axis_v));
     // Default sigma: half the shorter side (for a square, sigma = L / 2: light_plane.h).
     plane.sigma_m = 0.5f * std::min(plane.width_m, plane.height_m);
-    if (auto sigma = node.find("sigma_m")) plane.sigma_m = sigma->positive();
+    if (auto sigma = node.find("sigma_m")) plane.sigma_m = sigma->length_m();
     if (auto profile = node.find("profile")) {
         const std::string name = profile->string();
         if (name != "gaussian" && name != "uniform") profile->fail("expected \"gaussian\" or \"uniform\"");
@@ -229,13 +323,13 @@ SceneLight read_light(const Node &node) {
     if (plane.profile == LightProfile::Gaussian &&
         std::max(plane.width_m, plane.height_m) > 16 * plane.sigma_m)
         node.fail("sigma_m is too small for the light's size (the Gaussian is truncated beyond 8 sigma)");
-    if (auto intensity = node.find("intensity")) {
-        light.intensity = intensity->number();
-        if (light.intensity < 0) intensity->fail("must not be negative");
-    }
+    if (auto intensity = node.find("intensity")) light.intensity = read_intensity(*intensity);
     if (auto color = node.find("color")) {
         light.color = color->vec3_or_scalar();
         if (light.color.x < 0 || light.color.y < 0 || light.color.z < 0) color->fail("must not be negative");
+        for (int c = 0; c < 3; ++c)
+            if (!(light.color[c] <= kMaxColor))
+                color->fail("must not exceed " + bound_text(kMaxColor) + " (see SCENE_FORMAT.md, Limits)");
     }
     return light;
 }
@@ -243,10 +337,12 @@ SceneLight read_light(const Node &node) {
 /// The checks a camera key must pass, static or animated; `node` is where
 /// the key was read, `fov` and its field when it gave one.
 void check_camera_key(const Node &node, const CameraKey &key, Vec3 up, const std::optional<Node> &fov) {
-    if (!(length(key.target - key.eye) > 0)) node.fail("position and look_at must differ");
+    if (!(length(key.target - key.eye) >= float(kMinLength_m)))
+        node.fail("position and look_at must differ (by " + bound_text(kMinLength_m) + " m or more)");
     if (!(length(cross(normalize(key.target - key.eye), up)) > 1e-4f))
         node.fail("up must not be parallel to the view");
-    if (fov && !(key.fov_y_deg > 0 && key.fov_y_deg < 180)) fov->fail("must lie in (0, 180)");
+    // Below a thousandth of a degree the pixel footprints underflow.
+    if (fov && !(key.fov_y_deg >= 1e-3f && key.fov_y_deg < 180)) fov->fail("must lie in [0.001, 180)");
 }
 
 Camera read_camera(const Node &node, int width, int height, CameraKey &key, Vec3 &up) {
@@ -255,18 +351,18 @@ Camera read_camera(const Node &node, int width, int height, CameraKey &key, Vec3
     const std::string type = node.has("type") ? node.at("type").string() : "pinhole";
     if (type != "pinhole" && type != "thin_lens")
         node.at("type").fail("expected \"pinhole\" or \"thin_lens\"");
-    key.eye = node.at("position").vec3();
-    key.target = node.at("look_at").vec3();
-    if (auto u = node.find("up")) up = u->vec3();
+    key.eye = node.at("position").point();
+    key.target = node.at("look_at").point();
+    if (auto u = node.find("up")) up = u->point();
     const std::optional<Node> fov = node.find("fov_y_deg");
     if (fov) key.fov_y_deg = fov->number();
     check_camera_key(node, key, up, fov);
     key.focus_distance_m = length(key.target - key.eye);
-    if (auto focus = node.find("focus_distance_m")) key.focus_distance_m = focus->positive();
+    if (auto focus = node.find("focus_distance_m")) key.focus_distance_m = focus->length_m();
     Camera camera = Camera::look_at(key.eye, key.target, up, key.fov_y_deg, width, height);
     camera.focus_distance_m = key.focus_distance_m;
     if (type == "thin_lens")
-        camera.aperture_radius_m = node.at("aperture_radius_m").positive();
+        camera.aperture_radius_m = node.at("aperture_radius_m").length_m(kMaxApertureRadius_m);
     else if (node.has("aperture_radius_m"))
         node.at("aperture_radius_m").fail("only a thin_lens camera has an aperture");
     return camera;
@@ -276,13 +372,17 @@ Camera read_camera(const Node &node, int width, int height, CameraKey &key, Vec3
 /// shape with consecutive ids when `mesh_per_shape`.
 void load_obj(const Node &node, const fs::path &file, const Mesh &prototype, const Transform &to_world,
               bool mesh_per_shape, std::vector<Mesh> &meshes) {
-    if (!fs::is_regular_file(file)) node.fail("cannot open OBJ file '" + file.string() + "'");
+    std::ifstream in(file, std::ios::binary);
+    if (!fs::is_regular_file(file) || !in) node.fail("cannot open OBJ file '" + file.string() + "'");
+    std::stringstream text;
+    text << in.rdbuf();
     tinyobj::ObjReaderConfig config;
     config.triangulate = true;
     config.vertex_color = false;
-    config.mtl_search_path = file.parent_path().string();
     tinyobj::ObjReader reader;
-    if (!reader.ParseFromFile(file.string(), config)) node.fail(file.string() + ": " + reader.Error());
+    // Parsed from memory with no material text: the scene gives the materials,
+    // so the only file an OBJ object reads is its own (scene_file_inputs()).
+    if (!reader.ParseFromString(text.str(), "", config)) node.fail(file.string() + ": " + reader.Error());
     const std::vector<tinyobj::real_t> &vertices = reader.GetAttrib().vertices;
     const std::size_t vertex_count = vertices.size() / 3;
     const std::size_t meshes_before = meshes.size();
@@ -310,6 +410,17 @@ void load_obj(const Node &node, const fs::path &file, const Mesh &prototype, con
     }
     if (!mesh.indices.empty()) meshes.push_back(std::move(mesh));
     if (meshes.size() == meshes_before) node.fail(file.string() + ": no triangles");
+}
+
+/// Refuses an object any of whose vertices (after its transform) lies
+/// outside the scene's cube of +-kMaxCoordinate_m, or is not a number.
+void check_within_scene(const Node &node, const std::vector<Mesh> &meshes, std::size_t first_mesh) {
+    for (std::size_t m = first_mesh; m < meshes.size(); ++m)
+        for (const Vec3 &p : meshes[m].positions)
+            for (int c = 0; c < 3; ++c)
+                if (!(std::fabs(p[c]) <= kMaxCoordinate_m))
+                    node.fail("reaches beyond " + bound_text(kMaxCoordinate_m) +
+                              " m from the origin after its transform (see SCENE_FORMAT.md, Limits)");
 }
 
 void read_object(const Node &node, const fs::path &scene_dir,
@@ -341,28 +452,28 @@ void read_object(const Node &node, const fs::path &scene_dir,
         float half_x = 0.5f, half_z = 0.5f;
         if (auto size = node.find("size")) {
             if (size->size() != 2) size->fail("expected [size_x, size_z]");
-            half_x = 0.5f * (*size)[0].positive();
-            half_z = 0.5f * (*size)[1].positive();
+            half_x = 0.5f * (*size)[0].length_m();
+            half_z = 0.5f * (*size)[1].length_m();
         }
         // Normal +y (the winding does not matter: shading faces the camera).
         mesh.add_quad(to_world.apply({-half_x, 0, -half_z}), to_world.apply({-half_x, 0, half_z}),
                       to_world.apply({half_x, 0, half_z}), to_world.apply({half_x, 0, -half_z}));
     } else if (type == "box") {
         node.allow_only({"type", "id", "material", "transform", "min", "max"});
-        const Vec3 lo = node.at("min").vec3(), hi = node.at("max").vec3();
+        const Vec3 lo = node.at("min").point(), hi = node.at("max").point();
         if (!(lo.x < hi.x && lo.y < hi.y && lo.z < hi.z)) node.fail("min must be below max on every axis");
         mesh.add_box(lo, hi, to_world);
     } else if (type == "sphere") {
         node.allow_only({"type", "id", "material", "transform", "center", "radius", "segments"});
-        const Vec3 center = node.has("center") ? node.at("center").vec3() : Vec3{};
+        const Vec3 center = node.has("center") ? node.at("center").point() : Vec3{};
         const int segments = node.has("segments") ? node.at("segments").integer() : 48;
         if (segments < 4 || segments > 4096) node.at("segments").fail("must lie in [4, 4096]");
-        mesh.add_sphere(center, node.at("radius").positive(), segments, to_world);
+        mesh.add_sphere(center, node.at("radius").length_m(), segments, to_world);
     } else if (type == "cylinder") {
         node.allow_only({"type", "id", "material", "transform", "radius", "height", "segments"});
         const int segments = node.has("segments") ? node.at("segments").integer() : 32;
         if (segments < 3 || segments > 4096) node.at("segments").fail("must lie in [3, 4096]");
-        mesh.add_cylinder(node.at("radius").positive(), node.at("height").positive(), segments, to_world);
+        mesh.add_cylinder(node.at("radius").length_m(), node.at("height").length_m(), segments, to_world);
     } else if (type == "obj") {
         node.allow_only({"type", "id", "material", "transform", "file", "id_per_shape"});
         const bool per_shape = node.has("id_per_shape") && node.at("id_per_shape").boolean();
@@ -396,11 +507,11 @@ void read_animation(const Node &node, SceneDescription &scene, const CameraKey &
         scene.animation.camera = read_keys<CameraKey>(*camera, [&](const Node &key_node) {
             key_node.allow_only({"frame", "position", "look_at", "fov_y_deg", "focus_distance_m"});
             CameraKey key = static_camera;
-            if (auto p = key_node.find("position")) key.eye = p->vec3();
-            if (auto t = key_node.find("look_at")) key.target = t->vec3();
+            if (auto p = key_node.find("position")) key.eye = p->point();
+            if (auto t = key_node.find("look_at")) key.target = t->point();
             const std::optional<Node> fov = key_node.find("fov_y_deg");
             if (fov) key.fov_y_deg = fov->number();
-            if (auto f = key_node.find("focus_distance_m")) key.focus_distance_m = f->positive();
+            if (auto f = key_node.find("focus_distance_m")) key.focus_distance_m = f->length_m();
             check_camera_key(key_node, key, scene.animation.camera_up, fov);
             return key;
         });
@@ -419,12 +530,10 @@ void read_animation(const Node &node, SceneDescription &scene, const CameraKey &
                 read_keys<LightKey>(track.at("keys"), [&](const Node &key_node) {
                     key_node.allow_only({"frame", "center", "intensity"});
                     LightKey key;
-                    key.center = key_node.has("center") ? key_node.at("center").vec3() : light.plane.center;
+                    key.center = key_node.has("center") ? key_node.at("center").point() : light.plane.center;
                     key.intensity = light.intensity;
-                    if (auto intensity = key_node.find("intensity")) {
-                        key.intensity = intensity->number();
-                        if (key.intensity < 0) intensity->fail("must not be negative");
-                    }
+                    if (auto intensity = key_node.find("intensity"))
+                        key.intensity = read_intensity(*intensity);
                     return key;
                 });
         }
@@ -459,11 +568,32 @@ SceneDescription load_scene_file(const std::string &path, int width, int height)
     const Node objects = root.at("objects");
     if (objects.size() == 0) objects.fail("a scene needs at least one object");
     const fs::path scene_dir = fs::path(path).parent_path();
-    for (std::size_t i = 0; i < objects.size(); ++i)
+    for (std::size_t i = 0; i < objects.size(); ++i) {
+        const std::size_t meshes_before = scene.meshes.size();
         read_object(objects[i], scene_dir, materials, int(i) + 1, scene.meshes);
+        check_within_scene(objects[i], scene.meshes, meshes_before);
+    }
 
     if (auto animation = root.find("animation")) read_animation(*animation, scene, camera_key);
     return scene;
+}
+
+std::vector<std::string> scene_file_inputs(const std::string &path) {
+    std::vector<std::string> files{path};
+    // A pipe can be read once, by the loader; its OBJ paths could only be absolute.
+    std::error_code error;
+    if (fs::status(path, error).type() == fs::file_type::fifo) return files;
+    const json document = parse_json_file(path);
+    const auto objects = document.is_object() ? document.find("objects") : document.end();
+    if (objects == document.end() || !objects->is_array()) return files;
+    const fs::path scene_dir = fs::path(path).parent_path();
+    for (const json &object : *objects) {
+        if (!object.is_object()) continue;
+        const auto type = object.find("type"), file = object.find("file");
+        if (type != object.end() && *type == "obj" && file != object.end() && file->is_string())
+            files.push_back((scene_dir / file->get<std::string>()).string());
+    }
+    return files;
 }
 
 std::vector<std::string> scene_directories() {

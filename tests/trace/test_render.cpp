@@ -611,3 +611,30 @@ TEST_CASE("A partial render of an edited scene is refused", "[trace][resume]") {
     CHECK_THROWS_WITH(trace::render_scene(path, settings),
                       Catch::StartsWith("partial.exr: cannot resume: the scene changed"));
 }
+
+TEST_CASE("A receiver on the light's centre gets finite shading", "[trace][lights][limits]") {
+    // The camera looks straight down the y axis at the ground, so the centre
+    // pixel of an odd-sized image hits the origin: the light's centre, where
+    // the receiver-light direction of r(x) (AAF Eq. 1) is 0 / 0.
+    const std::filesystem::path dir =
+        std::filesystem::path(AAF_TEST_BINARY_DIR) / "scratch" / "light_on_receiver";
+    std::filesystem::create_directories(dir);
+    const std::string path = (dir / "scene.json").string();
+    std::ofstream(path) << R"({"camera": {"position": [0, 5, 0], "look_at": [0, 0, 0], "up": [0, 0, -1]},
+  "lights": [{"center": [0, 0, 0], "edge_u": [0, 0, 1], "edge_v": [1, 0, 0], "intensity": 30}],
+  "objects": [{"type": "plane", "size": [20, 20]}]})";
+    trace::RenderSettings settings;
+    settings.width = 9;
+    settings.height = 9;
+    settings.spp = 4;
+    settings.aovs = trace::kAovShadow | trace::kAovUnshadowed | trace::kAovPosition;
+    const AovSet aovs = trace::render_scene(path, settings);
+    REQUIRE(aovs.channel("P.X")(4, 4) == 0.0f);  // the pixel that hits the centre exactly
+    REQUIRE(aovs.channel("P.Z")(4, 4) == 0.0f);
+    for (const char *name : {"R", "G", "B", "unshadowed.R"})
+        for (int y = 0; y < 9; ++y)
+            for (int x = 0; x < 9; ++x) {
+                INFO(name << " at " << x << ", " << y);
+                CHECK(std::isfinite(aovs.channel(name)(x, y)));
+            }
+}

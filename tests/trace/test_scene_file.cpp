@@ -13,8 +13,12 @@ namespace fs = std::filesystem;
 
 namespace {
 
+fs::path scratch_path(const std::string &name) {
+    return fs::path(AAF_TEST_BINARY_DIR) / "scratch" / "scenes" / name;
+}
+
 fs::path scratch(const std::string &name) {
-    const fs::path dir = fs::path(AAF_TEST_BINARY_DIR) / "scratch" / "scenes" / name;
+    const fs::path dir = scratch_path(name);
     fs::remove_all(dir);
     fs::create_directories(dir);
     return dir;
@@ -188,6 +192,10 @@ TEST_CASE("Scene file: errors name the file, the JSON path and the problem", "[t
                Contains("animation.camera[1].frame: frames must increase"));
     CHECK_THROWS_WITH(trace::load_scene_file((scratch("none") / "nope.json").string(), 8, 8),
                       Contains("nope.json: cannot open scene file"));
+    // A folder read as empty JSON; /dev/zero never ended.
+    for (const std::string &path : {scratch("folder.json").string(), std::string("/dev/zero")})
+        CHECK_THROWS_WITH(trace::load_scene_file(path, 8, 8),
+                          path + ": cannot open scene file (a folder or device, not a file)");
 }
 
 TEST_CASE("Scene file: animation keys are checked like static values", "[trace][scene][errors]") {
@@ -196,10 +204,10 @@ TEST_CASE("Scene file: animation keys are checked like static values", "[trace][
         return scene_text(R"([{"type": "sphere", "radius": 1}])", ", \"animation\": " + animation);
     };
     CHECK_THAT(load_error("key_fov_0", animated(R"({"camera": [{"frame": 1, "fov_y_deg": 0}]})")),
-               Contains("scene.json: animation.camera[0].fov_y_deg: must lie in (0, 180)"));
+               Contains("scene.json: animation.camera[0].fov_y_deg: must lie in [0.001, 180)"));
     CHECK_THAT(
         load_error("key_fov_180", animated(R"({"camera": [{"frame": 1}, {"frame": 2, "fov_y_deg": 180}]})")),
-        Contains("scene.json: animation.camera[1].fov_y_deg: must lie in (0, 180)"));
+        Contains("scene.json: animation.camera[1].fov_y_deg: must lie in [0.001, 180)"));
     // The static look_at is the origin: a key moving the camera there looks nowhere.
     CHECK_THAT(load_error("key_look_at", animated(R"({"camera": [{"frame": 1, "position": [0, 0, 0]}]})")),
                Contains("scene.json: animation.camera[0]: position and look_at must differ"));
@@ -252,6 +260,136 @@ TEST_CASE("Scene file: colours, integers, inline materials and empty OBJs are va
                    scene_text(R"([{"type": "sphere", "radius": 1}, {"type": "obj", "file": "points.obj"}])"));
     CHECK_THROWS_WITH(trace::load_scene_file(path, 16, 12),
                       Contains("objects[1].file: ") && Contains("no triangles"));
+}
+
+TEST_CASE("Scene file: values that would break Embree or overflow the radiance are refused",
+          "[trace][scene][errors][limits]") {
+    using Catch::Contains;
+    auto with_light = [](const std::string &light) {
+        return R"({"camera": {"position": [0, 2, 5], "look_at": [0, 0, 0]}, "lights": [)" + light +
+               R"(], "objects": [{"type": "sphere", "radius": 1}]})";
+    };
+    auto with_camera = [](const std::string &camera) {
+        return R"({"camera": )" + camera + R"(, "lights": [{"center": [0, 3, 0], "edge_u": [1, 0, 0],
+                   "edge_v": [0, 0, 1]}], "objects": [{"type": "sphere", "radius": 1}]})";
+    };
+    // A light centre of 1e20 m reached Embree and aborted on its ray.valid() assertion.
+    CHECK_THAT(load_error("far_light", with_light(R"({"center": [1e20, 3, 0], "edge_u": [1, 0, 0],
+                                                   "edge_v": [0, 0, 1]})")),
+               Contains("scene.json: lights[0].center: components must lie in [-1e+06, 1e+06] m"));
+    CHECK_THAT(load_error("tiny_light", with_light(R"({"center": [0, 3, 0], "edge_u": [1e-9, 0, 0],
+                                                    "edge_v": [0, 0, 1]})")),
+               Contains("scene.json: lights[0]: edge_u and edge_v must be non-zero"));
+    // 1e308 fits a double but becomes an infinite float: Inf pixels, exit 0.
+    CHECK_THAT(load_error("bright", with_light(R"({"center": [0, 3, 0], "edge_u": [1, 0, 0],
+                                                "edge_v": [0, 0, 1], "intensity": 1e308})")),
+               Contains("scene.json: lights[0].intensity: expected a finite number"));
+    CHECK_THAT(load_error("bright_1e10", with_light(R"({"center": [0, 3, 0], "edge_u": [1, 0, 0],
+                                                     "edge_v": [0, 0, 1], "intensity": 1e10})")),
+               Contains("scene.json: lights[0].intensity: must not exceed 1e+09 W/sr"));
+    CHECK_THAT(load_error("colour", with_light(R"({"center": [0, 3, 0], "edge_u": [1, 0, 0],
+                                                "edge_v": [0, 0, 1], "color": 1e4})")),
+               Contains("scene.json: lights[0].color: must not exceed 1000"));
+    CHECK_THAT(load_error("sigma", with_light(R"({"center": [0, 3, 0], "edge_u": [1, 0, 0],
+                                               "edge_v": [0, 0, 1], "profile": "uniform", "sigma_m": 1e-30})")),
+               Contains("scene.json: lights[0].sigma_m: must lie in [1e-06, 1e+06] m"));
+    // A thin-lens aperture of 1e300 m aborted Embree the same way.
+    CHECK_THAT(load_error("aperture", with_camera(R"({"type": "thin_lens", "position": [0, 2, 5],
+                                                   "look_at": [0, 0, 0], "aperture_radius_m": 1e300})")),
+               Contains("scene.json: camera.aperture_radius_m: expected a finite number"));
+    CHECK_THAT(load_error("aperture_1e4", with_camera(R"({"type": "thin_lens", "position": [0, 2, 5],
+                                                       "look_at": [0, 0, 0], "aperture_radius_m": 1e4})")),
+               Contains("scene.json: camera.aperture_radius_m: must lie in [1e-06, 1000] m"));
+    CHECK_THAT(load_error("focus", with_camera(R"({"type": "thin_lens", "position": [0, 2, 5],
+                                                "look_at": [0, 0, 0], "aperture_radius_m": 0.1,
+                                                "focus_distance_m": 1e7})")),
+               Contains("scene.json: camera.focus_distance_m: must lie in [1e-06, 1e+06] m"));
+    CHECK_THAT(load_error("eye", with_camera(R"({"position": [0, 2, -3e6], "look_at": [0, 0, 0]})")),
+               Contains("scene.json: camera.position: components must lie in [-1e+06, 1e+06] m"));
+    CHECK_THAT(load_error("fov", with_camera(R"({"position": [0, 2, 5], "look_at": [0, 0, 0],
+                                              "fov_y_deg": 1e-30})")),
+               Contains("scene.json: camera.fov_y_deg: must lie in [0.001, 180)"));
+    // Each field within the bounds, the object beyond them after its transform.
+    CHECK_THAT(
+        load_error("translated", scene_text(R"([{"type": "sphere", "radius": 1,
+                                                    "transform": {"translate": [1e6, 0, 0]}}])")),
+        Contains("scene.json: objects[0]: reaches beyond 1e+06 m from the origin after its transform"));
+    CHECK_THAT(load_error("scale", scene_text(R"([{"type": "box", "min": [0, 0, 0], "max": [1, 1, 1],
+                                               "transform": {"scale": 1e20}}])")),
+               Contains("scene.json: objects[0].transform.scale: scale must lie in [1e-12, 1e+12]"));
+    CHECK_THAT(
+        load_error("rotation", scene_text(R"([{"type": "sphere", "radius": 1,
+                                                  "transform": {"rotate_deg": [0, 1e30, 0]}}])")),
+        Contains(
+            "scene.json: objects[0].transform.rotate_deg: components must lie in [-1e+06, 1e+06] degrees"));
+    CHECK_THAT(load_error("thin", scene_text(R"([{"type": "cylinder", "radius": 1e-9, "height": 1}])")),
+               Contains("scene.json: objects[0].radius: must lie in [1e-06, 1e+06] m"));
+    CHECK_THAT(load_error("key_centre", scene_text(R"([{"type": "sphere", "radius": 1}])",
+                                                   R"(, "animation": {"lights": [{"keys": [{"frame": 1,
+                                                   "center": [0, 1e7, 0]}]}]})")),
+               Contains("scene.json: animation.lights[0].keys[0].center: components must lie in"));
+    CHECK_THAT(load_error("key_intensity", scene_text(R"([{"type": "sphere", "radius": 1}])",
+                                                      R"(, "animation": {"lights": [{"keys": [{"frame": 1,
+                                                      "intensity": 1e12}]}]})")),
+               Contains("scene.json: animation.lights[0].keys[0].intensity: must not exceed 1e+09 W/sr"));
+}
+
+TEST_CASE("Scene file: a JSON number beyond double's range is one line naming the file",
+          "[trace][scene][errors]") {
+    const std::string message =
+        load_error("overflow", scene_text(R"([{"type": "sphere", "radius": 1e400}])"));
+    CHECK(message == (scratch_path("overflow") / "scene.json").string() +
+                         ": invalid JSON: number overflow parsing '1e400'");
+    // A raw control character inside a string: nlohmann quotes the text it read.
+    const std::string raw =
+        load_error("raw_newline", scene_text("[{\"type\": \"sph\nere\", \"radius\": 1}]"));
+    CHECK_THAT(raw, Catch::Contains("scene.json: invalid JSON at line"));
+    CHECK(raw.find('\n') == std::string::npos);
+    // An escaped newline in a key is a real one once parsed: it stays escaped in the message.
+    for (const char *objects : {R"([{"type": "sphere", "radius": 1, "a\nb": 2}])",
+                                R"([{"type": "sphere", "radius": 1, "a\nb": 2, "a\nb": 3}])"}) {
+        const std::string key = load_error("newline_key", scene_text(objects));
+        CHECK_THAT(key, Catch::Contains("objects[0].a\\x0ab: "));
+        CHECK(key.find('\n') == std::string::npos);
+    }
+}
+
+TEST_CASE("Scene file: OBJ errors are one line naming the OBJ and the object",
+          "[trace][scene][errors][obj]") {
+    using Catch::Contains;
+    const fs::path dir = scratch("obj_errors");
+    write_file(dir / "bad_index.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 9\n");
+    write_file(dir / "far.obj", "v 0 0 0\nv 1e39 0 0\nv 0 1 0\nf 1 2 3\n");
+    fs::create_directories(dir / "folder.obj");
+    for (const auto &[file, problem] : {std::pair<std::string, std::string>{"bad_index.obj", "bad_index.obj"},
+                                        {"far.obj", "objects[0]: reaches beyond 1e+06 m"},
+                                        {"folder.obj", "objects[0].file: cannot open OBJ file"}}) {
+        const std::string path =
+            write_file(dir / "scene.json", scene_text(R"([{"type": "obj", "file": ")" + file + R"("}])"));
+        INFO(file);
+        try {
+            trace::load_scene_file(path, 16, 12);
+            FAIL("no error");
+        } catch (const InputError &e) {
+            const std::string message = e.what();
+            CHECK_THAT(message, Contains(path + ": objects[0]") && Contains(problem));
+            CHECK(message.find('\n') == std::string::npos);
+        }
+    }
+}
+
+TEST_CASE("Scene file: the files a scene reads are the scene and each OBJ it loads", "[trace][scene][obj]") {
+    const fs::path dir = scratch("inputs");
+    write_file(dir / "a.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n");
+    fs::create_directories(dir / "meshes");
+    write_file(dir / "meshes" / "b.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\nmtllib b.mtl\n");
+    const std::string path = write_file(
+        dir / "scene.json", scene_text(R"([{"type": "obj", "file": "a.obj"}, {"type": "sphere", "radius": 1},
+                                           {"type": "obj", "file": "meshes/b.obj"}])"));
+    CHECK(trace::scene_file_inputs(path) ==
+          std::vector<std::string>{path, (dir / "a.obj").string(), (dir / "meshes" / "b.obj").string()});
+    // The loader reads no other file: a material library the OBJ names is not opened.
+    CHECK(trace::load_scene_file(path, 16, 12).meshes.size() == 3);
 }
 
 TEST_CASE("Scene names resolve to the shipped scene files", "[trace][scene]") {

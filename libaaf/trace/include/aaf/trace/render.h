@@ -115,6 +115,18 @@ struct RenderTimings {
 /// project's testdata/scenes), for `aaf render --list`.
 std::vector<std::string> builtin_scene_names();
 
+/// The files rendering `scene` (a JSON scene file or a name) reads: the
+/// scene file, then each OBJ file it loads; so that a caller can refuse to
+/// write its output over one of them. Throws aaf::InputError for an unknown
+/// name or malformed JSON.
+std::vector<std::string> scene_input_files(const std::string &scene);
+
+/// Throws aaf::Error naming the first setting outside its range: width and
+/// height in [1, 16384], spp in [1, 1048576], threads in [0, 1024], a finite
+/// frame, and with `adaptive` a finite positive mu, max_spp in [spp, 1048576]
+/// and no resume. render_scene() checks this first.
+void validate_render_settings(const RenderSettings &settings);
+
 /// Renders a scene, given as a JSON scene file or by name, with Embree and
 /// returns the selected AOVs (aov_contract.h) plus the beauty, with the key
 /// light and render settings as header attributes. Throws aaf::InputError on
