@@ -147,8 +147,8 @@ std::vector<FrameJob> render_jobs(const std::string &scene, const std::string &o
     if (frames.empty()) return {{0, scene, output}};
     check_frame_count(frames);
     std::vector<FrameJob> jobs;
-    for (int frame : sequence_frames(output, frames))
-        jobs.push_back({frame, scene, io::frame_path(output, frame)});
+    sequence_frames(output, frames).for_each(
+        [&](int frame) { jobs.push_back({frame, scene, io::frame_path(output, frame)}); });
     return jobs;
 }
 
