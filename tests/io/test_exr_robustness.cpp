@@ -7,6 +7,7 @@
 
 #include "aaf/core/error.h"
 #include "aaf/io/exr_io.h"
+#include "aaf/io/preview.h"
 #include "crafted_exr.h"
 
 #include "../scratch_dir.h"
@@ -138,4 +139,26 @@ TEST_CASE("writing to a path that is a folder says so and leaves the folder alon
     CHECK(fs::is_directory(folder));
     CHECK(fs::is_empty(folder));
     CHECK(std::distance(fs::directory_iterator(dir), fs::directory_iterator()) == 1);
+}
+
+TEST_CASE("a preview of a missing channel names the file it was read from", "[io][robustness]") {
+    const fs::path dir = scratch_dir("robust_preview_missing");
+    const std::string output = (dir / "preview.png").string();
+    AovSet aovs(4, 4);
+    aovs.add_channel("R", 0.5f);
+    io::PreviewOptions options;
+    options.source_path = "frame.exr";
+    try {
+        io::write_preview_png(aovs, {"nope\n"}, output, options);
+        FAIL("previewed a missing channel");
+    } catch (const InputError &e) {
+        CHECK(std::string(e.what()) == "frame.exr: no channel 'nope\\x0a' to preview");
+    }
+    try {
+        io::write_false_colour_png(aovs, "beta", output, 0, 1, "frame.exr");
+        FAIL("previewed a missing channel");
+    } catch (const InputError &e) {
+        CHECK(std::string(e.what()) == "frame.exr: no channel 'beta' to preview");
+    }
+    CHECK(fs::is_empty(dir));
 }
