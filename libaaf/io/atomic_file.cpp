@@ -76,9 +76,16 @@ std::string temporary_prefix(const std::string &filename) {
     return "." + filename.substr(0, kMaxKept) + "~" + hex + ".tmp-";
 }
 
+bool is_live_here(const std::string &path) {
+    for (const TemporarySlot &slot : g_slots)
+        if (slot.state.load() == kLive && path == slot.path) return true;
+    return false;
+}
+
 /// True when `rest` is "PID-N" (decimal digits only) and PID names no
-/// running process other than this one: a temporary left by a killed run.
-bool is_abandoned(const std::string &rest) {
+/// running process, or this process (a reused pid) but not one of its own
+/// unfinished temporaries: a temporary left by a killed run.
+bool is_abandoned(const std::string &path, const std::string &rest) {
     const std::size_t dash = rest.find('-');
     auto digits = [](const std::string &text) {
         return !text.empty() && text.size() <= 10 &&
@@ -87,7 +94,8 @@ bool is_abandoned(const std::string &rest) {
     if (dash == std::string::npos || !digits(rest.substr(0, dash)) || !digits(rest.substr(dash + 1)))
         return false;
     const long long pid = std::stoll(rest.substr(0, dash));
-    if (pid <= 0 || pid == ::getpid() || pid > std::numeric_limits<pid_t>::max()) return false;
+    if (pid <= 0 || pid > std::numeric_limits<pid_t>::max()) return false;
+    if (pid == ::getpid()) return !is_live_here(path);
     return ::kill(static_cast<pid_t>(pid), 0) != 0 && errno == ESRCH;  // EPERM: alive, another user's
 }
 
@@ -103,7 +111,9 @@ void remove_abandoned_temporaries(const std::filesystem::path &target, const std
         if (name.size() <= prefix.size() || name.compare(0, prefix.size(), prefix) != 0) continue;
         std::error_code type_ec;
         if (!it->is_regular_file(type_ec) || it->is_symlink(type_ec)) continue;
-        if (is_abandoned(name.substr(prefix.size()))) std::filesystem::remove(it->path(), type_ec);
+        // Spelled as temporary_path_for() spells (and remembers) its temporaries.
+        if (is_abandoned((target.parent_path() / name).string(), name.substr(prefix.size())))
+            std::filesystem::remove(it->path(), type_ec);
     }
 }
 

@@ -89,3 +89,17 @@ TEST_CASE("writing into a missing folder gives the system's reason under the out
     }
     CHECK(fs::is_empty(dir));
 }
+
+TEST_CASE("a leftover of an earlier process with this process's pid is removed, a live temporary kept",
+          "[io][atomic]") {
+    const fs::path dir = scratch_dir("atomic_reused_pid");
+    const fs::path output = dir / "out.exr";
+    const std::string live = io::temporary_path_for(output.string());  // this process, still writing
+    const fs::path reused = dir / (".out.exr.tmp-" + std::to_string(::getpid()) + "-999999");
+    touch(reused);
+    io::write_aovs(small_image(), output.string());
+    CHECK(!fs::exists(reused));
+    CHECK(fs::exists(live));
+    io::discard_temporary(live);
+    CHECK(std::distance(fs::directory_iterator(dir), fs::directory_iterator()) == 1);
+}
