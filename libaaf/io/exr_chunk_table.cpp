@@ -7,16 +7,19 @@
 #include <vector>
 
 #include "aaf/core/error.h"
+#include "aaf/core/quoted.h"
 
 namespace aaf::io {
 
 namespace {
 
+/// A little-endian integer of the file (OpenEXR stores every number so).
 template <typename T>
 T little_endian(const char *bytes) {
-    T value = 0;
-    for (std::size_t i = 0; i < sizeof(T); ++i) value |= T(static_cast<unsigned char>(bytes[i])) << (8 * i);
-    return value;
+    std::uint64_t value = 0;  // unsigned, so no shift reaches a sign bit
+    for (std::size_t i = 0; i < sizeof(T); ++i)
+        value |= std::uint64_t(static_cast<unsigned char>(bytes[i])) << (8 * i);
+    return static_cast<T>(value);
 }
 
 /// Scan lines per chunk for each compression code of the EXR header
@@ -60,9 +63,12 @@ bool read_header(std::istream &in, ExrPart &part, const std::string &path) {
         if (!std::getline(in, type, '\0') || !in.read(size_bytes, 4))
             throw InputError(path + ": truncated OpenEXR header");
         const std::int32_t size = little_endian<std::int32_t>(size_bytes);
-        if (size < 0 || size > (1 << 30)) throw InputError(path + ": corrupt OpenEXR header");
         const bool wanted = name == "dataWindow" || name == "compression" || name == "tiles" ||
                             name == "type" || name == "chunkCount" || name == "channels";
+        // The attributes read here are small: a channel list of 100000 channels is ~4 MB.
+        if (size < 0 || (wanted && size > (16 << 20)))
+            throw InputError(path + ": corrupt OpenEXR header (attribute " + quoted(name) + " of " +
+                             std::to_string(size) + " bytes)");
         if (!wanted) {
             in.seekg(size, std::ios::cur);
             continue;
