@@ -57,8 +57,9 @@ float write_error_heatmap(const AovSet &test, const AovSet &reference, const Com
     if (heatmap_exr_path(png_path) == png_path)
         throw Error(png_path + ": the heatmap PNG needs a name that does not end in .exr");
     const PixelRect rect = region.crop.value_or(PixelRect{0, 0, test.width(), test.height()});
-    if (rect.width <= 0 || rect.height <= 0 || rect.x < 0 || rect.y < 0 ||
-        rect.x + rect.width > test.width() || rect.y + rect.height > test.height())
+    // Compared by subtraction: x + width can overflow int (2147483600 + 100).
+    if (rect.width <= 0 || rect.height <= 0 || rect.x < 0 || rect.y < 0 || rect.x > test.width() ||
+        rect.y > test.height() || rect.width > test.width() - rect.x || rect.height > test.height() - rect.y)
         throw Error(png_path + ": the crop lies outside the image");
     const ConstPlaneView &mask = region.mask;
     if (mask.valid() && (mask.width != test.width() || mask.height != test.height()))
