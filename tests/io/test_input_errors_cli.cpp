@@ -102,7 +102,7 @@ TEST_CASE("info on a 60 KB file declaring 8000x8000 exits 3 without allocating t
     CHECK(peak_child_mb() < 300);
 }
 
-TEST_CASE("--skip-existing redoes an output frame that is truncated", "[io][cli][sequence]") {
+TEST_CASE("a truncated output frame is redone by --skip-existing", "[io][cli][sequence]") {
     const fs::path dir = scratch_dir("cli_skip_truncated");
     const std::string in = (dir / "in.####.exr").string(), out = (dir / "out.####.exr").string();
     REQUIRE(run_aaf("render grids -o " + in + " --frames 1-2 --width 16 --height 12 --spp 2").exit_code == 0);
