@@ -4,6 +4,7 @@
 #include <type_traits>
 
 #include "aaf/core/error.h"
+#include "aaf/core/quoted.h"
 
 namespace aaf {
 
@@ -18,7 +19,8 @@ const std::vector<RoleInfo> &role_table() {
          "visibility",
          {"shadow.V"},
          "[0,1]",
-         "noisy light-weighted visibility: sum of l(y) f(x, y) over the samples / sum of l(y) (with samples drawn "
+         "noisy light-weighted visibility: sum of l(y) f(x, y) over the samples / sum of l(y) (with samples "
+         "drawn "
          "proportionally to l, the unoccluded fraction)"},
         {Role::D1,
          "d1",
@@ -29,7 +31,8 @@ const std::vector<RoleInfo> &role_table() {
          "d2min",
          {"shadow.d2min"},
          "metres, 0 = no occluder",
-         "smallest light-plane distance of an occluder hit by the pixel's shadow rays (0 in both d2 channels where "
+         "smallest light-plane distance of an occluder hit by the pixel's shadow rays (0 in both d2 channels "
+         "where "
          "none was hit)"},
         {Role::D2Max,
          "d2max",
@@ -41,8 +44,14 @@ const std::vector<RoleInfo> &role_table() {
          {"P.X", "P.Y", "P.Z"},
          "world metres",
          "world position of the primary hit"},
-        {Role::Normal, "normal", {"N.X", "N.Y", "N.Z"}, "unit vector", "the normal the renderer shades with, facing the camera; the bundled tracer writes the hit triangle's "
-         "geometric normal (flat per triangle: its meshes have no vertex normals), the same one it shades with"},
+        {Role::Normal,
+         "normal",
+         {"N.X", "N.Y", "N.Z"},
+         "unit vector",
+         "the normal the renderer shades with, facing the camera; the bundled tracer writes the hit "
+         "triangle's "
+         "geometric normal (flat per triangle: its meshes have no vertex normals), the same one it shades "
+         "with"},
         {Role::ObjectId,
          "object_id",
          {"id.object"},
@@ -53,15 +62,20 @@ const std::vector<RoleInfo> &role_table() {
          "pixel_size",
          {"pixel.size"},
          "metres",
-         "world length one pixel covers at the receiver, foreshortening included (d of AAF Eq. 6); the tracer "
-         "computes it from ray differentials: sqrt of the area of the pixel's footprint on the hit's tangent plane"},
+         "world length one pixel covers at the receiver, foreshortening included (d of AAF Eq. 6); the "
+         "tracer "
+         "computes it from ray differentials: sqrt of the area of the pixel's footprint on the hit's tangent "
+         "plane"},
         {Role::Unshadowed,
          "unshadowed",
          {"unshadowed.R", "unshadowed.G", "unshadowed.B"},
          "linear radiance",
-         "r(x) of AAF Eq. 1 for the key light, without visibility; the bundled tracer writes the full BRDF (Lambert "
-         "albedo / pi plus, for a material with `specular`, the GGX lobe) for the directions to the camera and to "
-         "the light's centre, times the light's colour and intensity and cos(receiver) cos(light) / r^2 towards its "
+         "r(x) of AAF Eq. 1 for the key light, without visibility; the bundled tracer writes the full BRDF "
+         "(Lambert "
+         "albedo / pi plus, for a material with `specular`, the GGX lobe) for the directions to the camera "
+         "and to "
+         "the light's centre, times the light's colour and intensity and cos(receiver) cos(light) / r^2 "
+         "towards its "
          "centre (with `--falloff`, the mean of that factor over the light)"},
         {Role::FilteredVisibility,
          "filtered_visibility",
@@ -72,8 +86,10 @@ const std::vector<RoleInfo> &role_table() {
          "beta",
          {"aaf_beta.X"},
          "metres, 0 = not filtered",
-         "output of `aaf filter aaf`: Gaussian standard deviation beta of AAF Eq. 13 (a layer of its own with one "
-         "single-letter channel, so Blender's compositor shows it as a pass; aaf 0.1 named it `aaf.beta`, still "
+         "output of `aaf filter aaf`: Gaussian standard deviation beta of AAF Eq. 13 (a layer of its own "
+         "with one "
+         "single-letter channel, so Blender's compositor shows it as a pass; aaf 0.1 named it `aaf.beta`, "
+         "still "
          "read)"},
         {Role::NoisyBeauty,
          "noisy_beauty",
@@ -145,11 +161,11 @@ namespace {
 template <typename T>
 T get_attribute(const std::map<std::string, AttributeValue> &attributes, const char *name) {
     auto it = attributes.find(name);
-    if (it == attributes.end()) throw InputError("missing header attribute '" + std::string(name) + "'");
+    if (it == attributes.end()) throw InputError("missing header attribute " + quoted(name));
     if (const T *value = std::get_if<T>(&it->second)) return *value;
     if constexpr (std::is_same_v<T, float>)
         if (const int *value = std::get_if<int>(&it->second)) return float(*value);
-    throw InputError("header attribute '" + std::string(name) + "' has the wrong type");
+    throw InputError("header attribute " + quoted(name) + " has the wrong type");
 }
 
 }  // namespace
@@ -163,8 +179,22 @@ LightPlane read_light_attributes(const std::map<std::string, AttributeValue> &ao
     light.width_m = get_attribute<float>(aovs, attr::kLightWidth);
     light.height_m = get_attribute<float>(aovs, attr::kLightHeight);
     light.sigma_m = get_attribute<float>(aovs, attr::kLightSigma);
-    light.profile = light_profile_from_string(get_attribute<std::string>(aovs, attr::kLightKind));
-    light.validate();
+    const std::string kind = get_attribute<std::string>(aovs, attr::kLightKind);
+    try {
+        light.profile = light_profile_from_string(kind);
+    } catch (const Error &e) {
+        throw InputError("header attribute " + quoted(attr::kLightKind) + ": " + e.what());
+    }
+    auto name = [](const char *attribute) { return "header attribute " + quoted(attribute); };
+    LightFieldNames names;
+    names.center = name(attr::kLightCenter);
+    names.normal = name(attr::kLightNormal);
+    names.axis_u = name(attr::kLightAxisU);
+    names.axis_v = name(attr::kLightAxisV);
+    names.width = name(attr::kLightWidth);
+    names.height = name(attr::kLightHeight);
+    names.sigma = name(attr::kLightSigma);
+    light.validate(names);
     return light;
 }
 

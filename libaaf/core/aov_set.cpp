@@ -1,6 +1,7 @@
 #include "aaf/core/aov_set.h"
 
 #include "aaf/core/error.h"
+#include "aaf/core/quoted.h"
 
 namespace aaf {
 
@@ -21,7 +22,7 @@ bool AovSet::has_channel(const std::string &name) const {
 }
 
 PlaneView AovSet::add_channel(const std::string &name, float fill) {
-    if (has_channel(name)) throw Error("channel '" + name + "' already exists");
+    if (has_channel(name)) throw Error("channel " + quoted(name) + " already exists");
     names_.push_back(name);
     planes_.emplace_back(pixel_count(), fill);
     precisions_.push_back(Precision::Float);
@@ -30,19 +31,19 @@ PlaneView AovSet::add_channel(const std::string &name, float fill) {
 
 PlaneView AovSet::channel(const std::string &name) {
     std::size_t i = index_of(name);
-    if (i == std::string::npos) throw InputError("missing channel '" + name + "'");
+    if (i == std::string::npos) throw InputError("missing channel " + quoted(name));
     return plane_view(planes_[i].data(), width_, height_);
 }
 
 ConstPlaneView AovSet::channel(const std::string &name) const {
     std::size_t i = index_of(name);
-    if (i == std::string::npos) throw InputError("missing channel '" + name + "'");
+    if (i == std::string::npos) throw InputError("missing channel " + quoted(name));
     return plane_view(planes_[i].data(), width_, height_);
 }
 
 void AovSet::set_precision(const std::string &name, Precision precision) {
     const std::size_t i = index_of(name);
-    if (i == std::string::npos) throw InputError("missing channel '" + name + "'");
+    if (i == std::string::npos) throw InputError("missing channel " + quoted(name));
     precisions_[i] = precision;
 }
 

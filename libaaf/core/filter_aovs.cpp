@@ -3,6 +3,7 @@
 #include <algorithm>
 
 #include "aaf/core/error.h"
+#include "aaf/core/quoted.h"
 
 namespace aaf {
 
@@ -18,7 +19,7 @@ bool has_all(const AovSet &aovs, const std::vector<std::string> &names) {
 
 std::string joined(const std::vector<std::string> &names) {
     std::string text;
-    for (const std::string &name : names) text += (text.empty() ? "" : ",") + name;
+    for (const std::string &name : names) text += (text.empty() ? "" : ",") + escaped(name);
     return text;
 }
 
@@ -43,7 +44,7 @@ void check_inputs(const Method &method, const AovSet &input, const ChannelMap &c
                          joined(channels.resolved(input).channels(info.role)) + ")");
     }
     if (!missing.attributes.empty())
-        throw InputError("missing header attribute '" + missing.attributes.front() + "'");
+        throw InputError("missing header attribute " + quoted(missing.attributes.front()));
 }
 
 /// The read-only views of every declared input role present in `input`.

@@ -1,8 +1,11 @@
 #include "aaf/core/light_plane.h"
 
 #include <cmath>
+#include <sstream>
+#include <utility>
 
 #include "aaf/core/error.h"
+#include "aaf/core/quoted.h"
 
 namespace aaf {
 
@@ -13,7 +16,7 @@ const char *to_string(LightProfile profile) {
 LightProfile light_profile_from_string(const std::string &name) {
     if (name == "gaussian") return LightProfile::Gaussian;
     if (name == "uniform") return LightProfile::Uniform;
-    throw Error("unknown light profile '" + name + "' (expected gaussian or uniform)");
+    throw Error("unknown light profile " + quoted(name) + " (expected gaussian or uniform)");
 }
 
 LightPlane LightPlane::square(Vec3 center, Vec3 normal, float side_m) {
@@ -30,16 +33,45 @@ LightPlane LightPlane::square(Vec3 center, Vec3 normal, float side_m) {
     return light;
 }
 
-void LightPlane::validate() const {
+namespace {
+
+std::string describe(float value) {
+    std::ostringstream text;
+    text << value;
+    return text.str();
+}
+
+std::string describe(Vec3 v) {
+    return describe(v.x) + " " + describe(v.y) + " " + describe(v.z);
+}
+
+bool is_finite(Vec3 v) {
+    return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z);
+}
+
+}  // namespace
+
+void LightPlane::validate(const LightFieldNames &names) const {
+    // Unit and orthogonal to float accuracy after a round trip through a
+    // header (and normalisation in single precision).
     constexpr float tolerance = 1e-3f;
-    auto unit = [&](Vec3 v) { return std::fabs(length(v) - 1.0f) < tolerance; };
-    if (!unit(normal) || !unit(axis_u) || !unit(axis_v))
-        throw Error("light normal and axes must be unit vectors");
-    if (std::fabs(dot(normal, axis_u)) > tolerance || std::fabs(dot(normal, axis_v)) > tolerance ||
-        std::fabs(dot(axis_u, axis_v)) > tolerance)
-        throw Error("light normal and axes must be orthogonal");
-    if (!(width_m > 0) || !(height_m > 0) || !(sigma_m > 0))
-        throw Error("light width, height and sigma must be positive");
+    if (!is_finite(center)) throw InputError(names.center + " must be finite (is " + describe(center) + ")");
+    const std::pair<Vec3, const std::string *> directions[] = {
+        {normal, &names.normal}, {axis_u, &names.axis_u}, {axis_v, &names.axis_v}};
+    for (const auto &direction : directions)
+        if (!is_finite(direction.first) || !(std::fabs(length(direction.first) - 1.0f) < tolerance))
+            throw InputError(*direction.second + " must be a unit vector (is " + describe(direction.first) +
+                             ")");
+    for (int a = 0; a < 3; ++a)
+        for (int b = a + 1; b < 3; ++b)
+            if (!(std::fabs(dot(directions[a].first, directions[b].first)) < tolerance))
+                throw InputError(*directions[a].second + " and " + *directions[b].second +
+                                 " must be orthogonal");
+    const std::pair<float, const std::string *> sizes[] = {
+        {width_m, &names.width}, {height_m, &names.height}, {sigma_m, &names.sigma}};
+    for (const auto &size : sizes)
+        if (!(size.first > 0) || !std::isfinite(size.first))
+            throw InputError(*size.second + " must be positive and finite (is " + describe(size.first) + ")");
 }
 
 }  // namespace aaf

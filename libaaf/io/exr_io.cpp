@@ -3,14 +3,20 @@
 #include <OpenImageIO/imageio.h>
 
 #include <algorithm>
+#include <atomic>
+#include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <memory>
 #include <set>
 #include <vector>
 
 #include "aaf/core/aov_contract.h"
 #include "aaf/core/error.h"
+#include "aaf/core/quoted.h"
 #include "aaf/io/atomic_file.h"
+#include "exr_chunk_table.h"
+#include "one_line.h"
 
 namespace aaf::io {
 
@@ -39,6 +45,40 @@ PixelWindow ImageLayout::display_window() const {
 }
 
 namespace {
+
+constexpr std::uint64_t kDefaultMemoryBudget = std::uint64_t(16) << 30;
+std::atomic<std::uint64_t> g_memory_budget_override{0};
+
+/// Throws aaf::InputError unless `channels` float planes of width x height
+/// fit the memory budget: checked from the header, before any allocation.
+void check_memory_budget(const std::string &path, std::int64_t width, std::int64_t height,
+                         std::int64_t channels) {
+    const double bytes = double(std::max<std::int64_t>(width, 0)) *
+                         double(std::max<std::int64_t>(height, 0)) * double(channels) * 4;
+    const double budget = double(memory_budget_bytes());
+    if (bytes <= budget) return;
+    char sizes[96];
+    std::snprintf(sizes, sizeof sizes, "(%.3g GiB), over the memory limit of %.3g GiB",
+                  bytes / double(1 << 30), budget / double(1 << 30));
+    throw InputError(path + ": declares " + std::to_string(width) + "x" + std::to_string(height) + " with " +
+                     std::to_string(channels) + " channels " + sizes + " (raise with AAF_MEMORY_LIMIT_GB)");
+}
+
+/// What OpenEXR would allocate by the header alone is checked from the
+/// file's bytes before OpenImageIO opens it: the first part's declared size
+/// against the budget, then the chunk tables against the file's length.
+void check_before_opening(const std::string &path) {
+    const ExrHeaders headers = read_exr_headers(path);
+    if (headers.parts.empty()) return;
+    const ExrPart &first = headers.parts.front();
+    check_memory_budget(path, first.width, first.height, first.channels);
+    check_exr_chunk_tables(path, headers);
+}
+
+/// OpenImageIO's pending error, as one line (it may hold libpng's too).
+std::string pending_error(OIIO::ImageInput *input = nullptr) {
+    return one_line(input ? input->geterror() : OIIO::geterror());
+}
 
 bool is_vec3(TypeDesc type) {
     return type.basetype == TypeDesc::FLOAT && type.aggregate == TypeDesc::VEC3 && type.arraylen == 0;
@@ -167,10 +207,11 @@ void copy_part(OIIO::ImageInput &source, int part, OIIO::ImageOutput &output, co
     const OIIO::ImageSpec spec = source.spec(part, 0);
     std::vector<unsigned char> pixels(spec.image_bytes(true));
     if (!source.read_image(part, 0, 0, spec.nchannels, TypeDesc::UNKNOWN, pixels.data()))
-        throw InputError(path + ": cannot read part " + std::to_string(part) + ": " + source.geterror());
+        throw InputError(path + ": cannot read part " + std::to_string(part) + ": " +
+                         one_line(source.geterror()));
     if (!output.open(path, spec, OIIO::ImageOutput::AppendSubimage) ||
         !output.write_image(TypeDesc::UNKNOWN, pixels.data()))
-        throw InputError(output.geterror());
+        throw InputError(one_line(output.geterror()));
 }
 
 }  // namespace
@@ -184,15 +225,17 @@ bool is_lossy_compression(const std::string &name) {
 }
 
 AovSet read_aovs(const std::string &path, ImageLayout *layout) {
+    check_before_opening(path);
     std::unique_ptr<OIIO::ImageInput> input = OIIO::ImageInput::open(path);
     if (!input) {
-        std::string message = OIIO::geterror();
+        std::string message = pending_error();
         throw InputError(path + ": cannot read image" + (message.empty() ? "" : ": " + message));
     }
     const OIIO::ImageSpec &spec = input->spec();
     if (spec.deep) throw InputError(path + ": deep images are not supported");
     if (spec.depth > 1) throw InputError(path + ": volume images are not supported");
     const int channels = spec.nchannels;
+    check_memory_budget(path, spec.width, std::int64_t(spec.height) * std::max(spec.depth, 1), channels);
     AovSet aovs;
     try {
         aovs = AovSet(spec.width, spec.height);
@@ -202,11 +245,11 @@ AovSet read_aovs(const std::string &path, ImageLayout *layout) {
 
     std::vector<float> pixels(aovs.pixel_count() * std::size_t(channels));
     if (!input->read_image(0, 0, 0, channels, TypeDesc::FLOAT, pixels.data()))
-        throw InputError(path + ": cannot read pixels: " + input->geterror());
+        throw InputError(path + ": cannot read pixels: " + pending_error(input.get()));
 
     for (int c = 0; c < channels; ++c) {
         const std::string &name = spec.channelnames[c];
-        if (aovs.has_channel(name)) throw InputError(path + ": duplicate channel '" + name + "'");
+        if (aovs.has_channel(name)) throw InputError(path + ": duplicate channel " + quoted(name));
         PlaneView plane = aovs.add_channel(name);
         for (std::size_t i = 0; i < aovs.pixel_count(); ++i) plane.data[i] = pixels[i * channels + c];
         // Half channels stay half when written back.
@@ -231,7 +274,7 @@ std::vector<PartSummary> other_parts(const std::string &path, const ImageLayout 
     std::vector<PartSummary> parts;
     if (layout.part_count() < 2) return parts;
     std::unique_ptr<OIIO::ImageInput> input = OIIO::ImageInput::open(path);
-    if (!input) throw InputError(path + ": cannot read image: " + OIIO::geterror());
+    if (!input) throw InputError(path + ": cannot read image: " + pending_error());
     for (int part = 1; part < layout.part_count(); ++part) {
         const OIIO::ImageSpec spec = input->spec(part, 0);
         parts.push_back({part, spec.get_string_attribute("name", "#" + std::to_string(part)), spec.width,
@@ -245,7 +288,7 @@ std::vector<std::string> add_channels_from_other_parts(const std::string &path, 
     std::vector<std::string> added;
     if (layout.part_count() < 2) return added;
     std::unique_ptr<OIIO::ImageInput> input = OIIO::ImageInput::open(path);
-    if (!input) throw InputError(path + ": cannot read image: " + OIIO::geterror());
+    if (!input) throw InputError(path + ": cannot read image: " + pending_error());
     for (int part = 1; part < layout.part_count(); ++part) {
         const OIIO::ImageSpec spec = input->spec(part, 0);
         const std::string part_name = spec.get_string_attribute("name", "#" + std::to_string(part));
@@ -254,13 +297,15 @@ std::vector<std::string> add_channels_from_other_parts(const std::string &path, 
             if (aovs.has_channel(name) || std::find(wanted.begin(), wanted.end(), name) == wanted.end())
                 continue;
             if (spec.width != aovs.width() || spec.height != aovs.height())
-                throw InputError(path + ": channel '" + name + "' is in part '" + part_name + "' of " +
-                                 std::to_string(spec.width) + "x" + std::to_string(spec.height) +
+                throw InputError(path + ": channel " + quoted(name) + " is in part " + quoted(part_name) +
+                                 " of " + std::to_string(spec.width) + "x" + std::to_string(spec.height) +
                                  ", but the first part is " + std::to_string(aovs.width()) + "x" +
                                  std::to_string(aovs.height()) + ": AOVs must share one resolution");
+            check_memory_budget(path, spec.width, spec.height, std::int64_t(aovs.channel_names().size()) + 1);
             std::vector<float> values(aovs.pixel_count());
             if (!input->read_image(part, 0, c, c + 1, TypeDesc::FLOAT, values.data()))
-                throw InputError(path + ": cannot read part '" + part_name + "': " + input->geterror());
+                throw InputError(path + ": cannot read part " + quoted(part_name) + ": " +
+                                 pending_error(input.get()));
             PlaneView plane = aovs.add_channel(name);
             std::copy(values.begin(), values.end(), plane.data);
             added.push_back(name);
@@ -270,12 +315,43 @@ std::vector<std::string> add_channels_from_other_parts(const std::string &path, 
 }
 
 bool is_readable_image(const std::string &path) {
-    std::unique_ptr<OIIO::ImageInput> input = OIIO::ImageInput::open(path);
-    if (!input) {
-        OIIO::geterror();  // clear the pending message
+    try {
+        check_before_opening(path);
+        std::unique_ptr<OIIO::ImageInput> input = OIIO::ImageInput::open(path);
+        if (!input) {
+            OIIO::geterror();  // clear the pending message
+            return false;
+        }
+        bool complete = true;
+        for (int part = 0; complete && input->seek_subimage(part, 0); ++part) {
+            const OIIO::ImageSpec spec = input->spec();
+            if (spec.deep || spec.width <= 0 || spec.height <= 0) return false;
+            check_memory_budget(path, spec.width, spec.height, spec.nchannels);
+            // Every pixel is decoded: a truncated file has a good header.
+            std::vector<unsigned char> scratch(spec.image_bytes(true));
+            complete = input->read_image(part, 0, 0, spec.nchannels, TypeDesc::UNKNOWN, scratch.data());
+        }
+        input->geterror();  // the failed seek past the last part, or the read error
+        OIIO::geterror();
+        return complete;
+    } catch (const std::exception &) {  // aaf::InputError or std::bad_alloc: not a usable frame
         return false;
     }
-    return input->spec().width > 0 && input->spec().height > 0;
+}
+
+std::uint64_t memory_budget_bytes() {
+    if (const std::uint64_t set = g_memory_budget_override.load()) return set;
+    const char *text = std::getenv("AAF_MEMORY_LIMIT_GB");
+    if (!text || !*text) return kDefaultMemoryBudget;
+    char *end = nullptr;
+    const double gib = std::strtod(text, &end);
+    if (*end != '\0' || !(gib > 0) || !(gib < 1e9))
+        throw Error("AAF_MEMORY_LIMIT_GB: " + quoted(text) + " is not a positive number of GiB");
+    return std::uint64_t(std::ceil(gib * double(1 << 30)));
+}
+
+void set_memory_budget_bytes(std::uint64_t bytes) {
+    g_memory_budget_override.store(bytes);
 }
 
 void write_aovs(const AovSet &aovs, const std::string &path, const WriteOptions &options) {
@@ -304,7 +380,7 @@ void write_aovs(const AovSet &aovs, const std::string &path, const WriteOptions 
         const std::string &source_path = options.layout->impl().source_path;
         source = OIIO::ImageInput::open(source_path);
         if (!source)
-            throw InputError(source_path + ": cannot reopen to copy its other parts: " + OIIO::geterror());
+            throw InputError(source_path + ": cannot reopen to copy its other parts: " + pending_error());
         for (int part = 1; part < options.layout->part_count(); ++part)
             specs.push_back(source->spec(part, 0));
     }
@@ -317,20 +393,20 @@ void write_aovs(const AovSet &aovs, const std::string &path, const WriteOptions 
 
     const std::string temporary = temporary_path_for(path);
     std::unique_ptr<OIIO::ImageOutput> output = OIIO::ImageOutput::create("openexr");
-    if (!output) throw InputError(path + ": no OpenEXR writer: " + OIIO::geterror());
+    if (!output) throw InputError(path + ": no OpenEXR writer: " + pending_error());
     try {
         const bool opened = specs.size() == 1 ? output->open(temporary, spec)
                                               : output->open(temporary, int(specs.size()), specs.data());
         if (!opened || !output->write_image(TypeDesc::FLOAT, pixels.data()))
-            throw InputError(output->geterror());
+            throw InputError(one_line(output->geterror()));
         for (int part = 1; part < int(data_part); ++part) copy_part(*source, part, *output, temporary);
         if (!data_channels.empty()) {
             const std::vector<float> data = interleave(aovs, data_channels);
             if (!output->open(temporary, specs[data_part], OIIO::ImageOutput::AppendSubimage) ||
                 !output->write_image(TypeDesc::FLOAT, data.data()))
-                throw InputError(output->geterror());
+                throw InputError(one_line(output->geterror()));
         }
-        if (!output->close()) throw InputError(output->geterror());
+        if (!output->close()) throw InputError(one_line(output->geterror()));
     } catch (const InputError &e) {
         output.reset();
         discard_temporary(temporary);

@@ -11,6 +11,7 @@
 
 #include "aaf/core/aov_contract.h"
 #include "aaf/core/error.h"
+#include "aaf/core/quoted.h"
 #include "default_ocio_config.h"
 #include "false_colour.h"
 
@@ -53,11 +54,16 @@ OCIO::ConstCPUProcessorRcPtr display_processor(const PreviewOptions &options, st
     return config->getProcessor(transform)->getDefaultCPUProcessor();
 }
 
+/// The input lacks the channel: an input error, naming the file read.
+void check_has_channel(const AovSet &aovs, const std::string &name, const std::string &source) {
+    if (!aovs.has_channel(name)) throw InputError(source + ": no channel " + quoted(name) + " to preview");
+}
+
 }  // namespace
 
 void write_false_colour_png(const AovSet &aovs, const std::string &channel, const std::string &path,
-                            float low, float high) {
-    if (!aovs.has_channel(channel)) throw Error(path + ": no channel '" + channel + "' to preview");
+                            float low, float high, const std::string &source_path) {
+    check_has_channel(aovs, channel, source_path.empty() ? path : source_path);
     const ConstPlaneView values = aovs.channel(channel);
     if (low == high) {
         low = std::numeric_limits<float>::infinity();
@@ -94,7 +100,7 @@ std::string write_preview_png(const AovSet &aovs, const std::vector<std::string>
     const std::vector<bool> colour_mask = colour_channels(aovs);
     bool colour = true;
     for (const std::string &name : channels) {
-        if (!aovs.has_channel(name)) throw Error(path + ": no channel '" + name + "' to preview");
+        check_has_channel(aovs, name, options.source_path.empty() ? path : options.source_path);
         planes.push_back(aovs.channel(name));
         colour = colour && colour_mask[aovs.index_of(name)];
     }

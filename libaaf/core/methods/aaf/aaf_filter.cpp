@@ -100,7 +100,11 @@ GatherGuides aaf_gather_guides(const AafInputs &in, const LightPlane &light, con
             const float radius =
                 std::min(std::ceil(kCutoffSigmas * beta / in.pixel_size(x, y)), float(params.max_radius_px));
             beta_m[i] = beta;
-            guides.inv_two_sigma_sq[i] = 1.0f / (2.0f * beta * beta);
+            // A beta below ~1e-19 m (pixel.size near 0) squares to 0 or a
+            // denormal: the largest float instead of inf keeps the centre tap's
+            // exponent 0 * that = 0 (weight 1), where inf would give 0 * inf = NaN.
+            guides.inv_two_sigma_sq[i] =
+                std::min(1.0f / (2.0f * beta * beta), std::numeric_limits<float>::max());
             guides.radius_px[i] = int(radius);
         }
     });

@@ -17,6 +17,14 @@ const char *to_string(LightProfile profile);
 /// Parses "gaussian" or "uniform"; throws aaf::Error otherwise.
 LightProfile light_profile_from_string(const std::string &name);
 
+/// How LightPlane::validate() names each field in its messages (a header
+/// reader names its attributes instead).
+struct LightFieldNames {
+    std::string center = "light center", normal = "light normal", axis_u = "light axis_u",
+                axis_v = "light axis_v", width = "light width", height = "light height",
+                sigma = "light sigma";
+};
+
 /// A planar rectangular area light: the geometry of AAF Fig. 2(a).
 ///
 /// Convention (one place for the whole toolkit): for a square light of side L
@@ -38,8 +46,11 @@ struct LightPlane {
     /// with the default sigma = side / 2.
     static LightPlane square(Vec3 center, Vec3 normal, float side_m);
 
-    /// Throws aaf::Error unless the axes are orthonormal and sizes positive.
-    void validate() const;
+    /// Throws aaf::InputError "<field> <problem>" (a light comes from a scene
+    /// or an image header) unless the centre is finite, the normal and axes
+    /// are finite orthonormal vectors and width, height and sigma are positive
+    /// and finite.
+    void validate(const LightFieldNames &names = LightFieldNames{}) const;
 
     /// Distance of `p` from the light's plane, measured along its normal:
     /// the d1 (receiver) and d2 (occluder) of AAF Fig. 2 and Eq. 2, in metres.

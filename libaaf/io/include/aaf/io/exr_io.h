@@ -1,5 +1,6 @@
 #pragma once
 
+#include <cstdint>
 #include <memory>
 #include <string>
 #include <vector>
@@ -63,9 +64,25 @@ std::vector<PartSummary> other_parts(const std::string &path, const ImageLayout 
 std::vector<std::string> add_channels_from_other_parts(const std::string &path, const ImageLayout &layout,
                                                        const std::vector<std::string> &wanted, AovSet &aovs);
 
-/// True when `path` exists and its header reads back (e.g. a finished
-/// output frame); never throws.
+/// True when `path` exists and reads back completely: every part's header
+/// and every pixel (e.g. a finished output frame, not a truncated one);
+/// never throws.
 bool is_readable_image(const std::string &path);
+
+/// The memory budget for one image read, in bytes: the pixel data a file
+/// declares (width x height x channels x 4 bytes, summed over the parts that
+/// are read) is checked against it from the header, before anything is
+/// allocated, so that a huge or corrupt header fails with aaf::InputError
+/// "<path>: declares WxH with N channels (X GiB), over the memory limit of
+/// Y GiB (raise with AAF_MEMORY_LIMIT_GB)" instead of exhausting memory.
+/// The default is 16 GiB (an 8K frame, 7680x4320, of 64 float channels
+/// takes 7.9 GiB), or the environment variable AAF_MEMORY_LIMIT_GB (a positive
+/// number of GiB; any other value throws aaf::Error) when set.
+std::uint64_t memory_budget_bytes();
+
+/// Overrides the budget for this process (e.g. a command-line option);
+/// 0 returns to the default above.
+void set_memory_budget_bytes(std::uint64_t bytes);
 
 /// Lossless EXR compressions, and the lossy DWA ones (colour layers only).
 bool is_known_compression(const std::string &name);

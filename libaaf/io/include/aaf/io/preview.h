@@ -23,6 +23,9 @@ struct PreviewOptions {
     /// (the display window); both empty = the image as it is. Pixels of the
     /// display window outside the data window are black.
     PixelWindow data_window, display_window;
+    /// The file `aovs` was read from, named when a channel is missing (the
+    /// problem lies there); empty: the output path is named.
+    std::string source_path;
 };
 
 /// Writes an 8-bit PNG preview of three channels (or one shown as grey).
@@ -30,7 +33,8 @@ struct PreviewOptions {
 /// data channels (positions, normals, visibility, distances) are never colour
 /// converted: their values are written as they are, clamped to [0, 1].
 /// Written to a temporary name and renamed. Returns the name of the
-/// OpenColorIO config used ("" for data). Throws aaf::Error "<path>: <problem>".
+/// OpenColorIO config used ("" for data). Throws aaf::Error "<path>: <problem>",
+/// or aaf::InputError "<source_path>: no channel 'NAME' to preview".
 std::string write_preview_png(const AovSet &aovs, const std::vector<std::string> &channels,
                               const std::string &path, const PreviewOptions &options = {});
 
@@ -38,8 +42,10 @@ std::string write_preview_png(const AovSet &aovs, const std::vector<std::string>
 /// values in [low, high] run from dark blue through cyan, green and yellow to
 /// red (clamped outside); pixels exactly 0 (not filtered, background) are
 /// black. With low == high the channel's range over its non-zero pixels is used.
-/// Written to a temporary name and renamed. Throws aaf::Error "<path>: <problem>".
+/// Written to a temporary name and renamed. Throws aaf::Error "<path>: <problem>",
+/// or aaf::InputError "<source_path>: no channel 'NAME' to preview" (the
+/// output path when `source_path` is empty).
 void write_false_colour_png(const AovSet &aovs, const std::string &channel, const std::string &path,
-                            float low = 0.0f, float high = 0.0f);
+                            float low = 0.0f, float high = 0.0f, const std::string &source_path = "");
 
 }  // namespace aaf::io
