@@ -39,8 +39,8 @@ inline CLI::Validator finite_number(double low, double high = HUGE_VAL, bool low
 /// and `--threads`.
 inline void add_map_and_threads_options(CLI::App &cmd, std::vector<std::string> &maps, int &threads) {
     cmd.add_option("--map", maps, "Override a channel name: role=channel[,channel...]");
-    cmd.add_option("--threads", threads, "Worker threads, 0 = all (output is identical)")
-        ->check(finite_number(0, HUGE_VAL, /*low_allowed=*/true))
+    cmd.add_option("--threads", threads, "Worker threads, 0 = all, at most 1024 (output is identical)")
+        ->check(finite_number(0, 1024, /*low_allowed=*/true))
         ->capture_default_str();
 }
 

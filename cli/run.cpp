@@ -1,3 +1,4 @@
+#include <cstdint>
 #include <cstdio>
 #include <exception>
 #include <iostream>
@@ -5,6 +6,7 @@
 
 #include "aaf/core/error.h"
 #include "aaf/io/atomic_file.h"
+#include "aaf/io/exr_io.h"
 #include "commands.h"
 
 namespace aaf::cli {
@@ -42,6 +44,14 @@ int run(int argc, char **argv) {
     CLI::App app{"aaf: image-space reconstruction of ray-traced distribution effects"};
     app.require_subcommand(1);
     app.set_version_flag("--version", "aaf 0.1.0");
+    // Accepted before or after the subcommand (fallthrough): every command reads images.
+    app.fallthrough();
+    app.add_option_function<double>(
+           "--memory-limit-gb",
+           [](double gib) { io::set_memory_budget_bytes(std::uint64_t(gib * 1024.0 * 1024.0 * 1024.0)); },
+           "Largest image (all channels, as float) a command may read, GiB; default 16 or "
+           "$AAF_MEMORY_LIMIT_GB")
+        ->check(CLI::Range(1.0e-6, 1.0e6));
     add_render_command(app);
     add_plan_command(app);
     add_filter_command(app);

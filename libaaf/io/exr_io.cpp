@@ -61,7 +61,7 @@ void check_memory_budget(const std::string &path, std::int64_t width, std::int64
     std::snprintf(sizes, sizeof sizes, "(%.3g GiB), over the memory limit of %.3g GiB",
                   bytes / double(1 << 30), budget / double(1 << 30));
     throw InputError(path + ": declares " + std::to_string(width) + "x" + std::to_string(height) + " with " +
-                     std::to_string(channels) + " channels " + sizes + " (raise with AAF_MEMORY_LIMIT_GB)");
+                     std::to_string(channels) + " channels " + sizes + " (raise with --memory-limit-gb or AAF_MEMORY_LIMIT_GB)");
 }
 
 /// What OpenEXR would allocate by the header alone is checked from the

@@ -261,3 +261,29 @@ TEST_CASE("an error message with line breaks or raw bytes is still one line", "[
     CHECK(one_error_line(result.output));
     CHECK_THAT(result.output, Catch::Contains("X; Y\\x01Z"));
 }
+
+TEST_CASE("--memory-limit-gb lowers and raises the image budget of any command", "[cli][reliability]") {
+    const fs::path dir = scratch_dir("memory_limit_flag");
+    const std::string image = (dir / "small.exr").string();
+    REQUIRE(run_aaf("render grids -o " + image + " --width 64 --height 48 --spp 1").exit_code == 0);
+    // 64 x 48 x about 19 float channels is about 0.2 MB: over 0.0001 GiB (107 KB).
+    const aaf_test::RunResult low = run_aaf("info " + image + " --memory-limit-gb 0.0001");
+    CHECK(low.exit_code == 3);
+    CHECK_THAT(low.output, Catch::Contains(image) && Catch::Contains("memory limit") &&
+                               Catch::Contains("--memory-limit-gb"));
+    CHECK(run_aaf("--memory-limit-gb 1 info " + image).exit_code == 0);
+    CHECK(run_aaf("info " + image + " --memory-limit-gb 0").exit_code == 2);
+}
+
+TEST_CASE("More threads than cores run without a oneTBB warning; more than 1024 is a usage error",
+          "[cli][reliability]") {
+    const fs::path dir = scratch_dir("many_threads");
+    const std::string noisy = (dir / "noisy.exr").string(), out = (dir / "out.exr").string();
+    REQUIRE(run_aaf("render grids -o " + noisy + " --width 32 --height 24 --spp 2").exit_code == 0);
+    const aaf_test::RunResult many = run_aaf("filter aaf " + noisy + " -o " + out + " --threads 64");
+    CHECK(many.exit_code == 0);
+    CHECK_THAT(many.output, !Catch::Contains("TBB"));
+    const aaf_test::RunResult too_many = run_aaf("filter aaf " + noisy + " -o " + out + " --threads 99999");
+    CHECK(too_many.exit_code == 2);
+    CHECK(std::count(too_many.output.begin(), too_many.output.end(), '\n') == 1);
+}

@@ -52,7 +52,7 @@ TEST_CASE("a header declaring 100000x100000 fails on the memory limit before all
     CHECK(read_error(path) ==
           path +
               ": declares 100000x100000 with 3 channels (112 GiB), over the memory limit of "
-              "16 GiB (raise with AAF_MEMORY_LIMIT_GB)");
+              "16 GiB (raise with --memory-limit-gb or AAF_MEMORY_LIMIT_GB)");
 }
 
 TEST_CASE("a 60 KB file declaring 8000x8000 fails before allocating the declared size", "[io][robustness]") {
@@ -78,7 +78,7 @@ TEST_CASE("the memory budget can be lowered and raised, and names the file and t
     CHECK(message ==
           path +
               ": declares 64x64 with 4 channels (6.1e-05 GiB), over the memory limit of 3.05e-05 GiB "
-              "(raise with AAF_MEMORY_LIMIT_GB)");
+              "(raise with --memory-limit-gb or AAF_MEMORY_LIMIT_GB)");
     CHECK(io::memory_budget_bytes() == std::uint64_t(16) << 30);
     CHECK(read_error(path).empty());
 }

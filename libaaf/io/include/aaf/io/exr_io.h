@@ -74,7 +74,7 @@ bool is_readable_image(const std::string &path);
 /// are read) is checked against it from the header, before anything is
 /// allocated, so that a huge or corrupt header fails with aaf::InputError
 /// "<path>: declares WxH with N channels (X GiB), over the memory limit of
-/// Y GiB (raise with AAF_MEMORY_LIMIT_GB)" instead of exhausting memory.
+/// Y GiB (raise with --memory-limit-gb or AAF_MEMORY_LIMIT_GB)" instead of exhausting memory.
 /// The default is 16 GiB (an 8K frame, 7680x4320, of 64 float channels
 /// takes 7.9 GiB), or the environment variable AAF_MEMORY_LIMIT_GB (a positive
 /// number of GiB; any other value throws aaf::Error) when set.
