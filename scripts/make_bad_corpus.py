@@ -19,6 +19,7 @@ import OpenImageIO as oiio
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 BAD = os.path.join(ROOT, "testdata", "bad")
 FILES = os.path.join(BAD, "files")
+FINDINGS = os.path.join(BAD, "fuzz_findings")  # inputs scripts/fuzz.sh found, kept as they were found
 SIZE = 8  # every crafted image is 8x8: the corpus must run in seconds
 FIXED_DATE = "2026:01:01 00:00:00"  # else OpenImageIO stamps the time and every rerun differs
 
@@ -430,12 +431,30 @@ def other_cases():
     ]
 
 
+def fuzz_cases():
+    """What the libFuzzer harnesses found (README "Reliability"), as command lines."""
+    for name in os.listdir(FINDINGS):
+        shutil.copyfile(os.path.join(FINDINGS, name), path(name))
+    string_attribute = "read_aovs-string_attribute_1_7GB.exr"  # OpenEXR fills the declared 1.7 GB string
+    return [
+        case("fuzz: info EXR whose string attribute declares 1.7 GB", ["info", string_attribute], 3,
+             string_attribute, 7),
+        case("fuzz: filter EXR whose string attribute declares 1.7 GB",
+             ["filter", "gaussian", string_attribute, "-o", "out.exr"], 3, string_attribute, 7),
+        case("fuzz: compare --frames with a 14-digit frame", ["compare", "seq.####.exr", "seq.####.exr",
+                                                              "--frames", "1,10090009010009"], 2, defect=9),
+        case("fuzz: filter --frames 1-11098100 over two frames",
+             ["filter", "gaussian", "seq.####.exr", "-o", "out.####.exr", "--frames", "1-11098100"], 3,
+             "seq.0003.exr", 5),
+    ]
+
+
 def main():
     shutil.rmtree(FILES, ignore_errors=True)
     os.makedirs(FILES)
     write_images()
     write_scenes()
-    cases = render_cases() + filter_cases() + other_cases()
+    cases = render_cases() + filter_cases() + other_cases() + fuzz_cases()
     names = [c["name"] for c in cases]
     if len(set(names)) != len(names):
         sys.exit("duplicate case names")
