@@ -32,7 +32,10 @@ import sys
 import threading
 import time
 
-SANITIZER_MARKS = ("AddressSanitizer", "UndefinedBehaviorSanitizer", "LeakSanitizer", "runtime error:")
+# A sanitizer's report (a sanitized build prints these and exits non-zero).
+# Not "WARNING: AddressSanitizer failed to allocate": with
+# allocator_may_return_null that is a std::bad_alloc, judged like one.
+SANITIZER_MARKS = ("ERROR: AddressSanitizer", "ERROR: LeakSanitizer", "UndefinedBehaviorSanitizer:", "runtime error:")
 
 
 def snapshot(root):
