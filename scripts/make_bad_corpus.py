@@ -130,9 +130,6 @@ def write_images():
     write_exr("light_kind_bogus.exr", good, attributes={**LIGHT, "aaf:light:kind": "laser"})
     write_exr("raw_channel_name.exr", {**{k: v for k, v in good.items() if k != "shadow.V"},
                                        "bad\nname": good["shadow.V"]})
-    tiny = dict(good)
-    tiny["pixel.size"] = np.full((SIZE, SIZE), 1e-21, np.float32)
-    write_exr("pixel_size_tiny.exr", tiny)
     mask = {"Y": np.ones((4, 4), np.float32)}
     write_exr("mask_small.exr", mask, attributes={}, size=4)
     whole = open(path("good.exr"), "rb").read()
@@ -342,7 +339,7 @@ def filter_cases():
                                                    "--frames", "1-99999999999"], 2, defect=9),
         case("filter aaf --skip-existing redoes a truncated output",
              ["filter", "aaf", "seq.####.exr", "-o", "out.####.exr", "--frames", "1", "--skip-existing",
-              "--progress", "none"], 0, defect=6, setup={"copy": {"stale_output.exr": "out.0001.exr"}},
+              "--progress", "none"], 0, defect=6, setup={"copy": {"truncated.exr": "out.0001.exr"}},
              creates=["out.0001.exr"]),
         case("filter aaf removes its own stale temporary, not another program's",
              ["filter", "aaf", "good.exr", "-o", "out.exr"], 0, defect=10,
