@@ -1,0 +1,466 @@
+#!/usr/bin/python3
+"""Writes the bad-input corpus: testdata/bad/files/ (small crafted inputs) and
+testdata/bad/cases.json (one case per command line, with the exit code and
+error line the README promises). tests/bad_inputs/run_bad_inputs.py runs it.
+
+Needs Debian's python3-openimageio and python3-numpy (scripts/deps.sh), hence
+/usr/bin/python3 (TOOLCHAIN trap 4). Rerun after editing; the output is
+deterministic (fixed seeds), so an unchanged script rewrites identical files.
+"""
+import json
+import os
+import shutil
+import struct
+import sys
+
+import numpy as np
+import OpenImageIO as oiio
+
+ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+BAD = os.path.join(ROOT, "testdata", "bad")
+FILES = os.path.join(BAD, "files")
+FINDINGS = os.path.join(BAD, "fuzz_findings")  # inputs scripts/fuzz.sh found, kept as they were found
+SIZE = 8  # every crafted image is 8x8: the corpus must run in seconds
+FIXED_DATE = "2026:01:01 00:00:00"  # else OpenImageIO stamps the time and every rerun differs
+
+# The AOVs `aaf filter aaf` reads (libaaf/AOV_CONTRACT.md), as a plausible
+# soft shadow on a ground plane seen from above.
+CHANNELS = ["R", "G", "B", "shadow.V", "shadow.d1", "shadow.d2min", "shadow.d2max",
+            "P.X", "P.Y", "P.Z", "N.X", "N.Y", "N.Z", "id.object", "pixel.spp", "pixel.size",
+            "unshadowed.R", "unshadowed.G", "unshadowed.B"]
+LIGHT = {"aaf:light:center": (0.0, 3.0, 0.0), "aaf:light:normal": (0.0, -1.0, 0.0),
+         "aaf:light:axis_u": (1.0, 0.0, 0.0), "aaf:light:axis_v": (0.0, 0.0, 1.0),
+         "aaf:light:width_m": 1.0, "aaf:light:height_m": 1.0, "aaf:light:sigma_m": 0.5,
+         "aaf:light:kind": "gaussian"}
+
+
+def path(name):
+    return os.path.join(FILES, name)
+
+
+def aov_planes(seed, size=SIZE):
+    """Channel name -> size x size float plane."""
+    rng = np.random.default_rng(seed)
+    y, x = np.mgrid[0:size, 0:size].astype(np.float32)
+    visibility = np.clip(x / (size - 1) + 0.2 * rng.standard_normal((size, size)), 0, 1).astype(np.float32)
+    planes = {"shadow.V": visibility, "shadow.d1": np.full((size, size), 3.0, np.float32),
+              "shadow.d2min": np.where(x > size / 2, 0.0, 1.5).astype(np.float32),
+              "shadow.d2max": np.where(x > size / 2, 0.0, 2.0).astype(np.float32),
+              "P.X": x * 0.1, "P.Y": np.zeros_like(x), "P.Z": y * 0.1,
+              "N.X": np.zeros_like(x), "N.Y": np.ones_like(x), "N.Z": np.zeros_like(x),
+              "id.object": np.ones_like(x), "pixel.spp": np.full_like(x, 9.0),
+              "pixel.size": np.full_like(x, 0.1)}
+    for c in "RGB":
+        planes["unshadowed." + c] = np.full_like(x, 0.8)
+        planes[c] = planes["unshadowed." + c] * visibility
+    return planes
+
+
+def write_exr(name, planes, attributes=LIGHT, size=SIZE, compression="zip"):
+    names = list(planes)
+    spec = oiio.ImageSpec(size, size, len(names), oiio.FLOAT)
+    spec.channelnames = tuple(names)
+    spec.attribute("compression", compression)
+    spec.attribute("DateTime", FIXED_DATE)
+    for key, value in attributes.items():
+        if isinstance(value, tuple):
+            spec.attribute(key, oiio.TypeDesc("float[3]"), value)
+        else:
+            spec.attribute(key, value)
+    pixels = np.stack([planes[n] for n in names], axis=-1).astype(np.float32)
+    out = oiio.ImageOutput.create(path(name))
+    if not out.open(path(name), spec) or not out.write_image(pixels):
+        sys.exit("cannot write %s: %s" % (name, oiio.geterror()))
+    out.close()
+
+
+def write_bytes(name, data):
+    with open(path(name), "wb") as f:
+        f.write(data)
+
+
+def patch_box2i(name, source, attribute, xmax, ymax):
+    """A copy of `source` whose header declares `attribute` (a box2i) as
+    (0, 0)-(xmax, ymax): a huge declared size on a file of a few KB."""
+    data = bytearray(open(path(source), "rb").read())
+    key = attribute.encode() + b"\0box2i\0" + struct.pack("<i", 16)
+    at = data.index(key) + len(key)
+    data[at:at + 16] = struct.pack("<4i", 0, 0, xmax, ymax)
+    write_bytes(name, bytes(data))
+
+
+def exr_attribute(name, kind, value):
+    return name.encode() + b"\0" + kind.encode() + b"\0" + struct.pack("<i", len(value)) + value
+
+
+def write_declared_header(name, width, height, channels):
+    """An EXR built byte by byte: a valid scan-line header declaring width x
+    height float channels (ZIP, 16 lines per chunk), its offset table all
+    zeros, and no pixel data: what a reader must refuse without allocating
+    the declared size."""
+    chlist = b"".join(c.encode() + b"\0" + struct.pack("<iB3xii", 2, 0, 1, 1) for c in channels) + b"\0"
+    window = struct.pack("<4i", 0, 0, width - 1, height - 1)
+    header = b"".join([
+        exr_attribute("channels", "chlist", chlist),
+        exr_attribute("compression", "compression", bytes([3])),
+        exr_attribute("dataWindow", "box2i", window),
+        exr_attribute("displayWindow", "box2i", window),
+        exr_attribute("lineOrder", "lineOrder", bytes([0])),
+        exr_attribute("pixelAspectRatio", "float", struct.pack("<f", 1.0)),
+        exr_attribute("screenWindowCenter", "v2f", struct.pack("<2f", 0.0, 0.0)),
+        exr_attribute("screenWindowWidth", "float", struct.pack("<f", 1.0)),
+    ]) + b"\0"
+    offsets = bytes(8 * ((height + 15) // 16))
+    write_bytes(name, struct.pack("<Ii", 20000630, 2) + header + offsets)
+
+
+def write_images():
+    good = aov_planes(1)
+    write_exr("good.exr", good)
+    write_exr("good2.exr", aov_planes(2))
+    write_exr("small.exr", aov_planes(3, size=4), size=4)
+    write_exr("seq.0001.exr", good)
+    write_exr("seq.0002.exr", aov_planes(4))
+    write_exr("missing_visibility.exr", {k: v for k, v in good.items() if k != "shadow.V"})
+    write_exr("missing_unshadowed.exr", {k: v for k, v in good.items() if not k.startswith("unshadowed")})
+    write_exr("missing_light.exr", good, attributes={})
+    write_exr("light_sigma_zero.exr", good, attributes={**LIGHT, "aaf:light:sigma_m": 0.0})
+    write_exr("light_sigma_nan.exr", good, attributes={**LIGHT, "aaf:light:sigma_m": float("nan")})
+    write_exr("light_normal_zero.exr", good, attributes={**LIGHT, "aaf:light:normal": (0.0, 0.0, 0.0)})
+    write_exr("light_kind_bogus.exr", good, attributes={**LIGHT, "aaf:light:kind": "laser"})
+    write_exr("raw_channel_name.exr", {**{k: v for k, v in good.items() if k != "shadow.V"},
+                                       "bad\nname": good["shadow.V"]})
+    mask = {"Y": np.ones((4, 4), np.float32)}
+    write_exr("mask_small.exr", mask, attributes={}, size=4)
+    whole = open(path("good.exr"), "rb").read()
+    write_bytes("empty.exr", b"")
+    write_bytes("garbage.exr", bytes(np.random.default_rng(7).integers(0, 256, 4096, dtype=np.uint8)))
+    write_bytes("text.exr", b"this is not an image\n")
+    write_bytes("truncated.exr", whole[:len(whole) // 2])
+    write_bytes("truncated_header.exr", whole[:120])
+    write_bytes("corrupt_data.exr", whole[:-300] + bytes(300))
+    write_bytes("magic_only.exr", whole[:4])
+    patch_box2i("huge_100000.exr", "good.exr", "dataWindow", 99999, 99999)
+    write_declared_header("declared_100000.exr", 100000, 100000, sorted(CHANNELS))
+    patch_box2i("declared_8000.exr", "good.exr", "dataWindow", 7999, 7999)
+    write_exr("big.exr", {"Y": np.zeros((8000, 8000), np.float32)}, attributes={}, size=8000)
+    big = open(path("big.exr"), "rb").read()
+    os.remove(path("big.exr"))
+    write_bytes("truncated_8000.exr", big[:60000])  # a real 8000x8000 header, 60 KB of its data
+    png_spec = oiio.ImageSpec(SIZE, SIZE, 3, oiio.UINT8)
+    png_spec.attribute("DateTime", FIXED_DATE)
+    png = oiio.ImageBuf(png_spec)
+    oiio.ImageBufAlgo.noise(png, "uniform", 0.0, 1.0, seed=5)  # so that a truncated copy lacks pixel data
+    png.write(path("png_named.png"))
+    os.replace(path("png_named.png"), path("png_named.exr"))
+    write_bytes("png_truncated.exr", open(path("png_named.exr"), "rb").read()[:60])
+    write_deep("deep.exr")
+    os.makedirs(path("folder.exr"), exist_ok=True)
+    write_bytes(os.path.join("folder.exr", "README"), b"a directory named like an image\n")
+    write_bytes("stale_output.exr", whole[:200])
+
+
+def write_deep(name):
+    spec = oiio.ImageSpec(SIZE, SIZE, 2, oiio.FLOAT)
+    spec.channelnames = ("Z", "A")
+    spec.deep = True
+    spec.attribute("DateTime", FIXED_DATE)
+    buf = oiio.ImageBuf(spec)
+    deep = buf.deepdata()
+    for p in range(SIZE * SIZE):
+        deep.set_samples(p, 1)
+        deep.set_deep_value(p, 0, 0, 1.0)
+        deep.set_deep_value(p, 1, 0, 1.0)
+    if not buf.write(path(name)):
+        sys.exit("cannot write %s: %s" % (name, buf.geterror()))
+
+
+def scene(**overrides):
+    """A tiny valid scene (libaaf/SCENE_FORMAT.md), with fields replaced."""
+    base = {"format_version": 1, "name": "bad-input base",
+            "camera": {"type": "pinhole", "position": [0, 3, 4], "look_at": [0, 0, 0], "fov_y_deg": 45},
+            "lights": [{"center": [0, 3, 0], "edge_u": [1, 0, 0], "edge_v": [0, 0, 1], "intensity": 10}],
+            "objects": [{"type": "plane", "size": [4, 4], "id": 1},
+                        {"type": "box", "min": [-0.3, 0.5, -0.3], "max": [0.3, 0.8, 0.3], "id": 2}]}
+    base.update(overrides)
+    return base
+
+
+def write_scenes():
+    def dump(name, value):
+        write_bytes(name, json.dumps(value, indent=1).encode())
+
+    base = scene()
+    dump("scene.json", base)
+    light = base["lights"][0]
+    dump("light_far.json", scene(lights=[{**light, "center": [0, 1e20, 0]}]))
+    dump("light_intensity_huge.json", scene(lights=[{**light, "intensity": 1e308}]))
+    dump("light_edge_zero.json", scene(lights=[{**light, "edge_u": [0, 0, 0]}]))
+    camera = {**base["camera"], "type": "thin_lens", "aperture_radius_m": 1e300}
+    dump("aperture_huge.json", scene(camera=camera))
+    dump("camera_same_points.json", scene(camera={**base["camera"], "look_at": [0, 3, 4]}))
+    dump("fov_string.json", scene(camera={**base["camera"], "fov_y_deg": "wide"}))
+    dump("no_lights.json", scene(lights=[]))
+    dump("obj_missing.json", scene(objects=[{"type": "obj", "file": "nosuch.obj", "id": 1}]))
+    dump("obj_bad_index.json", scene(objects=[{"type": "obj", "file": "bad_index.obj", "id": 1}]))
+    dump("obj_garbage.json", scene(objects=[{"type": "obj", "file": "garbage.obj", "id": 1}]))
+    dump("mesh_scene.json", scene(objects=[{"type": "obj", "file": "mesh.obj", "id": 1}]))
+    dump("unknown_type.json", scene(objects=[{"type": "teapot", "id": 1}]))
+    dump("scene_array.json", [1, 2, 3])
+    write_bytes("huge_number.json", json.dumps(scene()).replace('"intensity": 10', '"intensity": 1e400').encode())
+    write_bytes("truncated.json", json.dumps(scene()).encode()[:100])
+    write_bytes("empty.json", b"")
+    write_bytes("mesh.obj", b"v -1 0 -1\nv 1 0 -1\nv 0 0 1\nf 1 2 3\n")
+    write_bytes("bad_index.obj", b"v -1 0 -1\nv 1 0 -1\nv 0 0 1\nf 1 2 9\n")
+    write_bytes("garbage.obj", bytes(np.random.default_rng(8).integers(0, 256, 2048, dtype=np.uint8)))
+
+
+def case(name, args, code, names=None, defect=None, **extra):
+    """One command line. `names`: the file (or option) the single error line
+    must name; `defect`: the issue item it reproduces (informative)."""
+    entry = {"name": name, "args": args, "exit": code}
+    if names:
+        entry["names"] = names
+    if defect:
+        entry["defect"] = defect
+    entry.update(extra)
+    return entry
+
+
+RENDER = ["render", "scene.json", "-o", "out.exr", "--width", "8", "--height", "8", "--spp", "1"]
+
+
+def render_cases():
+    def scene_case(name, scene_file, code=3, defect=None, **extra):
+        return case(name, ["render", scene_file, "-o", "out.exr", "--width", "8", "--height", "8", "--spp", "1"],
+                    code, names=scene_file, defect=defect, **extra)
+
+    def option_case(name, option, value, defect=8):
+        args = RENDER + [option, value] if value is not None else RENDER + [option]
+        return case(name, args, 2, names=value if value and value.isalpha() else None, defect=defect)
+
+    return [
+        case("render output is the scene", RENDER[:3] + ["scene.json"] + RENDER[4:], 3, "scene.json", 1),
+        case("render output is its OBJ", ["render", "mesh_scene.json", "-o", "mesh.obj", "--width", "8",
+                                          "--height", "8", "--spp", "1"], 3, "mesh.obj", 1),
+        scene_case("render missing scene file", "nosuch.json"),
+        scene_case("render empty scene file", "empty.json"),
+        scene_case("render truncated JSON", "truncated.json"),
+        scene_case("render JSON number 1e400", "huge_number.json", defect=9),
+        scene_case("render scene that is an array", "scene_array.json"),
+        scene_case("render light centre 1e20", "light_far.json", defect=2),
+        scene_case("render thin-lens aperture 1e300", "aperture_huge.json", defect=2),
+        scene_case("render light intensity 1e308", "light_intensity_huge.json", defect=12),
+        scene_case("render light with a zero edge", "light_edge_zero.json"),
+        scene_case("render camera looking at itself", "camera_same_points.json"),
+        scene_case("render field of view is a string", "fov_string.json"),
+        scene_case("render scene without lights", "no_lights.json"),
+        scene_case("render unknown object type", "unknown_type.json"),
+        case("render OBJ missing", RENDER[:1] + ["obj_missing.json"] + RENDER[2:], 3, "nosuch.obj"),
+        case("render OBJ face index out of range", RENDER[:1] + ["obj_bad_index.json"] + RENDER[2:], 3,
+             "bad_index.obj"),
+        case("render OBJ of random bytes", RENDER[:1] + ["obj_garbage.json"] + RENDER[2:], 3, "garbage.obj"),
+        case("render into a folder", RENDER[:3] + ["folder.exr"] + RENDER[4:], 3, "folder.exr", 9),
+        case("render into a missing folder", RENDER[:3] + ["nosuch/out.exr"] + RENDER[4:], 3, "nosuch/out.exr"),
+        case("render under a file", RENDER[:3] + ["good.exr/out.exr"] + RENDER[4:], 3, "good.exr/out.exr"),
+        option_case("render --spp 0", "--spp", "0"),
+        option_case("render --width 0", "--width", "0"),
+        option_case("render --height -8", "--height", "-8"),
+        option_case("render --aovs bogus", "--aovs", "bogus"),
+        case("render --adaptive --mu 0", RENDER + ["--adaptive", "--mu", "0"], 2, defect=8),
+        case("render --adaptive --max-spp 0", RENDER + ["--adaptive", "--max-spp", "0"], 2, defect=8),
+        option_case("render --light laser", "--light", "laser", defect=9),
+        option_case("render --progress bogus", "--progress", "bogus"),
+        option_case("render --checkpoint -1", "--checkpoint", "-1"),
+        case("render --frames 3-1", RENDER[:3] + ["out.####.exr"] + RENDER[4:] + ["--frames", "3-1"], 2, defect=8),
+        case("render --frames empty", RENDER[:3] + ["out.####.exr"] + RENDER[4:] + ["--frames", ""], 2, defect=12),
+        case("render --frames 1-99999999999", RENDER[:3] + ["out.####.exr"] + RENDER[4:] +
+             ["--frames", "1-99999999999"], 2, defect=9),
+        case("render --frames 1-2000000000 --skip-existing on a missing scene",
+             ["render", "nosuch.json", "-o", "out.####.exr", "--frames", "1-2000000000", "--skip-existing",
+              "--width", "8", "--height", "8", "--spp", "1"], 3, "nosuch.json", 5),
+        case("render --resume of garbage", RENDER + ["--resume", "garbage.exr"], 3, "garbage.exr"),
+        case("render --resume of another size", RENDER + ["--resume", "small.exr"], 3, "small.exr"),
+    ]
+
+
+def filter_cases():
+    def aaf(name, input_file, code=3, defect=None, names=None, extra_args=(), **extra):
+        return case(name, ["filter", "aaf", input_file, "-o", "out.exr", *extra_args], code,
+                    names or input_file, defect, **extra)
+
+    def option(name, method, option, value, defect=8):
+        named = value if value.replace("=", "").isalpha() else None
+        return case(name, ["filter", method, "good.exr", "-o", "out.exr", option, value], 2, named, defect)
+
+    return [
+        aaf("filter aaf missing input", "nosuch.exr"),
+        aaf("filter aaf zero-byte EXR", "empty.exr"),
+        aaf("filter aaf garbage EXR", "garbage.exr"),
+        aaf("filter aaf text named .exr", "text.exr"),
+        aaf("filter aaf truncated EXR", "truncated.exr"),
+        aaf("filter aaf truncated header", "truncated_header.exr"),
+        aaf("filter aaf magic number only", "magic_only.exr"),
+        aaf("filter aaf corrupt pixel data", "corrupt_data.exr"),
+        aaf("filter aaf PNG named .exr", "png_named.exr", defect=9),
+        aaf("filter aaf deep EXR", "deep.exr"),
+        aaf("filter aaf header declares 100000x100000", "huge_100000.exr", defect=7),
+        aaf("filter aaf 60 KB of an 8000x8000 file", "truncated_8000.exr", defect=7),
+        aaf("filter aaf header alone declares 100000x100000", "declared_100000.exr", defect=7),
+        aaf("filter aaf missing visibility", "missing_visibility.exr"),
+        aaf("filter aaf missing light attributes", "missing_light.exr"),
+        aaf("filter aaf light sigma 0", "light_sigma_zero.exr", defect=8),
+        aaf("filter aaf light sigma NaN", "light_sigma_nan.exr", defect=8),
+        aaf("filter aaf light normal zero", "light_normal_zero.exr", defect=8),
+        aaf("filter aaf light kind unknown", "light_kind_bogus.exr", defect=8),
+        aaf("filter aaf channel name with a line break", "raw_channel_name.exr", defect=9),
+        aaf("filter aaf directory as input", "folder.exr"),
+        case("filter aaf output is the input", ["filter", "aaf", "good.exr", "-o", "good.exr"], 3, "good.exr"),
+        case("filter aaf output is a folder", ["filter", "aaf", "good.exr", "-o", "folder.exr"], 3,
+             "folder.exr", 9),
+        case("filter aaf output in a missing folder", ["filter", "aaf", "good.exr", "-o", "nosuch/out.exr"], 3,
+             "nosuch/out.exr"),
+        case("filter aaf output under a file", ["filter", "aaf", "good.exr", "-o", "good2.exr/out.exr"], 3,
+             "good2.exr/out.exr"),
+        option("filter aaf --mu 0", "aaf", "--mu", "0"),
+        option("filter aaf --alpha 2", "aaf", "--alpha", "2"),
+        option("filter aaf --k -1", "aaf", "--k", "-1"),
+        option("filter aaf --normal-threshold 200", "aaf", "--normal-threshold", "200"),
+        option("filter aaf --filter bogus", "aaf", "--filter", "bogus"),
+        option("filter aaf --map nosuchrole=X", "aaf", "--map", "nosuchrole=X"),
+        option("filter aaf --map visibility=", "aaf", "--map", "visibility="),
+        option("filter aaf --compression bogus", "aaf", "--compression", "bogus", defect=9),
+        option("filter aaf --threads -1", "aaf", "--threads", "-1"),
+        case("filter aaf --frames 1-2000000000", ["filter", "aaf", "seq.####.exr", "-o", "out.####.exr",
+                                                  "--frames", "3-2000000000"], 3, "seq.0003.exr", 5),
+        case("filter aaf --frames abc", ["filter", "aaf", "seq.####.exr", "-o", "out.####.exr",
+                                         "--frames", "abc"], 2, "abc"),
+        case("filter aaf --frames 1-99999999999", ["filter", "aaf", "seq.####.exr", "-o", "out.####.exr",
+                                                   "--frames", "1-99999999999"], 2, defect=9),
+        case("filter aaf --skip-existing redoes a truncated output",
+             ["filter", "aaf", "seq.####.exr", "-o", "out.####.exr", "--frames", "1", "--skip-existing",
+              "--progress", "none"], 0, defect=6, setup={"copy": {"truncated.exr": "out.0001.exr"}},
+             creates=["out.0001.exr"]),
+        case("filter aaf removes its own stale temporary, not another program's",
+             ["filter", "aaf", "good.exr", "-o", "out.exr"], 0, defect=10,
+             setup={"copy": {"stale_output.exr": ".out.exr.tmp-999999-0",
+                             "text.exr": ".out.exr.tmp-notours"}},
+             creates=["out.exr"], removes=[".out.exr.tmp-999999-0"]),
+        case("filter aaf writes an output name of 244 characters",
+             ["filter", "aaf", "good.exr", "-o", "o" * 240 + ".exr"], 0, defect=10, creates=["o" * 240 + ".exr"]),
+        case("filter gaussian missing visibility",
+             ["filter", "gaussian", "missing_visibility.exr", "-o", "out.exr"], 3, "missing_visibility.exr"),
+        case("filter gaussian missing unshadowed",
+             ["filter", "gaussian", "missing_unshadowed.exr", "-o", "out.exr"], 3, "missing_unshadowed.exr"),
+        case("filter gaussian garbage EXR", ["filter", "gaussian", "garbage.exr", "-o", "out.exr"], 3,
+             "garbage.exr"),
+        option("filter gaussian --sigma -1", "gaussian", "--sigma", "-1"),
+        option("filter gaussian --sigma 1000", "gaussian", "--sigma", "1000"),
+        case("filter unknown method", ["filter", "nosuch", "good.exr", "-o", "out.exr"], 2, "nosuch", 9),
+    ]
+
+
+def other_cases():
+    def plan(name, input_file, code=3, defect=None, extra_args=()):
+        return case(name, ["plan", input_file, "-o", "out.exr", *extra_args], code,
+                    None if extra_args else input_file, defect)
+
+    def compare(name, args, code, names=None, defect=None, **extra):
+        return case(name, ["compare", *args], code, names, defect, **extra)
+
+    def info(name, input_file, defect=None):
+        return case(name, ["info", input_file], 3, input_file, defect)
+
+    def preview(name, args, code, names=None, defect=None):
+        return case(name, ["preview", *args], code, names, defect)
+
+    return [
+        plan("plan garbage EXR", "garbage.exr"),
+        plan("plan missing light attributes", "missing_light.exr"),
+        plan("plan light sigma 0", "light_sigma_zero.exr", defect=8),
+        plan("plan --mu 0", "good.exr", 2, 8, ["--mu", "0"]),
+        plan("plan --first-pass 0", "good.exr", 2, 8, ["--first-pass", "0"]),
+        plan("plan --max-spp -5", "good.exr", 2, 8, ["--max-spp", "-5"]),
+        case("plan output is the input", ["plan", "good.exr", "-o", "good.exr"], 3, "good.exr"),
+        compare("compare different sizes", ["good.exr", "small.exr"], 3, "small.exr"),
+        compare("compare missing reference", ["good.exr", "nosuch.exr"], 3, "nosuch.exr"),
+        compare("compare truncated test image", ["truncated.exr", "good.exr"], 3, "truncated.exr"),
+        compare("compare truncated PNG named .exr", ["png_truncated.exr", "good.exr"], 3, "png_truncated.exr", 9),
+        compare("compare missing channel", ["good.exr", "good2.exr", "--channels", "nosuch.X"], 3, "good.exr"),
+        compare("compare --crop overflow with a heatmap", ["good.exr", "good2.exr", "--crop", "2147483600,0,100,10",
+                                                           "--heatmap", "hm.png"], 2, defect=3),
+        compare("compare --crop overflow", ["good.exr", "good2.exr", "--crop", "2147483600,0,100,10"], 2, defect=3),
+        compare("compare --crop outside the image", ["good.exr", "good2.exr", "--crop", "4,4,8,8"], 2, defect=8),
+        compare("compare --metric bogus", ["good.exr", "good2.exr", "--metric", "bogus"], 2, "bogus", 9),
+        compare("compare --ppd 0", ["good.exr", "good2.exr", "--metric", "flip", "--ppd", "0"], 2, defect=12),
+        compare("compare --fail-above without a value", ["good.exr", "good2.exr", "--fail-above", "rmse"], 2, "rmse", 9),
+        compare("compare --mask of another size", ["good.exr", "good2.exr", "--mask", "mask_small.exr"], 3,
+                "mask_small.exr"),
+        compare("compare --csv is an input", ["good.exr", "good2.exr", "--csv", "good2.exr"], 3, "good2.exr"),
+        compare("compare --heatmap beside an input", ["good.exr", "good2.exr", "--heatmap", "good2.png"], 3,
+                "good2.exr"),
+        compare("compare --frames 3-1", ["seq.####.exr", "seq.####.exr", "--frames", "3-1"], 2),
+        compare("compare --frames 1-2000000000", ["seq.####.exr", "seq.####.exr", "--frames", "3-2000000000"], 3,
+                "seq.0003.exr", 5),
+        compare("compare a folder with a file", ["folder.exr", "good.exr"], 2, "folder.exr"),
+        info("info zero-byte EXR", "empty.exr"),
+        info("info garbage EXR", "garbage.exr"),
+        info("info truncated EXR", "truncated.exr"),
+        info("info header declares 8000x8000", "declared_8000.exr", defect=7),
+        info("info header declares 100000x100000", "huge_100000.exr", defect=7),
+        info("info 60 KB of an 8000x8000 file", "truncated_8000.exr", defect=7),
+        info("info header alone declares 100000x100000", "declared_100000.exr", defect=7),
+        case("compare header alone declares 100000x100000", ["compare", "declared_100000.exr", "good.exr"], 3,
+             "declared_100000.exr", 7),
+        info("info truncated PNG named .exr", "png_truncated.exr", defect=9),
+        info("info missing file", "nosuch.exr"),
+        info("info directory", "folder.exr"),
+        preview("preview missing channel", ["good.exr", "-o", "out.png", "--channels", "nosuch.X"], 3,
+                "good.exr", 9),
+        preview("preview garbage EXR", ["garbage.exr", "-o", "out.png"], 3, "garbage.exr"),
+        preview("preview output is the input", ["good.exr", "-o", "good.exr"], 3, "good.exr"),
+        preview("preview two channels", ["good.exr", "-o", "out.png", "--channels", "R,G"], 2, defect=8),
+        preview("preview missing OCIO config", ["good.exr", "-o", "out.png", "--ocio-config", "nosuch.ocio"], 3,
+                "nosuch.ocio"),
+        preview("preview unknown display", ["good.exr", "-o", "out.png", "--display", "nosuch"], 2, "nosuch"),
+        preview("preview into a folder", ["good.exr", "-o", "folder.exr"], 3, "folder.exr", 9),
+        case("unknown command", ["frobnicate"], 2, "frobnicate", 9),
+    ]
+
+
+def fuzz_cases():
+    """What the libFuzzer harnesses found (README "Reliability"), as command lines."""
+    for name in os.listdir(FINDINGS):
+        shutil.copyfile(os.path.join(FINDINGS, name), path(name))
+    string_attribute = "read_aovs-string_attribute_1_7GB.exr"  # OpenEXR fills the declared 1.7 GB string
+    return [
+        case("fuzz: info EXR whose string attribute declares 1.7 GB", ["info", string_attribute], 3,
+             string_attribute, 7),
+        case("fuzz: filter EXR whose string attribute declares 1.7 GB",
+             ["filter", "gaussian", string_attribute, "-o", "out.exr"], 3, string_attribute, 7),
+        case("fuzz: compare --frames with a 14-digit frame", ["compare", "seq.####.exr", "seq.####.exr",
+                                                              "--frames", "1,10090009010009"], 2, defect=9),
+        case("fuzz: filter --frames 1-11098100 over two frames",
+             ["filter", "gaussian", "seq.####.exr", "-o", "out.####.exr", "--frames", "1-11098100"], 3,
+             "seq.0003.exr", 5),
+    ]
+
+
+def main():
+    shutil.rmtree(FILES, ignore_errors=True)
+    os.makedirs(FILES)
+    write_images()
+    write_scenes()
+    cases = render_cases() + filter_cases() + other_cases() + fuzz_cases()
+    names = [c["name"] for c in cases]
+    if len(set(names)) != len(names):
+        sys.exit("duplicate case names")
+    with open(os.path.join(BAD, "cases.json"), "w") as f:
+        json.dump({"about": "Written by scripts/make_bad_corpus.py; run by tests/bad_inputs/run_bad_inputs.py. "
+                            "Paths are relative to a scratch copy of files/.", "cases": cases}, f, indent=1)
+        f.write("\n")
+    print("%d cases, %d files" % (len(cases), len(os.listdir(FILES))))
+
+
+if __name__ == "__main__":
+    main()
