@@ -5,6 +5,7 @@
 #include <climits>
 #include <csignal>
 #include <cstdio>
+#include <filesystem>
 #include <cstdlib>
 #include <iostream>
 #include <memory>
@@ -82,46 +83,6 @@ class RoundReporter {
     std::chrono::steady_clock::time_point start_ = std::chrono::steady_clock::now();
 };
 
-/// The most frames one `render --frames` may ask for (a million frames are
-/// 11.6 hours at 24 fps): every frame's job is held in memory, since
-/// io::parse_frame_range returns all frame numbers at once.
-constexpr long long kMaxFrames = 1000000;
-
-/// A frame number of `spec`, or nothing when `text` is not an integer (left
-/// to io::parse_frame_range to report); a number beyond int is a UsageError.
-std::optional<long long> frame_number(const std::string &text, const std::string &spec) {
-    char *end = nullptr;
-    errno = 0;
-    const long long value = std::strtoll(text.c_str(), &end, 10);
-    if (text.empty() || *end != '\0') return std::nullopt;
-    if (errno == ERANGE || value < INT_MIN || value > INT_MAX)
-        throw UsageError("bad frame range '" + spec + "': " + text + " lies beyond the frame numbers [" +
-                         std::to_string(INT_MIN) + ", " + std::to_string(INT_MAX) + "]");
-    return value;
-}
-
-/// Refuses a range spec (io::parse_frame_range's syntax: first[-last[(x|:)step]],
-/// comma-separated) of more than kMaxFrames frames before anything expands it.
-void check_frame_count(const std::string &spec) {
-    long long total = 0;
-    std::stringstream items(spec);
-    for (std::string item; std::getline(items, item, ',');) {
-        const std::size_t step_at = item.find_first_of("x:");
-        const std::string span = item.substr(0, step_at);
-        const std::size_t dash = span.find('-', 1);
-        const auto first = frame_number(span.substr(0, dash), spec);
-        const auto last = dash == std::string::npos ? first : frame_number(span.substr(dash + 1), spec);
-        const auto step = step_at == std::string::npos ? std::optional<long long>(1)
-                                                       : frame_number(item.substr(step_at + 1), spec);
-        if (!first || !last || !step || *step <= 0 || *last < *first)
-            continue;  // parse_frame_range reports it
-        total += (*last - *first) / *step + 1;
-        if (total > kMaxFrames)
-            throw UsageError("bad frame range '" + spec + "': more than " + std::to_string(kMaxFrames) +
-                             " frames in one run (split the range)");
-    }
-}
-
 /// Checks the settings the command line gave as usage errors (exit 2), with
 /// the library's ranges (trace::validate_render_settings).
 void check_settings(const trace::RenderSettings &settings, bool resume) {
@@ -134,22 +95,22 @@ void check_settings(const trace::RenderSettings &settings, bool resume) {
         throw UsageError("--resume continues a reference, not an adaptive render");
 }
 
-/// Refuses (aaf::InputError, exit 3) to write any job's output over a file
-/// the scene reads, the scene file or one of its OBJs, under any name.
-void check_outputs_spare_inputs(const std::string &scene, const std::vector<FrameJob> &jobs) {
-    for (const std::string &input : trace::scene_input_files(scene))
-        for (const FrameJob &job : jobs) io::check_not_same_file(input, job.output);
-}
-
-/// One job per frame of `frames` for a sequence, or the single job.
-std::vector<FrameJob> render_jobs(const std::string &scene, const std::string &output,
-                                  const std::string &frames) {
-    if (frames.empty()) return {{0, scene, output}};
-    check_frame_count(frames);
-    std::vector<FrameJob> jobs;
-    sequence_frames(output, frames).for_each(
-        [&](int frame) { jobs.push_back({frame, scene, io::frame_path(output, frame)}); });
-    return jobs;
+/// Refuses (aaf::InputError, exit 3) before anything renders an output that
+/// is a file the scene reads (the JSON, an OBJ), under any name. A frame's
+/// output can only be such a file if it exists, so for a sequence only the
+/// frames on disk are looked at, whatever the range's length.
+void check_outputs_spare_inputs(const std::string &scene, const std::string &output,
+                                const std::optional<io::FrameRange> &frames) {
+    const std::vector<std::string> inputs = trace::scene_input_files(scene);
+    std::vector<std::string> outputs;
+    const std::filesystem::path folder = std::filesystem::path(output).parent_path();
+    if (!frames)
+        outputs.push_back(output);
+    else if (std::filesystem::is_directory(folder.empty() ? "." : folder))  // else no frame exists yet
+        for (int frame : io::frames_on_disk(output))
+            if (frames->contains(frame)) outputs.push_back(io::frame_path(output, frame));
+    for (const std::string &input : inputs)
+        for (const std::string &path : outputs) io::check_not_same_file(input, path);
 }
 
 }  // namespace
@@ -239,8 +200,12 @@ void add_render_command(CLI::App &app) {
         if (sequence && !options->resume.empty())
             throw UsageError("--resume continues a single render, not a sequence");
 
-        const std::vector<FrameJob> jobs = render_jobs(options->scene, options->output, options->frames);
-        check_outputs_spare_inputs(options->scene, jobs);
+        // Frames are produced as they come: `--frames 1-2000000000` costs one job's memory.
+        std::optional<io::FrameRange> frames;
+        if (sequence) frames = sequence_frames(options->output, options->frames);
+        check_outputs_spare_inputs(options->scene, options->output, frames);
+        const FrameJobs jobs = frames ? FrameJobs(FrameJobs::fixed_input(options->scene), options->output, *frames)
+                                      : FrameJobs({{0, options->scene, options->output}});
         std::optional<AovSet> partial;
         if (!options->resume.empty()) {
             partial = io::read_aovs(options->resume);
@@ -253,7 +218,7 @@ void add_render_command(CLI::App &app) {
         RoundReporter report_rounds(sequence ? Progress::None : run.progress);
         std::signal(SIGINT, on_interrupt);
         std::signal(SIGTERM, on_interrupt);
-        const int failed = run_frames(jobs, run, [&](const FrameJob &job) {
+        const std::size_t failed = run_frames(jobs, run, [&](const FrameJob &job) {
             if (interrupt_received) throw Interrupted{};  // the frames so far are complete
             trace::RenderSettings frame_settings = settings;
             if (sequence) frame_settings.frame = job.frame;

@@ -44,11 +44,17 @@ FrameJobs::FrameJobs(std::string input, std::string output, io::FrameRange frame
       frames_(std::move(frames)),
       size_(frames_.size()) {}
 
+FrameJobs::FrameJobs(FixedInput input, std::string output, io::FrameRange frames)
+    : FrameJobs(std::move(input.path), std::move(output), std::move(frames)) {
+    input_is_pattern_ = false;
+}
+
 void FrameJobs::for_each(const std::function<void(const FrameJob &)> &visit) const {
     for (const FrameJob &job : list_) visit(job);
     // Distinct frames give distinct paths of one pattern: no two jobs share an output.
     frames_.for_each([&](int frame) {
-        const FrameJob job{frame, io::frame_path(input_, frame), io::frame_path(output_, frame)};
+        const FrameJob job{frame, input_is_pattern_ ? io::frame_path(input_, frame) : input_,
+                           io::frame_path(output_, frame)};
         io::check_not_same_file(job.input, job.output);
         visit(job);
     });

@@ -30,6 +30,13 @@ class FrameJobs {
     /// One job per frame of `frames`: that frame's path of the `input` and of
     /// the `output` pattern.
     FrameJobs(std::string input, std::string output, io::FrameRange frames);
+    /// An input that is the same file for every frame (a render's scene).
+    struct FixedInput {
+        std::string path;
+    };
+    static FixedInput fixed_input(std::string path) { return {std::move(path)}; }
+    /// One job per frame of `frames`: `input` itself and that frame's path of the `output` pattern.
+    FrameJobs(FixedInput input, std::string output, io::FrameRange frames);
 
     std::size_t size() const { return size_; }
     /// Calls `visit` with each job in order. A sequence job whose output is
@@ -39,6 +46,7 @@ class FrameJobs {
   private:
     std::vector<FrameJob> list_;
     std::string input_, output_;
+    bool input_is_pattern_ = true;
     io::FrameRange frames_;
     std::size_t size_ = 0;
 };

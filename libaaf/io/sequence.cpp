@@ -1,5 +1,7 @@
 #include "aaf/io/sequence.h"
 
+#include <cstdint>
+
 #include <algorithm>
 #include <cctype>
 #include <charconv>
@@ -127,6 +129,13 @@ FrameRange FrameRange::of(const std::vector<int> &frames) {
     for (int frame : frames) range.items_.push_back({frame, frame, 1});
     range.disjoint_ = spans_disjoint(range.items_);
     return range;
+}
+
+bool FrameRange::contains(int frame) const {
+    for (const Item &item : items_)
+        if (frame >= item.first && frame <= item.last && (std::int64_t(frame) - item.first) % item.step == 0)
+            return true;
+    return false;
 }
 
 bool FrameRange::given_before(std::size_t item, int frame) const {

@@ -102,7 +102,7 @@ TEST_CASE("compare refuses a crop spec with no area or not four integers as a us
 }
 
 TEST_CASE(
-    "a two-billion-frame range is streamed: filter and compare stop at the first missing frame "
+    "a two-billion-frame range is streamed: render, filter and compare stop at the first failing frame "
     "in bounded memory",
     "[cli][reliability][sequence]") {
     const fs::path dir = scratch_dir("reliability_huge_range");
@@ -118,6 +118,15 @@ TEST_CASE(
     CHECK(compared.exit_code == 3);
     CHECK(one_error_line(compared.output));
     CHECK_THAT(compared.output, Catch::Contains("in.0001.exr"));
+
+    // Frame 1 renders, then cannot be written into a folder that does not exist.
+    const std::string scene = std::string(AAF_SCENE_DIR) + "/grids.json";
+    const auto rendered = run_aaf("render " + scene + " -o " + (dir / "missing" / "f.####.exr").string() +
+                                      " --frames 1-2000000000 --width 8 --height 8 --spp 1 --progress none",
+                                  kLimitedAaf);
+    CHECK(rendered.exit_code == 3);
+    CHECK(one_error_line(rendered.output));
+    CHECK_THAT(rendered.output, Catch::Contains("f.0001.exr"));
 
     CHECK(children_peak_rss_mb() < 200.0);  // 2e9 frame numbers alone would be 8 GB
     CHECK(names_in(dir).empty());

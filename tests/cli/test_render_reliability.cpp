@@ -183,19 +183,12 @@ TEST_CASE("render option values out of range are usage errors: exit 2, one line,
     CHECK(fs::is_empty(dir));
 }
 
-TEST_CASE("render --frames refuses more than a million frames before expanding the range",
+TEST_CASE("render --frames with a number beyond int is one usage line, not 'stoi'",
           "[cli][render][reliability][frames]") {
     const fs::path dir = scratch_dir("render_many_frames");
     const std::string scene = std::string(AAF_SCENE_DIR) + "/grids.json";
     const std::string output = " -o " + (dir / "f.####.exr").string();
-    // Expanded up front, this range held 6.5 GB after 16 s and kept growing.
-    check_refused("render " + scene + " --frames 1-2000000000" + output, 2,
-                  "bad frame range '1-2000000000': more than 1000000 frames in one run");
-    check_refused("render " + scene + " --frames 1-500000,600001-1100001" + output, 2,
-                  "more than 1000000 frames");
-    // A frame number beyond int printed "stoi".
-    check_refused("render " + scene + " --frames 1-99999999999" + output, 2,
-                  "bad frame range '1-99999999999': 99999999999 lies beyond the frame numbers");
+    check_refused("render " + scene + " --frames 1-99999999999" + output, 2, "99999999999 is out of range");
     CHECK(fs::is_empty(dir));
 }
 

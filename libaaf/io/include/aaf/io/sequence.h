@@ -33,6 +33,8 @@ class FrameRange {
     /// overlap (the usual case); otherwise it counts them one by one.
     std::size_t size() const;
     bool empty() const { return items_.empty(); }
+    /// True when `frame` is one of the range's frames; O(items).
+    bool contains(int frame) const;
     /// The first frame; the range must not be empty.
     int front() const { return items_.front().first; }
 
