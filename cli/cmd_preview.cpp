@@ -86,7 +86,16 @@ void add_preview_command(CLI::App &app) {
         ->check(finite_number(-HUGE_VAL, HUGE_VAL, /*low_allowed=*/true));
     cmd->callback([options] {
         require_png_name(options->output, "--output");
+        if (options->layer.empty() && options->channels.size() != 1 && options->channels.size() != 3)
+            throw UsageError("--channels: a preview shows one channel (grey) or three");
         io::check_not_same_file(options->input, options->output);
+        if (!options->false_colour) try {
+                io::check_display_view(options->preview);  // the config's own problems are input errors
+            } catch (const InputError &) {
+                throw;
+            } catch (const Error &e) {
+                throw UsageError(e.what());  // an unknown --display, --view or --colorspace
+            }
         io::ImageLayout layout;
         const AovSet aovs = io::read_aovs(options->input, &layout);
         std::vector<std::string> channels = options->channels;

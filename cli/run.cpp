@@ -38,6 +38,26 @@ int report(const std::string &message, int code) {
     return code;
 }
 
+/// Throws UsageError naming an unknown subcommand: CLI11 would only say "A
+/// subcommand is required" for `aaf frobnicate` or `aaf filter nosuch`.
+void check_subcommand_names(const CLI::App &app, int argc, char **argv) {
+    const CLI::App *level = &app;
+    for (int i = 1; i < argc && level->get_require_subcommand_min() > 0; ++i) {
+        const std::string word = argv[i];
+        if (word.empty() || word[0] == '-') return;  // an option: CLI11 reports what is wrong with it
+        std::string known;
+        const CLI::App *next = nullptr;
+        for (const CLI::App *sub : level->get_subcommands([](const CLI::App *) { return true; })) {
+            known += (known.empty() ? "" : ", ") + sub->get_name();
+            if (sub->get_name() == word) next = sub;
+        }
+        if (!next)
+            throw UsageError("unknown " + std::string(level == &app ? "command" : "method") + " '" + word +
+                             "' (" + known + ")");
+        level = next;
+    }
+}
+
 }  // namespace
 
 int run(int argc, char **argv) {
@@ -62,6 +82,7 @@ int run(int argc, char **argv) {
     // installs its own handler: it finishes the round and writes it).
     io::remove_temporaries_on_signal();
     try {
+        check_subcommand_names(app, argc, argv);
         app.parse(argc, argv);
     } catch (const CheckFailed &) {
         return kExitCheckFailed;

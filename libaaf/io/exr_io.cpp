@@ -17,6 +17,7 @@
 #include "aaf/io/atomic_file.h"
 #include "exr_chunk_table.h"
 #include "one_line.h"
+#include "quiet_stderr.h"
 
 namespace aaf::io {
 
@@ -61,7 +62,8 @@ void check_memory_budget(const std::string &path, std::int64_t width, std::int64
     std::snprintf(sizes, sizeof sizes, "(%.3g GiB), over the memory limit of %.3g GiB",
                   bytes / double(1 << 30), budget / double(1 << 30));
     throw InputError(path + ": declares " + std::to_string(width) + "x" + std::to_string(height) + " with " +
-                     std::to_string(channels) + " channels " + sizes + " (raise with --memory-limit-gb or AAF_MEMORY_LIMIT_GB)");
+                     std::to_string(channels) + " channels " + sizes +
+                     " (raise with --memory-limit-gb or AAF_MEMORY_LIMIT_GB)");
 }
 
 /// What OpenEXR would allocate by the header alone is checked from the
@@ -226,6 +228,7 @@ bool is_lossy_compression(const std::string &name) {
 
 AovSet read_aovs(const std::string &path, ImageLayout *layout) {
     check_before_opening(path);
+    const QuietStderr quiet_libpng(has_png_signature(path));
     std::unique_ptr<OIIO::ImageInput> input = OIIO::ImageInput::open(path);
     if (!input) {
         std::string message = pending_error();
@@ -317,6 +320,7 @@ std::vector<std::string> add_channels_from_other_parts(const std::string &path, 
 bool is_readable_image(const std::string &path) {
     try {
         check_before_opening(path);
+        const QuietStderr quiet_libpng(has_png_signature(path));
         std::unique_ptr<OIIO::ImageInput> input = OIIO::ImageInput::open(path);
         if (!input) {
             OIIO::geterror();  // clear the pending message

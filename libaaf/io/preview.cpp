@@ -3,6 +3,7 @@
 #include <OpenColorIO/OpenColorIO.h>
 
 #include <cstdlib>
+#include <fstream>
 #include <sstream>
 
 #include <algorithm>
@@ -25,7 +26,13 @@ namespace {
 OCIO::ConstConfigRcPtr load_config(const PreviewOptions &options, std::string &name) {
     if (!options.ocio_config.empty()) {
         name = options.ocio_config;
-        return OCIO::Config::CreateFromFile(options.ocio_config.c_str());
+        if (!std::ifstream(options.ocio_config))
+            throw InputError(options.ocio_config + ": cannot read the OpenColorIO config");
+        try {
+            return OCIO::Config::CreateFromFile(options.ocio_config.c_str());
+        } catch (const OCIO::Exception &e) {
+            throw InputError(options.ocio_config + ": not an OpenColorIO config: " + e.what());
+        }
     }
     if (const char *env = std::getenv("OCIO"); env && *env) {
         name = env;
@@ -36,11 +43,28 @@ OCIO::ConstConfigRcPtr load_config(const PreviewOptions &options, std::string &n
     return OCIO::Config::CreateFromStream(text);
 }
 
+/// `name` when it is one of `count` names of `name_at`, else aaf::Error listing them.
+template <typename NameAt>
+void check_known(const std::string &what, const std::string &name, int count, const NameAt &name_at) {
+    std::string known;
+    for (int i = 0; i < count; ++i) {
+        if (name == name_at(i)) return;
+        known += std::string(known.empty() ? "" : ", ") + name_at(i);
+    }
+    throw Error("unknown OpenColorIO " + what + " " + quoted(name) + " (the config has " + known + ")");
+}
+
 /// The CPU processor from the input space to the display/view of `options`.
 OCIO::ConstCPUProcessorRcPtr display_processor(const PreviewOptions &options, std::string &config_name) {
     OCIO::ConstConfigRcPtr config = load_config(options, config_name);
     const std::string display = options.display.empty() ? config->getDefaultDisplay() : options.display;
+    check_known("display", display, config->getNumDisplays(), [&](int i) { return config->getDisplay(i); });
     const std::string view = options.view.empty() ? config->getDefaultView(display.c_str()) : options.view;
+    check_known("view", view, config->getNumViews(display.c_str()),
+                [&](int i) { return config->getView(display.c_str(), i); });
+    if (!options.input_space.empty())
+        check_known("colour space", options.input_space, config->getNumColorSpaces(),
+                    [&](int i) { return config->getColorSpaceNameByIndex(i); });
     std::string input = options.input_space;
     if (input.empty()) {
         OCIO::ConstColorSpaceRcPtr linear = config->getColorSpace(OCIO::ROLE_SCENE_LINEAR);
@@ -88,6 +112,15 @@ void write_false_colour_png(const AovSet &aovs, const std::string &channel, cons
             pixel[2] = colour.z;
         }
     write_png(rgb, aovs.width(), aovs.height(), path);
+}
+
+void check_display_view(const PreviewOptions &options) {
+    std::string config_name;
+    try {
+        display_processor(options, config_name);
+    } catch (const OCIO::Exception &e) {
+        throw Error("OpenColorIO: " + std::string(e.what()));
+    }
 }
 
 std::string write_preview_png(const AovSet &aovs, const std::vector<std::string> &channels,

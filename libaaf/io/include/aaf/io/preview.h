@@ -35,6 +35,12 @@ struct PreviewOptions {
 /// Written to a temporary name and renamed. Returns the name of the
 /// OpenColorIO config used ("" for data). Throws aaf::Error "<path>: <problem>",
 /// or aaf::InputError "<source_path>: no channel 'NAME' to preview".
+/// Checks the display, view and input colour space of `options` against the
+/// config it names before any image is read: throws aaf::InputError when the
+/// config file cannot be read or parsed (naming it), aaf::Error naming an
+/// unknown display, view or colour space with the ones the config has.
+void check_display_view(const PreviewOptions &options);
+
 std::string write_preview_png(const AovSet &aovs, const std::vector<std::string> &channels,
                               const std::string &path, const PreviewOptions &options = {});
 
