@@ -271,7 +271,7 @@ TEST_CASE("an error message with line breaks or raw bytes is still one line", "[
     CHECK_THAT(result.output, Catch::Contains("X; Y\\x01Z"));
 }
 
-TEST_CASE("--memory-limit-gb lowers and raises the image budget of any command", "[cli][reliability]") {
+TEST_CASE("The memory budget flag --memory-limit-gb lowers and raises the image budget of any command", "[cli][reliability]") {
     const fs::path dir = scratch_dir("memory_limit_flag");
     const std::string image = (dir / "small.exr").string();
     REQUIRE(run_aaf("render grids -o " + image + " --width 64 --height 48 --spp 1").exit_code == 0);

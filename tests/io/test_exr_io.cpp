@@ -160,8 +160,10 @@ TEST_CASE("PNG preview uses --ocio-config, then $OCIO, then the embedded config"
     io::write_preview_png(aovs, {"R", "G", "B"}, path);
     CHECK(shown() == Approx(0.5371f).margin(1.0f / 255));  // sRGB-encoded 0.25
     options.ocio_config = (dir / "missing.ocio").string();
+    // The file at fault is named: the config, not the picture.
+    CHECK_THROWS_AS(io::write_preview_png(aovs, {"R", "G", "B"}, path, options), InputError);
     CHECK_THROWS_WITH(io::write_preview_png(aovs, {"R", "G", "B"}, path, options),
-                      Catch::Contains("p.png: OpenColorIO"));
+                      Catch::Contains("missing.ocio: cannot read the OpenColorIO config"));
 }
 
 TEST_CASE("PNG preview shows the display window, the data window in place", "[io][preview]") {
