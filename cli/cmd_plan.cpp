@@ -26,7 +26,7 @@ void add_plan_command(CLI::App &app) {
     cmd->add_option("input", options->input, "First-pass EXR with d1, d2min, d2max, object id, pixel size")
         ->required();
     cmd->add_option("-o,--output", options->output, "Output EXR with the plan.spp channel")->required();
-    cmd->add_option("--mu", options->aaf.mu, "mu of Eq. 21 (use the filter's)")
+    cmd->add_option("--mu", options->aaf.mu, "mu of AAF Eq. 21 (use the filter's)")
         ->check(finite_number(0))
         ->capture_default_str();
     cmd->add_option("--alpha", options->aaf.alpha, "Occluder bandlimit over pixel bandlimit, (0,1] (Eq. 5)")

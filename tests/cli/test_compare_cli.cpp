@@ -7,22 +7,15 @@
 #include <sstream>
 
 #include "aaf/io/exr_io.h"
+#include "flat_image.h"
 #include "run_aaf.h"
 
 namespace fs = std::filesystem;
 using aaf_test::run_aaf;
 using aaf_test::scratch_dir;
+using aaf_test::write_flat;
 
-namespace {
-
-/// A 4x4 RGB image of one value.
-void write_flat(const fs::path &path, float value) {
-    aaf::AovSet image(4, 4);
-    for (const char *c : {"R", "G", "B"}) image.add_channel(c, value);
-    aaf::io::write_aovs(image, path.string());
-}
-
-}  // namespace
+namespace {}  // namespace
 
 TEST_CASE("compare: batch over a 3-frame sequence with CSV and JSON", "[cli][compare]") {
     const fs::path dir = scratch_dir("compare_batch");

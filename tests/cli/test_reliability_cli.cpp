@@ -13,20 +13,15 @@
 #include <vector>
 
 #include "aaf/io/exr_io.h"
+#include "flat_image.h"
 #include "run_aaf.h"
 
 namespace fs = std::filesystem;
 using aaf_test::run_aaf;
 using aaf_test::scratch_dir;
+using aaf_test::write_flat;
 
 namespace {
-
-/// A 4x4 RGB image of one value.
-void write_flat(const fs::path &path, float value) {
-    aaf::AovSet image(4, 4);
-    for (const char *c : {"R", "G", "B"}) image.add_channel(c, value);
-    aaf::io::write_aovs(image, path.string());
-}
 
 std::string bytes_of(const fs::path &path) {
     std::stringstream text;
@@ -271,7 +266,8 @@ TEST_CASE("an error message with line breaks or raw bytes is still one line", "[
     CHECK_THAT(result.output, Catch::Contains("X; Y\\x01Z"));
 }
 
-TEST_CASE("The memory budget flag --memory-limit-gb lowers and raises the image budget of any command", "[cli][reliability]") {
+TEST_CASE("The memory budget flag --memory-limit-gb lowers and raises the image budget of any command",
+          "[cli][reliability]") {
     const fs::path dir = scratch_dir("memory_limit_flag");
     const std::string image = (dir / "small.exr").string();
     REQUIRE(run_aaf("render grids -o " + image + " --width 64 --height 48 --spp 1").exit_code == 0);
