@@ -15,8 +15,6 @@ using aaf_test::run_aaf;
 using aaf_test::scratch_dir;
 using aaf_test::write_flat;
 
-namespace {}  // namespace
-
 TEST_CASE("compare: batch over a 3-frame sequence with CSV and JSON", "[cli][compare]") {
     const fs::path dir = scratch_dir("compare_batch");
     // Frame f differs from its reference by 0.1 f: RMSE = 0.1 f, MAE = 0.1 f.
