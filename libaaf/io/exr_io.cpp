@@ -1,6 +1,7 @@
 #include "aaf/io/exr_io.h"
 
 #include <OpenImageIO/imageio.h>
+#include <sys/stat.h>
 
 #include <algorithm>
 #include <atomic>
@@ -64,6 +65,25 @@ void check_memory_budget(const std::string &path, std::int64_t width, std::int64
     throw InputError(path + ": declares " + std::to_string(width) + "x" + std::to_string(height) + " with " +
                      std::to_string(channels) + " channels " + sizes +
                      " (raise with --memory-limit-gb or AAF_MEMORY_LIMIT_GB)");
+}
+
+/// For a format other than OpenEXR (whose chunk tables are checked instead):
+/// no such file can hold more than kMaxExpansion float bytes per byte of its
+/// own (deflate's limit is about 1032:1 for 8-bit data, 4128:1 as float), so
+/// a 26-byte header declaring gigabytes is refused before they are allocated.
+void check_declared_size_against_file(const std::string &path, const OIIO::ImageSpec &spec,
+                                      const std::string &format) {
+    constexpr double kMaxExpansion = 8192, kSlackBytes = 64.0 * (1 << 20);
+    if (format == "openexr") return;
+    struct stat file {};
+    const bool error = ::stat(path.c_str(), &file) != 0;
+    const double file_bytes = double(file.st_size);
+    const double declared = double(std::max(spec.width, 0)) * double(std::max(spec.height, 0)) *
+                            double(std::max(spec.depth, 1)) * double(std::max(spec.nchannels, 0)) * 4;
+    if (error || declared <= kSlackBytes || declared <= file_bytes * kMaxExpansion) return;
+    throw InputError(path + ": declares " + std::to_string(spec.width) + "x" + std::to_string(spec.height) +
+                     " with " + std::to_string(spec.nchannels) + " channels, more than a " +
+                     std::to_string(std::int64_t(file_bytes)) + "-byte " + format + " file can hold");
 }
 
 /// What OpenEXR would allocate by the header alone is checked from the
@@ -239,6 +259,7 @@ AovSet read_aovs(const std::string &path, ImageLayout *layout) {
     if (spec.depth > 1) throw InputError(path + ": volume images are not supported");
     const int channels = spec.nchannels;
     check_memory_budget(path, spec.width, std::int64_t(spec.height) * std::max(spec.depth, 1), channels);
+    check_declared_size_against_file(path, spec, input->format_name());
     AovSet aovs;
     try {
         aovs = AovSet(spec.width, spec.height);
@@ -331,6 +352,7 @@ bool is_readable_image(const std::string &path) {
             const OIIO::ImageSpec spec = input->spec();
             if (spec.deep || spec.width <= 0 || spec.height <= 0) return false;
             check_memory_budget(path, spec.width, spec.height, spec.nchannels);
+            check_declared_size_against_file(path, spec, input->format_name());
             // Every pixel is decoded: a truncated file has a good header.
             std::vector<unsigned char> scratch(spec.image_bytes(true));
             complete = input->read_image(part, 0, 0, spec.nchannels, TypeDesc::UNKNOWN, scratch.data());

@@ -165,10 +165,6 @@ std::vector<int> FrameRange::to_vector() const {
     return frames;
 }
 
-std::vector<int> parse_frame_range(const std::string &spec) {
-    return FrameRange::parse(spec).to_vector();
-}
-
 bool is_sequence_pattern(const std::string &path) {
     return find_field(path).begin != std::string::npos;
 }

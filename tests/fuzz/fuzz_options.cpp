@@ -1,5 +1,6 @@
 // libFuzzer harness: the option values a user types. The first byte picks
-// the parser: a `--frames` range (aaf::io::parse_frame_range), or a
+// the parser: a `--frames` range (aaf::io::FrameRange, used as the commands
+// use it before the first frame: its size and first frame), or a
 // `name=value` method parameter set on each registered method's
 // ParameterSet. Either parses or throws aaf::Error; a range never needs more
 // memory than libFuzzer's -malloc_limit_mb.
@@ -33,7 +34,10 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t *data, std::size_t size
     const std::string text(reinterpret_cast<const char *>(data) + 1, size - 1);
     if (data[0] % 2 == 0) {
         try {
-            (void)aaf::io::parse_frame_range(text);
+            // What a command does before its first frame: the count for progress, the first frame.
+            const aaf::io::FrameRange range = aaf::io::FrameRange::parse(text);
+            (void)range.size();
+            if (!range.empty()) (void)range.contains(range.front());
         } catch (const aaf::Error &) {
         }
     } else {

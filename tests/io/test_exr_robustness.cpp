@@ -162,3 +162,14 @@ TEST_CASE("a preview of a missing channel names the file it was read from", "[io
     }
     CHECK(fs::is_empty(dir));
 }
+
+TEST_CASE("a non-EXR file declaring more pixels than its bytes can hold is refused before allocating",
+          "[io][robustness]") {
+    // Found by scripts/fuzz.sh: 26 bytes that OpenImageIO reads as a WebP of
+    // 14898x10798 pixels; reading it allocated 3.2 GB before failing.
+    const std::string path =
+        std::string(AAF_SOURCE_DIR) + "/testdata/bad/fuzz_findings/read_aovs-webp_header_declaring_2_5GB.exr";
+    CHECK_THROWS_AS(io::read_aovs(path), InputError);
+    CHECK_THROWS_WITH(io::read_aovs(path), Catch::Contains("more than a 26-byte webp file can hold"));
+    CHECK_FALSE(io::is_readable_image(path));
+}

@@ -10,15 +10,17 @@ using namespace aaf;
 namespace fs = std::filesystem;
 
 TEST_CASE("Frame ranges: single, span, steps with x and :, lists", "[io][sequence]") {
-    CHECK(io::parse_frame_range("7") == std::vector<int>{7});
-    CHECK(io::parse_frame_range("1-4") == std::vector<int>{1, 2, 3, 4});
-    CHECK(io::parse_frame_range("1-9x3") == std::vector<int>{1, 4, 7});
-    CHECK(io::parse_frame_range("1-9:3") == std::vector<int>{1, 4, 7});  // ':' is a step, not ignored
-    CHECK(io::parse_frame_range("1,5,7-9") == std::vector<int>{1, 5, 7, 8, 9});
-    CHECK(io::parse_frame_range("3,1-3") == std::vector<int>{3, 1, 2});  // order kept, no duplicates
-    CHECK(io::parse_frame_range("-2-1") == std::vector<int>{-2, -1, 0, 1});
+    CHECK(io::FrameRange::parse("7").to_vector() == std::vector<int>{7});
+    CHECK(io::FrameRange::parse("1-4").to_vector() == std::vector<int>{1, 2, 3, 4});
+    CHECK(io::FrameRange::parse("1-9x3").to_vector() == std::vector<int>{1, 4, 7});
+    CHECK(io::FrameRange::parse("1-9:3").to_vector() ==
+          std::vector<int>{1, 4, 7});  // ':' is a step, not ignored
+    CHECK(io::FrameRange::parse("1,5,7-9").to_vector() == std::vector<int>{1, 5, 7, 8, 9});
+    CHECK(io::FrameRange::parse("3,1-3").to_vector() ==
+          std::vector<int>{3, 1, 2});  // order kept, no duplicates
+    CHECK(io::FrameRange::parse("-2-1").to_vector() == std::vector<int>{-2, -1, 0, 1});
     for (const char *bad : {"", "a", "1-", "5-1", "1-9x0", "1-9:-2", "1,,2", "4x2"})
-        CHECK_THROWS_AS(io::parse_frame_range(bad), Error);
+        CHECK_THROWS_AS(io::FrameRange::parse(bad), Error);
 }
 
 TEST_CASE("a frame range holds its items, not its frames: two billion frames cost nothing up front",

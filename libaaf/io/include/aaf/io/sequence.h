@@ -58,8 +58,6 @@ class FrameRange {
     bool disjoint_ = true;  ///< no two items' [first, last] spans overlap: no duplicates possible
 };
 
-/// FrameRange::parse(spec).to_vector(): for callers that hold every frame anyway.
-std::vector<int> parse_frame_range(const std::string &spec);
 
 /// True when `path` names a sequence: a run of `#` or `@`, or a printf
 /// `%d` / `%0Nd` field.
