@@ -121,6 +121,15 @@ FrameRange FrameRange::parse(const std::string &spec) {
         start = comma + 1;
     }
     range.disjoint_ = spans_disjoint(range.items_);
+    // Overlapping items are walked frame by frame, each checked against the
+    // items before it, to skip repeats: bound that work, so that a spec like
+    // "1-2000000000,5" is refused at once instead of counting for minutes.
+    constexpr double kMaxOverlapWork = 2e8;
+    double frames = 0;
+    for (const Item &item : range.items_) frames += (double(item.last) - item.first) / item.step + 1;
+    if (!range.disjoint_ && frames * double(range.items_.size()) > kMaxOverlapWork)
+        throw Error("bad frame range '" + spec +
+                    "': its items overlap over too many frames to skip the repeats (list each frame once)");
     return range;
 }
 
