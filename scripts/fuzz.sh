@@ -37,6 +37,7 @@ run_one() {
   local name="$1" corpus="$build/corpus/$1" artifacts="$build/artifacts/$1" log="$build/$1.log"
   local malloc_limit=1024
   [ "$name" != fuzz_read_aovs ] || malloc_limit=2100
+  rm -rf "$artifacts"  # the counts printed are this run's findings only
   mkdir -p "$corpus" "$artifacts"
   cp -n "$root/tests/fuzz/corpus/$name"/* "$corpus"/ 2>/dev/null || true
   ASAN_OPTIONS=detect_leaks=1 UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1 \

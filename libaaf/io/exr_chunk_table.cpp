@@ -4,6 +4,7 @@
 #include <cstdint>
 #include <cstring>
 #include <fstream>
+#include <utility>
 #include <vector>
 
 #include "aaf/core/error.h"
@@ -54,11 +55,25 @@ std::int64_t channel_count(const std::vector<char> &chlist) {
 /// the empty header that ends a multi-part file's list.
 bool read_header(std::istream &in, ExrPart &part, const std::string &path) {
     bool first = true;
+    // What OpenEXR sizes its buffers from: without them it allocates from
+    // defaults (a fuzzed 830-byte header with a mangled 'channels' took 2.1 GB).
+    bool has_channels = false, has_compression = false, has_data_window = false;
     for (;;) {
         std::string name, type;
         if (!std::getline(in, name, '\0')) throw InputError(path + ": truncated OpenEXR header");
-        if (name.empty()) return !first;
+        if (name.empty()) {
+            if (first) return false;
+            for (const auto &[present, required] : {std::pair<bool, const char *>{has_channels, "channels"},
+                                                    {has_compression, "compression"},
+                                                    {has_data_window, "dataWindow"}})
+                if (!present)
+                    throw InputError(path + ": corrupt OpenEXR header (no '" + required + "' attribute)");
+            return true;
+        }
         first = false;
+        has_channels = has_channels || name == "channels";
+        has_compression = has_compression || name == "compression";
+        has_data_window = has_data_window || name == "dataWindow";
         char size_bytes[4];
         if (!std::getline(in, type, '\0') || !in.read(size_bytes, 4))
             throw InputError(path + ": truncated OpenEXR header");

@@ -173,3 +173,12 @@ TEST_CASE("a non-EXR file declaring more pixels than its bytes can hold is refus
     CHECK_THROWS_WITH(io::read_aovs(path), Catch::Contains("more than a 26-byte webp file can hold"));
     CHECK_FALSE(io::is_readable_image(path));
 }
+
+TEST_CASE("an EXR header without a channel list is refused before OpenEXR allocates from defaults",
+          "[io][robustness]") {
+    // Found by scripts/fuzz.sh: 830 bytes whose 'channels' name was mangled; reading took 2.1 GB.
+    const std::string path = std::string(AAF_SOURCE_DIR) +
+                             "/testdata/bad/fuzz_findings/read_aovs-header_without_channels_2_1GB.exr";
+    CHECK_THROWS_AS(io::read_aovs(path), InputError);
+    CHECK_THROWS_WITH(io::read_aovs(path), Catch::Contains("no 'channels' attribute"));
+}
