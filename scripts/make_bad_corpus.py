@@ -439,7 +439,12 @@ def fuzz_cases():
     string_attribute = "read_aovs-string_attribute_1_7GB.exr"  # OpenEXR fills the declared 1.7 GB string
     webp_header = "read_aovs-webp_header_declaring_2_5GB.exr"  # 26 bytes: OIIO's WebP reader allocated 3.2 GB
     no_channels = "read_aovs-header_without_channels_2_1GB.exr"  # 830 bytes: OpenEXR allocated 2.1 GB
+    # 1.4 KB, a valid 131332x4 header whose pixels fail to inflate: OpenImageIO's read_scanlines reserves
+    # 2.5 GB that it never touches (peak RSS stays near 170 MB); kept so the reservation stays harmless.
+    scanline_reserve = "read_aovs-oiio_reserves_2_5GB_for_scanlines.exr"
     return [
+        case("fuzz: info on an EXR whose pixels fail to inflate after a large reservation", ["info", scanline_reserve],
+             3, scanline_reserve, 7),
         case("fuzz: info on an EXR header whose channel list is unnamed", ["info", no_channels], 3, no_channels, 7),
         case("fuzz: info on a 26-byte WebP header declaring 14898x10798", ["info", webp_header], 3, webp_header, 7),
         case("fuzz: info EXR whose string attribute declares 1.7 GB", ["info", string_attribute], 3,
