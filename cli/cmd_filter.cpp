@@ -20,13 +20,6 @@ namespace aaf::cli {
 
 namespace {
 
-/// The command-line spelling of a parameter: --normal-threshold for normal_threshold.
-std::string option_name(const ParameterInfo &parameter) {
-    std::string name = "--" + parameter.name;
-    std::replace(name.begin(), name.end(), '_', '-');
-    return name;
-}
-
 /// One option per declared parameter; values given land in `values` as text.
 void add_parameter_options(CLI::App &cmd, const MethodInfo &method,
                            std::map<std::string, std::string> &values) {
@@ -35,7 +28,7 @@ void add_parameter_options(CLI::App &cmd, const MethodInfo &method,
         if (!parameter.unit.empty()) help += "; " + parameter.unit;
         if (parameter.type == ParameterType::Bool) {
             cmd.add_flag_callback(
-                option_name(parameter), [&values, name = parameter.name] { values[name] = "true"; }, help);
+                parameter.option_name(), [&values, name = parameter.name] { values[name] = "true"; }, help);
             continue;
         }
         help += "; " + parameter.range_text();
@@ -43,7 +36,7 @@ void add_parameter_options(CLI::App &cmd, const MethodInfo &method,
                            : parameter.type == ParameterType::Float ? "FLOAT"
                                                                     : "TEXT";
         cmd.add_option_function<std::string>(
-               option_name(parameter),
+               parameter.option_name(),
                [&values, name = parameter.name](const std::string &v) { values[name] = v; }, help)
             ->type_name(type)
             ->default_str(parameter.default_value);

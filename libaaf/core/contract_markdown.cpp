@@ -66,10 +66,8 @@ std::string methods_markdown() {
         if (info.parameters.empty()) continue;
         text += "| parameter | default | unit | valid | meaning |\n| --- | --- | --- | --- | --- |\n";
         for (const ParameterInfo &p : info.parameters) {
-            std::string option = "--" + p.name;
-            std::replace(option.begin(), option.end(), '_', '-');
-            text += "| `" + option + "` | " + p.default_value + " | " + (p.unit.empty() ? "-" : p.unit) +
-                    " | " + p.range_text() + " | " + p.help + " |\n";
+            text += "| `" + p.option_name() + "` | " + p.default_value + " | " +
+                    (p.unit.empty() ? "-" : p.unit) + " | " + p.range_text() + " | " + p.help + " |\n";
         }
         text += "\n";
     }

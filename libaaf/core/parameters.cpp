@@ -1,5 +1,6 @@
 #include "aaf/core/parameters.h"
 
+#include <algorithm>
 #include <cerrno>
 #include <cmath>
 #include <cstdio>
@@ -49,14 +50,30 @@ std::string ParameterInfo::range_text() const {
     return "any";
 }
 
-ParameterInfo ParameterInfo::real(std::string name, std::string default_value, std::string unit,
-                                  std::string help, double min, double max, bool min_open, bool max_open) {
+std::string ParameterInfo::option_name() const {
+    std::string option = "--" + name;
+    std::replace(option.begin(), option.end(), '_', '-');
+    return option;
+}
+
+namespace {
+
+ParameterInfo declared(std::string name, ParameterType type, std::string default_value, std::string help) {
     ParameterInfo p;
     p.name = std::move(name);
-    p.type = ParameterType::Float;
+    p.type = type;
     p.default_value = std::move(default_value);
-    p.unit = std::move(unit);
     p.help = std::move(help);
+    return p;
+}
+
+}  // namespace
+
+ParameterInfo ParameterInfo::real(std::string name, std::string default_value, std::string unit,
+                                  std::string help, double min, double max, bool min_open, bool max_open) {
+    ParameterInfo p =
+        declared(std::move(name), ParameterType::Float, std::move(default_value), std::move(help));
+    p.unit = std::move(unit);
     p.min = min;
     p.max = max;
     p.min_open = min_open;
@@ -73,22 +90,14 @@ ParameterInfo ParameterInfo::integer(std::string name, std::string default_value
 }
 
 ParameterInfo ParameterInfo::flag(std::string name, std::string help) {
-    ParameterInfo p;
-    p.name = std::move(name);
-    p.type = ParameterType::Bool;
-    p.default_value = "false";
-    p.help = std::move(help);
-    return p;
+    return declared(std::move(name), ParameterType::Bool, "false", std::move(help));
 }
 
 ParameterInfo ParameterInfo::choice(std::string name, std::string default_value,
                                     std::vector<std::string> choices, std::string help) {
-    ParameterInfo p;
-    p.name = std::move(name);
-    p.type = ParameterType::Choice;
-    p.default_value = std::move(default_value);
+    ParameterInfo p =
+        declared(std::move(name), ParameterType::Choice, std::move(default_value), std::move(help));
     p.choices = std::move(choices);
-    p.help = std::move(help);
     return p;
 }
 

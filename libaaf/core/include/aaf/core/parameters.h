@@ -27,6 +27,8 @@ struct ParameterInfo {
 
     /// The valid values in words: "(0, 1]", ">= 0", "separable|2d", "true|false".
     std::string range_text() const;
+    /// The command-line spelling: "--normal-threshold" for normal_threshold.
+    std::string option_name() const;
 
     /// A Float in [min, max] (an open end excludes its bound).
     static ParameterInfo real(std::string name, std::string default_value, std::string unit, std::string help,
