@@ -28,17 +28,21 @@ inline const std::vector<aaf::DoubleWedge> &test_wedges() {
 }
 
 /// A bound on the midpoint rule's error for the area of a union of boxes on
-/// the n x n grid of the filter's bounding rectangle: each box edge is off by
-/// at most a cell, so the area by at most (perimeter) x (cell diagonal).
+/// the n x n grid (cells hx by hy) of the filter's bounding rectangle: along
+/// a row, the cells counted inside an interval of length L number L/hx +- 1,
+/// and the rows inside a box (Ly/hy +- 1), so each box (or parallelogram) is
+/// off by at most Lx hy + Ly hx + hx hy.
 inline double box_area_error_bound(const aaf::SpectralFilter &filter, int cells) {
-    double x_half = 0, y_half = 0, perimeter = 0;
+    double x_half = 0, y_half = 0;
     for (const aaf::SpectralComponent &c : filter.components) {
         y_half = std::max(y_half, std::abs(c.center_y) + c.width_y);
         x_half = std::max(x_half, std::abs(c.center_x) + std::abs(c.shear) * c.width_y + c.width_x);
-        // A sheared edge is longer than its Omega_y extent: sqrt(1 + shear^2) per unit.
-        perimeter += 4 * c.width_x + 4 * c.width_y * std::sqrt(1 + c.shear * c.shear);
     }
-    return perimeter * std::hypot(2 * x_half / cells, 2 * y_half / cells);
+    const double hx = 2 * x_half / cells, hy = 2 * y_half / cells;
+    double bound = 0;
+    for (const aaf::SpectralComponent &c : filter.components)
+        bound += 2 * c.width_x * hy + 2 * c.width_y * hx + hx * hy;
+    return bound;
 }
 
 }  // namespace wedge_test
