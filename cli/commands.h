@@ -37,5 +37,6 @@ void add_compare_command(CLI::App &app);
 void add_info_command(CLI::App &app);
 void add_preview_command(CLI::App &app);
 void add_plan_command(CLI::App &app);
+void add_analyze_command(CLI::App &app);
 
 }  // namespace aaf::cli

@@ -51,9 +51,10 @@ void check_subcommand_names(const CLI::App &app, int argc, char **argv) {
             known += (known.empty() ? "" : ", ") + sub->get_name();
             if (sub->get_name() == word) next = sub;
         }
-        if (!next)
-            throw UsageError("unknown " + std::string(level == &app ? "command" : "method") + " '" + word +
-                             "' (" + known + ")");
+        if (!next) {
+            const char *what = level == &app ? "command" : level->get_name() == "filter" ? "method" : "subcommand";
+            throw UsageError(std::string("unknown ") + what + " '" + word + "' (" + known + ")");
+        }
         level = next;
     }
 }
@@ -78,6 +79,7 @@ int run(int argc, char **argv) {
     add_compare_command(app);
     add_info_command(app);
     add_preview_command(app);
+    add_analyze_command(app);
     // Ctrl-C or a farm's SIGTERM leaves no hidden temporary behind (a render
     // installs its own handler: it finishes the round and writes it).
     io::remove_temporaries_on_signal();

@@ -429,6 +429,24 @@ def other_cases():
         preview("preview unknown display", ["good.exr", "-o", "out.png", "--display", "nosuch"], 2, "nosuch"),
         preview("preview into a folder", ["good.exr", "-o", "folder.png"], 3, "folder.png", 9),
         case("unknown command", ["frobnicate"], 2, "frobnicate", 9),
+    ] + analyze_cases()
+
+
+def analyze_cases():
+    """`aaf analyze wedge`: wedges and options that mean nothing are usage errors."""
+    def wedge(name, args, names=None):
+        return case(name, ["analyze", "wedge", *args], 2, names)
+
+    return [
+        wedge("analyze wedge --smin above --smax", ["--smin", "2", "--smax", "1"], "--smin"),
+        wedge("analyze wedge --smin equal to --smax", ["--smin", "1", "--smax", "1"], "--smin"),
+        wedge("analyze wedge --smin -1", ["--smin", "-1", "--smax", "1"], "--smin"),
+        wedge("analyze wedge --smax inf", ["--smin", "1", "--smax", "inf"], "--smax"),
+        wedge("analyze wedge --filters 0", ["--smin", "1", "--smax", "2", "--filters", "0"], "--filters"),
+        wedge("analyze wedge --random with --smin", ["--random", "5", "--smin", "1", "--smax", "2"], "--random"),
+        wedge("analyze wedge --box with --gauss", ["--smin", "1", "--smax", "2", "--box", "--gauss"], "--box"),
+        wedge("analyze wedge without slopes", [], "--smin"),
+        case("analyze unknown subcommand", ["analyze", "wedgee"], 2, "wedgee"),
     ]
 
 
