@@ -53,7 +53,7 @@ TEST_CASE("CLI: analyze wedge --json is keyed by the paper's method names, box c
     CHECK(out["MAAF(1)"]["coverage"].get<double>() == out["AAF"]["coverage"].get<double>());
 }
 
-TEST_CASE("CLI: analyze wedge --random averages the same wedges for a seed; --gauss has accuracy below 1",
+TEST_CASE("CLI: analyze wedge --random averages the same wedges for a seed, and --gauss has accuracy below 1",
           "[cli][analyze]") {
     const std::string args = "analyze wedge --random 5 --seed 3 --grid 128 --filters 2,3";
     const nlohmann::json a = run_json(args), b = run_json(args);
