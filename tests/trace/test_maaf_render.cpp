@@ -93,7 +93,7 @@ TEST_CASE("MAAF with N = 1 on a render is AAF with k mu = the light band", "[tra
     // 5x5 (MAAF Sec. 6.2), AAF's from every sample without averaging, so beta differs where the
     // occluder distances vary: the mean difference is stated, not zero.
     const AovSet aovs = render_maaf(16);  // the first pass is every sample
-    const std::vector<float> maaf1 = filtered(aovs, "maaf", {{"pairs", "1"}});
+    const std::vector<float> maaf1 = filtered(aovs, "maaf", {{"pairs", "1"}, {"filter", "2d"}});
     const std::vector<float> aaf = filtered(aovs, "aaf", {{"mu", "1"}, {"k", "2"}, {"filter", "2d"}, {"normal_threshold", "20"}});
     double mean_abs = 0, worst = 0;
     for (std::size_t i = 0; i < aaf.size(); ++i) {

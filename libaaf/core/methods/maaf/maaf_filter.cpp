@@ -9,6 +9,7 @@
 #include "aaf/core/gather.h"
 #include "aaf/core/maaf_accumulation.h"
 #include "aaf/core/maaf_components.h"
+#include "aaf/core/maaf_separable.h"
 #include "aaf/core/parallel.h"
 
 namespace aaf {
@@ -155,16 +156,98 @@ void maaf_filter(const MaafInputs &in, const LightPlane &light, const MaafParams
         return plane;
     };
 
-    GatherSettings settings;
-    settings.normal_threshold_deg = params.normal_threshold_deg;
-    settings.mode = GatherMode::Full2D;
+    std::vector<std::vector<float>> values, unoccludeds;
+    for (std::size_t c = 0; c < in.value_sums.size(); ++c) {
+        values.push_back(finite_copy(in.value_sums[c]));
+        unoccludeds.push_back(finite_copy(in.unoccluded_sums[c]));
+    }
     std::vector<double> numerator(count, 0.0), denominator(count, 0.0), central_num(count, 0.0),
         central_den(count, 0.0);
-    std::vector<float> omega_u(count), omega_v(count), inv_u(count), inv_v(count), out_value(count),
-        out_unoccluded(count);
+    // Adds one component pair's filtered sums, times `scale`, to the totals.
+    auto add = [&](int pu, int pv, double scale, const std::vector<float> &value,
+                   const std::vector<float> &unoccluded) {
+        for (std::size_t i = 0; i < count; ++i) {
+            if (!kernels[i].filtered) continue;
+            const double w = scale * kernels[i].weight[pu] * kernels[i].weight[pv];
+            numerator[i] += w * value[i];
+            denominator[i] += w * unoccluded[i];
+            if (pu == 0 && pv == 0) {
+                central_num[i] = value[i];
+                central_den[i] = unoccluded[i];
+            }
+        }
+    };
+    auto channel = [&](int function_u, int function_v) { return std::size_t(function_u * per_axis + function_v); };
     for (int pu = 0; pu < pairs; ++pu)
         for (int pv = 0; pv < pairs; ++pv) {
             // Component pu along the light's first axis, pv along its second (MAAF Fig. 7).
+            if (params.separable) {
+                ComplexKernels k;
+                k.omega_u.resize(count);
+                k.omega_v.resize(count);
+                k.inv_u.resize(count);
+                k.inv_v.resize(count);
+                k.radius_px.resize(count);
+                for (std::size_t i = 0; i < count; ++i) {
+                    k.radius_px[i] = kernels[i].filtered ? std::max(kernels[i].radius_px[pu], kernels[i].radius_px[pv]) : 0;
+                    k.omega_u[i] = kernels[i].omega_x[pu];
+                    k.omega_v[i] = kernels[i].omega_x[pv];
+                    k.inv_u[i] = kernels[i].inv_two_sigma_sq[pu];
+                    k.inv_v[i] = kernels[i].inv_two_sigma_sq[pv];
+                }
+                // MAAF Eq. 13 regrouped as complex exponentials: for p, q >= 1,
+                // cos a cos b h_cc - cos a sin b h_cs - sin a cos b h_sc + sin a sin b h_ss
+                //   = 1/2 Re[e^{j(a+b)} ((h_cc - h_ss) + j (h_cs + h_sc))]
+                //   + 1/2 Re[e^{j(a-b)} ((h_cc + h_ss) + j (h_sc - h_cs))],
+                // and cos a h_c - sin a h_s = Re[e^{ja} (h_c + j h_s)] with one axis central.
+                struct Term {
+                    double sign_v;  ///< the phase along v: +C_v or -C_v
+                    double scale;
+                    std::vector<std::pair<double, std::size_t>> re, im;  ///< (factor, channel)
+                };
+                std::vector<Term> terms;
+                if (pu == 0 && pv == 0)
+                    terms.push_back({1.0, 1.0, {{1.0, channel(0, 0)}}, {}});
+                else if (pv == 0)
+                    terms.push_back({1.0, 1.0, {{1.0, channel(2 * pu - 1, 0)}}, {{1.0, channel(2 * pu, 0)}}});
+                else if (pu == 0)
+                    terms.push_back({1.0, 1.0, {{1.0, channel(0, 2 * pv - 1)}}, {{1.0, channel(0, 2 * pv)}}});
+                else {
+                    const std::size_t cc = channel(2 * pu - 1, 2 * pv - 1), cs = channel(2 * pu - 1, 2 * pv),
+                                      sc = channel(2 * pu, 2 * pv - 1), ss = channel(2 * pu, 2 * pv);
+                    terms.push_back({1.0, 0.5, {{1.0, cc}, {-1.0, ss}}, {{1.0, cs}, {1.0, sc}}});
+                    terms.push_back({-1.0, 0.5, {{1.0, cc}, {1.0, ss}}, {{1.0, sc}, {-1.0, cs}}});
+                }
+                for (const Term &term : terms) {
+                    ComplexKernels signed_k = k;
+                    if (term.sign_v < 0)
+                        for (float &w : signed_k.omega_v) w = -w;
+                    auto combine = [&](const std::vector<std::vector<float>> &planes) {
+                        ComplexPlane z;
+                        z.re.assign(count, 0.0);
+                        z.im.assign(count, 0.0);
+                        for (const auto &[factor, c] : term.re)
+                            for (std::size_t i = 0; i < count; ++i) z.re[i] += factor * planes[c][i];
+                        for (const auto &[factor, c] : term.im)
+                            for (std::size_t i = 0; i < count; ++i) z.im[i] += factor * planes[c][i];
+                        return z;
+                    };
+                    const std::vector<ComplexPlane> result = maaf_separable_gather(
+                        guides, params.normal_threshold_deg, signed_k, {combine(values), combine(unoccludeds)});
+                    std::vector<float> value(count), unoccluded(count);
+                    for (std::size_t i = 0; i < count; ++i) {
+                        value[i] = float(result[0].re[i]);
+                        unoccluded[i] = float(result[1].re[i]);
+                    }
+                    add(pu, pv, term.scale, value, unoccluded);
+                }
+                continue;
+            }
+            GatherSettings settings;
+            settings.normal_threshold_deg = params.normal_threshold_deg;
+            settings.mode = GatherMode::Full2D;
+            std::vector<float> omega_u(count), omega_v(count), inv_u(count), inv_v(count), out_value(count),
+                out_unoccluded(count);
             for (std::size_t i = 0; i < count; ++i) {
                 const PixelKernels &k = kernels[i];
                 guides.radius_px[i] = k.filtered ? std::max(k.radius_px[pu], k.radius_px[pv]) : 0;
@@ -175,34 +258,22 @@ void maaf_filter(const MaafInputs &in, const LightPlane &light, const MaafParams
             }
             for (const Function &fu : functions_of(pu))
                 for (const Function &fv : functions_of(pv)) {
-                    const std::size_t channel = std::size_t(fu.index * per_axis + fv.index);
-                    const std::vector<float> value = finite_copy(in.value_sums[channel]);
-                    const std::vector<float> unoccluded = finite_copy(in.unoccluded_sums[channel]);
+                    const std::size_t c = channel(fu.index, fv.index);
                     const AxisModulation along_u{fu.kind, plane_view<const float>(omega_u.data(), width, height),
                                                  plane_view<const float>(inv_u.data(), width, height)};
                     const AxisModulation along_v{fv.kind, plane_view<const float>(omega_v.data(), width, height),
                                                  plane_view<const float>(inv_v.data(), width, height)};
                     gather_modulated(guides, settings,
-                                     {plane_view<const float>(value.data(), width, height),
-                                      plane_view<const float>(unoccluded.data(), width, height)},
+                                     {plane_view<const float>(values[c].data(), width, height),
+                                      plane_view<const float>(unoccludeds[c].data(), width, height)},
                                      {plane_view(out_value.data(), width, height),
                                       plane_view(out_unoccluded.data(), width, height)},
                                      along_u, along_v, GatherNormalisation::None);
-                    for (std::size_t i = 0; i < count; ++i) {
-                        if (!kernels[i].filtered) continue;
-                        const double w = kernels[i].weight[pu] * kernels[i].weight[pv];
-                        numerator[i] += w * double(out_value[i]);
-                        denominator[i] += w * double(out_unoccluded[i]);
-                        if (pu == 0 && pv == 0) {
-                            central_num[i] = out_value[i];
-                            central_den[i] = out_unoccluded[i];
-                        }
-                    }
+                    add(pu, pv, 1.0, out_value, out_unoccluded);
                 }
         }
 
-    const std::vector<float> value0 = finite_copy(in.value_sums[0]);
-    const std::vector<float> unoccluded0 = finite_copy(in.unoccluded_sums[0]);
+    const std::vector<float> &value0 = values[0], &unoccluded0 = unoccludeds[0];
     parallel_for_rows(height, [&](int y) {
         for (int x = 0; x < width; ++x) {
             const std::size_t i = guides.index(x, y);

@@ -26,6 +26,9 @@ std::vector<ParameterInfo> maaf_parameters() {
         ParameterInfo::real("normal_threshold", "20", "degrees",
                             "Reject taps whose normal turns more (MAAF Sec. 6.2)", 0, 180),
         ParameterInfo::integer("max_radius", "64", "pixels", "Largest filter radius", 0, 1 << 16),
+        ParameterInfo::choice("filter", "separable", {"separable", "2d"},
+                              "separable: two 1D passes per component pair (complex exponentials, as AAF Sec. 6 "
+                              "separates); 2d: every tap of MAAF Eq. 21, to measure the approximation"),
     };
 }
 
@@ -87,6 +90,7 @@ class MaafMethod final : public Method {
         params.pairs_used = parameters.get_choice("pairs") == "1" ? 1 : 0;
         params.normal_threshold_deg = parameters.get_float("normal_threshold");
         params.max_radius_px = parameters.get_int("max_radius");
+        params.separable = parameters.get_choice("filter") == "separable";
         const PlaneView filtered = images.output(Role::FilteredVisibility);
         maaf_filter(in, read_light_attributes(images.attributes()), params, filtered);
         progress.report(0.9);

@@ -40,6 +40,10 @@ struct MaafParams {
     /// Taps stop at 3 standard deviations of a component's x-side Gaussian,
     /// and never beyond this bound; pixels.
     int max_radius_px = 64;
+    /// Two 1D passes per component pair (complex exponentials, AAF Sec. 6's
+    /// separation); false: every tap of the square window (MAAF Eq. 21
+    /// directly, through gather_modulated), slower, to measure the approximation.
+    bool separable = true;
 
     /// Throws aaf::Error naming the first parameter out of range.
     void validate() const;
