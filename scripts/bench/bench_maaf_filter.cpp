@@ -1,11 +1,11 @@
-// Speed of the MAAF filter (N = 3, 25 filters in 4D; separable and the full
-// window) as a ratio to the AAF filter, both on the same 9 spp render of
-// `grids` with the maaf AOVs, at 640x480 and 1920x1080. Each iteration times
-// every filter once, alternately, so the ratios come from one run on one
-// machine:
+// Speed of the MAAF filter (N = 3, 25 filters in 4D) as a ratio to the AAF
+// filter, both on the same 9 spp render of `grids` with the maaf AOVs, at
+// 640x480 and 1920x1080. Each iteration times both filters once, alternately,
+// so the ratio comes from one run on one machine:
 //   aaf_ms        aaf_filter with default AafParams (separable)
 //   maaf_ms       maaf_filter with default MaafParams (separable complex passes)
-//   maaf_2d_ms    maaf_filter over the full window (gather_modulated); 640x480 only
+// (The full-window variant, --filter 2d, is about 20x slower again and is left
+// out: it would take minutes per iteration here.)
 // Run: ./build/scripts/bench/bench_maaf_filter (see README "Benchmarks").
 #include <benchmark/benchmark.h>
 
@@ -76,16 +76,13 @@ double ms_since(std::chrono::steady_clock::time_point start) {
 
 void BM_MaafVsAaf(benchmark::State &state) {
     const int width = int(state.range(0)), height = int(state.range(1));
-    const bool full_window = width <= 640;  // the full window takes minutes at 1920x1080
     const Fixture &f = fixture(width, height);
     const std::size_t n = f.aovs.pixel_count();
     std::vector<float> out(n);
     const aaf::PlaneView view = aaf::plane_view(out.data(), width, height);
     aaf::MaafParams separable;
     separable.omega_y_max_rad_per_m = f.omega_y_max;
-    aaf::MaafParams full = separable;
-    full.separable = false;
-    double aaf_ms = 0, maaf_ms = 0, maaf_2d_ms = 0;
+    double aaf_ms = 0, maaf_ms = 0;
     for (auto _ : state) {
         auto t = std::chrono::steady_clock::now();
         aaf::aaf_filter(f.aaf_inputs, f.light, aaf::AafParams{}, {view, aaf::PlaneView{}});
@@ -95,22 +92,12 @@ void BM_MaafVsAaf(benchmark::State &state) {
         aaf::maaf_filter(f.maaf_inputs, f.light, separable, view);
         maaf_ms += ms_since(t);
         benchmark::DoNotOptimize(out.data());
-        if (full_window) {
-            t = std::chrono::steady_clock::now();
-            aaf::maaf_filter(f.maaf_inputs, f.light, full, view);
-            maaf_2d_ms += ms_since(t);
-            benchmark::DoNotOptimize(out.data());
-        }
         benchmark::ClobberMemory();
     }
     const double iters = double(state.iterations());
     state.counters["aaf_ms"] = aaf_ms / iters;
     state.counters["maaf_ms"] = maaf_ms / iters;
     state.counters["maaf_over_aaf"] = maaf_ms / aaf_ms;
-    if (full_window) {
-        state.counters["maaf_2d_ms"] = maaf_2d_ms / iters;
-        state.counters["maaf_2d_over_aaf"] = maaf_2d_ms / aaf_ms;
-    }
 }
 
 }  // namespace

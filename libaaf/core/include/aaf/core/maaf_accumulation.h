@@ -2,9 +2,6 @@
 
 #include <array>
 #include <string>
-#include <vector>
-
-#include "aaf/core/maaf_components.h"
 
 namespace aaf {
 
