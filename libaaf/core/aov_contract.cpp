@@ -4,9 +4,22 @@
 #include <type_traits>
 
 #include "aaf/core/error.h"
+#include "aaf/core/maaf_accumulation.h"
 #include "aaf/core/quoted.h"
 
 namespace aaf {
+
+namespace {
+
+/// The (2N-1)^2 channel names of a MAAF sums layer for the contract's N (maaf_accumulation.h's layout).
+std::vector<std::string> maaf_channel_names(const std::string &prefix) {
+    std::vector<std::string> names;
+    for (int c = 0; c < maaf_channel_count(kMaafContractPairs); ++c)
+        names.push_back(prefix + maaf_channel_suffix(kMaafContractPairs, c));
+    return names;
+}
+
+}  // namespace
 
 const std::vector<RoleInfo> &role_table() {
     static const std::vector<RoleInfo> table = {
@@ -128,6 +141,27 @@ const std::vector<RoleInfo> &role_table() {
          "linear radiance",
          "noisy shadowed shading of every light but the key light (scenes with several lights); "
          "the beauty is r(x) V(x) plus this"},
+        {Role::MaafValueSums,
+         "maaf_value",
+         maaf_channel_names("maaf.V_"),
+         "light weight, summed over samples",
+         "MAAF Eq. 20/23 by Monte Carlo, N = 3: channel V_<a><b> is the sum over the pixel's samples of l(y) "
+         "f(x, y) phi_a(y1) phi_b(y2), with y1, y2 the sample's point on the light along its axis_u and axis_v "
+         "(metres from its centre) and phi_c0 = 1, phi_cp = cos(C_y^p y), phi_sp = sin(C_y^p y), C_y^p = "
+         "maaf.omegay 2p / 5 rad/m (MAAF Eq. 6); `aaf::MaafLightSide::accumulate` writes it for any renderer"},
+        {Role::MaafUnoccludedSums,
+         "maaf_unoccluded",
+         maaf_channel_names("maaf.W_"),
+         "light weight, summed over samples",
+         "as maaf.V_* with every sample counted unoccluded (f = 1): the filter divides by these, filtered "
+         "alike, so a fully lit region stays exactly lit"},
+        {Role::MaafWedge,
+         "maaf_wedge",
+         {"maaf.smin", "maaf.smax", "maaf.omegax", "maaf.omegay"},
+         "slopes (unitless); rad/m",
+         "the wedge the MAAF sums were accumulated with (MAAF Sec. 6.2: from the first pass, averaged over 5x5): "
+         "slopes d1/d2 - 1, the pixel band-limit Omega_x^max (0 = no wedge, not filtered) and the partitioned "
+         "Omega_y^max of the light-side functions"},
     };
     return table;
 }

@@ -26,6 +26,8 @@ constexpr int kMaxChannelsPerSweep = 4;
 struct PixelModulation {
     AxisModulation::Kind kind_u = AxisModulation::Kind::None, kind_v = AxisModulation::Kind::None;
     float omega_u = 0, omega_v = 0;
+    /// Per-axis Gaussian widths (1 / (2 sigma^2)); negative = the guides' isotropic one.
+    float inv_two_sigma_sq_u = -1, inv_two_sigma_sq_v = -1;
 
     static float factor(AxisModulation::Kind kind, float omega, float delta) {
         switch (kind) {
@@ -59,6 +61,10 @@ void gather_pixel(const GatherGuides &g, float cos_threshold, const Planes<K> &p
     const float u = g.coord_u_m[c], v = g.coord_v_m[c], id = g.object_id[c];
     const float nx = g.normal_x[c], ny = g.normal_y[c], nz = g.normal_z[c];
     const float inv_two_sigma_sq = g.inv_two_sigma_sq[c];
+    const bool anisotropic =
+        Modulated && (modulation.inv_two_sigma_sq_u >= 0 || modulation.inv_two_sigma_sq_v >= 0);
+    const float inv_u = modulation.inv_two_sigma_sq_u >= 0 ? modulation.inv_two_sigma_sq_u : inv_two_sigma_sq;
+    const float inv_v = modulation.inv_two_sigma_sq_v >= 0 ? modulation.inv_two_sigma_sq_v : inv_two_sigma_sq;
     const int x_begin = std::max(0, x - reach_x), x_end = std::min(g.width, x + reach_x + 1);
     const int y_begin = std::max(0, y - reach_y), y_end = std::min(g.height, y + reach_y + 1);
 
@@ -68,7 +74,8 @@ void gather_pixel(const GatherGuides &g, float cos_threshold, const Planes<K> &p
         const float accepted = float(g.object_id[t] == id) * float(cos_angle >= cos_threshold);
         const float du = g.coord_u_m[t] - u, dv = g.coord_v_m[t] - v;
         const float weight =
-            accepted * fast_exp_nonpositive(-(du * du + dv * dv) * inv_two_sigma_sq);  // AAF Eq. 11
+            anisotropic ? accepted * fast_exp_nonpositive(-(du * du * inv_u + dv * dv * inv_v))
+                      : accepted * fast_exp_nonpositive(-(du * du + dv * dv) * inv_two_sigma_sq);  // AAF Eq. 11
         weight_sum[lane] += weight;
         const float modulated = Modulated ? weight * modulation(du, dv) : weight;
         for (int k = 0; k < K; ++k) sum[k][lane] += modulated * planes.source[k][t];
@@ -118,6 +125,8 @@ void gather_sweep(const GatherGuides &g, float cos_threshold, const Planes<K> &p
                     modulation.omega_u = mod_u.omega_rad_per_m(x, y);
                 if (mod_v.kind != AxisModulation::Kind::None)
                     modulation.omega_v = mod_v.omega_rad_per_m(x, y);
+                if (mod_u.inv_two_sigma_sq.valid()) modulation.inv_two_sigma_sq_u = mod_u.inv_two_sigma_sq(x, y);
+                if (mod_v.inv_two_sigma_sq.valid()) modulation.inv_two_sigma_sq_v = mod_v.inv_two_sigma_sq(x, y);
             }
             gather_pixel<K, Modulated>(g, cos_threshold, planes, x, y, along_x ? radius : 0,
                                        along_y ? radius : 0, modulation, normalise);
@@ -296,6 +305,10 @@ void gather_modulated(const GatherGuides &guides, const GatherSettings &settings
             !(m->omega_rad_per_m.valid() && m->omega_rad_per_m.width == guides.width &&
               m->omega_rad_per_m.height == guides.height))
             throw Error("modulated gather: a frequency plane is missing or has another size");
+    for (const AxisModulation *m : {&along_u, &along_v})
+        if (m->inv_two_sigma_sq.valid() &&
+            !(m->inv_two_sigma_sq.width == guides.width && m->inv_two_sigma_sq.height == guides.height))
+            throw Error("modulated gather: a per-axis width plane has another size");
     const PackedPlanes packed = pack(sources);
     PackedPlanes result(packed.size(), std::vector<float>(packed.empty() ? 0 : packed[0].size()));
     sweep_all<true>(guides, cos_threshold_of(settings), packed, result, true, true, along_u, along_v,

@@ -238,6 +238,10 @@ void validate_render_settings(const RenderSettings &settings) {
             throw Error("adaptive mu must be positive and finite");
         if (settings.resume) throw Error("an adaptive render cannot be resumed");
     }
+    if (settings.maaf_first_pass_spp < 1 || settings.maaf_first_pass_spp > (1 << 20))
+        throw Error("MAAF first-pass spp must lie in [1, 1048576]");
+    if ((settings.aovs & kAovMaaf) && settings.resume)
+        throw Error("a render with the maaf AOVs cannot be resumed (they need every sample, kept in memory)");
 }
 
 AovSet render_scene(const std::string &scene_name, const RenderSettings &settings, RenderTimings *timings) {
@@ -257,6 +261,8 @@ AovSet render_scene(const std::string &scene_name, const RenderSettings &setting
     int spp_done = settings.resume
                        ? restore_progress(*settings.resume, scene, settings, accumulators, tracing.stats())
                        : 0;
+    // MAAF's first pass (Sec. 6.2) is a round of its own, stratified by itself.
+    const int maaf_first_pass = (groups & kAovMaaf) ? std::min(settings.maaf_first_pass_spp, settings.spp) : 0;
     auto render_so_far = [&](int done) {
         AovSet aovs(settings.width, settings.height);
         write_aovs(state, accumulators, groups, aovs);
@@ -282,7 +288,8 @@ AovSet render_scene(const std::string &scene_name, const RenderSettings &setting
         auto last_checkpoint = Clock::now();
         for (int round = (spp_done + kSamplesPerRound - 1) / kSamplesPerRound; spp_done < settings.spp;
              ++round) {
-            const int count = std::min(kSamplesPerRound, settings.spp - spp_done);
+            const int count = spp_done < maaf_first_pass ? maaf_first_pass - spp_done
+                                                         : std::min(kSamplesPerRound, settings.spp - spp_done);
             tracing.trace_pass(
                 std::uint32_t(round), [&](int, int) { return count; }, true);
             spp_done += count;

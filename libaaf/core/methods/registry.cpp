@@ -14,6 +14,7 @@ std::vector<std::unique_ptr<Method>> &registry() {
         std::vector<std::unique_ptr<Method>> builtin;
         builtin.push_back(make_aaf_method());       // Mehta et al. 2012
         builtin.push_back(make_gaussian_method());  // fixed-width baseline
+        builtin.push_back(make_maaf_method());      // Wu et al. 2017
         return builtin;
     }();
     return methods;

@@ -34,6 +34,9 @@ enum class Role {
     Albedo,              ///< diffuse reflectance
     Motion,              ///< screen-space motion since the previous frame
     OtherLights,         ///< shadowed shading of every light but the key light
+    MaafValueSums,       ///< MAAF: samples' light-weighted visibility times the light-side functions
+    MaafUnoccludedSums,  ///< MAAF: the same with every sample unoccluded (normalisation)
+    MaafWedge,           ///< MAAF: the wedge the sums were accumulated with
 };
 
 struct RoleInfo {
@@ -43,6 +46,10 @@ struct RoleInfo {
     const char *units;
     const char *meaning;
 };
+
+/// N of the MAAF channels the contract lists (MAAF Sec. 6.1: 5 filters per
+/// 2D subspace, 25 in 4D); the core API takes any N, the AOV layer is this one.
+inline constexpr int kMaafContractPairs = 3;
 
 /// Every role, with its default channels. Read by the I/O layer, the tracer,
 /// the filters and `aaf info`; documented in libaaf/AOV_CONTRACT.md.
@@ -72,6 +79,9 @@ inline constexpr const char *kSceneHash = "aaf:scene_hash";          // string, 
 inline constexpr const char *kApertureRadius = "aaf:camera:aperture_radius_m";  // float, 0 = pinhole
 inline constexpr const char *kLightCount =
     "aaf:light_count";  // int, lights in the scene (light = the key light)
+inline constexpr const char *kMaafPairs = "aaf:maaf:pairs";  // int, N of the MAAF sums
+inline constexpr const char *kMaafOmegaYMax =
+    "aaf:maaf:omega_y_max";  // float, rad/m, the light's Omega_y^max of the MAAF sums
 }  // namespace attr
 
 void write_light_attributes(const LightPlane &light, AovSet &aovs);

@@ -72,6 +72,11 @@ void gather(const GatherGuides &guides, const GatherSettings &settings,
 struct AxisModulation {
     enum class Kind { None, Cos, NegSin } kind = Kind::None;
     ConstPlaneView omega_rad_per_m;  ///< per centre pixel; unused for None
+    /// Optional, per centre pixel, metres^-2: when given, the Gaussian along
+    /// this axis is exp(-delta^2 * this) instead of the guides' isotropic
+    /// width, so that a tap's weight can be anisotropic in the guides' plane
+    /// (MAAF's 4D components pair two x-side widths, one per light axis).
+    ConstPlaneView inv_two_sigma_sq;
 };
 
 /// Whether a modulated gather divides by the sum of its (unmodulated) Gaussian weights.

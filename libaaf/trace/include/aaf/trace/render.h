@@ -29,7 +29,9 @@ enum AovGroup : unsigned {
     kAovAlbedo = 1u << 6,      ///< albedo.R/G/B
     kAovMotion = 1u << 7,      ///< motion.X/Y
     kAovProgress = 1u << 8,    ///< progress.*: the sums a resumed reference continues from
+    kAovMaaf = 1u << 9,        ///< maaf.*: MAAF's light-side sums; its first pass is a pass of its own
 };
+/// Every group but maaf, whose first pass changes how the samples are stratified.
 inline constexpr unsigned kAovsAll = (kAovProgress << 1) - 1;
 
 /// Name (as `--aovs` spells it) and contents of each group.
@@ -79,6 +81,11 @@ struct RenderSettings {
     bool adaptive = false;
     float adaptive_mu = 2.0f;  ///< mu of Eq. 21
     int max_spp = 100;         ///< cap of the adaptive total per pixel
+
+    /// With the maaf group: the samples of MAAF's first pass (Sec. 6.2: 16),
+    /// traced as a pass of their own before the rest, whose occluder distances
+    /// set the light-side frequencies every sample is accumulated with.
+    int maaf_first_pass_spp = 16;
 
     /// Overrides the lights' emission profile (AAF Sec. 7: uniform lights).
     std::optional<LightProfile> light_profile;

@@ -1,0 +1,293 @@
+#include "aaf/core/maaf_filter.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <string>
+
+#include "aaf/core/error.h"
+#include "aaf/core/gather.h"
+#include "aaf/core/maaf_accumulation.h"
+#include "aaf/core/maaf_components.h"
+#include "aaf/core/maaf_separable.h"
+#include "aaf/core/parallel.h"
+
+namespace aaf {
+
+namespace {
+
+/// Taps stop at 3 standard deviations of a component's x-side Gaussian.
+constexpr double kCutoffSigmas = 3.0;
+
+void check_size(ConstPlaneView view, int width, int height, const std::string &what) {
+    if (!view.valid() || view.width != width || view.height != height)
+        throw Error("MAAF input '" + what + "' is missing or has another size");
+}
+
+void check_inputs(const MaafInputs &in, const LightPlane &light, const MaafParams &params) {
+    params.validate();
+    light.validate();
+    if (in.pairs < 1 || in.pairs > kMaafMaxPairs)
+        throw Error("MAAF sums: N must lie in [1, " + std::to_string(kMaafMaxPairs) + "]");
+    if (params.pairs_used != 0 && params.pairs_used != 1 && params.pairs_used != in.pairs)
+        throw Error("MAAF can use all " + std::to_string(in.pairs) +
+                    " filter pairs of its sums or the central filter alone (1), not " +
+                    std::to_string(params.pairs_used));
+    const int width = in.pixel_size.width, height = in.pixel_size.height;
+    if (width <= 0 || height <= 0) throw Error("MAAF input 'pixel_size' is missing or empty");
+    const std::size_t channels = std::size_t(maaf_channel_count(in.pairs));
+    if (in.value_sums.size() != channels || in.unoccluded_sums.size() != channels)
+        throw Error("MAAF needs " + std::to_string(channels) + " value and unoccluded sums for N = " +
+                    std::to_string(in.pairs));
+    for (std::size_t c = 0; c < channels; ++c) {
+        check_size(in.value_sums[c], width, height, "maaf value sum " + std::to_string(c));
+        check_size(in.unoccluded_sums[c], width, height, "maaf unoccluded sum " + std::to_string(c));
+    }
+    check_size(in.s_min, width, height, "maaf s_min");
+    check_size(in.s_max, width, height, "maaf s_max");
+    check_size(in.omega_x_max, width, height, "maaf omega_x_max");
+    for (int c = 0; c < 3; ++c) {
+        check_size(in.position[std::size_t(c)], width, height, "position");
+        check_size(in.normal[std::size_t(c)], width, height, "normal");
+    }
+    check_size(in.object_id, width, height, "object_id");
+}
+
+/// One pixel's x-side kernels, per component p = 0 .. M-1 (at most kMaafMaxPairs).
+struct PixelKernels {
+    bool filtered = false;
+    float omega_x[kMaafMaxPairs] = {};          ///< C_x^p, rad/m
+    float inv_two_sigma_sq[kMaafMaxPairs] = {};  ///< of the primal Gaussian of std 1/sigma_x^p, m^-2
+    int radius_px[kMaafMaxPairs] = {};
+    double weight[kMaafMaxPairs] = {};  ///< mu_0 sigma_x^0, 2 mu_p sigma_x^p (the Gaussian's normalisation)
+};
+
+/// True when the stored wedge is one maaf_components() accepts.
+bool usable_wedge(float s_min, float s_max, float omega_x_max, float pixel_size) {
+    return s_min >= 0 && s_max >= s_min && std::isfinite(s_max) && omega_x_max > 0 && std::isfinite(omega_x_max) &&
+           pixel_size > 0 && std::isfinite(pixel_size);
+}
+
+PixelKernels pixel_kernels(const MaafInputs &in, const MaafParams &params, int pairs, int x, int y) {
+    PixelKernels k;
+    const float s_min = in.s_min(x, y), s_max = in.s_max(x, y), omega_x_max = in.omega_x_max(x, y);
+    const float pixel_size = in.pixel_size(x, y);
+    if (in.object_id(x, y) == 0 || !usable_wedge(s_min, s_max, omega_x_max, pixel_size)) return k;
+    const std::vector<MaafComponent> components =
+        maaf_pair_components(s_min, s_max, omega_x_max, params.omega_y_max_rad_per_m, pairs);
+    for (int p = 0; p < pairs; ++p) {
+        const MaafComponent &c = components[std::size_t(p)];
+        const double sigma_m = 1.0 / c.sigma_x;  // primal width of G(.; sigma_x) (MAAF Eq. 12)
+        const double radius = std::min(std::ceil(kCutoffSigmas * sigma_m / pixel_size), double(params.max_radius_px));
+        k.omega_x[p] = float(c.centre_x);
+        k.inv_two_sigma_sq[p] = float(std::min(0.5 * c.sigma_x * c.sigma_x, double(std::numeric_limits<float>::max())));
+        k.radius_px[p] = int(radius);
+        k.weight[p] = (p == 0 ? 1.0 : 2.0) * c.weight * c.sigma_x;  // MAAF Eq. 21
+    }
+    k.filtered = true;
+    return k;
+}
+
+/// The light-side functions of component p (maaf_accumulation.h's indices) with their x-side modulation.
+struct Function {
+    int index;
+    AxisModulation::Kind kind;
+};
+std::vector<Function> functions_of(int p) {
+    if (p == 0) return {{0, AxisModulation::Kind::None}};
+    // MAAF Eq. 21 with the tap's displacement from the centre: cos(C_x d) for h_c, -sin(C_x d) for h_s.
+    return {{2 * p - 1, AxisModulation::Kind::Cos}, {2 * p, AxisModulation::Kind::NegSin}};
+}
+
+}  // namespace
+
+void MaafParams::validate() const {
+    if (!(omega_y_max_rad_per_m > 0) || !std::isfinite(omega_y_max_rad_per_m))
+        throw Error("MAAF Omega_y^max must be positive and finite");
+    if (pairs_used < 0) throw Error("MAAF filter pairs must be >= 0");
+    if (!(normal_threshold_deg >= 0 && normal_threshold_deg <= 180))
+        throw Error("MAAF normal threshold must lie in [0, 180] degrees");
+    if (max_radius_px < 0) throw Error("MAAF maximum filter radius must be >= 0 pixels");
+}
+
+void maaf_filter(const MaafInputs &in, const LightPlane &light, const MaafParams &params, PlaneView out) {
+    check_inputs(in, light, params);
+    const int width = in.pixel_size.width, height = in.pixel_size.height;
+    if (!out.valid() || out.width != width || out.height != height)
+        throw Error("MAAF output 'filtered visibility' is missing or has another size");
+    const int pairs = params.pairs_used == 0 ? in.pairs : params.pairs_used;
+    const int per_axis = maaf_functions_per_axis(in.pairs);
+    const std::size_t count = std::size_t(width) * std::size_t(height);
+
+    GatherGuides guides;
+    guides.resize(width, height);
+    std::vector<PixelKernels> kernels(count);
+    parallel_for_rows(height, [&](int y) {
+        for (int x = 0; x < width; ++x) {
+            const std::size_t i = guides.index(x, y);
+            // Signed displacements along the light's own axes (NOTES-MAAF: the cos/sin phases need them).
+            const Vec3 p{in.position[0](x, y), in.position[1](x, y), in.position[2](x, y)};
+            const float u = dot(light.axis_u, p - light.center), v = dot(light.axis_v, p - light.center);
+            if (!std::isfinite(u + v)) {
+                guides.object_id[i] = std::numeric_limits<float>::quiet_NaN();  // never a tap
+                continue;
+            }
+            guides.coord_u_m[i] = u;
+            guides.coord_v_m[i] = v;
+            const Vec3 n{in.normal[0](x, y), in.normal[1](x, y), in.normal[2](x, y)};
+            const float len = length(n);
+            const Vec3 unit = (len > 0 && std::isfinite(len)) ? n / len : Vec3{};
+            guides.normal_x[i] = unit.x;
+            guides.normal_y[i] = unit.y;
+            guides.normal_z[i] = unit.z;
+            guides.object_id[i] = in.object_id(x, y);
+            kernels[i] = pixel_kernels(in, params, pairs, x, y);
+        }
+    });
+
+    // Non-finite sums (a renderer's NaN) are read as 0, so they cannot spread through the filter.
+    auto finite_copy = [&](ConstPlaneView view) {
+        std::vector<float> plane(count);
+        for (int y = 0; y < height; ++y)
+            for (int x = 0; x < width; ++x) {
+                const float value = view(x, y);
+                plane[guides.index(x, y)] = std::isfinite(value) ? value : 0.0f;
+            }
+        return plane;
+    };
+
+    std::vector<std::vector<float>> values, unoccludeds;
+    for (std::size_t c = 0; c < in.value_sums.size(); ++c) {
+        values.push_back(finite_copy(in.value_sums[c]));
+        unoccludeds.push_back(finite_copy(in.unoccluded_sums[c]));
+    }
+    std::vector<double> numerator(count, 0.0), denominator(count, 0.0), central_num(count, 0.0),
+        central_den(count, 0.0);
+    // Adds one component pair's filtered sums, times `scale`, to the totals.
+    auto add = [&](int pu, int pv, double scale, const std::vector<float> &value,
+                   const std::vector<float> &unoccluded) {
+        for (std::size_t i = 0; i < count; ++i) {
+            if (!kernels[i].filtered) continue;
+            const double w = scale * kernels[i].weight[pu] * kernels[i].weight[pv];
+            numerator[i] += w * value[i];
+            denominator[i] += w * unoccluded[i];
+            if (pu == 0 && pv == 0) {
+                central_num[i] = value[i];
+                central_den[i] = unoccluded[i];
+            }
+        }
+    };
+    auto channel = [&](int function_u, int function_v) { return std::size_t(function_u * per_axis + function_v); };
+    for (int pu = 0; pu < pairs; ++pu)
+        for (int pv = 0; pv < pairs; ++pv) {
+            // Component pu along the light's first axis, pv along its second (MAAF Fig. 7).
+            if (params.separable) {
+                ComplexKernels k;
+                k.omega_u.resize(count);
+                k.omega_v.resize(count);
+                k.inv_u.resize(count);
+                k.inv_v.resize(count);
+                k.radius_px.resize(count);
+                for (std::size_t i = 0; i < count; ++i) {
+                    k.radius_px[i] = kernels[i].filtered ? std::max(kernels[i].radius_px[pu], kernels[i].radius_px[pv]) : 0;
+                    k.omega_u[i] = kernels[i].omega_x[pu];
+                    k.omega_v[i] = kernels[i].omega_x[pv];
+                    k.inv_u[i] = kernels[i].inv_two_sigma_sq[pu];
+                    k.inv_v[i] = kernels[i].inv_two_sigma_sq[pv];
+                }
+                // MAAF Eq. 13 regrouped as complex exponentials: for p, q >= 1,
+                // cos a cos b h_cc - cos a sin b h_cs - sin a cos b h_sc + sin a sin b h_ss
+                //   = 1/2 Re[e^{j(a+b)} ((h_cc - h_ss) + j (h_cs + h_sc))]
+                //   + 1/2 Re[e^{j(a-b)} ((h_cc + h_ss) + j (h_sc - h_cs))],
+                // and cos a h_c - sin a h_s = Re[e^{ja} (h_c + j h_s)] with one axis central.
+                struct Term {
+                    double sign_v;  ///< the phase along v: +C_v or -C_v
+                    double scale;
+                    std::vector<std::pair<double, std::size_t>> re, im;  ///< (factor, channel)
+                };
+                std::vector<Term> terms;
+                if (pu == 0 && pv == 0)
+                    terms.push_back({1.0, 1.0, {{1.0, channel(0, 0)}}, {}});
+                else if (pv == 0)
+                    terms.push_back({1.0, 1.0, {{1.0, channel(2 * pu - 1, 0)}}, {{1.0, channel(2 * pu, 0)}}});
+                else if (pu == 0)
+                    terms.push_back({1.0, 1.0, {{1.0, channel(0, 2 * pv - 1)}}, {{1.0, channel(0, 2 * pv)}}});
+                else {
+                    const std::size_t cc = channel(2 * pu - 1, 2 * pv - 1), cs = channel(2 * pu - 1, 2 * pv),
+                                      sc = channel(2 * pu, 2 * pv - 1), ss = channel(2 * pu, 2 * pv);
+                    terms.push_back({1.0, 0.5, {{1.0, cc}, {-1.0, ss}}, {{1.0, cs}, {1.0, sc}}});
+                    terms.push_back({-1.0, 0.5, {{1.0, cc}, {1.0, ss}}, {{1.0, sc}, {-1.0, cs}}});
+                }
+                for (const Term &term : terms) {
+                    ComplexKernels signed_k = k;
+                    if (term.sign_v < 0)
+                        for (float &w : signed_k.omega_v) w = -w;
+                    auto combine = [&](const std::vector<std::vector<float>> &planes) {
+                        ComplexPlane z;
+                        z.re.assign(count, 0.0);
+                        z.im.assign(count, 0.0);
+                        for (const auto &[factor, c] : term.re)
+                            for (std::size_t i = 0; i < count; ++i) z.re[i] += factor * planes[c][i];
+                        for (const auto &[factor, c] : term.im)
+                            for (std::size_t i = 0; i < count; ++i) z.im[i] += factor * planes[c][i];
+                        return z;
+                    };
+                    const std::vector<ComplexPlane> result = maaf_separable_gather(
+                        guides, params.normal_threshold_deg, signed_k, {combine(values), combine(unoccludeds)});
+                    std::vector<float> value(count), unoccluded(count);
+                    for (std::size_t i = 0; i < count; ++i) {
+                        value[i] = float(result[0].re[i]);
+                        unoccluded[i] = float(result[1].re[i]);
+                    }
+                    add(pu, pv, term.scale, value, unoccluded);
+                }
+                continue;
+            }
+            GatherSettings settings;
+            settings.normal_threshold_deg = params.normal_threshold_deg;
+            settings.mode = GatherMode::Full2D;
+            std::vector<float> omega_u(count), omega_v(count), inv_u(count), inv_v(count), out_value(count),
+                out_unoccluded(count);
+            for (std::size_t i = 0; i < count; ++i) {
+                const PixelKernels &k = kernels[i];
+                guides.radius_px[i] = k.filtered ? std::max(k.radius_px[pu], k.radius_px[pv]) : 0;
+                omega_u[i] = k.omega_x[pu];
+                omega_v[i] = k.omega_x[pv];
+                inv_u[i] = k.inv_two_sigma_sq[pu];
+                inv_v[i] = k.inv_two_sigma_sq[pv];
+            }
+            for (const Function &fu : functions_of(pu))
+                for (const Function &fv : functions_of(pv)) {
+                    const std::size_t c = channel(fu.index, fv.index);
+                    const AxisModulation along_u{fu.kind, plane_view<const float>(omega_u.data(), width, height),
+                                                 plane_view<const float>(inv_u.data(), width, height)};
+                    const AxisModulation along_v{fv.kind, plane_view<const float>(omega_v.data(), width, height),
+                                                 plane_view<const float>(inv_v.data(), width, height)};
+                    gather_modulated(guides, settings,
+                                     {plane_view<const float>(values[c].data(), width, height),
+                                      plane_view<const float>(unoccludeds[c].data(), width, height)},
+                                     {plane_view(out_value.data(), width, height),
+                                      plane_view(out_unoccluded.data(), width, height)},
+                                     along_u, along_v, GatherNormalisation::None);
+                    add(pu, pv, 1.0, out_value, out_unoccluded);
+                }
+        }
+
+    const std::vector<float> &value0 = values[0], &unoccluded0 = unoccludeds[0];
+    parallel_for_rows(height, [&](int y) {
+        for (int x = 0; x < width; ++x) {
+            const std::size_t i = guides.index(x, y);
+            // Unfiltered: the pixel's own light-weighted visibility, 1 without samples.
+            double result = unoccluded0[i] > 0 ? double(value0[i]) / double(unoccluded0[i]) : 1.0;
+            if (kernels[i].filtered) {
+                if (denominator[i] > 0 && std::isfinite(numerator[i] / denominator[i]))
+                    result = numerator[i] / denominator[i];
+                else if (central_den[i] > 0)
+                    result = central_num[i] / central_den[i];  // the central filter alone (AAF)
+            }
+            out(x, y) = std::isfinite(result) ? float(result) : 0.0f;
+        }
+    });
+}
+
+}  // namespace aaf

@@ -1,0 +1,110 @@
+// Multiple Axis-Aligned Filtering of soft shadows (Wu, Yan, Kuznetsov,
+// Ramamoorthi 2017) as a registered method: its declaration (roles,
+// parameters) and the wiring from the images to maaf_filter().
+#include <cmath>
+#include <string>
+#include <variant>
+#include <vector>
+
+#include "../builtin_methods.h"
+#include "aaf/core/aov_contract.h"
+#include "aaf/core/error.h"
+#include "aaf/core/maaf_accumulation.h"
+#include "aaf/core/maaf_filter.h"
+#include "aaf/core/method_registry.h"
+#include "aaf/core/shadow_composition.h"
+
+namespace aaf {
+
+namespace {
+
+std::vector<ParameterInfo> maaf_parameters() {
+    return {
+        ParameterInfo::choice("pairs", "all", {"all", "1"},
+                              "Filter pairs N per 2D subspace: all of the sums' (the tracer writes N = 3, 25 "
+                              "filters in 4D) or 1, the central filter alone (AAF)"),
+        ParameterInfo::real("normal_threshold", "20", "degrees",
+                            "Reject taps whose normal turns more (MAAF Sec. 6.2)", 0, 180),
+        ParameterInfo::integer("max_radius", "64", "pixels", "Largest filter radius", 0, 1 << 16),
+        ParameterInfo::choice("filter", "separable", {"separable", "2d"},
+                              "separable: two 1D passes per component pair (complex exponentials, as AAF Sec. 6 "
+                              "separates); 2d: every tap of MAAF Eq. 21, to measure the approximation"),
+    };
+}
+
+template <typename T>
+T header_value(const MethodImages &images, const char *name) {
+    const auto it = images.attributes().find(name);
+    if (it == images.attributes().end()) throw InputError(std::string("missing header attribute '") + name + "'");
+    const T *value = std::get_if<T>(&it->second);
+    if (!value) throw InputError(std::string("header attribute '") + name + "' has the wrong type");
+    return *value;
+}
+
+class MaafMethod final : public Method {
+  public:
+    MaafMethod() {
+        info_.name = "maaf";
+        info_.title = "MAAF";
+        info_.summary = "Multiple Axis-Aligned Filters for soft shadows (Wu et al. 2017)";
+        info_.reference =
+            "Wu, Yan, Kuznetsov, Ramamoorthi: Multiple Axis-Aligned Filters for Rendering of Combined "
+            "Distribution Effects, 2017";
+        info_.roles.required = {Role::MaafValueSums, Role::MaafUnoccludedSums, Role::MaafWedge, Role::Position,
+                                Role::Normal,        Role::ObjectId,           Role::PixelSize, Role::Unshadowed};
+        info_.roles.optional = {Role::OtherLights};
+        info_.roles.outputs = {Role::FilteredVisibility, Role::Beauty};
+        info_.parameters = maaf_parameters();
+        info_.required_attributes = light_attribute_names();
+        info_.required_attributes.push_back(attr::kMaafPairs);
+        info_.required_attributes.push_back(attr::kMaafOmegaYMax);
+    }
+
+    const MethodInfo &info() const override { return info_; }
+
+    void run(const MethodImages &images, const ParameterSet &parameters, Progress &progress) const override {
+        const int pairs = header_value<int>(images, attr::kMaafPairs);
+        if (pairs != kMaafContractPairs)
+            throw InputError("header attribute '" + std::string(attr::kMaafPairs) + "' is " +
+                             std::to_string(pairs) + "; the MAAF channels of the contract hold N = " +
+                             std::to_string(kMaafContractPairs));
+        MaafInputs in;
+        in.pairs = pairs;
+        for (int c = 0; c < maaf_channel_count(pairs); ++c) {
+            in.value_sums.push_back(images.input(Role::MaafValueSums, std::size_t(c)));
+            in.unoccluded_sums.push_back(images.input(Role::MaafUnoccludedSums, std::size_t(c)));
+        }
+        in.s_min = images.input(Role::MaafWedge, 0);
+        in.s_max = images.input(Role::MaafWedge, 1);
+        in.omega_x_max = images.input(Role::MaafWedge, 2);
+        for (std::size_t c = 0; c < 3; ++c) {
+            in.position[c] = images.input(Role::Position, c);
+            in.normal[c] = images.input(Role::Normal, c);
+        }
+        in.object_id = images.input(Role::ObjectId);
+        in.pixel_size = images.input(Role::PixelSize);
+        MaafParams params;
+        params.omega_y_max_rad_per_m = double(header_value<float>(images, attr::kMaafOmegaYMax));
+        if (!(params.omega_y_max_rad_per_m > 0) || !std::isfinite(params.omega_y_max_rad_per_m))
+            throw InputError("header attribute '" + std::string(attr::kMaafOmegaYMax) + "' must be positive");
+        params.pairs_used = parameters.get_choice("pairs") == "1" ? 1 : 0;
+        params.normal_threshold_deg = parameters.get_float("normal_threshold");
+        params.max_radius_px = parameters.get_int("max_radius");
+        params.separable = parameters.get_choice("filter") == "separable";
+        const PlaneView filtered = images.output(Role::FilteredVisibility);
+        maaf_filter(in, read_light_attributes(images.attributes()), params, filtered);
+        progress.report(0.9);
+        compose_shadowed_beauty(images, filtered);  // AAF Eq. 1
+    }
+
+  private:
+    MethodInfo info_;
+};
+
+}  // namespace
+
+std::unique_ptr<Method> make_maaf_method() {
+    return std::make_unique<MaafMethod>();
+}
+
+}  // namespace aaf

@@ -1,0 +1,112 @@
+// Speed of the MAAF filter (N = 3, 25 filters in 4D) as a ratio to the AAF
+// filter, both on the same 9 spp render of `grids` with the maaf AOVs, at
+// 640x480 and 1920x1080. Each iteration times both filters once, alternately,
+// so the ratio comes from one run on one machine:
+//   aaf_ms        aaf_filter with default AafParams (separable)
+//   maaf_ms       maaf_filter with default MaafParams (separable complex passes)
+// (The full-window variant, --filter 2d, is about 20x slower again and is left
+// out: it would take minutes per iteration here.)
+// Run: ./build/scripts/bench/bench_maaf_filter (see README "Benchmarks").
+#include <benchmark/benchmark.h>
+
+#include <chrono>
+#include <map>
+#include <string>
+#include <vector>
+
+#include "aaf/core/aaf_filter.h"
+#include "aaf/core/aov_contract.h"
+#include "aaf/core/maaf_accumulation.h"
+#include "aaf/core/maaf_filter.h"
+#include "aaf/core/thread_count.h"
+#include "aaf/trace/render.h"
+
+namespace {
+
+struct Fixture {
+    aaf::AovSet aovs;
+    aaf::AafInputs aaf_inputs;
+    aaf::MaafInputs maaf_inputs;
+    aaf::LightPlane light;
+    double omega_y_max = 0;
+};
+
+const Fixture &fixture(int width, int height) {
+    static std::map<int, Fixture> cache;
+    auto [it, inserted] = cache.try_emplace(width);
+    Fixture &f = it->second;
+    if (!inserted) return f;
+    aaf::trace::RenderSettings settings;
+    settings.width = width;
+    settings.height = height;
+    settings.spp = 9;
+    settings.aovs = aaf::trace::aov_groups_for_method("aaf") | aaf::trace::aov_groups_for_method("maaf");
+    f.aovs = aaf::trace::render_scene("grids", settings);
+    const aaf::AovSet &a = f.aovs;
+    f.light = aaf::read_light_attributes(a);
+    f.omega_y_max = double(std::get<float>(a.attributes.at(aaf::attr::kMaafOmegaYMax)));
+    f.aaf_inputs.visibility = a.channel("shadow.V");
+    f.aaf_inputs.d1 = a.channel("shadow.d1");
+    f.aaf_inputs.d2_min = a.channel("shadow.d2min");
+    f.aaf_inputs.d2_max = a.channel("shadow.d2max");
+    f.aaf_inputs.position = {a.channel("P.X"), a.channel("P.Y"), a.channel("P.Z")};
+    f.aaf_inputs.normal = {a.channel("N.X"), a.channel("N.Y"), a.channel("N.Z")};
+    f.aaf_inputs.object_id = a.channel("id.object");
+    f.aaf_inputs.pixel_size = a.channel("pixel.size");
+    aaf::MaafInputs &m = f.maaf_inputs;
+    m.pairs = aaf::kMaafContractPairs;
+    for (int c = 0; c < aaf::maaf_channel_count(m.pairs); ++c) {
+        const std::string suffix = aaf::maaf_channel_suffix(m.pairs, c);
+        m.value_sums.push_back(a.channel("maaf.V_" + suffix));
+        m.unoccluded_sums.push_back(a.channel("maaf.W_" + suffix));
+    }
+    m.s_min = a.channel("maaf.smin");
+    m.s_max = a.channel("maaf.smax");
+    m.omega_x_max = a.channel("maaf.omegax");
+    m.position = f.aaf_inputs.position;
+    m.normal = f.aaf_inputs.normal;
+    m.object_id = f.aaf_inputs.object_id;
+    m.pixel_size = f.aaf_inputs.pixel_size;
+    return f;
+}
+
+double ms_since(std::chrono::steady_clock::time_point start) {
+    return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+}
+
+void BM_MaafVsAaf(benchmark::State &state) {
+    const int width = int(state.range(0)), height = int(state.range(1));
+    const Fixture &f = fixture(width, height);
+    const std::size_t n = f.aovs.pixel_count();
+    std::vector<float> out(n);
+    const aaf::PlaneView view = aaf::plane_view(out.data(), width, height);
+    aaf::MaafParams separable;
+    separable.omega_y_max_rad_per_m = f.omega_y_max;
+    double aaf_ms = 0, maaf_ms = 0;
+    for (auto _ : state) {
+        auto t = std::chrono::steady_clock::now();
+        aaf::aaf_filter(f.aaf_inputs, f.light, aaf::AafParams{}, {view, aaf::PlaneView{}});
+        aaf_ms += ms_since(t);
+        benchmark::DoNotOptimize(out.data());
+        t = std::chrono::steady_clock::now();
+        aaf::maaf_filter(f.maaf_inputs, f.light, separable, view);
+        maaf_ms += ms_since(t);
+        benchmark::DoNotOptimize(out.data());
+        benchmark::ClobberMemory();
+    }
+    const double iters = double(state.iterations());
+    state.counters["aaf_ms"] = aaf_ms / iters;
+    state.counters["maaf_ms"] = maaf_ms / iters;
+    state.counters["maaf_over_aaf"] = maaf_ms / aaf_ms;
+}
+
+}  // namespace
+
+BENCHMARK(BM_MaafVsAaf)
+    ->ArgNames({"width", "height"})
+    ->Args({640, 480})
+    ->Args({1920, 1080})
+    ->Iterations(2)
+    ->Unit(benchmark::kMillisecond)
+    ->UseRealTime();
+BENCHMARK_MAIN();
