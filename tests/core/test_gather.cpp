@@ -133,8 +133,8 @@ TEST_CASE("Modulated gather: without factors it is the 2D gather; with cos/sin i
 
     // MAAF's x-side kernel cos(omega_u du) (-sin(omega_v dv)) g(du, dv), unnormalised, at one pixel.
     const std::vector<float> omega_u(w * h, 40.0f), omega_v(w * h, 25.0f);  // radians per metre
-    const AxisModulation along_u{AxisModulation::Kind::Cos, plane_view(omega_u.data(), w, h)};
-    const AxisModulation along_v{AxisModulation::Kind::NegSin, plane_view(omega_v.data(), w, h)};
+    const AxisModulation along_u{AxisModulation::Kind::Cos, plane_view(omega_u.data(), w, h), {}};
+    const AxisModulation along_v{AxisModulation::Kind::NegSin, plane_view(omega_v.data(), w, h), {}};
     gather_modulated(g, full, {plane_view(source.data(), w, h)}, {plane_view(modulated.data(), w, h)},
                      along_u, along_v, GatherNormalisation::None);
     const int cx = 7, cy = 5;
