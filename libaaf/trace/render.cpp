@@ -150,8 +150,9 @@ class Tracing {
     }
 
     RenderState state(const Camera &previous_camera) const {
-        return {scene_,          previous_camera, primaries_, stats_, renderer_.has_separate_radiance(),
-                settings_.width, settings_.height};
+        return {
+            scene_,          previous_camera,  primaries_, stats_,        renderer_.has_separate_radiance(),
+            settings_.width, settings_.height, &renderer_, settings_.spp, settings_.seed};
     }
     std::vector<ShadowStats> &stats() { return stats_; }
 

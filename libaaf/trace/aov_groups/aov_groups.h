@@ -24,5 +24,7 @@ std::unique_ptr<AovAccumulator> make_albedo_group();
 std::unique_ptr<AovAccumulator> make_motion_group();
 /// progress.*: the sums a resumed render continues from.
 std::unique_ptr<AovAccumulator> make_progress_group();
+/// ISG's image-space maps and distribution-ray-traced references (isg_group.cpp).
+std::unique_ptr<AovAccumulator> make_isg_group();
 
 }  // namespace aaf::trace

@@ -29,7 +29,12 @@ enum AovGroup : unsigned {
     kAovAlbedo = 1u << 6,      ///< albedo.R/G/B
     kAovMotion = 1u << 7,      ///< motion.X/Y
     kAovProgress = 1u << 8,    ///< progress.*: the sums a resumed reference continues from
+    /// isg.*, reflect.*, gloss.theta_max, glossy.*, pinhole.*: ISG's maps and
+    /// references; traces rays of its own (a glossy reference of spp rays).
+    kAovIsg = 1u << 9,
 };
+/// "all": every group that only records the light samples; isg, which traces
+/// rays of its own, is asked for by name.
 inline constexpr unsigned kAovsAll = (kAovProgress << 1) - 1;
 
 /// Name (as `--aovs` spells it) and contents of each group.
