@@ -309,7 +309,10 @@ AovSet render_scene(const std::string &scene_name, const RenderSettings &setting
     });
 
     if (timings) *timings = measured;
-    return render_so_far(spp_done);
+    // In the arena too: a group that traces while it writes (isg) keeps to `threads`.
+    AovSet result;
+    arena.execute([&] { result = render_so_far(spp_done); });
+    return result;
 }
 
 }  // namespace aaf::trace

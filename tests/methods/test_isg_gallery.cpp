@@ -94,3 +94,20 @@ TEST_CASE("ISG on the gallery: finite, and nearer the references than its one-ra
     CHECK(rms(dof, Role::Defocused, defocused_reference, Role::Beauty) <
           0.8 * rms(defocused_reference, Role::PinholeBeauty, defocused_reference, Role::Beauty));
 }
+
+TEST_CASE("The isg group's maps and glossy reference do not depend on the thread count", "[isg]") {
+    trace::RenderSettings settings;
+    settings.width = 24;
+    settings.height = 18;
+    settings.spp = 4;
+    settings.aovs = trace::kAovIsg;
+    settings.threads = 1;
+    const AovSet one = trace::render_scene("gallery", settings);
+    settings.threads = 3;
+    const AovSet three = trace::render_scene("gallery", settings);
+    REQUIRE(one.channel_names() == three.channel_names());
+    for (std::size_t c = 0; c < one.channel_names().size(); ++c) {
+        INFO(one.channel_names()[c]);
+        CHECK(one.plane(c) == three.plane(c));
+    }
+}
