@@ -45,6 +45,12 @@ for n in 9 81; do
   "$aaf" filter isg-glossy "$work/one.exr" "${samples[@]}" -o "$work/isg_glossy_$n.exr"
   "$aaf" filter isg-dof "$work/lens.exr" "${samples[@]}" -o "$work/isg_dof_$n.exr"
 done
+# One setting changed at a time from the defaults.
+"$aaf" filter isg-shadow "$work/one.exr" --sigma 0.0001 -o "$work/isg_shadow_sigma_1e-4.exr"
+"$aaf" filter isg-shadow "$work/one.exr" --sigma 0.01 -o "$work/isg_shadow_sigma_1e-2.exr"
+"$aaf" filter isg-shadow "$work/one.exr" --light-shape disk -o "$work/isg_shadow_disk.exr"
+"$aaf" filter isg-shadow "$work/one.exr" --pattern stratified -o "$work/isg_shadow_stratified.exr"
+"$aaf" filter isg-glossy "$work/one.exr" --spatial-weight gaussian -o "$work/isg_glossy_gaussian.exr"
 
 mkdir -p "$out"
 /usr/bin/python3 "$root/scripts/isg_study/isg_study.py" "$aaf" "$work" "$out" \

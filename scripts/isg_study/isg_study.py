@@ -81,6 +81,9 @@ measure("soft shadows", "ISG isg-shadow (hard-shadow input)", "1", rgb("isg_shad
 for n in (9, 81):
     measure("soft shadows", f"ISG isg-shadow, {n} search and {n} gather samples", "1",
             rgb(f"isg_shadow_{n}.exr"), shadow_ref)
+for option, file in (("--sigma 0.0001", "sigma_1e-4"), ("--sigma 0.01", "sigma_1e-2"),
+                     ("--light-shape disk", "disk"), ("--pattern stratified", "stratified")):
+    measure("soft shadows", f"ISG isg-shadow {option}", "1", rgb(f"isg_shadow_{file}.exr"), shadow_ref)
 measure("soft shadows", "input: hard shadow, one ray to the light's centre", "1", shadow_input("one.exr"), shadow_ref)
 measure("soft shadows", "input: distribution ray tracing, 1 spp", "1", rgb("one.exr"), shadow_ref)
 measure("soft shadows", "AAF (CLI defaults), 1 spp", "1", rgb("aaf_one.exr"), shadow_ref)
@@ -95,6 +98,8 @@ measure("glossy reflection", "ISG isg-glossy (mirror input)", "1", rgb("isg_glos
 for n in (9, 81):
     measure("glossy reflection", f"ISG isg-glossy, {n} search and {n} gather samples", "1",
             rgb(f"isg_glossy_{n}.exr", "isg_glossy"), glossy_ref, glossy_mask)
+measure("glossy reflection", "ISG isg-glossy --spatial-weight gaussian", "1",
+        rgb("isg_glossy_gaussian.exr", "isg_glossy"), glossy_ref, glossy_mask)
 measure("glossy reflection", "input: mirror reflection map", "1", rgb("one.exr", "reflect"), glossy_ref, glossy_mask)
 measure("glossy reflection", "input: cone-sampled glossy ray, 1 spp", "1", rgb("one.exr", "glossy"), glossy_ref,
         glossy_mask)

@@ -3,7 +3,6 @@
 // What the three ISG methods share beyond the formulas of aaf/core/isg.h:
 // their common parameters, header attributes, the scene size of ISG Sec. 5
 // and nearest-pixel point sampling.
-#include <array>
 #include <cmath>
 #include <map>
 #include <string>
