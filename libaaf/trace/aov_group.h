@@ -25,6 +25,11 @@ struct RenderState {
     bool separate_radiance;  ///< Renderer::has_separate_radiance()
     int width;
     int height;
+    /// The render's tracer, settings and seed, for groups that trace rays of
+    /// their own when they write (isg); null in tests that build a state by hand.
+    const Renderer *renderer = nullptr;
+    int spp = 0;
+    std::uint64_t seed = 0;
 
     /// Calls `body(x, y, primary, stats)` for every pixel, row by row.
     template <typename Body>

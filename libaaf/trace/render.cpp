@@ -150,8 +150,9 @@ class Tracing {
     }
 
     RenderState state(const Camera &previous_camera) const {
-        return {scene_,          previous_camera, primaries_, stats_, renderer_.has_separate_radiance(),
-                settings_.width, settings_.height};
+        return {
+            scene_,          previous_camera,  primaries_, stats_,        renderer_.has_separate_radiance(),
+            settings_.width, settings_.height, &renderer_, settings_.spp, settings_.seed};
     }
     std::vector<ShadowStats> &stats() { return stats_; }
 
@@ -315,7 +316,10 @@ AovSet render_scene(const std::string &scene_name, const RenderSettings &setting
     });
 
     if (timings) *timings = measured;
-    return render_so_far(spp_done);
+    // In the arena too: a group that traces while it writes (isg) keeps to `threads`.
+    AovSet result;
+    arena.execute([&] { result = render_so_far(spp_done); });
+    return result;
 }
 
 }  // namespace aaf::trace

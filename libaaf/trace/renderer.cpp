@@ -204,6 +204,36 @@ void Renderer::trace_shadows(const PrimaryHit &primary, int x, int y, std::uint6
     }
 }
 
+Renderer::CentreShadow Renderer::trace_centre_shadow(const PrimaryHit &primary) const {
+    CentreShadow shadow;
+    const Vec3 target = scene_.key_light().center;
+    if (dot(primary.normal, target - primary.position) <= 0) {
+        shadow.visible = false;  // the surface itself faces away: an attached shadow
+        return shadow;
+    }
+    const Vec3 origin = offset_origin(primary.position, primary.normal);
+    const Hit hit = bvh_.intersect(origin, target - origin, 0.0f, kShadowRayReach);
+    if (hit.found) {
+        shadow.visible = false;
+        shadow.occluder_m = hit.distance * length(target - origin);
+    }
+    return shadow;
+}
+
+Renderer::SecondaryHit Renderer::trace_secondary(const PrimaryHit &primary, Vec3 direction) const {
+    SecondaryHit seen;
+    const Vec3 origin = offset_origin(primary.position, primary.normal);
+    const Hit hit = bvh_.intersect(origin, direction, 0.0f, std::numeric_limits<float>::infinity());
+    if (!hit.found) return seen;
+    const Vec3 point = origin + direction * hit.distance;
+    Vec3 n = normalize(hit.geometric_normal);
+    n = dot(n, direction) > 0 ? -n : n;
+    seen.distance_m = hit.distance;
+    // Every light towards its centre ({0.5, 0.5} of the light's unit square).
+    seen.radiance = shade(scene_.meshes[hit.mesh_index], point, n, origin, UnitPoint{0.5f, 0.5f}, 0);
+    return seen;
+}
+
 /// World size of the pixel at the hit: the rays through the neighbouring
 /// pixel centres meet the hit's tangent plane; d = sqrt(|dP/dx x dP/dy|),
 /// which includes foreshortening.

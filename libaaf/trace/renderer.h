@@ -94,6 +94,23 @@ class Renderer {
 
     const EmbreeScene &bvh() const { return bvh_; }
 
+    /// ISG's hard shadow (Sec. 3.1): one ray from the primary hit to the key
+    /// light's centre. visible, or the distance from the hit to the first
+    /// occluder (0 for a light behind the hit's own tangent plane).
+    struct CentreShadow {
+        bool visible = true;
+        float occluder_m = 0;
+    };
+    CentreShadow trace_centre_shadow(const PrimaryHit &primary) const;
+    /// What a ray from the primary hit along unit `direction` sees: the
+    /// radiance of the surface it hits, every light shaded towards its centre
+    /// with a hard shadow, and its distance (0 and no radiance on a miss).
+    struct SecondaryHit {
+        Vec3 radiance;
+        float distance_m = 0;
+    };
+    SecondaryHit trace_secondary(const PrimaryHit &primary, Vec3 direction) const;
+
   private:
     float pixel_footprint(const PrimaryHit &primary, int x, int y) const;
     /// Geometric factor cos(receiver) cos(light) / r^2 from `p` (normal `n`) to a light point.

@@ -15,6 +15,10 @@ struct Material {
     Vec3 albedo{0.75f, 0.75f, 0.75f};  ///< diffuse reflectance per channel, [0, 1]
     Vec3 specular{0, 0, 0};            ///< Fresnel reflectance at normal incidence (F0); 0 = none
     float roughness = 0.5f;            ///< GGX alpha = roughness^2
+    /// ISG's glossiness (Sec. 3.2, Fig. 4): the half-angle of the cone around
+    /// the mirror direction outside which the glossy reflection is zero,
+    /// written to the isg AOVs; 0 = not glossy. The beauty does not use it.
+    float theta_max_deg = 0;
 
     bool has_specular() const { return specular.x > 0 || specular.y > 0 || specular.z > 0; }
 };

@@ -254,17 +254,20 @@ json parse_json_file(const std::string &path) {
 }
 
 Material read_material(const Node &node) {
-    node.allow_only({"albedo", "specular", "roughness"});
+    node.allow_only({"albedo", "specular", "roughness", "theta_max_deg"});
     Material material;
     if (auto albedo = node.find("albedo")) material.albedo = albedo->vec3_or_scalar();
     if (auto specular = node.find("specular")) material.specular = specular->vec3_or_scalar();
     if (auto roughness = node.find("roughness")) material.roughness = roughness->number();
+    if (auto theta = node.find("theta_max_deg")) material.theta_max_deg = theta->number();
     for (int c = 0; c < 3; ++c)
         if (material.albedo[c] < 0 || material.albedo[c] > 1 || material.specular[c] < 0 ||
             material.specular[c] > 1)
             node.fail("albedo and specular must lie in [0, 1]");
     if (!(material.roughness >= 0.01f && material.roughness <= 1))
         node.fail("roughness must lie in [0.01, 1]");
+    if (!(material.theta_max_deg >= 0 && material.theta_max_deg <= 60))
+        node.fail("theta_max_deg must lie in [0, 60]");
     return material;
 }
 
@@ -436,7 +439,7 @@ void read_object(const Node &node, const fs::path &scene_dir,
     if (auto material = node.find("material")) {
         if (material->is_object()) {
             if (material->keys().empty())
-                material->fail("an inline material needs albedo, specular or roughness (or give a name)");
+                material->fail("an inline material needs albedo, specular, roughness or theta_max_deg (or give a name)");
             mesh.material = read_material(*material);
         } else if (material->is_string()) {
             auto it = materials.find(material->string());

@@ -32,6 +32,8 @@ std::uint64_t scene_hash(const SceneDescription &scene, const RenderSettings &se
         h.add(mesh.material.albedo);
         h.add(mesh.material.specular);
         h.add(mesh.material.roughness);
+        // Hashed only when set, so scenes from before it keep their hashes (and resume).
+        if (mesh.material.theta_max_deg > 0) h.add(mesh.material.theta_max_deg);
         h.add(std::int64_t(mesh.positions.size()));
         for (Vec3 p : mesh.positions) h.add(p);
         h.add(std::int64_t(mesh.indices.size()));

@@ -185,12 +185,40 @@ def studio():
     }
 
 
+def gallery():
+    """For ISG (Robison and Shirley 2009): a glossy floor (theta_max_deg),
+    a uniform area light, a post touching the floor (contact hardening), a
+    sphere and a box at several heights above the floor and distances from
+    the camera, and a wall for the floor to reflect."""
+    return {
+        "format_version": 1, "name": "gallery",
+        "camera": {"position": [0, 1.5, 5.0], "look_at": [0, 0.55, 0], "fov_y_deg": 42},
+        "materials": {"floor": {"albedo": 0.6, "theta_max_deg": 6},
+                      "wall": {"albedo": [0.65, 0.6, 0.55]},
+                      "post": {"albedo": [0.8, 0.75, 0.7]},
+                      "red": {"albedo": [0.85, 0.25, 0.2]},
+                      "blue": {"albedo": [0.25, 0.4, 0.85]}},
+        "lights": [{"center": [0.8, 3.6, 1.2], "edge_u": [0.9, 0, 0], "edge_v": [0, 0, 0.9], "intensity": 40,
+                    "profile": "uniform"}],
+        "objects": [
+            {"type": "plane", "size": [12, 12], "id": 1, "material": "floor"},
+            {"type": "plane", "size": [12, 4], "id": 2, "material": "wall",
+             "transform": {"rotate_deg": [90, 0, 0], "translate": [0, 2, -2.5]}},
+            {"type": "cylinder", "radius": 0.07, "height": 1.5, "id": 3, "material": "post",
+             "transform": {"translate": [-0.9, 0, 0.4]}},
+            {"type": "sphere", "center": [0.55, 0.75, 0.2], "radius": 0.3, "id": 4, "material": "red"},
+            {"type": "box", "min": [-0.25, 0.2, -0.25], "max": [0.25, 0.5, 0.25], "id": 5, "material": "blue",
+             "transform": {"rotate_deg": [0, 25, 0], "translate": [1.1, 0, 2.2]}},
+            {"type": "sphere", "center": [-0.4, 0.35, -1.4], "radius": 0.35, "id": 6, "material": "red"}],
+    }
+
+
 def main():
     root = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
     out_dir = sys.argv[1] if len(sys.argv) > 1 else os.path.join(root, "testdata", "scenes")
     os.makedirs(out_dir, exist_ok=True)
     scenes = {"grids": grids(), "spheres": spheres(out_dir), "tentacles": tentacles(out_dir), "bench": bench(),
-              "studio": studio()}
+              "studio": studio(), "gallery": gallery()}
     for name, scene in scenes.items():
         with open(os.path.join(out_dir, name + ".json"), "w") as out:
             json.dump(scene, out, indent=1)

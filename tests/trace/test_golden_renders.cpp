@@ -120,7 +120,8 @@ std::string write_two_light_scene() {
 
 TEST_CASE("Every shipped scene renders its AOVs to the golden bytes", "[trace][golden]") {
     const std::pair<const char *, std::uint64_t> golden[] = {
-        {"bench", 0x687160c0fb1b1bea},     {"grids", 0xbd31581f9b481346}, {"spheres", 0x5073d42e01a884a4},
+        {"bench", 0x687160c0fb1b1bea},     {"gallery", 0x639d919e9ac57a29},  // ISG's scene
+        {"grids", 0xbd31581f9b481346},     {"spheres", 0x5073d42e01a884a4},
         {"studio", 0x3586db5a555daeb2},  // thin lens, two lights, animated camera
         {"tentacles", 0x28a0179939ec69dd},
     };
@@ -162,4 +163,10 @@ TEST_CASE("A stopped reference and its resumption give the golden bytes", "[trac
     settings.stop_requested = nullptr;
     settings.resume = &partial;
     check_golden(trace::render_scene(write_two_light_scene(), settings), 0xb9e719e0c1b04fdc);
+}
+
+TEST_CASE("The isg group renders the gallery to the golden bytes", "[trace][golden]") {
+    trace::RenderSettings settings = small_settings();
+    settings.aovs = trace::kAovsAll | trace::kAovIsg;
+    check_golden(trace::render_scene("gallery", settings), 0x796e88d97e001e89);
 }

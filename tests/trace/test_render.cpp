@@ -101,10 +101,22 @@ TEST_CASE("Render depends on the seed and on nothing else", "[trace]") {
             CHECK(plane(first, name) == plane(reseeded, name));
 }
 
+TEST_CASE("A render with --aovs METHOD holds every input of the method", "[trace]") {
+    for (const Method *method : methods()) {
+        INFO(method->info().name);
+        trace::RenderSettings settings;
+        settings.width = 12;
+        settings.height = 9;
+        settings.spp = 2;
+        settings.aovs = trace::parse_aov_groups(method->info().name);
+        CHECK(missing_inputs(*method, trace::render_scene("grids", settings), ChannelMap{}).empty());
+    }
+}
+
 TEST_CASE("Render writes every AAF AOV with consistent values", "[trace]") {
     const AovSet aovs = render_small(16, 1, 0);
     const ChannelMap map;
-    // Every method whose groups the default render writes (maaf reads its own, `--aovs maaf`).
+    // Every method whose groups the default render writes (maaf and isg read their own: `--aovs maaf`).
     for (const Method *method : methods())
         if ((trace::aov_groups_for_method(method->info().name) & ~trace::RenderSettings{}.aovs) == 0)
             CHECK(missing_inputs(*method, aovs, map).empty());

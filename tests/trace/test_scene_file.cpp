@@ -244,7 +244,7 @@ TEST_CASE("Scene file: colours, integers, inline materials and empty OBJs are va
                Contains("scene.json: objects[0].segments: integer out of range"));
     CHECK_THAT(
         load_error("empty_material", scene_text(R"([{"type": "sphere", "radius": 1, "material": {}}])")),
-        Contains("scene.json: objects[0].material: an inline material needs albedo, specular or roughness"));
+        Contains("scene.json: objects[0].material: an inline material needs albedo, specular, roughness or theta_max_deg"));
     CHECK_THAT(
         load_error("number_material", scene_text(R"([{"type": "sphere", "radius": 1, "material": 3}])")),
         Contains("scene.json: objects[0].material: expected a material name or an object"));

@@ -10,5 +10,8 @@ namespace aaf {
 std::unique_ptr<Method> make_aaf_method();
 std::unique_ptr<Method> make_gaussian_method();
 std::unique_ptr<Method> make_maaf_method();
+std::unique_ptr<Method> make_isg_shadow_method();
+std::unique_ptr<Method> make_isg_glossy_method();
+std::unique_ptr<Method> make_isg_dof_method();
 
 }  // namespace aaf

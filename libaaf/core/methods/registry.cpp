@@ -15,6 +15,9 @@ std::vector<std::unique_ptr<Method>> &registry() {
         builtin.push_back(make_aaf_method());       // Mehta et al. 2012
         builtin.push_back(make_gaussian_method());  // fixed-width baseline
         builtin.push_back(make_maaf_method());      // Wu et al. 2017
+        builtin.push_back(make_isg_shadow_method());  // Robison, Shirley 2009
+        builtin.push_back(make_isg_glossy_method());
+        builtin.push_back(make_isg_dof_method());
         return builtin;
     }();
     return methods;

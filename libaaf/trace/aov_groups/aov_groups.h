@@ -26,5 +26,7 @@ std::unique_ptr<AovAccumulator> make_motion_group();
 std::unique_ptr<AovAccumulator> make_progress_group();
 /// maaf.*: MAAF's light-side sums and wedges (maaf_group.cpp).
 std::unique_ptr<AovAccumulator> make_maaf_group();
+/// ISG's image-space maps and distribution-ray-traced references (isg_group.cpp).
+std::unique_ptr<AovAccumulator> make_isg_group();
 
 }  // namespace aaf::trace

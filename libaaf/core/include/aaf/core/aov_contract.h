@@ -37,6 +37,15 @@ enum class Role {
     MaafValueSums,       ///< MAAF: samples' light-weighted visibility times the light-side functions
     MaafUnoccludedSums,  ///< MAAF: the same with every sample unoccluded (normalisation)
     MaafWedge,           ///< MAAF: the wedge the sums were accumulated with
+    HardVisibility,      ///< ISG: one shadow ray towards the key light's centre, 1 = reached it
+    OccluderDistance,    ///< ISG: distance from the hit to the occluder of that ray
+    Reflection,          ///< ISG: radiance along the mirror reflection
+    ReflectionDistance,  ///< ISG: distance from the hit to the reflected object
+    ThetaMax,            ///< ISG: the material's glossy cone half-angle
+    GlossyReference,     ///< ISG: the glossy reflection by cone sampling (reference)
+    PinholeBeauty,       ///< ISG: the in-focus image a pinhole camera sees
+    GlossyReflection,    ///< output of isg-glossy: the filtered reflection
+    Defocused,           ///< output of isg-dof: the defocused image
 };
 
 struct RoleInfo {
@@ -77,6 +86,10 @@ inline constexpr const char *kFrame = "aaf:frame";                   // float, a
 inline constexpr const char *kSceneFile = "aaf:scene_file";          // string, the scene file rendered
 inline constexpr const char *kSceneHash = "aaf:scene_hash";          // string, 16 hex digits (--resume)
 inline constexpr const char *kApertureRadius = "aaf:camera:aperture_radius_m";  // float, 0 = pinhole
+/// Written by the tracer's isg group (ISG's screen projections need them).
+inline constexpr const char *kCameraEye = "aaf:camera:eye";           // Vec3, world metres
+inline constexpr const char *kCameraFocalPx = "aaf:camera:focal_px";  // float, height / (2 tan(fov_y / 2))
+inline constexpr const char *kFocusDistance = "aaf:camera:focus_distance_m";  // float, plane in focus
 inline constexpr const char *kLightCount =
     "aaf:light_count";  // int, lights in the scene (light = the key light)
 inline constexpr const char *kMaafPairs = "aaf:maaf:pairs";  // int, N of the MAAF sums

@@ -30,8 +30,13 @@ enum AovGroup : unsigned {
     kAovMotion = 1u << 7,      ///< motion.X/Y
     kAovProgress = 1u << 8,    ///< progress.*: the sums a resumed reference continues from
     kAovMaaf = 1u << 9,        ///< maaf.*: MAAF's light-side sums; its first pass is a pass of its own
+    /// isg.*, reflect.*, gloss.theta_max, glossy.*, pinhole.*: ISG's maps and
+    /// references; traces rays of its own (a glossy reference of spp rays).
+    kAovIsg = 1u << 10,
 };
-/// Every group but maaf, whose first pass changes how the samples are stratified.
+/// "all": every group that only records the light samples; maaf (whose first
+/// pass changes how the samples are stratified) and isg (which traces rays of
+/// its own) are asked for by name.
 inline constexpr unsigned kAovsAll = (kAovProgress << 1) - 1;
 
 /// Name (as `--aovs` spells it) and contents of each group.

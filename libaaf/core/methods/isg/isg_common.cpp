@@ -1,0 +1,90 @@
+#include "isg_common.h"
+
+#include <algorithm>
+#include <limits>
+
+#include "aaf/core/error.h"
+#include "aaf/core/quoted.h"
+
+namespace aaf::isg {
+
+std::vector<ParameterInfo> common_parameters() {
+    const std::vector<std::string> counts = {"1", "9", "25", "49", "81", "121"};
+    return {
+        ParameterInfo::choice("search_samples", "25", counts,
+                              "Taps of the parameter search, a k x k pattern (ISG Table 1's 9/25/49/81)"),
+        ParameterInfo::choice("gather_samples", "25", counts,
+                              "Taps of the gather, a k x k pattern (ISG Table 1's 9/25/49/81)"),
+        ParameterInfo::choice("pattern", "grid", {"grid", "stratified"},
+                              "grid: the regular grid ISG Sec. 4 maps to the disc; stratified: one fixed "
+                              "jittered tap per cell"),
+        ParameterInfo::real("sigma", "0.001", "",
+                            "Range constant sigma of the Gaussian on world distance, in units of the scene "
+                            "size squared (ISG Sec. 5: near 1e-3 scaled by the inverse scene size)",
+                            0, 1e6, /*min_open=*/true),
+        ParameterInfo::real("scene_size", "0", "metres",
+                            "Scene size the range constants scale with; 0 = the positions' bounding-box "
+                            "diagonal",
+                            0, 1e9),
+        ParameterInfo::real("max_radius", "64", "pixels", "Largest search or gather radius", 0, 4096),
+    };
+}
+
+CommonSettings common_settings(const ParameterSet &parameters) {
+    CommonSettings s;
+    s.search_samples = std::stoi(parameters.get_choice("search_samples"));
+    s.gather_samples = std::stoi(parameters.get_choice("gather_samples"));
+    s.pattern = parameters.get_choice("pattern") == "stratified" ? TapPattern::Stratified : TapPattern::Grid;
+    s.sigma = parameters.get_float("sigma");
+    s.scene_size_m = parameters.get_float("scene_size");
+    s.max_radius_px = parameters.get_float("max_radius");
+    return s;
+}
+
+namespace {
+
+const AttributeValue &attribute(const std::map<std::string, AttributeValue> &attributes, const char *name) {
+    auto it = attributes.find(name);
+    if (it == attributes.end())
+        throw InputError("missing header attribute " + quoted(name) + " (render with --aovs isg)");
+    return it->second;
+}
+
+}  // namespace
+
+float float_attribute(const std::map<std::string, AttributeValue> &attributes, const char *name) {
+    const AttributeValue &value = attribute(attributes, name);
+    if (const float *f = std::get_if<float>(&value)) return *f;
+    if (const int *i = std::get_if<int>(&value)) return float(*i);
+    throw InputError("header attribute " + quoted(name) + " has the wrong type");
+}
+
+Vec3 vec3_attribute(const std::map<std::string, AttributeValue> &attributes, const char *name) {
+    if (const Vec3 *v = std::get_if<Vec3>(&attribute(attributes, name))) return *v;
+    throw InputError("header attribute " + quoted(name) + " has the wrong type");
+}
+
+Vec3Planes vec3_input(const MethodImages &images, Role role) {
+    return {{images.input(role, 0), images.input(role, 1), images.input(role, 2)}};
+}
+
+bool all_finite(Vec3 v) {
+    return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z);
+}
+
+float scene_size_m(const Vec3Planes &position, int width, int height, float scene_size) {
+    if (scene_size > 0) return scene_size;
+    constexpr float kInf = std::numeric_limits<float>::infinity();
+    Vec3 lo{kInf, kInf, kInf}, hi{-kInf, -kInf, -kInf};
+    for (int y = 0; y < height; ++y)
+        for (int x = 0; x < width; ++x) {
+            const Vec3 p = position(x, y);
+            if (!all_finite(p)) continue;
+            lo = {std::min(lo.x, p.x), std::min(lo.y, p.y), std::min(lo.z, p.z)};
+            hi = {std::max(hi.x, p.x), std::max(hi.y, p.y), std::max(hi.z, p.z)};
+        }
+    const float diagonal = hi.x >= lo.x ? length(hi - lo) : 0.0f;
+    return diagonal > 0 && std::isfinite(diagonal) ? diagonal : 1.0f;
+}
+
+}  // namespace aaf::isg

@@ -1,0 +1,63 @@
+#pragma once
+
+// What the three ISG methods share beyond the formulas of aaf/core/isg.h:
+// their common parameters, header attributes, the scene size of ISG Sec. 5
+// and nearest-pixel point sampling.
+#include <cmath>
+#include <map>
+#include <string>
+#include <vector>
+
+#include "aaf/core/isg.h"
+#include "aaf/core/method.h"
+#include "aaf/core/vec3.h"
+
+namespace aaf::isg {
+
+/// search_samples, gather_samples, pattern, sigma, scene_size, max_radius:
+/// the parameters every ISG method declares, in that order.
+std::vector<ParameterInfo> common_parameters();
+
+/// The settings of common_parameters() read from a parameter set.
+struct CommonSettings {
+    int search_samples = 25;
+    int gather_samples = 25;
+    TapPattern pattern = TapPattern::Grid;
+    float sigma = 1e-3f;       ///< range constant, relative to the scene size squared (ISG Sec. 5)
+    float scene_size_m = 0;    ///< 0 = the diagonal of the positions' bounding box
+    float max_radius_px = 64;  ///< every search and gather radius is clamped to this
+};
+CommonSettings common_settings(const ParameterSet &parameters);
+
+/// A float or Vec3 header attribute; throws aaf::InputError naming a missing or mistyped one.
+float float_attribute(const std::map<std::string, AttributeValue> &attributes, const char *name);
+Vec3 vec3_attribute(const std::map<std::string, AttributeValue> &attributes, const char *name);
+
+/// The three channels of a role as one vector-valued view.
+struct Vec3Planes {
+    ConstPlaneView c[3];
+    Vec3 operator()(int x, int y) const { return {c[0](x, y), c[1](x, y), c[2](x, y)}; }
+};
+Vec3Planes vec3_input(const MethodImages &images, Role role);
+
+bool all_finite(Vec3 v);
+
+/// The scene size ISG Sec. 5 scales its range constants by: `scene_size_m`
+/// when positive, else the diagonal of the bounding box of the finite
+/// positions (1 when there are none or they coincide).
+float scene_size_m(const Vec3Planes &position, int width, int height, float scene_size_m);
+
+/// Nearest-pixel point sampling of a kernel of radius `radius_px` centred on
+/// pixel (x, y): the pixel tap `tap` falls in, false when outside the image.
+inline bool tap_pixel(int x, int y, Tap tap, float radius_px, int width, int height, int &sx, int &sy) {
+    sx = x + int(std::lround(tap.x * radius_px));
+    sy = y + int(std::lround(tap.y * radius_px));
+    return sx >= 0 && sy >= 0 && sx < width && sy < height;
+}
+
+/// `radius_px` clamped to [0, max_radius_px]; NaN gives 0 (no filtering).
+inline float clamp_radius(float radius_px, float max_radius_px) {
+    return radius_px > 0 ? std::min(radius_px, max_radius_px) : 0.0f;
+}
+
+}  // namespace aaf::isg

@@ -1,0 +1,135 @@
+// ISG glossy reflections (Robison and Shirley 2009, Sec. 3.2): a parameter
+// search over the reflection map's distances sets, per pixel, the support of
+// a cross-bilateral gather of the mirror reflection over the glossy cone.
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <vector>
+
+#include "../builtin_methods.h"
+#include "aaf/core/aov_contract.h"
+#include "aaf/core/parallel.h"
+#include "isg_common.h"
+
+namespace aaf {
+
+namespace {
+
+using namespace isg;
+
+class IsgGlossyMethod final : public Method {
+  public:
+    IsgGlossyMethod() {
+        info_.name = "isg-glossy";
+        info_.title = "ISG glossy";
+        info_.summary =
+            "Image Space Gathering glossy reflections from one mirror ray per pixel (Robison, Shirley 2009)";
+        info_.reference = "Robison, Shirley: Image Space Gathering, HPG 2009, Sec. 3.2";
+        info_.roles.required = {Role::Reflection, Role::ReflectionDistance, Role::ThetaMax, Role::Position,
+                                Role::Normal};
+        info_.roles.outputs = {Role::GlossyReflection};
+        info_.roles.filtered = {{Role::Reflection, Role::GlossyReflection}};
+        info_.parameters = common_parameters();
+        info_.parameters.push_back(
+            ParameterInfo::real("a", "1", "", "Weight of the world distance in ISG Eq. 10", 0, 1e6));
+        info_.parameters.push_back(ParameterInfo::real(
+            "b", "1", "", "Weight of the normals' difference 1 - N.N0 in ISG Eq. 10", 0, 1e6));
+        info_.parameters.push_back(ParameterInfo::choice(
+            "spatial_weight", "constant", {"constant", "gaussian"},
+            "The gather's spatial weight, the BRDF's shape in the cone (ISG Sec. 3.2): constant, or a "
+            "Gaussian of standard deviation half the radius"));
+        info_.required_attributes = {attr::kCameraEye, attr::kCameraFocalPx};
+    }
+
+    const MethodInfo &info() const override { return info_; }
+
+    void run(const MethodImages &images, const ParameterSet &parameters, Progress &progress) const override {
+        const int width = images.width(), height = images.height();
+        const CommonSettings common = common_settings(parameters);
+        const Vec3 eye = vec3_attribute(images.attributes(), attr::kCameraEye);
+        const float focal_px = float_attribute(images.attributes(), attr::kCameraFocalPx);
+        // ISG Sec. 3.2 projects angles by the field of view: pixels per radian.
+        const float fov_y_rad = 2 * std::atan(0.5f * float(height) / focal_px);
+        const float px_per_rad = float(height) / fov_y_rad;
+        const float a = parameters.get_float("a"), b = parameters.get_float("b");
+        const bool gaussian = parameters.get_choice("spatial_weight") == "gaussian";
+        const std::vector<Tap> search = tap_set(common.search_samples, TapShape::Disk, common.pattern);
+        const std::vector<Tap> gather = tap_set(common.gather_samples, TapShape::Disk, common.pattern);
+
+        const Vec3Planes reflection = vec3_input(images, Role::Reflection);
+        const ConstPlaneView reflected_m = images.input(Role::ReflectionDistance);
+        const ConstPlaneView theta_max = images.input(Role::ThetaMax);
+        const Vec3Planes position = vec3_input(images, Role::Position);
+        const Vec3Planes normal = vec3_input(images, Role::Normal);
+        const PlaneView out[3] = {images.output(Role::GlossyReflection, 0),
+                                  images.output(Role::GlossyReflection, 1),
+                                  images.output(Role::GlossyReflection, 2)};
+        const float inv_scene_size = 1.0f / scene_size_m(position, width, height, common.scene_size_m);
+        const float inv_sigma = 1.0f / common.sigma;
+        auto range = [&](int sx, int sy, Vec3 p0, Vec3 n0) {
+            const float l = length(position(sx, sy) - p0) * inv_scene_size;  // ISG Eq. 11
+            const float n = 1 - dot(normal(sx, sy), n0);                     // ISG Eq. 12
+            return std::exp(-(a * l * l + b * n * n) * inv_sigma);           // ISG Eq. 10
+        };
+
+        parallel_for_rows(height, [&](int y) {
+            for (int x = 0; x < width; ++x) {
+                for (int c = 0; c < 3; ++c) out[c](x, y) = reflection.c[c](x, y);
+                const float theta = theta_max(x, y);
+                const Vec3 p0 = position(x, y), n0 = normal(x, y);
+                if (!(theta > 0) || !std::isfinite(theta) || !all_finite(p0) || !all_finite(n0)) continue;
+                // Parameter search: the mean reflected distance within theta_max's projection.
+                const float search_px = clamp_radius(theta * px_per_rad, common.max_radius_px);
+                double weight_sum = 0, distance_sum = 0;
+                for (const Tap &tap : search) {
+                    int sx, sy;
+                    if (!tap_pixel(x, y, tap, search_px, width, height, sx, sy)) continue;
+                    const float e_m = reflected_m(sx, sy);
+                    if (!(e_m > 0) || !std::isfinite(e_m))
+                        continue;  // a ray that left the scene has no distance
+                    const float w = range(sx, sy, p0, n0);
+                    if (!std::isfinite(w)) continue;
+                    weight_sum += w;
+                    distance_sum += double(w) * e_m;
+                }
+                const float reflected_distance_m = weight_sum > 0 ? float(distance_sum / weight_sum)
+                                                                  : std::numeric_limits<float>::infinity();
+                const Vec3 to_eye = eye - p0;
+                const float eye_distance_m = length(to_eye);
+                const float alpha =
+                    glossy_gather_angle(theta, eye_distance_m, reflected_distance_m);  // Eq. 13
+                const float cos_incident = std::fabs(dot(n0, to_eye)) / eye_distance_m;
+                const float gather_px =
+                    clamp_radius(alpha * px_per_rad * cos_incident, common.max_radius_px);  // Eq. 14
+                double weight = 0, sum[3] = {0, 0, 0};
+                for (const Tap &tap : gather) {
+                    int sx, sy;
+                    if (!tap_pixel(x, y, tap, gather_px, width, height, sx, sy)) continue;
+                    const Vec3 colour = reflection(sx, sy);
+                    // Gaussian: standard deviation half the radius, exp(-r^2 / (2 (R/2)^2)).
+                    const float spatial = gaussian ? std::exp(-2 * (tap.x * tap.x + tap.y * tap.y)) : 1.0f;
+                    const float w = spatial * range(sx, sy, p0, n0);
+                    if (!all_finite(colour) || !std::isfinite(w)) continue;
+                    weight += w;
+                    sum[0] += double(w) * colour.x;
+                    sum[1] += double(w) * colour.y;
+                    sum[2] += double(w) * colour.z;
+                }
+                if (weight > 0)
+                    for (int c = 0; c < 3; ++c) out[c](x, y) = float(sum[c] / weight);
+            }
+        });
+        progress.report(0.95);
+    }
+
+  private:
+    MethodInfo info_;
+};
+
+}  // namespace
+
+std::unique_ptr<Method> make_isg_glossy_method() {
+    return std::make_unique<IsgGlossyMethod>();
+}
+
+}  // namespace aaf
