@@ -6,6 +6,7 @@
 #include <string>
 #include <vector>
 
+#include "aaf/core/aaf_params.h"
 #include "aaf/core/aov_contract.h"
 #include "aaf/core/aov_set.h"
 #include "aaf/core/light_plane.h"
@@ -79,6 +80,8 @@ struct RenderSettings {
     bool adaptive = false;
     float adaptive_mu = 2.0f;  ///< mu of Eq. 21
     int max_spp = 100;         ///< cap of the adaptive total per pixel
+    /// The light band-limit rule of the plan (AafParams::light_bandlimit): the filter's.
+    LightBandlimit light_bandlimit = AafParams{}.light_bandlimit;
 
     /// Overrides the lights' emission profile (AAF Sec. 7: uniform lights).
     std::optional<LightProfile> light_profile;
@@ -86,6 +89,13 @@ struct RenderSettings {
     /// Sec. 7): shadow samples are weighted by cos(receiver) cos(light) / r^2
     /// relative to the light's centre, and r(x) becomes the exact unshadowed irradiance.
     bool cosine_falloff = false;
+    /// A light sample behind the receiver's own tangent plane is occluded (the
+    /// visibility counts it as blocked). By default it gives no occluder
+    /// distance (the AAF authors' code skips it): the receiver's own surface
+    /// is not an occluder of Fig. 2, and d2 = d1 would set s2 = 0, so such
+    /// pixels would go unfiltered and get Eq. 21's largest rate. True: count
+    /// it as an occluder at the receiver, d2 = d1.
+    bool self_occlusion_as_occluder = false;
 
     /// Progressive rendering: a render already holding some rounds (the
     /// output of an earlier render of the same scene, seed, size and frame,
