@@ -195,7 +195,7 @@ def tilted():
     45 degrees from the floor's (AAF Eq. 12's light-plane distances shrink
     displacements along the floor towards the light)."""
     objects = [{"type": "plane", "size": [16, 16], "id": 1, "material": {"albedo": 0.75}}]
-    half, spacing, width, thickness, height = 0.9, 0.3, 0.05, 0.03, 0.45
+    half, spacing, width, thickness, height = 0.9, 0.3, 0.05, 0.03, 0.25
     bars = round(2 * half / spacing) + 1
     for i in range(bars):
         offset = round(-half + i * spacing, 6)

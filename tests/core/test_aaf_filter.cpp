@@ -191,6 +191,37 @@ TEST_CASE("On a shadow gradient the 10 px border strip is no worse filtered than
     }
 }
 
+// --light-distance ray slides a tap along the direction to the light onto the
+// centre's plane parallel to the light: on such a plane nothing slides, and
+// it equals Eq. 12; on a receiver tilted towards the light it differs.
+TEST_CASE("Distances along the ray equal Eq. 12 on a receiver parallel to the light", "[aaf][filter]") {
+    FlatScene scene(40, 30, 1.0f);
+    scene.fill_noise(9);
+    AafParams params;
+    params.light_distance = AafLightDistance::AlongLightDirection;
+    const std::vector<float> along_ray = scene.run(params);
+    params.light_distance = AafLightDistance::OrthogonalProjection;
+    CHECK(along_ray == scene.run(params));
+    // Hand value: light centre (0, 2, 0) facing down, centre pixel at (1, 0, 0), tap 0.5 m above
+    // it. Eq. 12 drops the vertical offset (distance 0); sliding the tap along l = (-1, 2, 0) / sqrt 5
+    // onto the centre's plane y = 0 moves it to (1.25, 0, 0): du = 0.25 m.
+    FlatScene pair(2, 1, 1.0f);
+    pair.px = {1.0f, 1.0f};
+    pair.py = {0.0f, 0.5f};
+    pair.pz = {0.0f, 0.0f};
+    params.light_distance = AafLightDistance::AlongLightDirection;
+    const GatherGuides guides = aaf_gather_guides(pair.inputs(), pair.light, params);
+    REQUIRE(guides.sheared());
+    const float du = guides.coord_u_m[1] - guides.coord_u_m[0] -
+                     guides.shear_u[0] * (guides.coord_n_m[1] - guides.coord_n_m[0]);
+    const float dv = guides.coord_v_m[1] - guides.coord_v_m[0] -
+                     guides.shear_v[0] * (guides.coord_n_m[1] - guides.coord_n_m[0]);
+    CHECK(std::fabs(du) == Approx(0.25f));
+    CHECK(dv == Approx(0.0f).margin(1e-6));
+    params.light_distance = AafLightDistance::OrthogonalProjection;
+    CHECK(!aaf_gather_guides(pair.inputs(), pair.light, params).sheared());
+}
+
 TEST_CASE("Taps of other objects and turned normals are rejected", "[aaf][filter]") {
     FlatScene scene(20, 20, 1.0f);
     for (int y = 0; y < scene.height; ++y)

@@ -27,10 +27,12 @@ std::vector<ParameterInfo> aaf_parameters() {
                             "samples taken (consistency, AAF Sec. 5.2; the default whenever spp is given)"),
         ParameterInfo::flag(
             "fixed_mu", "One mu everywhere, ignoring the spp input (AAF Eq. 13 as printed; not consistent)"),
-        ParameterInfo::choice("light_bandlimit", "spectrum", {"spectrum", "equivalent_width", "sigma"},
-                              "Light band-limit 1/sigma_b of AAF Sec. 4.1 for the Gaussian truncated at the "
-                              "light's edges: spectrum (falls to exp(-1/2) where the truncated profile's "
-                              "does), equivalent_width, or sigma (the paper's untruncated reading)"),
+        ParameterInfo::choice(
+            "light_bandlimit", "equivalent_width", {"equivalent_width", "spectrum", "sigma"},
+            "Light band-limit 1/sigma_b of AAF Sec. 4.1 for the Gaussian truncated at the "
+            "light's edges: equivalent_width (the spectrum's area), spectrum (falls to "
+            "exp(-1/2) where the truncated profile's does) or sigma (the paper's untruncated "
+            "reading); the plan (aaf plan, render --adaptive) must use the same"),
         ParameterInfo::real("k", "3", "", "Gaussian spread factor of AAF Eq. 13", 0, kInf, /*min_open=*/true),
         ParameterInfo::real("alpha", "1", "", "Occluder bandlimit over pixel bandlimit (AAF Eq. 5)", 0, 1,
                             /*min_open=*/true),
@@ -48,7 +50,7 @@ std::vector<ParameterInfo> aaf_parameters() {
         ParameterInfo::choice("borders", "symmetric", {"symmetric", "clip"},
                               "symmetric: near the image edge the window shrinks on both sides and stays "
                               "centred; clip: cut on the edge side only (one-sided, biased on gradients)"),
-        ParameterInfo::choice("light_distance", "ray", {"ray", "plane"},
+        ParameterInfo::choice("light_distance", "plane", {"plane", "ray"},
                               "Tap distance in the light's plane: ray (slid along the direction to the light "
                               "first) or plane (AAF Eq. 12's orthogonal projection)"),
     };
