@@ -165,9 +165,9 @@ void add_render_command(CLI::App &app) {
         ->check(CLI::IsMember({"gaussian", "uniform"}));
     cmd->add_flag("--falloff", options->settings.cosine_falloff,
                   "Include the cosine falloff in the light function (AAF Sec. 7)");
-    cmd->add_flag("--self-occluder", options->settings.self_occlusion_as_occluder,
-                  "Light samples behind the receiver's tangent plane give an occluder at the receiver "
-                  "(d2 = d1); by default they give no occluder distance");
+    cmd->add_flag("--skip-self-occluded", options->settings.skip_self_occluded,
+                  "Light samples behind the receiver's tangent plane give no occluder distance (the AAF "
+                  "authors' code); by default they give an occluder at the receiver, d2 = d1");
     cmd->add_option("--resume", options->resume,
                     "Continue a progressive render from this partial output (may be the -o file)");
     cmd->add_option("--checkpoint", options->checkpoint_s,

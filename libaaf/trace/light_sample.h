@@ -38,8 +38,8 @@ struct LightSample {
     bool visible = true;
     /// When occluded: the occluder's distance from the light's plane along
     /// its normal, metres (d2 of AAF Fig. 2); for a light point behind the
-    /// receiver's own tangent plane 0 (no occluder distance), or d1 with
-    /// RenderSettings::self_occlusion_as_occluder; 0 when visible.
+    /// receiver's own tangent plane d1, or 0 (no occluder distance) with
+    /// RenderSettings::skip_self_occluded; 0 when visible.
     float d2_m = 0;
     /// Radiance traced with this sample apart from r(x) V(x): the other
     /// lights' shadowed shading, or with a thin lens the whole radiance seen

@@ -19,8 +19,7 @@ std::uint64_t scene_hash(const SceneDescription &scene, const RenderSettings &se
     h.add(std::int64_t(settings.seed));
     h.add(settings.frame);
     h.add(std::int64_t(settings.cosine_falloff));
-    // Renders made before the option (self-occluded samples as occluders) keep their hash.
-    if (!settings.self_occlusion_as_occluder) h.add(std::int64_t(1));
+    if (settings.skip_self_occluded) h.add(std::int64_t(1));  // renders without it keep their earlier hash
 
     const Camera &camera = scene.camera;
     for (Vec3 v : {camera.eye, camera.forward, camera.right, camera.up}) h.add(v);

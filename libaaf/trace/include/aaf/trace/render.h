@@ -90,12 +90,13 @@ struct RenderSettings {
     /// relative to the light's centre, and r(x) becomes the exact unshadowed irradiance.
     bool cosine_falloff = false;
     /// A light sample behind the receiver's own tangent plane is occluded (the
-    /// visibility counts it as blocked). By default it gives no occluder
-    /// distance (the AAF authors' code skips it): the receiver's own surface
-    /// is not an occluder of Fig. 2, and d2 = d1 would set s2 = 0, so such
-    /// pixels would go unfiltered and get Eq. 21's largest rate. True: count
-    /// it as an occluder at the receiver, d2 = d1.
-    bool self_occlusion_as_occluder = false;
+    /// visibility counts it as blocked) and by default gives an occluder at
+    /// the receiver, d2 = d1 (s2 = 0: such pixels are barely filtered and get
+    /// Eq. 21's largest rate). True: it gives no occluder distance, as the AAF
+    /// authors' code skips it; the study measured that no better on any scene
+    /// and worse on curved receivers (their terminators then keep the first
+    /// pass's 9 samples unfiltered), README "The study".
+    bool skip_self_occluded = false;
 
     /// Progressive rendering: a render already holding some rounds (the
     /// output of an earlier render of the same scene, seed, size and frame,
