@@ -73,6 +73,10 @@ TEST_CASE("AAF with mu 3 works for a uniform light and for the cosine falloff", 
         CHECK(read_light_attributes(noisy).profile == settings.light_profile);
         AafParams params;
         params.mu = 3.0f;
+        // The paper's claim is for its reading (Omega_L = 1/sigma, one mu): the default
+        // band-limit (0.683 sigma, 0.8 sigma for a uniform light) is sharper.
+        params.light_bandlimit = LightBandlimit::Sigma;
+        params.fixed_mu = true;
         const double unfiltered = compare_channels(noisy, reference, {"R", "G", "B"}).rmse;
         const double filtered =
             compare_channels(aaf_filter_aovs(noisy, ChannelMap{}, params), reference, {"R", "G", "B"}).rmse;
