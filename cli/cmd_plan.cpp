@@ -16,6 +16,7 @@ void add_plan_command(CLI::App &app) {
     struct Options {
         std::string input, output;
         AafParams aaf;
+        std::string light_bandlimit = to_string(AafParams{}.light_bandlimit);
         SamplingPlanParams plan;
         std::vector<std::string> maps;
         int threads = 0;
@@ -32,6 +33,10 @@ void add_plan_command(CLI::App &app) {
     cmd->add_option("--alpha", options->aaf.alpha, "Occluder bandlimit over pixel bandlimit, (0,1] (Eq. 5)")
         ->check(finite_number(0, 1))
         ->capture_default_str();
+    cmd->add_option("--light-bandlimit", options->light_bandlimit,
+                    "Light band-limit rule (use the filter's --light-bandlimit)")
+        ->check(CLI::IsMember({"spectrum", "equivalent_width", "sigma"}))
+        ->capture_default_str();
     cmd->add_option("--first-pass", options->plan.first_pass_spp, "Samples the first pass took per pixel")
         ->check(finite_number(1, HUGE_VAL, /*low_allowed=*/true))
         ->capture_default_str();
@@ -47,6 +52,7 @@ void add_plan_command(CLI::App &app) {
         if (options->plan.first_pass_spp > options->plan.max_spp)
             throw UsageError("--first-pass " + std::to_string(options->plan.first_pass_spp) +
                              " is above --max-spp " + std::to_string(options->plan.max_spp));
+        options->aaf.light_bandlimit = light_bandlimit_from_string(options->light_bandlimit);
         const ChannelMap channels = channel_map_from(options->maps);
         io::check_not_same_file(options->input, options->output);
         const AovSet input = io::read_aovs(options->input);

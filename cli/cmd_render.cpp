@@ -5,8 +5,8 @@
 #include <climits>
 #include <csignal>
 #include <cstdio>
-#include <filesystem>
 #include <cstdlib>
+#include <filesystem>
 #include <iostream>
 #include <memory>
 #include <nlohmann/json.hpp>
@@ -118,6 +118,7 @@ void check_outputs_spare_inputs(const std::string &scene, const std::string &out
 void add_render_command(CLI::App &app) {
     struct Options {
         std::string scene, output, light, aovs = "aaf", frames, resume, progress = "auto";
+        std::string light_bandlimit = to_string(trace::RenderSettings{}.light_bandlimit);
         trace::RenderSettings settings;
         double checkpoint_s = 60;
         bool list = false, skip_existing = false;
@@ -156,10 +157,17 @@ void add_render_command(CLI::App &app) {
         ->capture_default_str();
     cmd->add_option("--max-spp", options->settings.max_spp, "Cap on the adaptive samples per pixel")
         ->capture_default_str();
+    cmd->add_option("--light-bandlimit", options->light_bandlimit,
+                    "Light band-limit rule of the adaptive plan (the filter's --light-bandlimit)")
+        ->check(CLI::IsMember({"spectrum", "equivalent_width", "sigma"}))
+        ->capture_default_str();
     cmd->add_option("--light", options->light, "Override the lights' profile: gaussian or uniform")
         ->check(CLI::IsMember({"gaussian", "uniform"}));
     cmd->add_flag("--falloff", options->settings.cosine_falloff,
                   "Include the cosine falloff in the light function (AAF Sec. 7)");
+    cmd->add_flag("--skip-self-occluded", options->settings.skip_self_occluded,
+                  "Light samples behind the receiver's tangent plane give no occluder distance (the AAF "
+                  "authors' code); by default they give an occluder at the receiver, d2 = d1");
     cmd->add_option("--resume", options->resume,
                     "Continue a progressive render from this partial output (may be the -o file)");
     cmd->add_option("--checkpoint", options->checkpoint_s,
@@ -181,6 +189,7 @@ void add_render_command(CLI::App &app) {
         if (options->output.empty()) throw CLI::RequiredError("--output");
         trace::RenderSettings &settings = options->settings;
         if (!options->light.empty()) settings.light_profile = light_profile_from_string(options->light);
+        settings.light_bandlimit = light_bandlimit_from_string(options->light_bandlimit);
         try {
             settings.aovs = trace::parse_aov_groups(options->aovs);
         } catch (const Error &e) {
@@ -204,8 +213,9 @@ void add_render_command(CLI::App &app) {
         std::optional<io::FrameRange> frames;
         if (sequence) frames = sequence_frames(options->output, options->frames);
         check_outputs_spare_inputs(options->scene, options->output, frames);
-        const FrameJobs jobs = frames ? FrameJobs(FrameJobs::fixed_input(options->scene), options->output, *frames)
-                                      : FrameJobs({{0, options->scene, options->output}});
+        const FrameJobs jobs =
+            frames ? FrameJobs(FrameJobs::fixed_input(options->scene), options->output, *frames)
+                   : FrameJobs({{0, options->scene, options->output}});
         std::optional<AovSet> partial;
         if (!options->resume.empty()) {
             partial = io::read_aovs(options->resume);

@@ -55,7 +55,7 @@ rmse_adaptive_aaf=$("$aaf" compare "$out/grids_adaptive_aaf.exr" "$reference" | 
 "$aaf" preview "$out/grids_plan.exr" -o "$out/grids_n.png" --channels plan.spp --false-colour
 
 echo
-echo "grids ${width}x${height}, AAF (mu 2, k 3, alpha 1), reference ${ref_spp} spp"
+echo "grids ${width}x${height}, AAF with the defaults of aaf filter aaf (mu 2, k 3, alpha 1, consistent), reference ${ref_spp} spp"
 ratio() { awk -v a="$1" -v b="$2" 'BEGIN { printf "%.2f", a / b }'; }
 printf '%-22s %8s %16s %16s %8s %10s %10s\n' "sampling" "avg spp" "RMSE unfiltered" "RMSE AAF" "ratio" "render s" "filter s"
 printf '%-22s %8s %16s %16s %8s %10s %10s\n' "uniform ${spp} spp" "$avg_spp" "$rmse_noisy" "$rmse_aaf" \

@@ -1,8 +1,10 @@
 #!/usr/bin/python3
 """Plots a study CSV (scripts/study.sh) as RMSE vs average spp, one panel per
 scene and one curve per sampling/filter pair (AAF Fig. 6(c)), and prints the
-adaptive average spp and the equal-error sample reduction of AS+AF against
-plain Monte Carlo (NAS+UF).
+study's tables: with the CLI defaults the adaptive average spp, the filtered
+RMSE against the best of a fixed-mu sweep and the equal-error sample
+reduction of AS+AF against plain Monte Carlo (NAS+UF); then the gain of each
+default over the paper's reading.
 
 usage: plot_study.py STUDY.csv OUT.png
 """
@@ -46,8 +48,10 @@ def spp_for_error(curve, error):
 def main():
     rows = load(sys.argv[1])
     scenes = sorted({r["scene"] for r in rows})
-    fig, axes = plt.subplots(1, len(scenes), figsize=(6.5 * len(scenes), 5), squeeze=False)
-    for ax, scene in zip(axes[0], scenes):
+    columns = min(3, len(scenes))
+    rows_of_panels = (len(scenes) + columns - 1) // columns
+    fig, axes = plt.subplots(rows_of_panels, columns, figsize=(6.5 * columns, 5 * rows_of_panels), squeeze=False)
+    for ax, scene in zip(axes.flat, scenes):
         for (sampling, filt), (colour, label) in STYLE.items():
             curve = sorted(
                 (float(r["avg_spp"]), float(r["rmse"]))
@@ -64,17 +68,109 @@ def main():
         ax.grid(True, which="both", alpha=0.3)
         ax.legend(fontsize=8)
 
-        plain = [r for r in rows if r["scene"] == scene and r["sampling"] == "NAS" and r["filter"] == "UF"]
-        for r in rows:
-            if r["scene"] == scene and r["sampling"] == "AS" and r["filter"] == "AF":
-                spp, extrapolated = spp_for_error(plain, float(r["rmse"]))
-                print(
-                    f"{scene}: AS+AF mu {float(r['setting']):g}: avg {float(r['avg_spp']):.1f} spp, "
-                    f"RMSE {float(r['rmse']):.5f}; plain MC needs {spp:.0f} spp for that error "
-                    f"({spp / float(r['avg_spp']):.1f}x{', extrapolated' if extrapolated else ''})"
-                )
     fig.tight_layout()
     fig.savefig(sys.argv[2], dpi=110)
+    print_tables(rows, scenes)
+
+
+def find(rows, scene, sampling, filt, setting=None):
+    for r in rows:
+        if (r["scene"], r["sampling"], r["filter"]) == (scene, sampling, filt) and (
+            setting is None or float(r["setting"]) == setting
+        ):
+            return r
+    return None
+
+
+def reduction(rows, scene, row):
+    """Equal-error sample reduction of `row` over plain Monte Carlo (NAS+UF),
+    interpolating the measured plain-MC error curve."""
+    plain = [r for r in rows if r["scene"] == scene and r["sampling"] == "NAS" and r["filter"] == "UF"]
+    spp, extrapolated = spp_for_error(plain, float(row["rmse"]))
+    return spp, spp / float(row["avg_spp"]), extrapolated
+
+
+def print_tables(rows, scenes):
+    """The study's tables (README "The study"): the CLI defaults first, then
+    each departure from the paper switched back alone, then the paper's
+    whole pipeline."""
+    print("CLI defaults (aaf render --adaptive; aaf filter aaf):")
+    print("| scene | AS avg spp | RMSE unfiltered | RMSE AAF | best fixed mu (RMSE) | default / best "
+          "| plain MC spp at that error | reduction |")
+    print("| --- | --- | --- | --- | --- | --- | --- | --- |")
+    for scene in scenes:
+        uf, af = find(rows, scene, "AS", "UF"), find(rows, scene, "AS", "AF")
+        if af is None:
+            continue
+        sweep = [r for r in rows if (r["scene"], r["sampling"], r["filter"]) == (scene, "AS", "AF_fixed_mu")]
+        best = min(sweep, key=lambda r: float(r["rmse"]))
+        spp, ratio, extrapolated = reduction(rows, scene, af)
+        print(f"| {scene} | {float(af['avg_spp']):.1f} | {float(uf['rmse']):.5f} | {float(af['rmse']):.5f} "
+              f"| {float(best['setting']):g} ({float(best['rmse']):.5f}) "
+              f"| {float(af['rmse']) / float(best['rmse']):.2f} | {spp:.0f}{' (extrapolated)' if extrapolated else ''} "
+              f"| {ratio:.1f}x |")
+    print()
+    print("Filtered (AF, defaults) against unfiltered, every render of the study (plain spp values and adaptive):")
+    for scene in scenes:
+        worse = []
+        pairs = 0
+        for sampling in ("NAS", "AS"):
+            for uf in [r for r in rows if (r["scene"], r["sampling"], r["filter"]) == (scene, sampling, "UF")]:
+                af = find(rows, scene, sampling, "AF", float(uf["setting"]))
+                if af is None:
+                    continue
+                pairs += 1
+                ratio = float(af["rmse"]) / float(uf["rmse"])
+                if ratio > 1:
+                    worse.append(f"{sampling} {float(uf['setting']):g}: {ratio:.3f}")
+        largest = max(float(find(rows, scene, s, "AF", float(u["setting"]))["rmse"]) / float(u["rmse"])
+                      for s in ("NAS", "AS")
+                      for u in rows if (u["scene"], u["sampling"], u["filter"]) == (scene, s, "UF"))
+        print(f"- {scene}: {pairs} renders, AF/UF at most {largest:.3f}"
+              + (f"; worse than unfiltered at {', '.join(worse)}" if worse else ", never worse"))
+    print()
+    print("Same adaptive render, one setting changed from the defaults (RMSE):")
+    columns = [("AF", "defaults"), ("AF_bandlimit_sigma", "band-limit 1/sigma (paper)"),
+               ("AF_bandlimit_spectrum", "band-limit spectrum"), ("AF_distance_ray", "distance along the ray"),
+               ("AF_borders_clip", "one-sided borders"), ("AF_fixed_mu_default", "fixed mu 2 (paper)"),
+               ("AF_paper", "paper's filter")]
+    print("| scene | " + " | ".join(label for _, label in columns) + " |")
+    print("| --- |" + " --- |" * len(columns))
+    for scene in scenes:
+        cells = []
+        for filt, _ in columns:
+            r = find(rows, scene, "AS", filt)
+            cells.append(f"{float(r['rmse']):.5f}" if r else "-")
+        print(f"| {scene} | " + " | ".join(cells) + " |")
+    print()
+    print("Self-occluded samples skipped (render --skip-self-occluded; default: an occluder at d2 = d1):")
+    print("| scene | avg spp | RMSE AAF | filtered pixels | mean beta px | defaults: avg spp | RMSE AAF "
+          "| filtered pixels | mean beta px |")
+    print("| --- | --- | --- | --- | --- | --- | --- | --- | --- |")
+    for scene in scenes:
+        so, af = find(rows, scene, "AS_skip_self_occluded", "AF"), find(rows, scene, "AS", "AF")
+        if so is None or af is None:
+            continue
+        print(f"| {scene} | {float(so['avg_spp']):.1f} | {float(so['rmse']):.5f} | {float(so['filtered_share']):.3f} "
+              f"| {float(so['mean_beta_px']):.2f} | {float(af['avg_spp']):.1f} | {float(af['rmse']):.5f} "
+              f"| {float(af['filtered_share']):.3f} | {float(af['mean_beta_px']):.2f} |")
+    print()
+    print("The paper's pipeline (plan with 1/sigma; filter as printed: fixed mu 2, 1/sigma, one-sided borders) "
+          "against the defaults:")
+    print("| scene | paper: avg spp | RMSE unfiltered | RMSE AAF | reduction | defaults: avg spp | RMSE AAF "
+          "| reduction |")
+    print("| --- | --- | --- | --- | --- | --- | --- | --- |")
+    for scene in scenes:
+        puf, paf = find(rows, scene, "AS_paper", "UF"), find(rows, scene, "AS_paper", "AF_paper")
+        af = find(rows, scene, "AS", "AF")
+        if paf is None or af is None:
+            continue
+        _, pratio, pext = reduction(rows, scene, paf)
+        _, ratio, ext = reduction(rows, scene, af)
+        print(f"| {scene} | {float(paf['avg_spp']):.1f} | {float(puf['rmse']):.5f} | {float(paf['rmse']):.5f} "
+              f"| {pratio:.1f}x{'*' if pext else ''} | {float(af['avg_spp']):.1f} | {float(af['rmse']):.5f} "
+              f"| {ratio:.1f}x{'*' if ext else ''} |")
+    print("(* extrapolated beyond the measured plain-MC curve)")
 
 
 if __name__ == "__main__":

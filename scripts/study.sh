@@ -1,9 +1,11 @@
 #!/usr/bin/env bash
-# Reproduces AAF Fig. 6(c) and the sampling figures of Table 1: for grids and
-# tentacles at 320x240, RMSE against a 4096 spp reference versus average spp for
-# {NAS, AS} x {UF, NAF, AF}; writes out/study/study.csv, a plot and a summary.
-# Extra arguments go to aaf_study (e.g. --scenes grids --width 160 --height 120);
-# AAF_STUDY_OUT picks another output folder.
+# Reproduces AAF Fig. 6(c) and the sampling figures of Table 1 with the CLI
+# defaults: for the study scenes (grids, tentacles, spheres, tilted, grazing,
+# contact) at 320x240, RMSE against a 4096 spp reference versus average spp for
+# {NAS, AS} x {UF, NAF, AF}, a fixed-mu sweep and one-setting changes on the
+# default adaptive render, and the paper's pipeline; writes out/study/study.csv,
+# a plot and summary.txt (the tables). Extra arguments go to aaf_study (e.g.
+# --scenes grids --width 160 --height 120); AAF_STUDY_OUT picks another folder.
 set -euo pipefail
 root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 "$root/scripts/build.sh"

@@ -54,7 +54,7 @@ struct Planes {
 /// Gathers pixel (x, y) over the taps |ox| <= reach_x, |oy| <= reach_y into
 /// the K outputs. `Modulated` adds the per-tap factor and, with `normalise`
 /// false, leaves the sums unnormalised.
-template <int K, bool Modulated>
+template <int K, bool Modulated, bool Sheared>
 void gather_pixel(const GatherGuides &g, float cos_threshold, const Planes<K> &planes, int x, int y,
                   int reach_x, int reach_y, const PixelModulation &modulation, bool normalise) {
     const std::size_t c = g.index(x, y);
@@ -65,6 +65,10 @@ void gather_pixel(const GatherGuides &g, float cos_threshold, const Planes<K> &p
         Modulated && (modulation.inv_two_sigma_sq_u >= 0 || modulation.inv_two_sigma_sq_v >= 0);
     const float inv_u = modulation.inv_two_sigma_sq_u >= 0 ? modulation.inv_two_sigma_sq_u : inv_two_sigma_sq;
     const float inv_v = modulation.inv_two_sigma_sq_v >= 0 ? modulation.inv_two_sigma_sq_v : inv_two_sigma_sq;
+    // GatherGuides::shear_u/v: the tap's offset along the third axis slides it
+    // along the centre's own direction onto the centre's plane.
+    const float n = Sheared ? g.coord_n_m[c] : 0.0f;
+    const float shear_u = Sheared ? g.shear_u[c] : 0.0f, shear_v = Sheared ? g.shear_v[c] : 0.0f;
     const int x_begin = std::max(0, x - reach_x), x_end = std::min(g.width, x + reach_x + 1);
     const int y_begin = std::max(0, y - reach_y), y_end = std::min(g.height, y + reach_y + 1);
 
@@ -72,7 +76,12 @@ void gather_pixel(const GatherGuides &g, float cos_threshold, const Planes<K> &p
     auto accumulate = [&](std::size_t t, int lane) {
         const float cos_angle = nx * g.normal_x[t] + ny * g.normal_y[t] + nz * g.normal_z[t];
         const float accepted = float(g.object_id[t] == id) * float(cos_angle >= cos_threshold);
-        const float du = g.coord_u_m[t] - u, dv = g.coord_v_m[t] - v;
+        float du = g.coord_u_m[t] - u, dv = g.coord_v_m[t] - v;
+        if (Sheared) {
+            const float dn = g.coord_n_m[t] - n;
+            du -= shear_u * dn;
+            dv -= shear_v * dn;
+        }
         const float weight =
             anisotropic ? accepted * fast_exp_nonpositive(-(du * du * inv_u + dv * dv * inv_v))
                       : accepted * fast_exp_nonpositive(-(du * du + dv * dv) * inv_two_sigma_sq);  // AAF Eq. 11
@@ -107,8 +116,9 @@ void gather_pixel(const GatherGuides &g, float cos_threshold, const Planes<K> &p
 /// own radius; pixels with radius 0 copy their source. Rows run in parallel;
 /// every pixel's sums have a fixed order, so threads cannot change the result.
 template <int K, bool Modulated>
-void gather_sweep(const GatherGuides &g, float cos_threshold, const Planes<K> &planes, bool along_x,
-                  bool along_y, const AxisModulation &mod_u, const AxisModulation &mod_v, bool normalise) {
+void gather_sweep(const GatherGuides &g, float cos_threshold, bool symmetric_borders, const Planes<K> &planes,
+                  bool along_x, bool along_y, const AxisModulation &mod_u, const AxisModulation &mod_v,
+                  bool normalise) {
     parallel_for_rows(g.height, [&](int y) {
         for (int x = 0; x < g.width; ++x) {
             const std::size_t c = g.index(x, y);
@@ -128,8 +138,20 @@ void gather_sweep(const GatherGuides &g, float cos_threshold, const Planes<K> &p
                 if (mod_u.inv_two_sigma_sq.valid()) modulation.inv_two_sigma_sq_u = mod_u.inv_two_sigma_sq(x, y);
                 if (mod_v.inv_two_sigma_sq.valid()) modulation.inv_two_sigma_sq_v = mod_v.inv_two_sigma_sq(x, y);
             }
-            gather_pixel<K, Modulated>(g, cos_threshold, planes, x, y, along_x ? radius : 0,
-                                       along_y ? radius : 0, modulation, normalise);
+            int reach_x = along_x ? radius : 0, reach_y = along_y ? radius : 0;
+            if (symmetric_borders) {
+                // A window cut by the image edge on one side only weighs the
+                // interior: on a gradient that biases the result (AAF Sec. 6
+                // does not say); cutting the other side to match keeps it centred.
+                reach_x = std::min({reach_x, x, g.width - 1 - x});
+                reach_y = std::min({reach_y, y, g.height - 1 - y});
+            }
+            if (g.sheared())
+                gather_pixel<K, Modulated, true>(g, cos_threshold, planes, x, y, reach_x, reach_y, modulation,
+                                                 normalise);
+            else
+                gather_pixel<K, Modulated, false>(g, cos_threshold, planes, x, y, reach_x, reach_y,
+                                                  modulation, normalise);
         }
     });
 }
@@ -160,9 +182,9 @@ std::vector<float> transposed(const std::vector<float> &plane, int width, int he
 
 /// Runs gather_sweep over all channels, kMaxChannelsPerSweep at a time.
 template <bool Modulated>
-void sweep_all(const GatherGuides &g, float cos_threshold, const PackedPlanes &sources, PackedPlanes &outputs,
-               bool along_x, bool along_y, const AxisModulation &mod_u = {}, const AxisModulation &mod_v = {},
-               bool normalise = true) {
+void sweep_all(const GatherGuides &g, float cos_threshold, bool symmetric_borders,
+               const PackedPlanes &sources, PackedPlanes &outputs, bool along_x, bool along_y,
+               const AxisModulation &mod_u = {}, const AxisModulation &mod_v = {}, bool normalise = true) {
     for (std::size_t first = 0; first < sources.size(); first += kMaxChannelsPerSweep) {
         const std::size_t count = std::min<std::size_t>(kMaxChannelsPerSweep, sources.size() - first);
         auto run = [&](auto channels) {
@@ -172,7 +194,8 @@ void sweep_all(const GatherGuides &g, float cos_threshold, const PackedPlanes &s
                 planes.source[k] = sources[first + k].data();
                 planes.output[k] = outputs[first + k].data();
             }
-            gather_sweep<K, Modulated>(g, cos_threshold, planes, along_x, along_y, mod_u, mod_v, normalise);
+            gather_sweep<K, Modulated>(g, cos_threshold, symmetric_borders, planes, along_x, along_y, mod_u,
+                                       mod_v, normalise);
         };
         switch (count) {
             case 1:
@@ -196,6 +219,9 @@ void check_guides(const GatherGuides &g) {
     for (const std::vector<float> *plane : {&g.coord_u_m, &g.coord_v_m, &g.normal_x, &g.normal_y, &g.normal_z,
                                             &g.object_id, &g.inv_two_sigma_sq})
         if (plane->size() != count) throw Error("gather guides: a plane does not match the guides' size");
+    for (const std::vector<float> *plane : {&g.coord_n_m, &g.shear_u, &g.shear_v})
+        if (plane->size() != (g.sheared() ? count : 0))
+            throw Error("gather guides: the shear planes must all match the guides' size or all be empty");
     if (g.radius_px.size() != count)
         throw Error("gather guides: the radius plane does not match the guides' size");
 }
@@ -244,6 +270,7 @@ GatherGuides GatherGuides::transposed() const {
     t.height = width;
     auto swap_axes = [&](const auto &plane, auto &out) {
         out.resize(plane.size());
+        if (plane.empty()) return;  // an optional plane left out
         for (int y = 0; y < height; ++y)
             for (int x = 0; x < width; ++x)
                 out[std::size_t(x) * std::size_t(height) + std::size_t(y)] = plane[index(x, y)];
@@ -255,6 +282,9 @@ GatherGuides GatherGuides::transposed() const {
     swap_axes(normal_z, t.normal_z);
     swap_axes(object_id, t.object_id);
     swap_axes(inv_two_sigma_sq, t.inv_two_sigma_sq);
+    swap_axes(coord_n_m, t.coord_n_m);
+    swap_axes(shear_u, t.shear_u);
+    swap_axes(shear_v, t.shear_v);
     swap_axes(radius_px, t.radius_px);
     return t;
 }
@@ -283,12 +313,14 @@ void gather(const GatherGuides &guides, const GatherSettings &settings,
             sources_t[k] = transposed(packed[k], width, height);
             vertical_t[k].resize(packed[k].size());
         }
-        sweep_all<false>(guides_t, cos_threshold, sources_t, vertical_t, true, false);
+        sweep_all<false>(guides_t, cos_threshold, settings.symmetric_borders, sources_t, vertical_t, true,
+                         false);
         for (std::size_t k = 0; k < packed.size(); ++k)
             sources_t[k] = transposed(vertical_t[k], height, width);
-        sweep_all<false>(guides, cos_threshold, sources_t, result, true, false);
+        sweep_all<false>(guides, cos_threshold, settings.symmetric_borders, sources_t, result, true, false);
     } else {
-        sweep_all<false>(guides, cos_threshold, packed, result, true, true);  // AAF Eq. 10 directly
+        sweep_all<false>(guides, cos_threshold, settings.symmetric_borders, packed, result, true,
+                         true);  // AAF Eq. 10 directly
     }
     unpack(result, outputs);
 }
@@ -311,8 +343,8 @@ void gather_modulated(const GatherGuides &guides, const GatherSettings &settings
             throw Error("modulated gather: a per-axis width plane has another size");
     const PackedPlanes packed = pack(sources);
     PackedPlanes result(packed.size(), std::vector<float>(packed.empty() ? 0 : packed[0].size()));
-    sweep_all<true>(guides, cos_threshold_of(settings), packed, result, true, true, along_u, along_v,
-                    normalisation == GatherNormalisation::WeightSum);
+    sweep_all<true>(guides, cos_threshold_of(settings), settings.symmetric_borders, packed, result, true,
+                    true, along_u, along_v, normalisation == GatherNormalisation::WeightSum);
     unpack(result, outputs);
 }
 

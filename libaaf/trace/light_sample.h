@@ -37,8 +37,9 @@ struct LightSample {
     /// Whether the shadow ray reached the light.
     bool visible = true;
     /// When occluded: the occluder's distance from the light's plane along
-    /// its normal, metres (d2 of AAF Fig. 2); d1 for a light point behind the
-    /// receiver's own tangent plane; 0 when visible.
+    /// its normal, metres (d2 of AAF Fig. 2); for a light point behind the
+    /// receiver's own tangent plane d1, or 0 (no occluder distance) with
+    /// RenderSettings::skip_self_occluded; 0 when visible.
     float d2_m = 0;
     /// Radiance traced with this sample apart from r(x) V(x): the other
     /// lights' shadowed shading, or with a thin lens the whole radiance seen

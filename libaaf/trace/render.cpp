@@ -207,6 +207,7 @@ AovSet plan_second_pass(const RenderState &state, const Accumulators &accumulato
     write_light_attributes(state.scene.key_light(), first_pass);
     AafParams aaf;
     aaf.mu = settings.adaptive_mu;
+    aaf.light_bandlimit = settings.light_bandlimit;
     SamplingPlanParams params;
     params.first_pass_spp = settings.spp;
     params.max_spp = settings.max_spp;

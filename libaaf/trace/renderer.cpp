@@ -137,7 +137,7 @@ void Renderer::trace_key_light(const PrimaryHit &primary, Vec3 origin, float d1,
         sample.weight = falloff(light, p, primary.normal, target) / centre_falloff;
     if (dot(primary.normal, target - p) <= 0) {
         sample.visible = false;  // behind the receiver's own tangent plane
-        sample.d2_m = d1;
+        sample.d2_m = settings_.skip_self_occluded ? 0.0f : d1;
         return;
     }
     // t = 1 reaches the light point; stop just short of it.

@@ -50,7 +50,7 @@ struct ShadowStats {
             weight_sum += sample.weight;
             if (sample.visible)
                 unoccluded_weight_sum += sample.weight;
-            else
+            else if (sample.d2_m > 0)  // 0: self-occluded and skipped (RenderSettings::skip_self_occluded)
                 add_occluder(sample.d2_m);
         }
         radiance_sum[0] += sample.radiance.x;

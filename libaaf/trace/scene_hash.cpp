@@ -19,6 +19,7 @@ std::uint64_t scene_hash(const SceneDescription &scene, const RenderSettings &se
     h.add(std::int64_t(settings.seed));
     h.add(settings.frame);
     h.add(std::int64_t(settings.cosine_falloff));
+    if (settings.skip_self_occluded) h.add(std::int64_t(1));  // renders without it keep their earlier hash
 
     const Camera &camera = scene.camera;
     for (Vec3 v : {camera.eye, camera.forward, camera.right, camera.up}) h.add(v);

@@ -213,12 +213,77 @@ def gallery():
     }
 
 
+def rect_light(center, edge_u, edge_v, intensity):
+    return {"center": center, "edge_u": [round(v, 6) for v in edge_u], "edge_v": [round(v, 6) for v in edge_v],
+            "intensity": intensity}
+
+
+def tilted():
+    """Study scene: a lattice under a 1.4 m x 0.7 m light whose normal is tilted
+    45 degrees from the floor's (AAF Eq. 12's light-plane distances shrink
+    displacements along the floor towards the light)."""
+    objects = [{"type": "plane", "size": [16, 16], "id": 1, "material": {"albedo": 0.75}}]
+    half, spacing, width, thickness, height = 0.9, 0.3, 0.05, 0.03, 0.25
+    bars = round(2 * half / spacing) + 1
+    for i in range(bars):
+        offset = round(-half + i * spacing, 6)
+        for lo, hi in [([-half, height, offset - width / 2], [half, height + thickness, offset + width / 2]),
+                       ([offset - width / 2, height, -half], [offset + width / 2, height + thickness, half])]:
+            objects.append({"type": "box", "min": [round(v, 6) for v in lo], "max": [round(v, 6) for v in hi],
+                            "id": 2, "material": {"albedo": [0.8, 0.3, 0.25]}})
+    tilt = math.radians(45)
+    # edge_u x edge_v = (0, -cos, sin): the light faces down and towards +z.
+    edge_v = [0, 0.7 * math.sin(tilt), 0.7 * math.cos(tilt)]
+    return {"format_version": 1, "name": "tilted", "camera": camera([0, 3.4, 3.6], [0, 0.1, 0.4]),
+            "lights": [rect_light([0, 2.3, -1.9], [1.4, 0, 0], edge_v, 34.0)], "objects": objects}
+
+
+def grazing():
+    """Study scene: spheres on a floor under a 1.0 m x 0.8 m light whose normal
+    is 82 degrees from straight down, so the receivers below see it nearly
+    edge-on (8-25 degrees from its plane)."""
+    balls = [([0.35, 0.25, -0.5], 0.25, [0.85, 0.35, 0.30]), ([0.9, 0.45, 0.1], 0.2, [0.30, 0.70, 0.35]),
+             ([0.25, 0.7, 0.45], 0.18, [0.30, 0.45, 0.85]), ([1.3, 0.15, 0.7], 0.15, [0.85, 0.75, 0.30])]
+    objects = [{"type": "plane", "size": [16, 16], "id": 1, "material": {"albedo": 0.75}}]
+    for id_, (center, radius, albedo) in enumerate(balls, 2):
+        objects.append({"type": "sphere", "center": center, "radius": radius, "segments": 32, "id": id_,
+                        "material": {"albedo": albedo}})
+    tilt = math.radians(82)
+    # edge_u x edge_v = (sin, -cos, 0): the light faces +x, 8 degrees down.
+    edge_v = [-0.8 * math.cos(tilt), -0.8 * math.sin(tilt), 0]
+    return {"format_version": 1, "name": "grazing", "camera": camera([2.6, 2.4, 2.8], [0.6, 0.2, 0.1]),
+            "lights": [rect_light([-0.1, 2.0, 0.1], [0, 0, 1.0], edge_v, 120.0)], "objects": objects}
+
+
+def contact():
+    """Study scene: occluders resting on the floor (contact shadows) under a
+    1.6 m x 0.5 m light tilted 30 degrees."""
+    objects = [{"type": "plane", "size": [16, 16], "id": 1, "material": {"albedo": 0.75}},
+               {"type": "box", "min": [-0.3, 0, -0.3], "max": [0.3, 0.5, 0.3], "id": 2,
+                "material": {"albedo": [0.8, 0.3, 0.25]},
+                "transform": {"rotate_deg": [0, 25, 0], "translate": [-0.7, 0, -0.2]}},
+               {"type": "sphere", "center": [0.5, 0.35, -0.3], "radius": 0.35, "segments": 32, "id": 3,
+                "material": {"albedo": [0.3, 0.7, 0.35]}},
+               {"type": "cylinder", "radius": 0.12, "height": 0.9, "segments": 24, "id": 4,
+                "material": {"albedo": [0.3, 0.45, 0.85]}, "transform": {"translate": [-0.1, 0, 0.6]}},
+               {"type": "box", "min": [-0.5, 0, -0.04], "max": [0.5, 0.25, 0.04], "id": 5,
+                "material": {"albedo": [0.85, 0.75, 0.3]},
+                "transform": {"rotate_deg": [0, -35, 0], "translate": [0.8, 0, 0.7]}}]
+    tilt = math.radians(30)
+    # edge_u x edge_v = (-sin, -cos, 0): the light faces down and towards -x.
+    edge_u = [0, 0, 1.6]
+    edge_v = [-0.5 * math.cos(tilt), 0.5 * math.sin(tilt), 0]
+    return {"format_version": 1, "name": "contact", "camera": camera([0.4, 3.0, 3.4], [0, 0.2, 0.1]),
+            "lights": [rect_light([1.3, 2.4, 0.0], edge_u, edge_v, 30.0)], "objects": objects}
+
+
 def main():
     root = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
     out_dir = sys.argv[1] if len(sys.argv) > 1 else os.path.join(root, "testdata", "scenes")
     os.makedirs(out_dir, exist_ok=True)
     scenes = {"grids": grids(), "spheres": spheres(out_dir), "tentacles": tentacles(out_dir), "bench": bench(),
-              "studio": studio(), "gallery": gallery()}
+              "studio": studio(), "gallery": gallery(), "tilted": tilted(), "grazing": grazing(),
+              "contact": contact()}
     for name, scene in scenes.items():
         with open(os.path.join(out_dir, name + ".json"), "w") as out:
             json.dump(scene, out, indent=1)

@@ -1,12 +1,17 @@
 // The study of AAF Fig. 6(c): RMSE against a converged reference versus the
 // average samples per pixel, for {non-adaptive (NAS), adaptive (AS) sampling}
-// x {unfiltered (UF), fixed-width Gaussian (NAF), adaptive filter (AF)}.
-// Writes one CSV row per (scene, sampling, filter, setting). Run through
-// ./scripts/study.sh, which also plots the CSV.
+// x {unfiltered (UF), fixed-width Gaussian (NAF), adaptive filter (AF)}, with
+// the CLI defaults (`aaf render --adaptive`, `aaf filter aaf`), plus on the
+// same adaptive render: a sweep of a fixed mu, each departure from the paper
+// switched back one at a time, and the paper's whole pipeline (its plan and
+// filter settings). Writes one CSV row per (scene, sampling, filter,
+// setting). Run through ./scripts/study.sh, which also plots the CSV and
+// prints the tables (plot_study.py).
 #include <CLI/CLI.hpp>
 
 #include <cstdio>
 #include <fstream>
+#include <functional>
 #include <iostream>
 #include <limits>
 #include <vector>
@@ -43,76 +48,179 @@ std::pair<double, float> best_fixed_filter(const AovSet &noisy, const AovSet &re
     return {best_rmse, best_beta};
 }
 
+/// The paper's reading where this implementation departs from it (README,
+/// "AAF in this implementation"): one mu everywhere, Omega_L = 1/sigma,
+/// one-sided windows at the image edge (Eq. 12's orthogonal projection is
+/// the default too).
+AafParams paper_params(float mu) {
+    AafParams p;
+    p.mu = mu;
+    p.fixed_mu = true;
+    p.light_bandlimit = LightBandlimit::Sigma;
+    p.light_distance = AafLightDistance::OrthogonalProjection;
+    p.symmetric_borders = false;
+    return p;
+}
+
 struct Row {
     std::string scene, sampling, filter;
     double setting, avg_spp, rmse, fixed_beta_m;
+    /// AF rows: the share of shaded pixels filtered (beta > 0) and their mean beta in pixels.
+    double filtered_share = 0, mean_beta_px = 0;
 };
 
-void evaluate(const std::string &scene, const std::string &sampling, double setting, const AovSet &noisy,
-              const AovSet &reference, float filter_mu, std::vector<Row> &rows) {
-    const double spp = mean_spp_over_shaded(noisy.channel("pixel.spp"), noisy.channel("id.object"));
-    rows.push_back({scene, sampling, "UF", setting, spp, compare_channels(noisy, reference, kRgb).rmse, 0});
-    const auto [fixed_rmse, beta_m] = best_fixed_filter(noisy, reference);
-    rows.push_back({scene, sampling, "NAF", setting, spp, fixed_rmse, beta_m});
-    AafParams params;
-    params.mu = filter_mu;
-    params.mu_from_spp = true;  // Sec. 5.2: the filter follows the samples taken
-    const AovSet filtered = aaf_filter_aovs(noisy, ChannelMap{}, params);
-    rows.push_back(
-        {scene, sampling, "AF", setting, spp, compare_channels(filtered, reference, kRgb).rmse, 0});
-    const Row &last = rows.back();
-    std::fprintf(stderr, "%-10s %s mu/spp %-6g avg spp %7.2f  UF %.5f  NAF %.5f (beta %.4f m)  AF %.5f\n",
-                 scene.c_str(), sampling.c_str(), setting, spp, rows[rows.size() - 3].rmse, fixed_rmse,
-                 beta_m, last.rmse);
+/// Over shaded pixels: the share with beta > 0 and the mean of beta / pixel.size over those.
+std::pair<double, double> beta_statistics(const AovSet &filtered) {
+    const ConstPlaneView beta = filtered.channel("aaf_beta.X"), size = filtered.channel("pixel.size"),
+                         id = filtered.channel("id.object");
+    double sum = 0;
+    long shaded = 0, filtered_count = 0;
+    for (int y = 0; y < beta.height; ++y)
+        for (int x = 0; x < beta.width; ++x) {
+            if (id(x, y) == 0) continue;
+            ++shaded;
+            if (beta(x, y) > 0 && size(x, y) > 0) {
+                ++filtered_count;
+                sum += beta(x, y) / size(x, y);
+            }
+        }
+    return {shaded ? double(filtered_count) / double(shaded) : 0.0,
+            filtered_count ? sum / double(filtered_count) : 0.0};
 }
+
+struct Study {
+    std::vector<Row> rows;
+    const AovSet *reference = nullptr;
+    std::string scene;
+
+    double spp(const AovSet &noisy) const {
+        return mean_spp_over_shaded(noisy.channel("pixel.spp"), noisy.channel("id.object"));
+    }
+    double rmse(const AovSet &image) const { return compare_channels(image, *reference, kRgb).rmse; }
+    void add(const std::string &sampling, const std::string &filter, double setting, const AovSet &noisy,
+             const AafParams &params) {
+        const AovSet filtered = aaf_filter_aovs(noisy, ChannelMap{}, params);
+        const auto [share, beta_px] = beta_statistics(filtered);
+        rows.push_back({scene, sampling, filter, setting, spp(noisy), rmse(filtered), 0, share, beta_px});
+    }
+    void add_unfiltered(const std::string &sampling, double setting, const AovSet &noisy) {
+        rows.push_back({scene, sampling, "UF", setting, spp(noisy), rmse(noisy), 0});
+    }
+    void add_fixed(const std::string &sampling, double setting, const AovSet &noisy) {
+        const auto [fixed_rmse, beta_m] = best_fixed_filter(noisy, *reference);
+        rows.push_back({scene, sampling, "NAF", setting, spp(noisy), fixed_rmse, beta_m});
+    }
+};
 
 }  // namespace
 
 int main(int argc, char **argv) {
-    CLI::App app{"AAF study: RMSE vs average spp (AAF Fig. 6(c))"};
-    std::vector<std::string> scenes{"grids", "tentacles"};
+    CLI::App app{"AAF study: RMSE vs average spp (AAF Fig. 6(c)) with the CLI defaults"};
+    std::vector<std::string> scenes{"grids", "tentacles", "spheres", "tilted", "grazing", "contact"};
     std::string output = "study.csv";
-    int width = 320, height = 240, reference_spp = 4096;
-    std::vector<int> spp_values{9, 16, 25, 36, 64, 100, 150, 225};
-    std::vector<float> mu_values{1.0f, 1.5f, 2.0f, 3.0f, 4.0f, 6.0f};
+    int width = 320, height = 240, reference_spp = 4096, max_spp = trace::RenderSettings{}.max_spp;
+    std::vector<int> spp_values{9, 16, 25, 36, 64, 100, 150, 225, 400, 625};
+    std::vector<float> mu_values{1.0f, 1.5f, 2.0f, 3.0f, 4.0f, 6.0f, 8.0f};
     app.add_option("--scenes", scenes, "Built-in scenes")->delimiter(',')->capture_default_str();
     app.add_option("-o,--output", output, "CSV path")->capture_default_str();
     app.add_option("--width", width)->capture_default_str();
     app.add_option("--height", height)->capture_default_str();
     app.add_option("--reference-spp", reference_spp)->capture_default_str();
-    app.add_option("--spp", spp_values, "Non-adaptive spp values")->delimiter(',')->capture_default_str();
-    app.add_option("--mu", mu_values, "Adaptive-sampling mu values")->delimiter(',')->capture_default_str();
+    app.add_option("--max-spp", max_spp, "Adaptive cap (the CLI default)")->capture_default_str();
+    app.add_option("--spp", spp_values, "Non-adaptive spp values (the plain-MC curve)")
+        ->delimiter(',')
+        ->capture_default_str();
+    app.add_option("--mu", mu_values, "Fixed-mu sweep of the filter on the adaptive render")
+        ->delimiter(',')
+        ->capture_default_str();
+    bool plain_naf = true;
+    app.add_flag("!--no-plain-naf", plain_naf,
+                 "Skip the oracle fixed-width filter on the plain renders (faster)");
     CLI11_PARSE(app, argc, argv);
 
     try {
-        std::vector<Row> rows;
+        Study study;
         for (const std::string &scene : scenes) {
+            study.scene = scene;
             trace::RenderSettings settings;
             settings.width = width;
             settings.height = height;
             settings.spp = reference_spp;
             settings.seed = 1000;  // independent of the test renders
             const AovSet reference = trace::render_scene(scene, settings);
+            study.reference = &reference;
             settings.seed = 1;
             for (int spp : spp_values) {
                 settings.spp = spp;
-                evaluate(scene, "NAS", spp, trace::render_scene(scene, settings), reference, 2.0f, rows);
+                const AovSet noisy = trace::render_scene(scene, settings);
+                study.add_unfiltered("NAS", spp, noisy);
+                if (plain_naf) study.add_fixed("NAS", spp, noisy);
+                study.add("NAS", "AF", spp, noisy, AafParams{});
             }
-            settings.spp = 9;  // AAF Sec. 6: the first pass
+            // The CLI defaults: `aaf render --adaptive` (9 spp first pass, mu 2, the
+            // default cap) and `aaf filter aaf`.
+            const std::size_t adaptive_rows = study.rows.size();
+            settings.spp = 9;
             settings.adaptive = true;
-            settings.max_spp = 1000;
+            settings.max_spp = max_spp;
+            const AovSet adaptive = trace::render_scene(scene, settings);
+            const double default_mu = AafParams{}.mu;
+            study.add_unfiltered("AS", default_mu, adaptive);
+            study.add_fixed("AS", default_mu, adaptive);
+            study.add("AS", "AF", default_mu, adaptive, AafParams{});
             for (float mu : mu_values) {
-                settings.adaptive_mu = mu;
-                evaluate(scene, "AS", mu, trace::render_scene(scene, settings), reference, mu, rows);
+                AafParams fixed;
+                fixed.mu = mu;
+                fixed.fixed_mu = true;
+                study.add("AS", "AF_fixed_mu", mu, adaptive, fixed);
+            }
+            // Each departure from the paper switched back alone, and the alternatives not taken.
+            const std::pair<const char *, std::function<void(AafParams &)>> ablations[] = {
+                {"AF_fixed_mu_default", [](AafParams &p) { p.fixed_mu = true; }},
+                {"AF_bandlimit_sigma", [](AafParams &p) { p.light_bandlimit = LightBandlimit::Sigma; }},
+                {"AF_bandlimit_spectrum", [](AafParams &p) { p.light_bandlimit = LightBandlimit::Spectrum; }},
+                {"AF_distance_ray",
+                 [](AafParams &p) { p.light_distance = AafLightDistance::AlongLightDirection; }},
+                {"AF_borders_clip", [](AafParams &p) { p.symmetric_borders = false; }},
+            };
+            for (const auto &ablation : ablations) {
+                AafParams p;
+                ablation.second(p);
+                study.add("AS", ablation.first, default_mu, adaptive, p);
+            }
+            // Self-occluded samples skipped (no occluder distance) alone: their effect
+            // on the plan's n (avg spp), on beta and on the filter.
+            settings.skip_self_occluded = true;
+            const AovSet skipped = trace::render_scene(scene, settings);
+            settings.skip_self_occluded = false;
+            study.add_unfiltered("AS_skip_self_occluded", default_mu, skipped);
+            study.add("AS_skip_self_occluded", "AF", default_mu, skipped, AafParams{});
+            // The paper's pipeline: its plan (Omega_L = 1/sigma) and its filter settings.
+            settings.light_bandlimit = LightBandlimit::Sigma;
+            const AovSet paper = trace::render_scene(scene, settings);
+            settings.light_bandlimit = trace::RenderSettings{}.light_bandlimit;
+            study.add_unfiltered("AS_paper", default_mu, paper);
+            study.add("AS_paper", "AF_paper", default_mu, paper, paper_params(float(default_mu)));
+            study.add("AS_paper", "AF", default_mu, paper, AafParams{});
+            // The same render with this implementation's tracer, filtered as the paper.
+            study.add("AS", "AF_paper", default_mu, adaptive, paper_params(float(default_mu)));
+
+            for (std::size_t i = adaptive_rows; i < study.rows.size(); ++i) {
+                const Row &r = study.rows[i];
+                std::fprintf(stderr,
+                             "%-10s %-16s %-30s %-5g avg spp %7.2f  RMSE %.5f  filtered %.3f beta %.2f px\n",
+                             r.scene.c_str(), r.sampling.c_str(), r.filter.c_str(), r.setting, r.avg_spp,
+                             r.rmse, r.filtered_share, r.mean_beta_px);
             }
         }
         const std::string temporary = io::temporary_path_for(output);
         {
             std::ofstream csv(temporary);
-            csv << "scene,sampling,filter,setting,avg_spp,rmse,fixed_beta_m\n";
-            for (const Row &r : rows)
+            csv << "scene,sampling,filter,setting,avg_spp,rmse,fixed_beta_m,filtered_share,mean_beta_px\n";
+            for (const Row &r : study.rows)
                 csv << r.scene << ',' << r.sampling << ',' << r.filter << ',' << r.setting << ',' << r.avg_spp
-                    << ',' << r.rmse << ',' << r.fixed_beta_m << '\n';
+                    << ',' << r.rmse << ',' << r.fixed_beta_m << ',' << r.filtered_share << ','
+                    << r.mean_beta_px << '\n';
             if (!csv) throw Error(output + ": cannot write");
         }
         io::commit_temporary(temporary, output);

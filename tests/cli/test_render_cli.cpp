@@ -39,7 +39,8 @@ fs::path write_moving_light_scene(const fs::path &dir) {
 TEST_CASE("CLI: render --list shows the shipped scenes", "[cli][render]") {
     const auto result = run_aaf("render --list");
     CHECK(result.exit_code == 0);
-    for (const char *name : {"grids", "spheres", "tentacles", "bench", "studio"})
+    for (const char *name :
+         {"grids", "spheres", "tentacles", "bench", "studio", "gallery", "tilted", "grazing", "contact"})
         CHECK_THAT(result.output, Catch::Contains(std::string(name) + "\n"));
 }
 

@@ -8,6 +8,7 @@
 #include "aaf/core/aaf_bandlimits.h"
 #include "aaf/core/aaf_filter.h"
 #include "aaf/core/error.h"
+#include "aaf/core/light_bandlimit.h"
 
 using namespace aaf;
 
@@ -80,6 +81,8 @@ TEST_CASE("Separable AAF equals the brute-force 2D Gaussian when beta is constan
     scene.fill_noise(7);
     AafParams params;
     params.max_radius_px = 12;
+    params.light_bandlimit = LightBandlimit::Sigma;  // Omega_L = 1/sigma: beta as hand-computed
+    params.symmetric_borders = false;                // the window the brute force below sums
     std::vector<float> beta;
     const std::vector<float> separable = scene.run(params, &beta);
 
@@ -139,9 +142,84 @@ TEST_CASE("Unoccluded pixels borrow occluder distances within the fill radius on
     for (int x = 1; x < scene.width; ++x) scene.d2_min[x] = scene.d2_max[x] = 0.0f;  // only x = 0 occluded
     std::vector<float> beta;
     scene.run(AafParams{}, &beta);
-    const float expected = aaf_bandlimits(2.0f, 1.0f, 1.0f, 0.01f, 0.5f, AafParams{}).beta_m;
+    const float sigma_m = light_bandlimit_sigma_m(scene.light, AafParams{}.light_bandlimit);
+    const float expected = aaf_bandlimits(2.0f, 1.0f, 1.0f, 0.01f, sigma_m, AafParams{}).beta_m;
     for (int x = 0; x <= 5; ++x) CHECK(beta[x] == Approx(expected));
     for (int x = 6; x < scene.width; ++x) CHECK(beta[x] == 0.0f);
+}
+
+// Issue 19: a window cut by the image edge on one side only averages the
+// interior's values, so on a shadow gradient the border pixels came out
+// biased (by up to 0.064 on a render), worse than leaving them unfiltered.
+TEST_CASE("On a shadow gradient the 10 px border strip is no worse filtered than unfiltered",
+          "[aaf][filter][borders]") {
+    FlatScene scene(64, 48, 1.0f);  // s2 = 1: a wide filter, about 5 px beta, 15 px reach
+    std::vector<float> truth(scene.visibility.size());
+    std::mt19937 rng(17);
+    std::uniform_real_distribution<float> noise(-0.02f, 0.02f);  // a high-spp render's noise, 0.012 rms
+    for (int y = 0; y < scene.height; ++y)
+        for (int x = 0; x < scene.width; ++x) {
+            const std::size_t i = scene.index(x, y);
+            truth[i] = 0.05f + 0.9f * float(x + y) / float(scene.width + scene.height - 2);
+            scene.visibility[i] = truth[i] + noise(rng);
+        }
+    auto border_rmse = [&](const std::vector<float> &image) {
+        double sum = 0;
+        int count = 0;
+        for (int y = 0; y < scene.height; ++y)
+            for (int x = 0; x < scene.width; ++x)
+                if (std::min({x, y, scene.width - 1 - x, scene.height - 1 - y}) < 10) {
+                    const double e = image[scene.index(x, y)] - truth[scene.index(x, y)];
+                    sum += e * e;
+                    ++count;
+                }
+        return std::sqrt(sum / count);
+    };
+    const double unfiltered = border_rmse(scene.visibility);
+    for (const AafFilterMode mode : {AafFilterMode::Separable, AafFilterMode::Exact2D}) {
+        AafParams params;
+        params.mode = mode;
+        std::vector<float> beta;
+        const double symmetric = border_rmse(scene.run(params, &beta));
+        REQUIRE(beta[scene.index(32, 24)] / scene.spacing_m > 4.0f);
+        params.symmetric_borders = false;
+        const double one_sided = border_rmse(scene.run(params));
+        INFO("mode " << int(mode) << ": border RMSE unfiltered " << unfiltered << ", symmetric " << symmetric
+                     << ", one-sided " << one_sided);
+        CHECK(symmetric <= unfiltered);
+        CHECK(one_sided > unfiltered);  // the bias this guards against
+    }
+}
+
+// --light-distance ray slides a tap along the direction to the light onto the
+// centre's plane parallel to the light: on such a plane nothing slides, and
+// it equals Eq. 12; on a receiver tilted towards the light it differs.
+TEST_CASE("Distances along the ray equal Eq. 12 on a receiver parallel to the light", "[aaf][filter]") {
+    FlatScene scene(40, 30, 1.0f);
+    scene.fill_noise(9);
+    AafParams params;
+    params.light_distance = AafLightDistance::AlongLightDirection;
+    const std::vector<float> along_ray = scene.run(params);
+    params.light_distance = AafLightDistance::OrthogonalProjection;
+    CHECK(along_ray == scene.run(params));
+    // Hand value: light centre (0, 2, 0) facing down, centre pixel at (1, 0, 0), tap 0.5 m above
+    // it. Eq. 12 drops the vertical offset (distance 0); sliding the tap along l = (-1, 2, 0) / sqrt 5
+    // onto the centre's plane y = 0 moves it to (1.25, 0, 0): du = 0.25 m.
+    FlatScene pair(2, 1, 1.0f);
+    pair.px = {1.0f, 1.0f};
+    pair.py = {0.0f, 0.5f};
+    pair.pz = {0.0f, 0.0f};
+    params.light_distance = AafLightDistance::AlongLightDirection;
+    const GatherGuides guides = aaf_gather_guides(pair.inputs(), pair.light, params);
+    REQUIRE(guides.sheared());
+    const float du = guides.coord_u_m[1] - guides.coord_u_m[0] -
+                     guides.shear_u[0] * (guides.coord_n_m[1] - guides.coord_n_m[0]);
+    const float dv = guides.coord_v_m[1] - guides.coord_v_m[0] -
+                     guides.shear_v[0] * (guides.coord_n_m[1] - guides.coord_n_m[0]);
+    CHECK(std::fabs(du) == Approx(0.25f));
+    CHECK(dv == Approx(0.0f).margin(1e-6));
+    params.light_distance = AafLightDistance::OrthogonalProjection;
+    CHECK(!aaf_gather_guides(pair.inputs(), pair.light, params).sheared());
 }
 
 TEST_CASE("Taps of other objects and turned normals are rejected", "[aaf][filter]") {

@@ -275,6 +275,9 @@ TEST_CASE("MAAF with N = 1 is AAF's filter (same beta, taps and rejection)", "[m
     aaf.mu = float(scene.light_band);
     aaf.normal_threshold_deg = 20.0f;
     aaf.mode = AafFilterMode::Exact2D;
+    // The paper's AAF, which MAAF's N = 1 is: the light's band-limit 1/sigma and windows cut at the border.
+    aaf.light_bandlimit = LightBandlimit::Sigma;
+    aaf.symmetric_borders = false;
     std::vector<float> expected(visibility.size());
     aaf_filter(in, scene.light, aaf, {plane_view(expected.data(), scene.width, scene.height), PlaneView{}});
     const std::vector<float> out = scene.run(/*pairs_used=*/1, 20.0f, /*separable=*/false);

@@ -9,6 +9,17 @@
 
 using namespace aaf;
 
+namespace {
+
+/// sigma 0.5 m on a rectangle 16 sigma wide: untruncated, so every band-limit rule gives 0.5 m.
+LightPlane untruncated_light() {
+    LightPlane light = LightPlane::square(Vec3{0, 3, 0}, Vec3{0, -1, 0}, 8.0f);
+    light.sigma_m = 0.5f;
+    return light;
+}
+
+}  // namespace
+
 TEST_CASE("Sampling plan follows Eq. 21 on a synthetic first pass", "[aaf][plan]") {
     // Row of 12 pixels: x < 3 occluded (d2 = 1 m, 0.5 m), x in [3, 9) unoccluded but
     // within 5 px of an occluded one, x >= 9 unoccluded and too far; x = 11 background.
@@ -24,14 +35,14 @@ TEST_CASE("Sampling plan follows Eq. 21 on a synthetic first pass", "[aaf][plan]
                           plane_view(d2_max.data(), w, h), plane_view(id.data(), w, h),
                           plane_view(size.data(), w, h)};
     SamplingPlanParams params;
-    plan_samples(in, 0.5f, AafParams{}, params, plane_view(spp.data(), w, h));
+    plan_samples(in, untruncated_light(), AafParams{}, params, plane_view(spp.data(), w, h));
     // Hand value (see test_aaf_bandlimits): n = 4 * 49 * 0.54^2 = 57.15 -> 58 samples.
     for (int x = 0; x < 3; ++x) CHECK(spp[x] == 58.0f);
     for (int x = 3; x <= 7; ++x) CHECK(spp[x] == 58.0f);  // borrowed (distance <= 5 from x = 2)
     for (int x = 8; x < w; ++x) CHECK(spp[x] == 9.0f);    // nothing within 5 px: first pass only
 
     params.max_spp = 40;
-    plan_samples(in, 0.5f, AafParams{}, params, plane_view(spp.data(), w, h));
+    plan_samples(in, untruncated_light(), AafParams{}, params, plane_view(spp.data(), w, h));
     CHECK(spp[0] == 40.0f);
 }
 
@@ -55,7 +66,9 @@ TEST_CASE("Sampling plan rejects bad parameters", "[aaf][plan]") {
                           plane_view(a.data(), 2, 2), plane_view(a.data(), 2, 2)};
     SamplingPlanParams bad;
     bad.max_spp = 4;
-    CHECK_THROWS_AS(plan_samples(in, 0.5f, AafParams{}, bad, plane_view(out.data(), 2, 2)), Error);
-    CHECK_THROWS_AS(plan_samples(in, 0.5f, AafParams{}, SamplingPlanParams{}, plane_view(out.data(), 1, 4)),
+    CHECK_THROWS_AS(plan_samples(in, untruncated_light(), AafParams{}, bad, plane_view(out.data(), 2, 2)),
+                    Error);
+    CHECK_THROWS_AS(plan_samples(in, untruncated_light(), AafParams{}, SamplingPlanParams{},
+                                 plane_view(out.data(), 1, 4)),
                     Error);
 }

@@ -120,10 +120,15 @@ std::string write_two_light_scene() {
 
 TEST_CASE("Every shipped scene renders its AOVs to the golden bytes", "[trace][golden]") {
     const std::pair<const char *, std::uint64_t> golden[] = {
-        {"bench", 0x687160c0fb1b1bea},     {"gallery", 0x639d919e9ac57a29},  // ISG's scene
-        {"grids", 0xbd31581f9b481346},     {"spheres", 0x5073d42e01a884a4},
+        {"bench", 0x687160c0fb1b1bea},
+        {"contact", 0x2a1d22fe6fc0baf6},
+        {"gallery", 0x639d919e9ac57a29},  // ISG's scene
+        {"grazing", 0x65871c4496bcc36d},
+        {"grids", 0xbd31581f9b481346},
+        {"spheres", 0x5073d42e01a884a4},
         {"studio", 0x3586db5a555daeb2},  // thin lens, two lights, animated camera
         {"tentacles", 0x28a0179939ec69dd},
+        {"tilted", 0xbd9882962e4865ae},
     };
     REQUIRE(trace::builtin_scene_names().size() == std::size(golden));
     for (std::size_t i = 0; i < std::size(golden); ++i) {
@@ -133,12 +138,28 @@ TEST_CASE("Every shipped scene renders its AOVs to the golden bytes", "[trace][g
     }
 }
 
+// Skipping self-occluded light samples (no occluder distance, the AAF
+// authors' convention; RenderSettings::skip_self_occluded) changes the
+// occluder distances of every scene with surfaces turned from the light.
+TEST_CASE("Skipping self-occluded samples gives its own golden bytes", "[trace][golden]") {
+    const std::pair<const char *, std::uint64_t> golden[] = {
+        {"bench", 0xb9054d67fdef4d20},  {"grids", 0x3d97ef79745b70b0},     {"spheres", 0xd9b6b94077f1acb5},
+        {"studio", 0x1309a1b754e74435}, {"tentacles", 0xeff2622e1a53d943},
+    };
+    trace::RenderSettings settings = small_settings();
+    settings.skip_self_occluded = true;
+    for (const auto &scene : golden) {
+        INFO("scene " << scene.first);
+        check_golden(trace::render_scene(scene.first, settings), scene.second);
+    }
+}
+
 TEST_CASE("An adaptive render gives the golden bytes", "[trace][golden]") {
     trace::RenderSettings settings = small_settings();
     settings.spp = 9;
     settings.adaptive = true;
     settings.max_spp = 40;
-    check_golden(trace::render_scene("grids", settings), 0xab6505d63189d2da);
+    check_golden(trace::render_scene("grids", settings), 0x9c334cc080e83b97);
 }
 
 TEST_CASE("Two lights, a uniform profile and the cosine falloff give the golden bytes", "[trace][golden]") {

@@ -18,6 +18,7 @@ void AafParams::validate() const {
     if (fill_radius_px < 0) throw Error("AAF fill radius must be >= 0 pixels");
     if (max_radius_px < 0) throw Error("AAF maximum filter radius must be >= 0 pixels");
     if (!(fixed_beta_m >= 0)) throw Error("AAF fixed beta must be >= 0 metres");
+    if (mu_from_spp && fixed_mu) throw Error("AAF mu from spp and fixed mu exclude each other");
 }
 
 AafBandlimits aaf_bandlimits(float d1_m, float d2_min_m, float d2_max_m, float pixel_size_m, float sigma_m,

@@ -8,6 +8,7 @@
 #include "aaf/core/aaf_bandlimits.h"
 #include "aaf/core/error.h"
 #include "aaf/core/gather.h"
+#include "aaf/core/light_bandlimit.h"
 #include "aaf/core/occluder_fill.h"
 #include "aaf/core/parallel.h"
 
@@ -37,12 +38,12 @@ void check_inputs(const AafInputs &in, const LightPlane &light, const AafParams 
     }
     check_size(in.object_id, width, height, "object_id");
     check_size(in.pixel_size, width, height, "pixel_size");
-    if (params.mu_from_spp) check_size(in.spp, width, height, "spp");
+    if (params.mu_from_spp || (!params.fixed_mu && in.spp.valid())) check_size(in.spp, width, height, "spp");
 }
 
 /// beta of AAF Eq. 13 at pixel (x, y) in world metres, or 0 where AAF does
 /// not filter (background, no occluder nearby, unusable distances).
-float pixel_beta_m(const AafInputs &in, const LightPlane &light, const AafParams &params,
+float pixel_beta_m(const AafInputs &in, float bandlimit_sigma_m, const AafParams &params,
                    const FilledOccluders &occluders, int x, int y) {
     const std::size_t i = std::size_t(y) * std::size_t(in.visibility.width) + std::size_t(x);
     const float d1 = in.d1(x, y), pixel_size = in.pixel_size(x, y);
@@ -52,9 +53,10 @@ float pixel_beta_m(const AafInputs &in, const LightPlane &light, const AafParams
         return 0.0f;
     if (params.fixed_beta_m > 0) return params.fixed_beta_m;
     AafParams pixel_params = params;
-    if (params.mu_from_spp)  // AAF Sec. 5.2: the filter follows the samples actually taken
-        pixel_params.mu = mu_for_samples(in.spp(x, y), d1, d2_min, d2_max, pixel_size, light.sigma_m, params);
-    return aaf_bandlimits(d1, d2_min, d2_max, pixel_size, light.sigma_m, pixel_params).beta_m;
+    if (!params.fixed_mu && in.spp.valid())  // AAF Sec. 5.2: the filter follows the samples actually taken
+        pixel_params.mu =
+            mu_for_samples(in.spp(x, y), d1, d2_min, d2_max, pixel_size, bandlimit_sigma_m, params);
+    return aaf_bandlimits(d1, d2_min, d2_max, pixel_size, bandlimit_sigma_m, pixel_params).beta_m;
 }
 
 }  // namespace
@@ -71,6 +73,14 @@ GatherGuides aaf_gather_guides(const AafInputs &in, const LightPlane &light, con
     // AAF Sec. 6: unoccluded pixels take the occluder distances of their neighbours.
     const FilledOccluders occluders =
         fill_occluder_distances(in.d2_min, in.d2_max, in.object_id, params.fill_radius_px);
+    const float bandlimit_sigma_m = light_bandlimit_sigma_m(light, params.light_bandlimit);
+    const bool along_light = params.light_distance == AafLightDistance::AlongLightDirection;
+    if (along_light) {
+        const std::size_t count = std::size_t(guides.width) * std::size_t(guides.height);
+        guides.coord_n_m.assign(count, 0.0f);
+        guides.shear_u.assign(count, 0.0f);
+        guides.shear_v.assign(count, 0.0f);
+    }
 
     parallel_for_rows(guides.height, [&](int y) {
         for (int x = 0; x < guides.width; ++x) {
@@ -86,6 +96,24 @@ GatherGuides aaf_gather_guides(const AafInputs &in, const LightPlane &light, con
             }
             guides.coord_u_m[i] = u;
             guides.coord_v_m[i] = v;
+            if (along_light) {
+                // Delta_eff = Delta - l (n . Delta) / (n . l), l the unit direction to the
+                // light's centre: the tap slid along l onto the centre's plane parallel to
+                // the light (AAF Fig. 2's geometry), of which Eq. 12 is the case l = n.
+                const Vec3 to_light = light.center - p;
+                const float distance = length(to_light);
+                if (distance > 0) {
+                    const Vec3 l = to_light / distance;
+                    // Nearly edge-on (|n . l| < 0.05, 87 degrees) the shear is held at 20.
+                    constexpr float kMinCos = 0.05f;
+                    const float cos_light = dot(l, light.normal);
+                    const float denominator =
+                        std::fabs(cos_light) < kMinCos ? std::copysign(kMinCos, cos_light) : cos_light;
+                    guides.shear_u[i] = dot(l, light.axis_u) / denominator;
+                    guides.shear_v[i] = dot(l, light.axis_v) / denominator;
+                }
+                guides.coord_n_m[i] = dot(light.normal, p - light.center);
+            }
             const Vec3 n{in.normal[0](x, y), in.normal[1](x, y), in.normal[2](x, y)};
             const float len = length(n);
             const Vec3 unit = (len > 0 && std::isfinite(len)) ? n / len : Vec3{};
@@ -94,7 +122,7 @@ GatherGuides aaf_gather_guides(const AafInputs &in, const LightPlane &light, con
             guides.normal_z[i] = unit.z;
             guides.object_id[i] = in.object_id(x, y);
 
-            const float beta = pixel_beta_m(in, light, params, occluders, x, y);
+            const float beta = pixel_beta_m(in, bandlimit_sigma_m, params, occluders, x, y);
             if (!(beta > 0) || !std::isfinite(beta)) continue;
             // beta is in world metres; the reach in pixels follows from the pixel's footprint.
             const float radius =
@@ -115,6 +143,7 @@ GatherSettings aaf_gather_settings(const AafParams &params) {
     GatherSettings settings;
     settings.normal_threshold_deg = params.normal_threshold_deg;
     settings.mode = params.mode == AafFilterMode::Separable ? GatherMode::Separable : GatherMode::Full2D;
+    settings.symmetric_borders = params.symmetric_borders;
     return settings;
 }
 

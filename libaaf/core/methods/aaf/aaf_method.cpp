@@ -23,8 +23,16 @@ std::vector<ParameterInfo> aaf_parameters() {
                             kInf,
                             /*min_open=*/true),
         ParameterInfo::flag("mu_from_spp",
-                            "Per pixel, raise mu until AAF Eq. 21's rate equals the samples taken "
-                            "(consistency, AAF Sec. 5.2)"),
+                            "Require the spp input: per pixel, raise mu until AAF Eq. 21's rate equals the "
+                            "samples taken (consistency, AAF Sec. 5.2; the default whenever spp is given)"),
+        ParameterInfo::flag(
+            "fixed_mu", "One mu everywhere, ignoring the spp input (AAF Eq. 13 as printed; not consistent)"),
+        ParameterInfo::choice(
+            "light_bandlimit", "equivalent_width", {"equivalent_width", "spectrum", "sigma"},
+            "Light band-limit 1/sigma_b of AAF Sec. 4.1 for the Gaussian truncated at the "
+            "light's edges: equivalent_width (the spectrum's area), spectrum (falls to "
+            "exp(-1/2) where the truncated profile's does) or sigma (the paper's untruncated "
+            "reading); the plan (aaf plan, render --adaptive) must use the same"),
         ParameterInfo::real("k", "3", "", "Gaussian spread factor of AAF Eq. 13", 0, kInf, /*min_open=*/true),
         ParameterInfo::real("alpha", "1", "", "Occluder bandlimit over pixel bandlimit (AAF Eq. 5)", 0, 1,
                             /*min_open=*/true),
@@ -39,6 +47,12 @@ std::vector<ParameterInfo> aaf_parameters() {
         ParameterInfo::choice("filter", "separable", {"separable", "2d"},
                               "separable: two 1D passes (AAF Sec. 6); 2d: exact 2D gather of AAF Eq. 10, to "
                               "measure the approximation"),
+        ParameterInfo::choice("borders", "symmetric", {"symmetric", "clip"},
+                              "symmetric: near the image edge the window shrinks on both sides and stays "
+                              "centred; clip: cut on the edge side only (one-sided, biased on gradients)"),
+        ParameterInfo::choice("light_distance", "plane", {"plane", "ray"},
+                              "Tap distance in the light's plane: ray (slid along the direction to the light "
+                              "first) or plane (AAF Eq. 12's orthogonal projection)"),
     };
 }
 
@@ -46,6 +60,8 @@ AafParams params_from(const ParameterSet &set) {
     AafParams p;
     p.mu = set.get_float("mu");
     p.mu_from_spp = set.get_bool("mu_from_spp");
+    p.fixed_mu = set.get_bool("fixed_mu");
+    p.light_bandlimit = light_bandlimit_from_string(set.get_choice("light_bandlimit"));
     p.k = set.get_float("k");
     p.alpha = set.get_float("alpha");
     p.normal_threshold_deg = set.get_float("normal_threshold");
@@ -53,6 +69,9 @@ AafParams params_from(const ParameterSet &set) {
     p.max_radius_px = set.get_int("max_radius");
     p.fixed_beta_m = set.get_float("fixed_beta");
     p.mode = set.get_choice("filter") == "2d" ? AafFilterMode::Exact2D : AafFilterMode::Separable;
+    p.symmetric_borders = set.get_choice("borders") == "symmetric";
+    p.light_distance = set.get_choice("light_distance") == "plane" ? AafLightDistance::OrthogonalProjection
+                                                                   : AafLightDistance::AlongLightDirection;
     return p;
 }
 
@@ -89,12 +108,12 @@ class AafMethod final : public Method {
         }
         in.object_id = images.input(Role::ObjectId);
         in.pixel_size = images.input(Role::PixelSize);
-        if (params.mu_from_spp) {
-            if (!images.has(Role::SamplesPerPixel))
-                throw InputError("mu from spp needs the 'spp' input (channel " +
-                                 images.channel_names(Role::SamplesPerPixel) + ")");
+        if (params.mu_from_spp && !images.has(Role::SamplesPerPixel))
+            throw InputError("mu from spp needs the 'spp' input (channel " +
+                             images.channel_names(Role::SamplesPerPixel) + ")");
+        // Consistency by default (AAF Sec. 5.3): the filter follows the samples taken when they are known.
+        if (!params.fixed_mu && images.has(Role::SamplesPerPixel))
             in.spp = images.input(Role::SamplesPerPixel);
-        }
         AafOutputs out;
         out.filtered_visibility = images.output(Role::FilteredVisibility);
         out.beta_m = images.output(Role::FilterWidth);
@@ -117,6 +136,8 @@ ParameterSet aaf_parameter_set(const AafParams &params) {
     ParameterSet set("aaf", aaf_parameters());
     set.set("mu", double(params.mu));
     set.set("mu_from_spp", params.mu_from_spp);
+    set.set("fixed_mu", params.fixed_mu);
+    set.set("light_bandlimit", std::string(to_string(params.light_bandlimit)));
     set.set("k", double(params.k));
     set.set("alpha", double(params.alpha));
     set.set("normal_threshold", double(params.normal_threshold_deg));
@@ -124,6 +145,9 @@ ParameterSet aaf_parameter_set(const AafParams &params) {
     set.set("max_radius", double(params.max_radius_px));
     set.set("fixed_beta", double(params.fixed_beta_m));
     set.set("filter", std::string(params.mode == AafFilterMode::Exact2D ? "2d" : "separable"));
+    set.set("borders", std::string(params.symmetric_borders ? "symmetric" : "clip"));
+    set.set("light_distance",
+            std::string(params.light_distance == AafLightDistance::OrthogonalProjection ? "plane" : "ray"));
     return set;
 }
 

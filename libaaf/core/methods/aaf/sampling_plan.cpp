@@ -6,17 +6,19 @@
 
 #include "aaf/core/aaf_bandlimits.h"
 #include "aaf/core/error.h"
+#include "aaf/core/light_bandlimit.h"
 #include "aaf/core/occluder_fill.h"
 #include "aaf/core/parallel.h"
 
 namespace aaf {
 
-void plan_samples(const SamplingPlanInputs &in, float light_sigma_m, const AafParams &aaf,
+void plan_samples(const SamplingPlanInputs &in, const LightPlane &light, const AafParams &aaf,
                   const SamplingPlanParams &params, PlaneView spp_out) {
     aaf.validate();
     if (params.first_pass_spp < 1 || params.max_spp < params.first_pass_spp)
         throw Error("sampling plan needs 1 <= first-pass spp <= max spp");
-    if (!(light_sigma_m > 0)) throw Error("sampling plan needs a positive light sigma");
+    // The filter's band-limit (aaf_filter.cpp): the plan samples for the filter that will run.
+    const float light_sigma_m = light_bandlimit_sigma_m(light, aaf.light_bandlimit);
     const int width = in.d1.width, height = in.d1.height;
     for (ConstPlaneView view : {in.d2_min, in.d2_max, in.object_id, in.pixel_size, ConstPlaneView(spp_out)})
         if (!view.valid() || view.width != width || view.height != height)
@@ -62,7 +64,7 @@ AovSet plan_samples_aovs(const AovSet &first_pass, const ChannelMap &requested, 
     plan.attributes = first_pass.attributes;
     plan.attributes[attr::kAdaptiveMu] = aaf.mu;
     plan.attributes[attr::kMaxSpp] = params.max_spp;
-    plan_samples(inputs, read_light_attributes(first_pass).sigma_m, aaf, params,
+    plan_samples(inputs, read_light_attributes(first_pass), aaf, params,
                  plan.add_channel(channels.channel(Role::PlannedSpp)));
     return plan;
 }

@@ -1,5 +1,7 @@
 #pragma once
 
+#include "aaf/core/light_bandlimit.h"
+
 namespace aaf {
 
 /// How the spatially varying Gaussian of AAF Eq. 10-12 is evaluated.
@@ -9,17 +11,39 @@ enum class AafFilterMode {
                 ///< approximation
 };
 
+/// How tap distances are measured in the light's plane (AAF Eq. 12).
+enum class AafLightDistance {
+    /// The tap is slid along the direction from the centre pixel to the
+    /// light's centre onto the plane through the centre parallel to the light,
+    /// then measured there: equal to Eq. 12 for a receiver facing the light,
+    /// but a tilted light no longer shrinks displacements towards it.
+    AlongLightDirection,
+    /// Eq. 12 as printed: the orthogonal projection onto the light's plane
+    /// (the default: the study measured AlongLightDirection no better on the
+    /// tilted scenes and worse where the light is seen edge-on, README).
+    OrthogonalProjection,
+};
+
 /// Parameters of Axis-Aligned Filtering (Mehta et al. 2012). The defaults are
 /// the paper's (Sec. 6: k = 3, alpha = 1, mu = 2).
 struct AafParams {
     /// Scale of the critical filter's frequency width, Omega_x^f = mu Omega_x0^f
     /// (Sec. 5.2): beta shrinks as 1/mu, the sampling rate grows with mu.
     float mu = 2.0f;
-    /// Consistency (Sec. 5.2): when set, each pixel's mu is raised to the value
-    /// whose sampling rate (Eq. 15/21) equals the samples the pixel actually
-    /// took, so the filter narrows as samples are added and the result
-    /// converges to the reference; `mu` is then the floor. Needs the spp AOV.
+    /// Consistency (Sec. 5.2): each pixel's mu is raised to the value whose
+    /// sampling rate (Eq. 15/21) equals the samples the pixel actually took,
+    /// so the filter narrows as samples are added and the result converges to
+    /// the reference; `mu` is then the floor. This is the default whenever
+    /// the spp AOV is given (AafInputs::spp valid); `mu_from_spp` makes the
+    /// spp AOV required, `fixed_mu` ignores it (one mu everywhere, the
+    /// filter of Eq. 13 as printed).
     bool mu_from_spp = false;
+    bool fixed_mu = false;
+    /// Which sigma gives the light's band-limit Omega_L = 1/sigma and width
+    /// 2 sigma in Eq. 8, 13 and 15 (light_bandlimit.h); the sampling plan
+    /// uses the same. Sigma is the paper's reading; the default accounts for
+    /// the truncation of the Gaussian at the light's edges.
+    LightBandlimit light_bandlimit = LightBandlimit::EquivalentWidth;
     /// Baseline "non-adaptive filter" of AAF Fig. 6 (NAF): when > 0, every pixel
     /// AAF would filter uses this beta (world metres) instead of Eq. 13, with
     /// the same taps, rejection and cut-off. 0 = AAF proper.
@@ -38,6 +62,11 @@ struct AafParams {
     /// ceil(3 beta / pixel_size) pixels, and never beyond this bound; pixels.
     int max_radius_px = 64;
     AafFilterMode mode = AafFilterMode::Separable;
+    /// Windows cut by the image edge are cut on the other side too (centred,
+    /// unbiased on gradients); false: cut on the edge side only, the kernel
+    /// one-sided (the plain reading of Sec. 6).
+    bool symmetric_borders = true;
+    AafLightDistance light_distance = AafLightDistance::OrthogonalProjection;
 
     /// Throws aaf::Error naming the first parameter out of range.
     void validate() const;

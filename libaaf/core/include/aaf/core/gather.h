@@ -26,6 +26,13 @@ struct GatherGuides {
     std::vector<float> inv_two_sigma_sq;
     /// Taps reach this many pixels along each filtered axis; 0 = the pixel keeps its value.
     std::vector<int> radius_px;
+    /// Optional (all empty, or all guide-sized): a third coordinate n (metres)
+    /// and, per centre pixel, shears a_u, a_v: a tap's offsets become
+    /// du - a_u dn, dv - a_v dn, i.e. the tap is slid along a direction of the
+    /// centre's choosing onto the centre's plane n = const (AAF: along the
+    /// direction to the light, instead of Eq. 12's orthogonal projection).
+    std::vector<float> coord_n_m, shear_u, shear_v;
+    bool sheared() const { return !shear_u.empty(); }
 
     void resize(int width, int height);
     std::size_t index(int x, int y) const { return std::size_t(y) * std::size_t(width) + std::size_t(x); }
@@ -45,6 +52,10 @@ struct GatherSettings {
     /// rejected (AAF Sec. 6 "check on normal variation"); degrees, [0, 180].
     float normal_threshold_deg = 25.0f;
     GatherMode mode = GatherMode::Separable;
+    /// Near an image edge, shorten the window on the far side too, so it stays
+    /// centred on the pixel (unbiased on a linear gradient); false keeps the
+    /// window cut on the edge side only.
+    bool symmetric_borders = false;
 
     /// Throws aaf::Error naming a setting out of range.
     void validate() const;

@@ -2,6 +2,7 @@
 
 #include "aaf/core/aaf_params.h"
 #include "aaf/core/aov_contract.h"
+#include "aaf/core/light_plane.h"
 #include "aaf/core/plane_view.h"
 
 namespace aaf {
@@ -22,13 +23,14 @@ struct SamplingPlanParams {
 
 /// AAF's adaptive sampling rate (Sec. 5.1, 6): for every pixel the total
 /// light samples n of Eq. 15 (packing (a) of Fig. 4, A_p = pixel_size^2,
-/// A_l = (2 sigma)^2; Eq. 21 when nothing clips), rounded up and clamped to
+/// A_l = (2 sigma)^2; Eq. 21 when nothing clips), with sigma the light's
+/// band-limit sigma under aaf.light_bandlimit (the filter's), rounded up and clamped to
 /// [first_pass_spp, max_spp]. Unoccluded pixels first borrow occluder
 /// distances within `aaf.fill_radius_px` (Sec. 6); with none, or on the
 /// background, n = first_pass_spp. Uses aaf.mu and aaf.alpha. Writes totals
 /// (not the remainder) into `spp_out`. Runs on the current oneTBB arena.
 /// Throws aaf::Error on mismatched sizes or bad parameters.
-void plan_samples(const SamplingPlanInputs &inputs, float light_sigma_m, const AafParams &aaf,
+void plan_samples(const SamplingPlanInputs &inputs, const LightPlane &light, const AafParams &aaf,
                   const SamplingPlanParams &params, PlaneView spp_out);
 
 /// The plan for a first-pass AOV set that follows the contract (any

@@ -6,6 +6,7 @@
 #include <string>
 #include <vector>
 
+#include "aaf/core/aaf_params.h"
 #include "aaf/core/aov_contract.h"
 #include "aaf/core/aov_set.h"
 #include "aaf/core/light_plane.h"
@@ -86,6 +87,8 @@ struct RenderSettings {
     bool adaptive = false;
     float adaptive_mu = 2.0f;  ///< mu of Eq. 21
     int max_spp = 100;         ///< cap of the adaptive total per pixel
+    /// The light band-limit rule of the plan (AafParams::light_bandlimit): the filter's.
+    LightBandlimit light_bandlimit = AafParams{}.light_bandlimit;
 
     /// With the maaf group: the samples of MAAF's first pass (Sec. 6.2: 16),
     /// traced as a pass of their own before the rest, whose occluder distances
@@ -98,6 +101,14 @@ struct RenderSettings {
     /// Sec. 7): shadow samples are weighted by cos(receiver) cos(light) / r^2
     /// relative to the light's centre, and r(x) becomes the exact unshadowed irradiance.
     bool cosine_falloff = false;
+    /// A light sample behind the receiver's own tangent plane is occluded (the
+    /// visibility counts it as blocked) and by default gives an occluder at
+    /// the receiver, d2 = d1 (s2 = 0: such pixels are barely filtered and get
+    /// Eq. 21's largest rate). True: it gives no occluder distance, as the AAF
+    /// authors' code skips it; the study measured that no better on any scene
+    /// and worse on curved receivers (their terminators then keep the first
+    /// pass's 9 samples unfiltered), README "The study".
+    bool skip_self_occluded = false;
 
     /// Progressive rendering: a render already holding some rounds (the
     /// output of an earlier render of the same scene, seed, size and frame,
