@@ -48,6 +48,7 @@ void add_plan_command(CLI::App &app) {
             throw UsageError("--first-pass " + std::to_string(options->plan.first_pass_spp) +
                              " is above --max-spp " + std::to_string(options->plan.max_spp));
         const ChannelMap channels = channel_map_from(options->maps);
+        require_exr_output(options->output, "aaf plan");
         io::check_not_same_file(options->input, options->output);
         const AovSet input = io::read_aovs(options->input);
         AovSet plan;
