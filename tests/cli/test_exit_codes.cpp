@@ -6,6 +6,7 @@
 #include <filesystem>
 #include <fstream>
 #include <string>
+#include <vector>
 
 #include "flat_image.h"
 #include "run_aaf.h"
@@ -13,27 +14,60 @@
 namespace fs = std::filesystem;
 using aaf_test::run_aaf;
 
-TEST_CASE("exit codes: every command's usage, input and check failures exit as documented", "[cli][exit]") {
-    const fs::path dir = aaf_test::scratch_dir("exit_codes");
-    const std::string d = dir.string() + "/";
+namespace {
+
+struct Case {
+    std::string args;
+    int code;
+};
+
+/// A scratch folder with a 4x4 flat image, another of 0.6 and a 16x12 render of grids.
+std::string exit_code_inputs(const std::string &name) {
+    const fs::path dir = aaf_test::scratch_dir(name);
     aaf_test::write_flat(dir / "flat.exr", 0.5f);
     aaf_test::write_flat(dir / "other.exr", 0.6f);
-    REQUIRE(run_aaf("render grids -o " + d + "noisy.exr --width 16 --height 12 --spp 2").exit_code == 0);
-    struct Case {
-        std::string args;
-        int code;
-    };
-    const Case cases[] = {
-        {"frobnicate", 2},
+    REQUIRE(run_aaf("render grids -o " + (dir / "noisy.exr").string() + " --width 16 --height 12 --spp 2")
+                .exit_code == 0);
+    return dir.string() + "/";
+}
+
+/// Runs each case: its exit code, and one error line for usage and input errors
+/// (a failed check names the pair instead).
+void check_exit_codes(const std::vector<Case> &cases) {
+    for (const Case &c : cases) {
+        const auto run = run_aaf(c.args);
+        INFO("aaf " << c.args << "\n" << run.output);
+        CHECK(run.exit_code == c.code);
+        if (c.code == 2 || c.code == 3) CHECK_THAT(run.output, Catch::StartsWith("aaf: error: "));
+    }
+}
+
+}  // namespace
+
+TEST_CASE("exit codes: render exit with the documented codes (0, 2 usage, 3 input, 4 check)", "[cli][exit]") {
+    const std::string d = exit_code_inputs("exit_codes_render");
+    check_exit_codes({
         {"render grids -o " + d + "r.exr --width 0", 2},
         {"render grids -o " + d + "r.exr --spp x", 2},
         {"render grids -o " + d + "r.exr --adaptive --mu 0", 2},
         {"render nosuchscene -o " + d + "r.exr", 3},
         {"render grids -o " + d + "r.png", 2},
+    });
+}
+
+TEST_CASE("exit codes: plan exit with the documented codes (0, 2 usage, 3 input, 4 check)", "[cli][exit]") {
+    const std::string d = exit_code_inputs("exit_codes_plan");
+    check_exit_codes({
         {"plan " + d + "noisy.exr -o " + d + "p.exr --mu 0", 2},
         {"plan " + d + "missing.exr -o " + d + "p.exr", 3},
         {"plan " + d + "noisy.exr -o " + d + "p.exr", 0},
         {"plan " + d + "noisy.exr -o " + d + "p.tif", 2},
+    });
+}
+
+TEST_CASE("exit codes: filter exit with the documented codes (0, 2 usage, 3 input, 4 check)", "[cli][exit]") {
+    const std::string d = exit_code_inputs("exit_codes_filter");
+    check_exit_codes({
         {"filter nosuchmethod " + d + "noisy.exr -o " + d + "f.exr", 2},
         {"filter aaf " + d + "noisy.exr -o " + d + "f.exr --mu 0", 2},
         {"filter aaf " + d + "noisy.exr -o " + d + "f.exr --mu abc", 2},
@@ -45,6 +79,13 @@ TEST_CASE("exit codes: every command's usage, input and check failures exit as d
         {"filter aaf " + d + "noisy.exr -o " + d + "noisy.exr", 3},
         {"filter aaf " + d + "noisy.exr -o " + d + "f.exr", 0},
         {"filter aaf " + d + "noisy.exr -o " + d + "f.jpg", 2},
+    });
+}
+
+TEST_CASE("exit codes: compare exit with the documented codes (0, 2 usage, 3 input, 4 check)",
+          "[cli][exit]") {
+    const std::string d = exit_code_inputs("exit_codes_compare");
+    check_exit_codes({
         {"compare " + d + "flat.exr " + d + "other.exr --metric nosuch", 2},
         {"compare " + d + "flat.exr " + d + "other.exr --peak 0", 2},
         {"compare " + d + "flat.exr " + d + "other.exr --crop 0,0,0,1", 2},
@@ -53,6 +94,16 @@ TEST_CASE("exit codes: every command's usage, input and check failures exit as d
         {"compare " + d + "flat.exr " + d + "other.exr --channels nosuch", 3},
         {"compare " + d + "flat.exr " + d + "other.exr --fail-above rmse=0.01", 4},
         {"compare " + d + "flat.exr " + d + "other.exr", 0},
+    });
+}
+
+TEST_CASE(
+    "exit codes: info, preview, analyze and an unknown command exit with the documented codes (0, 2 usage, 3 "
+    "input, 4 check)",
+    "[cli][exit]") {
+    const std::string d = exit_code_inputs("exit_codes_info");
+    check_exit_codes({
+        {"frobnicate", 2},
         {"info " + d + "missing.exr", 3},
         {"info " + d + "noisy.exr", 0},
         {"info", 2},
@@ -65,14 +116,7 @@ TEST_CASE("exit codes: every command's usage, input and check failures exit as d
         {"preview " + d + "noisy.exr -o " + d + "p.jpg", 0},
         {"analyze wedge --smin 2 --smax 1", 2},
         {"analyze nosuch", 2},
-    };
-    for (const Case &c : cases) {
-        const auto run = run_aaf(c.args);
-        INFO("aaf " << c.args << "\n" << run.output);
-        CHECK(run.exit_code == c.code);
-        // Failures print one error line (a check failure names the pair instead).
-        if (c.code == 2 || c.code == 3) CHECK_THAT(run.output, Catch::StartsWith("aaf: error: "));
-    }
+    });
 }
 
 TEST_CASE("preview: the output's extension picks its format", "[cli][preview]") {
