@@ -65,6 +65,28 @@ inline void require_png_name(const std::string &path, const std::string &option)
         throw UsageError(option + ": '" + path + "' must end in .png (a PNG is written there)");
 }
 
+/// Refuses a preview `option` path other than .png, .jpg or .jpeg (any
+/// case), the formats the preview writes (chosen by the extension).
+inline void require_display_image_name(const std::string &path, const std::string &option) {
+    std::string extension = std::filesystem::path(path).extension().string();
+    for (char &c : extension) c = char(std::tolower(static_cast<unsigned char>(c)));
+    if (extension != ".png" && extension != ".jpg" && extension != ".jpeg")
+        throw UsageError(option + ": '" + path + "' must end in .png, .jpg or .jpeg (the format written)");
+}
+
+/// Refuses an output named for a format other than OpenEXR (x.png, x.jpg,
+/// x.tif...) from a command that writes only EXR, rather than put EXR bytes
+/// under a name every reader misreads. Other names (no extension) pass.
+inline void require_exr_output(const std::string &path, const std::string &command) {
+    std::string extension = std::filesystem::path(path).extension().string();
+    for (char &c : extension) c = char(std::tolower(static_cast<unsigned char>(c)));
+    for (const char *image :
+         {".png", ".jpg", ".jpeg", ".tif", ".tiff", ".hdr", ".bmp", ".gif", ".webp", ".tga"})
+        if (extension == image)
+            throw UsageError("--output: '" + path + "': " + command + " writes OpenEXR; name it .exr" +
+                             " (aaf preview writes PNG or JPEG)");
+}
+
 /// The text of `option` when it was given on the command line (even as ''),
 /// else nullopt.
 inline std::optional<std::string> given(const CLI::Option *option, const std::string &text) {

@@ -1,3 +1,4 @@
+#include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <fstream>
@@ -58,20 +59,30 @@ std::string format(double value) {
 
 using Metrics = std::vector<const CompareMetric *>;
 
+/// `field` as an RFC 4180 CSV field: quoted, its quotes doubled, when it holds
+/// a comma, a quote or a line break (a file name may).
+std::string csv_field(const std::string &field) {
+    if (field.find_first_of(",\"\r\n") == std::string::npos) return field;
+    std::string quoted = "\"";
+    for (char c : field) quoted += c == '"' ? std::string("\"\"") : std::string(1, c);
+    return quoted + "\"";
+}
+
 /// One CSV row per pair, written to a temporary and renamed onto `path`.
-void write_csv(const std::string &path, const Metrics &chosen,
-               const std::vector<ComparePairResult> &results) {
+void write_csv(const std::string &path, const Metrics &chosen, const std::vector<ComparePairResult> &results,
+               double peak) {
     const std::string temporary = io::temporary_path_for(path);
     {
         std::ofstream csv(temporary);
         csv << "label,test,reference";
         for (const CompareMetric *m : chosen) csv << ',' << m->key;
-        csv << ",pixels,nonfinite_pixels,spp\n";
+        csv << ",pixels,nonfinite_pixels,spp,psnr_peak\n";
         for (const ComparePairResult &r : results) {
-            csv << r.pair.label << ',' << r.pair.test << ',' << r.pair.reference;
+            csv << csv_field(r.pair.label) << ',' << csv_field(r.pair.test) << ','
+                << csv_field(r.pair.reference);
             for (const CompareMetric *m : chosen) csv << ',' << format(r.metrics.*(m->value));
             csv << ',' << r.metrics.pixels << ',' << r.metrics.nonfinite_pixels << ','
-                << (std::isfinite(r.spp) ? format(r.spp) : "") << '\n';
+                << (std::isfinite(r.spp) ? format(r.spp) : "") << ',' << format(peak) << '\n';
         }
         if (!csv) throw Error(path + ": cannot write");
     }
@@ -87,8 +98,10 @@ nlohmann::json metrics_json(const Metrics &chosen, const ComparePairResult &r) {
     return object;
 }
 
-/// One object for a single pair; the pairs and a summary per metric for a batch.
-void print_json(const Metrics &chosen, const std::vector<ComparePairResult> &results, bool batch) {
+/// One object for a single pair; the pairs, a summary per metric and the
+/// unmatched files for a batch. Both state the PSNR's peak.
+void print_json(const Metrics &chosen, const std::vector<ComparePairResult> &results, bool batch, double peak,
+                const std::vector<std::string> &unmatched) {
     nlohmann::json out;
     if (!batch) {
         out = metrics_json(chosen, results[0]);
@@ -96,6 +109,7 @@ void print_json(const Metrics &chosen, const std::vector<ComparePairResult> &res
         out["reference"] = results[0].pair.reference;
         out["channels"] = results[0].channels;
     } else {
+        out["unmatched"] = unmatched;
         for (const ComparePairResult &r : results) {
             nlohmann::json pair = metrics_json(chosen, r);
             pair["label"] = r.pair.label;
@@ -111,21 +125,29 @@ void print_json(const Metrics &chosen, const std::vector<ComparePairResult> &res
                                       {"worst_label", results[summary.worst_index].pair.label}};
         }
     }
+    out["psnr_peak"] = peak;
     std::cout << out.dump() << "\n";
 }
 
+bool has_psnr(const Metrics &chosen) {
+    for (const CompareMetric *m : chosen)
+        if (std::string(m->key) == "psnr") return true;
+    return false;
+}
+
 /// The single pair's metrics on one line.
-void print_line(const Metrics &chosen, const ErrorMetrics &em) {
+void print_line(const Metrics &chosen, const ErrorMetrics &em, double peak) {
     std::string line;
     for (const CompareMetric *m : chosen)
         line += std::string(line.empty() ? "" : "  ") + m->label + " " +
-                (std::string(m->key) == "psnr" ? format(em.psnr) + " dB" : format(em.*(m->value)));
+                (std::string(m->key) == "psnr" ? format(em.psnr) + " dB (peak " + format(peak) + ")"
+                                               : format(em.*(m->value)));
     if (em.nonfinite_pixels) line += "  (" + std::to_string(em.nonfinite_pixels) + " NaN/Inf pixels skipped)";
     std::cout << line << "\n";
 }
 
 /// A row per pair, then the mean, median and worst of each metric.
-void print_table(const Metrics &chosen, const std::vector<ComparePairResult> &results) {
+void print_table(const Metrics &chosen, const std::vector<ComparePairResult> &results, double peak) {
     std::printf("%-24s", "pair");
     for (const CompareMetric *m : chosen) std::printf(" %12s", m->label);
     std::printf(" %10s\n", "NaN/Inf");
@@ -149,6 +171,23 @@ void print_table(const Metrics &chosen, const std::vector<ComparePairResult> &re
     for (const io::MetricSummary &summary : summaries)
         std::printf(" %12s", results[summary.worst_index].pair.label.c_str());
     std::printf("\n");
+    if (has_psnr(chosen)) std::printf("PSNR in dB, peak %s (--peak)\n", format(peak).c_str());
+}
+
+/// Lists the batch's files without a namesake on stderr; with --fail-unmatched they fail the check.
+void report_unmatched(const std::vector<std::string> &unmatched, bool fail) {
+    for (const std::string &path : unmatched)
+        std::fprintf(stderr, "aaf: compare: %s: %s, not compared\n", fail ? "error" : "warning",
+                     (path + ": no file of that name on the other side").c_str());
+}
+
+/// "[3/10] frame: RMSE 0.01 (2.1 s, about 4.9 s left)" on stderr after each pair of a batch.
+void print_progress(std::size_t index, std::size_t total, const ComparePairResult &result,
+                    const CompareMetric &metric, double elapsed_s) {
+    const double left_s = elapsed_s / double(index + 1) * double(total - index - 1);
+    std::fprintf(stderr, "[%zu/%zu] %s: %s %s (%.1f s, about %.1f s left)\n", index + 1, total,
+                 result.pair.label.c_str(), metric.label, format(result.metrics.*(metric.value)).c_str(),
+                 elapsed_s, left_s);
 }
 
 /// Names each pair and gate that failed on stderr; throws CheckFailed when any did.
@@ -173,6 +212,8 @@ struct Options {
     float ppd = 67.0206f;
     bool json = false;
     bool timing = false;
+    bool fail_unmatched = false;
+    bool progress = false;
 };
 
 /// What the library is to measure and write for these options.
@@ -205,15 +246,26 @@ void run_compare(const Options &o) {
     std::vector<io::Gate> gates;
     for (const std::string &spec : o.fail_above) gates.push_back(parse_gate(spec, true));
     for (const std::string &spec : o.fail_below) gates.push_back(parse_gate(spec, false));
-    const io::CompareFilesOptions compare = library_options(o, chosen, gates);
+    io::CompareFilesOptions compare = library_options(o, chosen, gates);
 
-    const io::ImagePairs pairs = compare_pairs(o.test, o.reference, given(o.frames_option, o.frames));
+    std::vector<std::string> unmatched;
+    const io::ImagePairs pairs =
+        compare_pairs(o.test, o.reference, given(o.frames_option, o.frames), &unmatched);
+    report_unmatched(unmatched, o.fail_unmatched);
     // A sequence or folder is a batch even when it matches one pair: its output keeps the batch shape.
     const bool batch = is_batch_input(o.test);
     if (!o.heatmap.empty() && pairs.size() != 1)
         throw UsageError(o.heatmap + ": --heatmap needs a single pair of images");
     // The PNG's name; its EXR is written beside it.
     if (!o.heatmap.empty()) require_png_name(o.heatmap, "--heatmap");
+    const auto start = std::chrono::steady_clock::now();
+    if (o.progress && batch)
+        compare.on_pair = [&](std::size_t index, const ComparePairResult &r) {
+            const double elapsed_s =
+                std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+            print_progress(index, pairs.size(), r, chosen.empty() ? io::compare_metrics()[0] : *chosen[0],
+                           elapsed_s);
+        };
     const io::CompareFilesResult result = io::compare_files(pairs, compare);
     if (!o.heatmap.empty())
         std::fprintf(stderr, "heatmap %s: colour bar 0 to %s (99th percentile)\n", o.heatmap.c_str(),
@@ -221,13 +273,18 @@ void run_compare(const Options &o) {
     if (o.timing)
         std::fprintf(stderr, "timing: read %.3f s, metrics %.3f s over %zu pairs\n", result.read_seconds,
                      result.measure_seconds, result.pairs.size());
-    if (!o.csv.empty()) write_csv(o.csv, chosen, result.pairs);
+    if (!o.csv.empty()) write_csv(o.csv, chosen, result.pairs, o.peak);
     if (o.json)
-        print_json(chosen, result.pairs, batch);
+        print_json(chosen, result.pairs, batch, o.peak, unmatched);
     else if (!batch)
-        print_line(chosen, result.pairs[0].metrics);
+        print_line(chosen, result.pairs[0].metrics, o.peak);
     else
-        print_table(chosen, result.pairs);
+        print_table(chosen, result.pairs, o.peak);
+    if (o.fail_unmatched && !unmatched.empty()) {
+        std::fprintf(stderr, "aaf: compare: %zu unmatched files (--fail-unmatched)\n", unmatched.size());
+        check_gates(result.pairs, gates);
+        throw CheckFailed{};
+    }
     check_gates(result.pairs, gates);
 }
 
@@ -245,10 +302,14 @@ void add_compare_command(CLI::App &app) {
                     "Metrics: rmse, mse, mae, relmse, psnr, ssim, flip (mean), flip_median (weighted median)")
         ->delimiter(',')
         ->capture_default_str();
-    cmd->add_option("--channels", options->channels, "Channels to compare")
+    cmd->add_option("--channels", options->channels,
+                    "Channels to compare: NAME (in both) or TEST=REFERENCE (aaf.V=shadow.V); R,G,B and other "
+                    "contract names find a renderer's channels of the role (ViewLayer.Combined.R)")
         ->delimiter(',')
         ->capture_default_str();
-    cmd->add_option("--layer", options->layer, "Compare every channel of this layer (e.g. shadow)");
+    cmd->add_option("--layer", options->layer,
+                    "Compare every channel of this layer (e.g. aaf); refused when they mix units "
+                    "(shadow.V with shadow.d1)");
     cmd->add_option("--crop", options->crop, "Only the rectangle X,Y,WIDTH,HEIGHT (pixels)")
         ->delimiter(',')
         ->expected(4);
@@ -267,10 +328,26 @@ void add_compare_command(CLI::App &app) {
                   "Print JSON: one object for two files; pairs and summary for sequences or folders");
     cmd->add_option("--csv", options->csv, "Also write one CSV row per pair to this file");
     cmd->add_flag("--timing", options->timing, "Print the seconds spent reading and measuring to stderr");
+    cmd->add_flag("--fail-unmatched", options->fail_unmatched,
+                  "Exit 4 when a folder holds files without a namesake in the other (listed either way)");
+    cmd->add_flag("--progress", options->progress,
+                  "Batch: a line per pair on stderr with the first metric and the time left");
     cmd->add_option("--heatmap", options->heatmap,
                     "Per-pixel error as a false-colour PNG with a colour bar, and as an EXR beside it "
                     "(X.png and X.exr); covers the --crop region, --mask's masked-out pixels black");
-    cmd->callback([options] { run_compare(*options); });
+    cmd->callback([options, cmd] {
+        bool flip = false;
+        for (const std::string &key : options->metric_keys) flip = flip || key.rfind("flip", 0) == 0;
+        for (const auto *gates : {&options->fail_above, &options->fail_below})
+            for (const std::string &gate : *gates) flip = flip || gate.rfind("flip", 0) == 0;
+        if (cmd->count("--ppd") > 0 && !flip)
+            std::fprintf(stderr, "aaf: warning: --ppd has no effect without a flip metric\n");
+        if (cmd->count("--mask-channel") > 0 && options->mask_path.empty())
+            std::fprintf(stderr, "aaf: warning: --mask-channel has no effect without --mask\n");
+        if (cmd->count("--progress") > 0 && !is_batch_input(options->test))
+            std::fprintf(stderr, "aaf: warning: --progress has no effect on a single pair\n");
+        run_compare(*options);
+    });
 }
 
 }  // namespace aaf::cli

@@ -49,10 +49,19 @@ std::string role_keys(const std::vector<Role> &roles) {
     return text.empty() ? "-" : text;
 }
 
-/// "  aaf: reads ...; optional ...; writes ..." for the filter command's help.
+/// "  aaf: reads ...; optional ...; writes ..." and a line per option, for
+/// the filter command's help (`aaf filter aaf --help` has the shared options too).
 std::string method_contract_line(const MethodInfo &method) {
-    return "  " + method.name + ": reads " + role_keys(method.roles.required) + "; optional " +
-           role_keys(method.roles.optional) + "; writes " + role_keys(method.roles.outputs) + "\n";
+    std::string text = "  " + method.name + ": reads " + role_keys(method.roles.required) + "; optional " +
+                       role_keys(method.roles.optional) + "; writes " + role_keys(method.roles.outputs) +
+                       "\n";
+    for (const ParameterInfo &p : method.parameters) {
+        text += "    " + p.option_name();
+        if (p.type != ParameterType::Bool)
+            text += " " + p.range_text() + " (default " + p.default_value + ")";
+        text += ": " + p.help + (p.unit.empty() ? "" : ", " + p.unit) + "\n";
+    }
+    return text;
 }
 
 /// Options every method's subcommand shares: files, sequences, output layout.
@@ -112,6 +121,7 @@ void add_method_command(CLI::App &filter, const Method &method) {
     add_common_options(*cmd, *options);
     add_parameter_options(*cmd, method.info(), options->parameters);
     cmd->callback([options, &method] {
+        require_exr_output(options->output, "aaf filter");
         const ChannelMap channels = channel_map_from(options->maps);
         const io::FrameFilter filter =
             io::method_filter(method, parameters_from(method, options->parameters), channels);
@@ -143,7 +153,8 @@ void add_filter_command(CLI::App &app) {
     CLI::App *filter = app.add_subcommand("filter", "Filter noisy AOVs with one of the methods");
     filter->require_subcommand(1);
     std::string contracts =
-        "Roles each method reads and writes (libaaf/AOV_CONTRACT.md; --map role=channel):\n";
+        "Methods, the roles each reads and writes (libaaf/AOV_CONTRACT.md; --map role=channel) and "
+        "its options (aaf filter METHOD --help: every option):\n";
     for (const Method *method : methods()) {
         add_method_command(*filter, *method);
         contracts += method_contract_line(method->info());

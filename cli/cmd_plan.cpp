@@ -54,6 +54,7 @@ void add_plan_command(CLI::App &app) {
                              " is above --max-spp " + std::to_string(options->plan.max_spp));
         options->aaf.light_bandlimit = light_bandlimit_from_string(options->light_bandlimit);
         const ChannelMap channels = channel_map_from(options->maps);
+        require_exr_output(options->output, "aaf plan");
         io::check_not_same_file(options->input, options->output);
         const AovSet input = io::read_aovs(options->input);
         AovSet plan;

@@ -1,4 +1,5 @@
 #include <algorithm>
+#include <cstdio>
 #include <memory>
 #include <string>
 #include <vector>
@@ -63,7 +64,7 @@ void add_preview_command(CLI::App &app) {
     CLI::App *cmd = app.add_subcommand(
         "preview", "Write a PNG preview: colour through an OpenColorIO display/view, data as it is");
     cmd->add_option("input", options->input, "Input image")->required();
-    cmd->add_option("-o,--output", options->output, "Output PNG")->required();
+    cmd->add_option("-o,--output", options->output, "Output PNG, or JPEG for .jpg/.jpeg")->required();
     cmd->add_option("--channels", options->channels, "One channel (grey) or three")
         ->delimiter(',')
         ->capture_default_str();
@@ -84,8 +85,17 @@ void add_preview_command(CLI::App &app) {
         ->delimiter(',')
         ->expected(2)
         ->check(finite_number(-HUGE_VAL, HUGE_VAL, /*low_allowed=*/true));
-    cmd->callback([options] {
-        require_png_name(options->output, "--output");
+    cmd->callback([options, cmd] {
+        require_display_image_name(options->output, "--output");
+        // The colour pipeline and the false-colour ramp take different options.
+        const std::vector<const char *> unused =
+            options->false_colour ? std::vector<const char *>{"--ocio-config", "--display", "--view",
+                                                              "--colorspace", "--exposure"}
+                                  : std::vector<const char *>{"--range"};
+        for (const char *option : unused)
+            if (cmd->count(option) > 0)
+                std::fprintf(stderr, "aaf: warning: %s has no effect %s --false-colour\n", option,
+                             options->false_colour ? "with" : "without");
         if (options->layer.empty() && options->channels.size() != 1 && options->channels.size() != 3)
             throw UsageError("--channels: a preview shows one channel (grey) or three");
         io::check_not_same_file(options->input, options->output);

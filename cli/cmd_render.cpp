@@ -20,6 +20,7 @@
 #include "aaf/io/exr_io.h"
 #include "aaf/io/sequence.h"
 #include "aaf/trace/render.h"
+#include "channel_options.h"
 #include "commands.h"
 #include "frame_runner.h"
 
@@ -187,6 +188,7 @@ void add_render_command(CLI::App &app) {
         }
         if (options->scene.empty()) throw CLI::RequiredError("scene");
         if (options->output.empty()) throw CLI::RequiredError("--output");
+        require_exr_output(options->output, "aaf render");
         trace::RenderSettings &settings = options->settings;
         if (!options->light.empty()) settings.light_profile = light_profile_from_string(options->light);
         settings.light_bandlimit = light_bandlimit_from_string(options->light_bandlimit);
@@ -196,6 +198,11 @@ void add_render_command(CLI::App &app) {
             throw UsageError(std::string("--aovs: ") + e.what());
         }
         check_settings(settings, !options->resume.empty());
+        // Options that only shape the adaptive second pass do nothing without it.
+        if (!settings.adaptive)
+            for (const char *option : {"--mu", "--max-spp"})
+                if (cmd->count(option) > 0)
+                    std::fprintf(stderr, "aaf: warning: %s has no effect without --adaptive\n", option);
         if (!(options->checkpoint_s > 0)) throw UsageError("--checkpoint must be positive");
         settings.checkpoint_interval_s = options->checkpoint_s;
 

@@ -15,7 +15,7 @@ namespace aaf::cli {
 namespace fs = std::filesystem;
 
 io::ImagePairs compare_pairs(const std::string &test, const std::string &reference,
-                             const std::optional<std::string> &frames) {
+                             const std::optional<std::string> &frames, std::vector<std::string> *unmatched) {
     const bool test_sequence = io::is_sequence_pattern(test),
                reference_sequence = io::is_sequence_pattern(reference);
     if (test_sequence || reference_sequence) {
@@ -43,12 +43,22 @@ io::ImagePairs compare_pairs(const std::string &test, const std::string &referen
     std::set<std::string> reference_names;
     for (const auto &entry : fs::directory_iterator(reference, ec))
         if (entry.is_regular_file()) reference_names.insert(entry.path().filename().string());
+    std::set<std::string> test_names;
     for (const auto &entry : fs::directory_iterator(test, ec)) {
         const std::string name = entry.path().filename().string();
-        if (entry.is_regular_file() && reference_names.count(name))
+        if (!entry.is_regular_file()) continue;
+        test_names.insert(name);
+        if (reference_names.count(name))
             pairs.push_back({name, entry.path().string(), (fs::path(reference) / name).string()});
     }
     if (ec) throw InputError(test + ": cannot list the directory: " + ec.message());
+    // Sets iterate in name order: the list does not depend on the directory's order.
+    if (unmatched) {
+        for (const std::string &name : test_names)
+            if (!reference_names.count(name)) unmatched->push_back((fs::path(test) / name).string());
+        for (const std::string &name : reference_names)
+            if (!test_names.count(name)) unmatched->push_back((fs::path(reference) / name).string());
+    }
     if (pairs.empty()) throw InputError(test + " vs " + reference + ": no file names in common");
     std::sort(pairs.begin(), pairs.end(),
               [](const ImagePair &a, const ImagePair &b) { return a.label < b.label; });

@@ -8,6 +8,7 @@ packages=(
   libopencolorio-dev libcli11-dev catch2 libembree-dev libtbb-dev
   libtinyobjloader-dev nlohmann-json3-dev libbenchmark-dev
   python3-openimageio python3-numpy   # scripts/make_bad_corpus.py (run with /usr/bin/python3)
+  python3-dev python3-pybind11         # the Python module aaf (libaaf/python), built for /usr/bin/python3
 )
 missing=()
 for p in "${packages[@]}"; do

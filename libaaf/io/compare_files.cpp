@@ -59,21 +59,100 @@ void check_pair_not_output(const ImagePair &pair, const std::vector<std::string>
     }
 }
 
-/// The channels to compare in `test`: `options.layer`'s, else `options.channels`.
-std::vector<std::string> channels_to_compare(const ImagePair &pair, const AovSet &test,
-                                             const CompareFilesOptions &options) {
-    if (options.layer.empty()) return options.channels;
+/// The role whose channels (as `resolved` names them in an image) include
+/// `channel`, or nullptr when no role claims it.
+const RoleInfo *role_of(const std::string &channel, const ChannelMap &resolved) {
+    for (const RoleInfo &info : role_table()) {
+        const std::vector<std::string> &names = resolved.channels(info.role);
+        if (std::find(names.begin(), names.end(), channel) != names.end()) return &info;
+    }
+    return nullptr;
+}
+
+/// `name` as `image` holds it: itself when present, else the channel a
+/// renderer writes for the same role (the beauty's R as Blender's
+/// ViewLayer.Combined.R, shadow.V under a view-layer prefix), else `name`
+/// (compare_images then names it missing).
+std::string resolve_channel(const std::string &name, const AovSet &image) {
+    if (image.has_channel(name)) return name;
+    const ChannelMap contract;
+    const ChannelMap resolved = contract.resolved(image);
+    for (const RoleInfo &info : role_table()) {
+        const std::vector<std::string> &names = contract.channels(info.role);
+        const auto at = std::find(names.begin(), names.end(), name);
+        if (at != names.end()) return resolved.channels(info.role)[std::size_t(at - names.begin())];
+    }
+    return name;
+}
+
+/// The channels of `options.layer` in `test`; refuses a layer whose
+/// channels hold quantities of different units (AOV contract roles), such
+/// as shadow.V (visibility) beside shadow.d1 (metres), whose average would
+/// mean nothing.
+std::vector<std::string> layer_channels(const ImagePair &pair, const AovSet &test,
+                                        const CompareFilesOptions &options) {
     std::vector<std::string> channels;
     for (const std::string &name : test.channel_names())
         if (name.rfind(options.layer + ".", 0) == 0) channels.push_back(name);
     if (channels.empty()) throw InputError(pair.test + ": no channels in layer '" + options.layer + "'");
+    const ChannelMap resolved = ChannelMap().resolved(test);
+    std::vector<std::pair<std::string, std::string>> units;  // (units, channels of them)
+    for (const std::string &name : channels) {
+        const RoleInfo *role = role_of(name, resolved);
+        if (!role) continue;
+        // "metres, 0 = no occluder" is metres: the unit is what precedes a comma.
+        const std::string unit = std::string(role->units).substr(0, std::string(role->units).find(','));
+        auto group =
+            std::find_if(units.begin(), units.end(), [&unit](const auto &u) { return u.first == unit; });
+        if (group == units.end())
+            units.emplace_back(unit, name);
+        else
+            group->second += ", " + name;
+    }
+    if (units.size() > 1) {
+        std::string kinds, suggestion = units.front().second.substr(0, units.front().second.find(','));
+        for (const auto &u : units) kinds += (kinds.empty() ? "" : "; ") + u.second + " (" + u.first + ")";
+        for (const std::string &name : channels)  // the visibility, what a shadow filter is scored on
+            if (const RoleInfo *role = role_of(name, resolved))
+                if (role->role == Role::Visibility || role->role == Role::FilteredVisibility)
+                    suggestion = name;
+        throw InputError(pair.test + ": layer '" + options.layer + "' mixes quantities of different units: " +
+                         kinds + "; compare one kind with --channels, e.g. --channels " + suggestion);
+    }
+    return channels;
+}
+
+/// What one pair compares: each requested channel as the test image holds
+/// it and the reference channel it is measured against.
+struct ChannelPairs {
+    std::vector<std::string> test, reference;
+    std::vector<std::string> labels;  ///< "name", or "test=reference" where they differ
+};
+
+/// `options.layer`'s channels, else `options.channels`, each "name" or
+/// "test=reference" and resolved in its image through the role table.
+ChannelPairs channels_to_compare(const ImagePair &pair, const AovSet &test, const AovSet &reference,
+                                 const CompareFilesOptions &options) {
+    ChannelPairs channels;
+    const std::vector<std::string> requested =
+        options.layer.empty() ? options.channels : layer_channels(pair, test, options);
+    for (const std::string &spec : requested) {
+        const std::size_t eq = spec.find('=');
+        const std::string test_name = resolve_channel(spec.substr(0, eq), test);
+        const std::string reference_name =
+            resolve_channel(eq == std::string::npos ? spec : spec.substr(eq + 1), reference);
+        channels.test.push_back(test_name);
+        channels.reference.push_back(reference_name);
+        channels.labels.push_back(test_name == reference_name ? test_name : test_name + "=" + reference_name);
+    }
     return channels;
 }
 
 /// compare_images()'s options for one pair of images.
-CompareOptions pair_options(const ImagePair &pair, const AovSet &test, const CompareFilesOptions &options) {
+CompareOptions pair_options(const ImagePair &pair, const AovSet &test,
+                            const std::vector<std::string> &channels, const CompareFilesOptions &options) {
     CompareOptions compare;
-    compare.channels = channels_to_compare(pair, test, options);
+    compare.channels = channels;
     compare.crop = options.crop;
     compare.psnr_peak = options.psnr_peak;
     compare.compute_ssim = needs(options, CompareMetric::Needs::Ssim);
@@ -94,6 +173,35 @@ CompareOptions pair_options(const ImagePair &pair, const AovSet &test, const Com
     return compare;
 }
 
+/// A pair ready for compare_images(): the reference's compared channels
+/// under the test image's names (a copy only where a name differs).
+struct PreparedPair {
+    CompareOptions compare;
+    std::vector<std::string> labels;
+    AovSet renamed_reference;
+    bool renamed = false;
+};
+
+PreparedPair prepare_pair(const ImagePair &pair, const AovSet &test, const AovSet &reference,
+                          const CompareFilesOptions &options) {
+    const ChannelPairs channels = channels_to_compare(pair, test, reference, options);
+    PreparedPair prepared{pair_options(pair, test, channels.test, options), channels.labels, {}, false};
+    if (channels.test == channels.reference) return prepared;
+    prepared.renamed = true;
+    prepared.renamed_reference = AovSet(reference.width(), reference.height());
+    for (std::size_t c = 0; c < channels.test.size(); ++c) {
+        if (prepared.renamed_reference.has_channel(channels.test[c])) continue;  // listed twice
+        if (!reference.has_channel(channels.reference[c]))
+            throw InputError(pair.reference + ": no channel '" + channels.reference[c] +
+                             "' to compare with " + channels.test[c]);
+        const ConstPlaneView from = reference.channel(channels.reference[c]);
+        PlaneView to = prepared.renamed_reference.add_channel(channels.test[c]);
+        for (int y = 0; y < reference.height(); ++y)
+            for (int x = 0; x < reference.width(); ++x) to(x, y) = from(x, y);
+    }
+    return prepared;
+}
+
 /// Reads, measures and (with a heatmap) draws one pair, adding to the timings.
 ComparePairResult compare_pair(const ImagePair &pair, const CompareFilesOptions &options,
                                CompareFilesResult &totals) {
@@ -101,18 +209,29 @@ ComparePairResult compare_pair(const ImagePair &pair, const CompareFilesOptions 
     const AovSet test = read_aovs(pair.test), reference = read_aovs(pair.reference);
     totals.read_seconds += seconds_since(read_start);
     const auto measure_start = Clock::now();
-    const CompareOptions compare = pair_options(pair, test, options);
+    const PreparedPair prepared = prepare_pair(pair, test, reference, options);
+    const AovSet &measured = prepared.renamed ? prepared.renamed_reference : reference;
     return with_context(pair.test + " vs " + pair.reference, [&] {
-        ComparePairResult result{pair, compare.channels, compare_images(test, reference, compare),
+        ComparePairResult result{pair, prepared.labels, compare_images(test, measured, prepared.compare),
                                  mean_spp_of(test)};
         totals.measure_seconds += seconds_since(measure_start);
         if (!options.heatmap.empty())
-            totals.heatmap_scale = write_error_heatmap(test, reference, compare, options.heatmap);
+            totals.heatmap_scale = write_error_heatmap(test, measured, prepared.compare, options.heatmap);
         return result;
     });
 }
 
 }  // namespace
+
+ComparePairResult compare_aov_sets(const ImagePair &pair, const AovSet &test, const AovSet &reference,
+                                   const CompareFilesOptions &options) {
+    const PreparedPair prepared = prepare_pair(pair, test, reference, options);
+    const AovSet &measured = prepared.renamed ? prepared.renamed_reference : reference;
+    return with_context(pair.test + " vs " + pair.reference, [&] {
+        return ComparePairResult{pair, prepared.labels, compare_images(test, measured, prepared.compare),
+                                 mean_spp_of(test)};
+    });
+}
 
 const std::vector<CompareMetric> &compare_metrics() {
     using Needs = CompareMetric::Needs;
@@ -161,6 +280,7 @@ CompareFilesResult compare_files(const ImagePairs &pairs, const CompareFilesOpti
     pairs.for_each([&](const ImagePair &pair) {
         check_pair_not_output(pair, outputs);
         result.pairs.push_back(compare_pair(pair, options, result));
+        if (options.on_pair) options.on_pair(result.pairs.size() - 1, result.pairs.back());
     });
     return result;
 }

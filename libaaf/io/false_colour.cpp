@@ -1,6 +1,8 @@
 #include "false_colour.h"
 
 #include <algorithm>
+#include <cctype>
+#include <filesystem>
 
 #include "image_writer.h"
 
@@ -20,7 +22,12 @@ Vec3 false_colour(float t) {
 }
 
 void write_png(const std::vector<float> &rgb, int width, int height, const std::string &path) {
-    write_image_atomically(path, "png", OIIO::ImageSpec(width, height, 3, OIIO::TypeDesc::UINT8), rgb.data());
+    // The format the name says: JPEG for .jpg/.jpeg, else PNG (callers refuse other names).
+    std::string extension = std::filesystem::path(path).extension().string();
+    for (char &c : extension) c = char(std::tolower(static_cast<unsigned char>(c)));
+    const char *format = extension == ".jpg" || extension == ".jpeg" ? "jpeg" : "png";
+    write_image_atomically(path, format, OIIO::ImageSpec(width, height, 3, OIIO::TypeDesc::UINT8),
+                           rgb.data());
 }
 
 }  // namespace aaf::io

@@ -11,8 +11,9 @@ namespace aaf::io {
 /// dark blue, blue, green, yellow, red, piecewise linear.
 Vec3 false_colour(float t);
 
-/// Writes 8-bit RGB from interleaved floats in [0, 1] as PNG (OpenImageIO
-/// quantises), under a temporary name renamed into place. Throws aaf::Error.
+/// Writes 8-bit RGB from interleaved floats in [0, 1] as PNG, or JPEG when
+/// `path` ends in .jpg or .jpeg (OpenImageIO quantises), under a temporary
+/// name renamed into place. Throws aaf::Error.
 void write_png(const std::vector<float> &rgb, int width, int height, const std::string &path);
 
 }  // namespace aaf::io

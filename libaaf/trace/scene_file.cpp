@@ -606,6 +606,12 @@ std::vector<std::string> scene_directories() {
         for (std::string dir; std::getline(list, dir, ':');)
             if (!dir.empty()) dirs.push_back(dir);
     }
+    // Relative to the running program first, so an installed tree that was
+    // moved (or installed under another prefix) still finds its own scenes.
+    std::error_code error;
+    const fs::path program = fs::read_symlink("/proc/self/exe", error);
+    if (!error)
+        dirs.push_back((program.parent_path() / AAF_SCENE_DIR_FROM_BINARY).lexically_normal().string());
     dirs.push_back(AAF_INSTALLED_SCENE_DIR);
     dirs.push_back(AAF_SOURCE_SCENE_DIR);
     return dirs;

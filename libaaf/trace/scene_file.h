@@ -26,8 +26,9 @@ SceneDescription load_scene_file(const std::string &path, int width, int height)
 std::vector<std::string> scene_file_inputs(const std::string &path);
 
 /// Directories searched for scenes given by name, in order: each entry of
-/// $AAF_SCENE_PATH (':'-separated), then the installed and the source tree's
-/// `testdata/scenes`.
+/// $AAF_SCENE_PATH (':'-separated), then `../share/aaf/scenes` beside the
+/// running program (an installed tree, wherever it was moved), then the
+/// install prefix's and the source tree's `testdata/scenes`.
 std::vector<std::string> scene_directories();
 
 /// The file of a scene given as a path (anything ending in .json or holding a

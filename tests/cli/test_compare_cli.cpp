@@ -32,7 +32,7 @@ TEST_CASE("compare: batch over a 3-frame sequence with CSV and JSON", "[cli][com
     std::ifstream in(csv);
     std::string header, line;
     std::getline(in, header);
-    CHECK(header == "label,test,reference,rmse,mae,pixels,nonfinite_pixels,spp");
+    CHECK(header == "label,test,reference,rmse,mae,pixels,nonfinite_pixels,spp,psnr_peak");
     int rows = 0;
     while (std::getline(in, line)) {
         ++rows;

@@ -62,4 +62,17 @@ configure_build io "${trace_packages[@]}"
 echo "== all components, installed headers one by one"
 configure_build all
 "$work/all/all_consumer" "$scene"
+echo "== the installed tree moved elsewhere: aaf finds its own scenes; the installed Python module imports"
+moved="$work/moved"
+mv "$prefix" "$moved"
+# The render records the scene file it read: the moved tree's, not the
+# source tree's (a compiled-in fallback) nor the old prefix's (gone).
+env -u AAF_SCENE_PATH "$moved/bin/aaf" render grids -o "$work/moved.exr" --width 8 --height 6 --spp 1
+recorded=$(/usr/bin/python3 -c 'import OpenImageIO as oiio, sys; print(oiio.ImageInput.open(sys.argv[1]).spec().getattribute("aaf:scene_file"))' "$work/moved.exr")
+[ "$recorded" = "$moved/share/aaf/scenes/grids.json" ] || fail "the moved aaf rendered $recorded, not its own scene"
+module=$(find "$moved" -name 'aaf.cpython-*.so' -print -quit)
+if [ -n "$module" ]; then
+  PYTHONPATH="$(dirname "$module")" /usr/bin/python3 -c 'import aaf; assert "aaf" in [m["name"] for m in aaf.methods()]' \
+    || fail "the installed Python module does not import"
+fi
 echo "consumer_test: ok"

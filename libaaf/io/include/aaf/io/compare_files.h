@@ -66,12 +66,20 @@ struct CompareMask {
 /// or a missing channel.
 CompareMask read_compare_mask(const std::string &path, const std::string &channel = "");
 
+struct ComparePairResult;
+
 /// What compare_files() measures and writes. The defaults compare R, G, B of
 /// the whole images with no metric beyond the plain sums.
 struct CompareFilesOptions {
+    /// Each "name" (the same channel in both images) or "test=reference"
+    /// (e.g. "aaf.V=shadow.V": a filter's output against a reference render's
+    /// visibility). A name an image lacks that is a contract channel of a role
+    /// (aov_contract.h) is looked up as that role resolves in that image, so R,
+    /// G, B find a Blender file's ViewLayer.Combined.R/G/B.
     std::vector<std::string> channels{"R", "G", "B"};
     /// Non-empty: compare every channel of the test image named "<layer>.*"
-    /// instead of `channels`.
+    /// instead of `channels`; a layer whose channels belong to roles of
+    /// different units (shadow.V beside shadow.d1) is refused (InputError).
     std::string layer;
     std::optional<PixelRect> crop;    ///< only pixels inside; must lie within the images
     std::optional<CompareMask> mask;  ///< only pixels where it is non-zero; same size as the images
@@ -87,15 +95,23 @@ struct CompareFilesOptions {
     /// Files the caller writes from the results (a CSV report). Like the
     /// heatmap, each is refused before anything is read when it names an input.
     std::vector<std::string> report_paths;
+    /// Called after each pair is measured, with its index and result (progress).
+    std::function<void(std::size_t index, const ComparePairResult &result)> on_pair;
 };
 
 /// The measurement of one pair.
 struct ComparePairResult {
     ImagePair pair;
-    std::vector<std::string> channels;  ///< the channels compared
+    std::vector<std::string> channels;  ///< the channels compared, "test=reference" where the names differ
     ErrorMetrics metrics;
     double spp = std::nan("");  ///< the test image's mean spp over shaded pixels; NaN without those AOVs
 };
+
+/// Compares one pair already in memory as compare_files() compares files
+/// (`pair` names them in messages and the result; the heatmap is not drawn).
+/// Throws as compare_files() does.
+ComparePairResult compare_aov_sets(const ImagePair &pair, const AovSet &test, const AovSet &reference,
+                                   const CompareFilesOptions &options);
 
 struct CompareFilesResult {
     std::vector<ComparePairResult> pairs;  ///< one per input pair, in order

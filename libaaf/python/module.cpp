@@ -1,0 +1,271 @@
+// The Python module `aaf`: AOV EXRs as numpy arrays, every registered
+// method, and the metrics of `aaf compare`. Everything here converts and
+// delegates; what a call does is the library's (and the CLI's) code.
+#include <pybind11/pybind11.h>
+#include <pybind11/stl.h>
+
+#include <string>
+#include <vector>
+
+#include "aaf/core/aov_contract.h"
+#include "aaf/core/error.h"
+#include "aaf/core/filter_aovs.h"
+#include "aaf/core/method_registry.h"
+#include "aaf/core/thread_count.h"
+#include "aaf/io/compare_files.h"
+#include "aaf/io/exr_io.h"
+#include "numpy_aovs.h"
+
+namespace py = pybind11;
+
+namespace aaf::python {
+
+namespace {
+
+const char *type_name(ParameterType type) {
+    switch (type) {
+        case ParameterType::Float:
+            return "float";
+        case ParameterType::Int:
+            return "int";
+        case ParameterType::Bool:
+            return "bool";
+        case ParameterType::Choice:
+            return "choice";
+    }
+    return "?";
+}
+
+py::list role_keys(const std::vector<Role> &roles) {
+    py::list keys;
+    for (Role role : roles) keys.append(role_info(role).key);
+    return keys;
+}
+
+/// A method's declaration as a dict: what `aaf info` and `aaf filter --help` print.
+py::dict describe(const Method &method) {
+    const MethodInfo &info = method.info();
+    py::list parameters;
+    for (const ParameterInfo &p : info.parameters) {
+        py::dict parameter;
+        parameter["name"] = p.name;
+        parameter["type"] = type_name(p.type);
+        parameter["default"] = p.default_value;
+        parameter["unit"] = p.unit;
+        parameter["range"] = p.range_text();
+        parameter["help"] = p.help;
+        parameter["choices"] = p.choices;
+        parameters.append(parameter);
+    }
+    py::dict d;
+    d["name"] = info.name;
+    d["title"] = info.title;
+    d["summary"] = info.summary;
+    d["reference"] = info.reference;
+    d["required"] = role_keys(info.roles.required);
+    d["optional"] = role_keys(info.roles.optional);
+    d["outputs"] = role_keys(info.roles.outputs);
+    d["parameters"] = parameters;
+    d["required_attributes"] = info.required_attributes;
+    return d;
+}
+
+/// `map` as the CLI's --map: a dict role -> channel(s) or a list of "role=channels".
+ChannelMap channel_map_from(const py::object &map) {
+    ChannelMap channels;
+    if (map.is_none()) return channels;
+    if (py::isinstance<py::dict>(map)) {
+        for (const auto &entry : map.cast<py::dict>()) {
+            std::string names;
+            if (py::isinstance<py::str>(entry.second))
+                names = entry.second.cast<std::string>();
+            else
+                for (const auto &name : entry.second)
+                    names += (names.empty() ? "" : ",") + name.cast<std::string>();
+            channels.set_override(entry.first.cast<std::string>() + "=" + names);
+        }
+    } else {
+        for (const auto &spec : map) channels.set_override(spec.cast<std::string>());
+    }
+    return channels;
+}
+
+/// The method's defaults with the keyword arguments set (names checked by ParameterSet).
+ParameterSet parameters_from(const Method &method, const py::kwargs &given) {
+    ParameterSet parameters = method.default_parameters();
+    for (const auto &entry : given) {
+        const std::string name = entry.first.cast<std::string>();
+        const py::handle value = entry.second;
+        if (py::isinstance<py::bool_>(value))
+            parameters.set(name, value.cast<bool>());
+        else if (py::isinstance<py::int_>(value) || py::isinstance<py::float_>(value))
+            parameters.set(name, value.cast<double>());
+        else
+            parameters.set(name, py::str(value).cast<std::string>());
+    }
+    return parameters;
+}
+
+PyAovs filter(const std::string &method_name, const PyAovs &aovs, const py::object &map, int threads,
+              const py::kwargs &given) {
+    const Method &method = find_method(method_name);
+    const ParameterSet parameters = parameters_from(method, given);
+    const ChannelMap channels = channel_map_from(map);
+    const AovSet input = from_python(aovs);
+    AovSet output;
+    {
+        py::gil_scoped_release release;
+        run_with_threads(threads, [&] { output = filter_aovs(method, input, channels, parameters); });
+    }
+    return to_python(output);
+}
+
+io::CompareFilesOptions compare_options(const std::vector<std::string> &channels, const std::string &layer,
+                                        const std::vector<std::string> &metrics, double peak) {
+    io::CompareFilesOptions options;
+    if (!channels.empty()) options.channels = channels;
+    options.layer = layer;
+    for (const std::string &key : metrics) {
+        const io::CompareMetric *metric = io::find_compare_metric(key);
+        if (!metric) throw Error("unknown metric '" + key + "'");
+        options.metrics.push_back(metric);
+    }
+    options.psnr_peak = peak;
+    return options;
+}
+
+py::dict result_dict(const io::ComparePairResult &result, const io::CompareFilesOptions &options) {
+    py::dict d;
+    for (const io::CompareMetric *metric : options.metrics) d[metric->key] = result.metrics.*(metric->value);
+    d["psnr_peak"] = options.psnr_peak;
+    d["channels"] = result.channels;
+    d["pixels"] = result.metrics.pixels;
+    d["nonfinite_pixels"] = result.metrics.nonfinite_pixels;
+    d["spp"] = result.spp;
+    return d;
+}
+
+/// `aaf compare` of one pair: both file paths, or both AOV sets in memory.
+py::dict compare(const py::object &test, const py::object &reference,
+                 const std::vector<std::string> &channels, const std::string &layer,
+                 const std::vector<std::string> &metrics, double peak) {
+    const io::CompareFilesOptions options = compare_options(channels, layer, metrics, peak);
+    io::ComparePairResult result;
+    if (py::isinstance<py::str>(test) && py::isinstance<py::str>(reference)) {
+        const io::ImagePair pair{"", test.cast<std::string>(), reference.cast<std::string>()};
+        py::gil_scoped_release release;
+        result = io::compare_files({pair}, options).pairs.at(0);
+    } else if (py::isinstance<PyAovs>(test) && py::isinstance<PyAovs>(reference)) {
+        const AovSet test_set = from_python(test.cast<const PyAovs &>());
+        const AovSet reference_set = from_python(reference.cast<const PyAovs &>());
+        py::gil_scoped_release release;
+        result = io::compare_aov_sets({"", "test", "reference"}, test_set, reference_set, options);
+    } else {
+        throw py::type_error("compare: test and reference must both be paths (str) or both aaf.Aovs");
+    }
+    return result_dict(result, options);
+}
+
+/// The filter() docstring, generated from the registry like `aaf filter --help`.
+std::string filter_doc() {
+    std::string doc =
+        "filter(method, aovs, *, map=None, threads=0, **parameters) -> Aovs\n\n"
+        "Runs a registered method on `aovs` (as `aaf filter METHOD` does on a file) and returns\n"
+        "every input channel plus the method's outputs. `map`: a dict role -> channel name(s), or a\n"
+        "list of 'role=channels' (the CLI's --map). Parameters by their snake_case names:\n";
+    for (const Method *method : methods()) {
+        doc += "\n  " + method->info().name + ": " + method->info().summary + "\n";
+        for (const ParameterInfo &p : method->info().parameters)
+            doc += "    " + p.name + " (" + type_name(p.type) + ", default " + p.default_value + ", " +
+                   p.range_text() + (p.unit.empty() ? "" : ", " + p.unit) + "): " + p.help + "\n";
+    }
+    return doc;
+}
+
+}  // namespace
+
+}  // namespace aaf::python
+
+PYBIND11_MODULE(aaf, m) {
+    using namespace aaf;
+    using namespace aaf::python;
+    m.doc() = "libaaf: image-space reconstruction of ray-traced distribution effects";
+    m.attr("__version__") = AAF_VERSION;
+
+    // Translators are tried newest first: InputError before its base Error.
+    const py::exception<Error> &error = py::register_exception<Error>(m, "Error");
+    py::register_exception<InputError>(m, "InputError", error.ptr());
+
+    py::class_<PyAovs>(m, "Aovs",
+                       "channels: dict name -> float32 array (height, width); attributes: dict of header "
+                       "attributes (int, float, str, or 3-tuples for vectors)")
+        .def(py::init([](py::object channels, py::object attributes) {
+                 PyAovs aovs;
+                 if (!channels.is_none()) aovs.channels = py::dict(channels);
+                 if (!attributes.is_none()) aovs.attributes = py::dict(attributes);
+                 return aovs;
+             }),
+             py::arg("channels") = py::none(), py::arg("attributes") = py::none())
+        .def_readwrite("channels", &PyAovs::channels)
+        .def_readwrite("attributes", &PyAovs::attributes)
+        .def("__repr__", [](const PyAovs &aovs) {
+            return "<aaf.Aovs " + std::to_string(py::len(aovs.channels)) + " channels, " +
+                   std::to_string(py::len(aovs.attributes)) + " attributes>";
+        });
+
+    m.def(
+        "read",
+        [](const std::string &path) {
+            AovSet aovs;
+            {
+                py::gil_scoped_release release;
+                aovs = io::read_aovs(path);
+            }
+            return to_python(aovs);
+        },
+        py::arg("path"),
+        "Reads every channel of an image's first part as float32 arrays, with its header attributes. "
+        "Raises aaf.InputError '<path>: <problem>'.");
+    m.def(
+        "write",
+        [](const std::string &path, const PyAovs &aovs, const std::string &compression, bool half) {
+            const AovSet set = with_context(path, [&] { return from_python(aovs); });
+            io::WriteOptions options;
+            options.compression = compression;
+            options.half_colour = half;
+            py::gil_scoped_release release;
+            io::write_aovs(set, path, options);
+        },
+        py::arg("path"), py::arg("aovs"), py::arg("compression") = "zip", py::arg("half") = false,
+        "Writes `aovs` as an OpenEXR file (float channels; half=True stores colour layers as half), "
+        "atomically. Raises aaf.InputError '<path>: <problem>'.");
+    m.def(
+        "methods",
+        [] {
+            py::list list;
+            for (const Method *method : methods()) list.append(describe(*method));
+            return list;
+        },
+        "Every registered method: name, title, summary, reference, roles (required, optional, outputs), "
+        "parameters (name, type, default, unit, range, help, choices) and required header attributes.");
+    m.def(
+        "method", [](const std::string &name) { return describe(find_method(name)); }, py::arg("name"),
+        "One registered method, as methods() describes it; raises aaf.Error for an unknown name.");
+    m.def("filter", &filter, py::arg("method"), py::arg("aovs"), py::kw_only(), py::arg("map") = py::none(),
+          py::arg("threads") = 0, filter_doc().c_str());
+    m.def(
+        "metrics",
+        [] {
+            std::vector<std::string> keys;
+            for (const io::CompareMetric &metric : io::compare_metrics()) keys.push_back(metric.key);
+            return keys;
+        },
+        "The metric keys compare() accepts (those of `aaf compare --metric`).");
+    m.def("compare", &compare, py::arg("test"), py::arg("reference"), py::kw_only(),
+          py::arg("channels") = std::vector<std::string>{}, py::arg("layer") = "",
+          py::arg("metrics") = std::vector<std::string>{"rmse", "mse", "psnr"}, py::arg("peak") = 1.0,
+          "Error of `test` against `reference` as `aaf compare` measures it: two file paths or two "
+          "aaf.Aovs. channels: names or 'test=reference' pairs (default R,G,B, the beauty); layer: "
+          "compare that layer instead. Returns a dict of the metrics, psnr_peak, channels, pixels, "
+          "nonfinite_pixels and spp (NaN without the spp AOVs).");
+}
