@@ -54,14 +54,16 @@ AovSet without_channels(const AovSet &aovs, const std::vector<std::string> &drop
     return with_channels(aovs, from_to);
 }
 
-/// AAF models soft shadows only: say so when the input's beauty was defocused.
-void warn_if_defocused(const std::string &path, const AovSet &aovs, FilterFileReport &report) {
+/// A method that composes the beauty from the in-focus shadow drops the
+/// input's defocus: say so, naming it, when the input was rendered through a lens.
+void warn_if_defocused(const std::string &path, const AovSet &aovs, const FrameFilter &filter,
+                       FilterFileReport &report) {
+    if (filter.composes_beauty.empty()) return;
     auto it = aovs.attributes.find(attr::kApertureRadius);
     const float *aperture = it == aovs.attributes.end() ? nullptr : std::get_if<float>(&it->second);
     if (aperture && *aperture > 0)
-        report.warnings.push_back(path +
-                                  ": rendered through a thin lens; AAF filters the in-focus shadow, "
-                                  "its output R,G,B has no defocus");
+        report.warnings.push_back(path + ": rendered through a thin lens; " + filter.composes_beauty +
+                                  " filters the in-focus shadow, its output R,G,B has no defocus");
 }
 
 /// One warning per file that had NaN or infinite inputs, with the count per channel.
@@ -87,6 +89,9 @@ FrameFilter method_filter(const Method &method, const ParameterSet &parameters, 
     filter.run = [&method, parameters, channels](const AovSet &input) {
         return filter_aovs(method, input, channels, parameters);
     };
+    const std::vector<Role> &outputs = method.info().roles.outputs;
+    if (std::find(outputs.begin(), outputs.end(), Role::Beauty) != outputs.end())
+        filter.composes_beauty = method.info().name;
     return filter;
 }
 
@@ -101,7 +106,7 @@ FilterFileReport filter_file(const std::string &input_path, const std::string &o
     // AOVs the first part lacks may sit in other parts (one AOV per part);
     // they are read for the filter and stay in their parts in the output.
     report.borrowed = add_channels_from_other_parts(input_path, layout, filter.input_channels(input), input);
-    warn_if_defocused(input_path, input, report);
+    warn_if_defocused(input_path, input, filter, report);
     // Asked again: the borrowed channels may complete a synonym.
     if (options.replace_non_finite)
         report.non_finite = replace_non_finite(input, filter.input_channels(input));

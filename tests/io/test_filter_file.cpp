@@ -198,15 +198,20 @@ TEST_CASE("filter_file: NaN/Inf in the filter's inputs are replaced and counted,
     CHECK(std::isnan(io::read_aovs(output).channel("toy.out")(1, 1)));
 }
 
-TEST_CASE("filter_file: a thin-lens input gets a warning naming it", "[io][filter_file]") {
+TEST_CASE("filter_file: a thin-lens input gets a warning naming it and the method that drops its defocus",
+          "[io][filter_file]") {
     const fs::path dir = scratch_dir("filter_file_lens");
     const std::string input = (dir / "in.exr").string(), output = (dir / "out.exr").string();
     AovSet aovs = toy_frame();
     aovs.attributes[attr::kApertureRadius] = 0.01f;
     io::write_aovs(aovs, input);
-    const io::FilterFileReport report = io::filter_file(input, output, doubling_filter());
+    io::FrameFilter composing = doubling_filter();
+    composing.composes_beauty = "toy";
+    const io::FilterFileReport report = io::filter_file(input, output, composing);
     REQUIRE(report.warnings.size() == 1);
-    CHECK_THAT(report.warnings[0], Catch::StartsWith(input + ": rendered through a thin lens"));
+    CHECK_THAT(report.warnings[0], Catch::StartsWith(input + ": rendered through a thin lens; toy filters"));
+    // A filter that leaves the beauty alone (a defocus filter, say) has nothing to warn about.
+    CHECK(io::filter_file(input, output, doubling_filter()).warnings.empty());
 }
 
 TEST_CASE("filter_file: keep_beauty leaves R,G,B as they were and adds the filtered image as aaf.R/G/B",

@@ -24,6 +24,10 @@ struct FrameFilter {
     /// Runs the filter: returns the full output set (the input channels kept,
     /// the beauty roles as aov_contract.h names them, plus the outputs).
     std::function<AovSet(const AovSet &input)> run;
+    /// The method's name when it composes a new beauty from the in-focus
+    /// shadow (a defocused input's beauty then loses its defocus, which the
+    /// pipeline warns about); empty when it leaves the beauty alone.
+    std::string composes_beauty;
 };
 
 /// The registered method `method` with `parameters` as the pipeline runs it:
