@@ -53,6 +53,21 @@ std::vector<Term> terms_for(int sum_pairs, int pairs) {
     return terms;
 }
 
+/// The terms' component indices as flat arrays for the tap loops; `padded`
+/// rounds the count up to a multiple of 8 (zero weights) so the sums vectorise.
+struct TermTable {
+    std::size_t count = 0, padded = 0;
+    std::vector<int> pu, pv;
+    std::vector<float> sign_v;
+    explicit TermTable(const std::vector<Term> &terms) : count(terms.size()), padded((terms.size() + 7) / 8 * 8) {
+        for (const Term &t : terms) {
+            pu.push_back(t.pu);
+            pv.push_back(t.pv);
+            sign_v.push_back(t.sign_v);
+        }
+    }
+};
+
 /// Per-tap x-side factors of one centre's kernels: the Gaussians and phase
 /// factors of every component along both axes, then each term's complex weight.
 struct TapWeights {
@@ -73,12 +88,16 @@ struct TapWeights {
             sin_v[p] = std::sin(k.omega_x[p] * dv);
         }
     }
-    /// The term's weight g_p(du) g_q(dv) e^{j (C_x^p du + sign_v C_x^q dv)} (MAAF Eq. 12).
-    void of(const Term &t, float &re, float &im) const {
-        const float a = cos_u[t.pu], b = sin_u[t.pu], c = cos_v[t.pv], d = t.sign_v * sin_v[t.pv];
-        const float g = gauss_u[t.pu] * gauss_v[t.pv];
-        re = g * (a * c - b * d);
-        im = g * (a * d + b * c);
+    /// Every term's weight g_p(du) g_q(dv) e^{j (C_x^p du + sign_v C_x^q dv)} (MAAF Eq. 12) into re[j],
+    /// im[j]; 0 for a term whose reach `radius` is below the tap's `offset` (pixels).
+    void of_terms(const TermTable &t, const int *radius, int offset, float *re, float *im) const {
+        for (std::size_t j = 0; j < t.count; ++j) {
+            const int pu = t.pu[j], pv = t.pv[j];
+            const float a = cos_u[pu], b = sin_u[pu], c = cos_v[pv], d = t.sign_v[j] * sin_v[pv];
+            const float g = offset <= radius[j] ? gauss_u[pu] * gauss_v[pv] : 0.0f;
+            re[j] = g * (a * c - b * d);
+            im[j] = g * (a * d + b * c);
+        }
     }
 };
 
@@ -92,7 +111,9 @@ MaafFilteredSums maaf_separable_filter(const GatherGuides &g, float normal_thres
         throw Error("MAAF separable filter: N used must lie in [1, N of the sums]");
     const std::size_t count = std::size_t(g.width) * std::size_t(g.height);
     const std::vector<Term> terms = terms_for(sum_pairs, pairs);
-    const std::size_t term_count = terms.size(), stride = 4 * term_count;  // value re, im; unoccluded re, im
+    const TermTable table(terms);
+    // Per pixel four blocks of `padded` floats: value re, value im, unoccluded re, unoccluded im.
+    const std::size_t term_count = terms.size(), padded = table.padded, stride = 4 * padded;
 
     // The complex sources, pixel-interleaved so that one tap's terms are contiguous.
     std::vector<float> sources(count * stride, 0.0f);
@@ -102,12 +123,12 @@ MaafFilteredSums maaf_separable_filter(const GatherGuides &g, float normal_thres
             float *s = &sources[i * stride];
             for (std::size_t j = 0; j < term_count; ++j) {
                 for (const auto &[factor, c] : terms[j].re) {
-                    s[4 * j] += factor * value_sums[c][i];
-                    s[4 * j + 2] += factor * unoccluded_sums[c][i];
+                    s[j] += factor * value_sums[c][i];
+                    s[2 * padded + j] += factor * unoccluded_sums[c][i];
                 }
                 for (const auto &[factor, c] : terms[j].im) {
-                    s[4 * j + 1] += factor * value_sums[c][i];
-                    s[4 * j + 3] += factor * unoccluded_sums[c][i];
+                    s[padded + j] += factor * value_sums[c][i];
+                    s[3 * padded + j] += factor * unoccluded_sums[c][i];
                 }
             }
         }
@@ -136,7 +157,8 @@ MaafFilteredSums maaf_separable_filter(const GatherGuides &g, float normal_thres
     out.central_denominator.assign(count, 0.0);
     // A row's vertical pass feeds only that row's horizontal pass: one row's intermediates at a time.
     parallel_for_rows(g.height, [&](int y) {
-        std::vector<float> intermediate(std::size_t(g.width) * stride), sum(stride);
+        std::vector<float> intermediate(std::size_t(g.width) * stride), sum(stride), re(padded, 0.0f),
+            im(padded, 0.0f);
         std::vector<int> radius(term_count);
         TapWeights w;
         for (int x = 0; x < g.width; ++x) {  // vertical: each pixel with its own kernel
@@ -154,15 +176,15 @@ MaafFilteredSums maaf_separable_filter(const GatherGuides &g, float normal_thres
                 if (!accepted(c, t)) continue;
                 const int offset = std::abs(ty - y);
                 w.evaluate(k, pairs, g.coord_u_m[t] - g.coord_u_m[c], g.coord_v_m[t] - g.coord_v_m[c]);
+                w.of_terms(table, radius.data(), offset, re.data(), im.data());
                 const float *s = &sources[t * stride];
-                for (std::size_t j = 0; j < term_count; ++j) {
-                    if (offset > radius[j]) continue;
-                    float re, im;
-                    w.of(terms[j], re, im);
-                    sum[4 * j] += re * s[4 * j] - im * s[4 * j + 1];
-                    sum[4 * j + 1] += re * s[4 * j + 1] + im * s[4 * j];
-                    sum[4 * j + 2] += re * s[4 * j + 2] - im * s[4 * j + 3];
-                    sum[4 * j + 3] += re * s[4 * j + 3] + im * s[4 * j + 2];
+                float *sum_v = sum.data(), *sum_u = sum.data() + 2 * padded;
+                const float *src_v = s, *src_u = s + 2 * padded;
+                for (std::size_t j = 0; j < padded; ++j) {  // complex weight times complex source
+                    sum_v[j] += re[j] * src_v[j] - im[j] * src_v[padded + j];
+                    sum_v[padded + j] += re[j] * src_v[padded + j] + im[j] * src_v[j];
+                    sum_u[j] += re[j] * src_u[j] - im[j] * src_u[padded + j];
+                    sum_u[padded + j] += re[j] * src_u[padded + j] + im[j] * src_u[j];
                 }
             }
             std::copy(sum.begin(), sum.end(), acc);
@@ -178,25 +200,25 @@ MaafFilteredSums maaf_separable_filter(const GatherGuides &g, float normal_thres
                 if (!accepted(c, t)) continue;
                 const int offset = std::abs(tx - x);
                 w.evaluate(k, pairs, g.coord_u_m[t] - g.coord_u_m[c], g.coord_v_m[t] - g.coord_v_m[c]);
+                w.of_terms(table, radius.data(), offset, re.data(), im.data());
                 const float *s = &intermediate[std::size_t(tx) * stride];
-                for (std::size_t j = 0; j < term_count; ++j) {
-                    if (offset > radius[j]) continue;
-                    float re, im;
-                    w.of(terms[j], re, im);
-                    sum[4 * j] += re * s[4 * j] - im * s[4 * j + 1];
-                    sum[4 * j + 2] += re * s[4 * j + 2] - im * s[4 * j + 3];
+                float *sum_v = sum.data(), *sum_u = sum.data() + 2 * padded;
+                const float *src_v = s, *src_u = s + 2 * padded;
+                for (std::size_t j = 0; j < padded; ++j) {  // real parts only
+                    sum_v[j] += re[j] * src_v[j] - im[j] * src_v[padded + j];
+                    sum_u[j] += re[j] * src_u[j] - im[j] * src_u[padded + j];
                 }
             }
             double numerator = 0, denominator = 0;
             for (std::size_t j = 0; j < term_count; ++j) {  // MAAF Eq. 21: mu_p sigma_p mu_q sigma_q per pair
                 const double weight = terms[j].scale * k.weight[terms[j].pu] * k.weight[terms[j].pv];
-                numerator += weight * double(sum[4 * j]);
-                denominator += weight * double(sum[4 * j + 2]);
+                numerator += weight * double(sum[j]);
+                denominator += weight * double(sum[2 * padded + j]);
             }
             out.numerator[c] = numerator;
             out.denominator[c] = denominator;
             out.central_numerator[c] = double(sum[0]);
-            out.central_denominator[c] = double(sum[2]);
+            out.central_denominator[c] = double(sum[2 * padded]);
         }
     });
     return out;
