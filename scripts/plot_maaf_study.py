@@ -42,18 +42,23 @@ def main():
     scenes = sorted(by_scene)
     fig, axes = plt.subplots(2, len(scenes), figsize=(5.5 * len(scenes), 8), squeeze=False)
     for column, scene in enumerate(scenes):
-        maaf = sorted(by_scene[scene]["MAAF"], key=lambda r: r["avg_spp"])
+        # "MAAF" is the CLI default (k = 3); "MAAF k=1" the paper's widths.
+        variants = sorted((m for m in by_scene[scene] if m.startswith("MAAF")), key=lambda m: (m != "MAAF", m))
+        maafs = {m: sorted(by_scene[scene][m], key=lambda r: r["avg_spp"]) for m in variants}
         aaf = sorted(by_scene[scene]["AAF-AS"], key=lambda r: r["avg_spp"])
         ax = axes[0][column]
         ax.loglog([r["avg_spp"] for r in aaf], [r["rmse"] for r in aaf], "o-", label="AAF adaptive + filter (mu swept)")
-        ax.loglog([r["avg_spp"] for r in maaf], [r["rmse"] for r in maaf], "s-", label="MAAF N = 3 (25 filters)")
+        for m, maaf in maafs.items():
+            label = "MAAF N = 3 (25 filters), k = 3 (default)" if m == "MAAF" else f"{m} (paper widths)"
+            ax.loglog([r["avg_spp"] for r in maaf], [r["rmse"] for r in maaf], "s-", label=label)
         ax.set_title(scene)
         ax.set_xlabel("average spp")
         ax.set_ylabel("RMSE of the beauty")
         ax.legend()
         ax = axes[1][column]
         ax.loglog([r["total_s"] for r in aaf], [r["rmse"] for r in aaf], "o-", label="AAF adaptive + filter")
-        ax.loglog([r["total_s"] for r in maaf], [r["rmse"] for r in maaf], "s-", label="MAAF")
+        for m, maaf in maafs.items():
+            ax.loglog([r["total_s"] for r in maaf], [r["rmse"] for r in maaf], "s-", label=m)
         ax.set_xlabel("wall-clock s (sampling + accumulation + filter)")
         ax.set_ylabel("RMSE of the beauty")
         ax.legend()
@@ -62,7 +67,7 @@ def main():
         time_curve = sorted((r["total_s"], r["rmse"]) for r in aaf)
         # RMSE falls with spp: interpolate spp as a function of RMSE.
         rmse_curve = sorted((r["rmse"], r["avg_spp"]) for r in aaf)
-        for r in maaf:
+        for r in (r for maaf in maafs.values() for r in maaf):
             spp = interpolate(rmse_curve, r["rmse"])
             equal_time = interpolate(time_curve, r["total_s"])
             quality = (f"AAF needs {spp:.1f} spp for RMSE {r['rmse']:.5f} ({spp / r['avg_spp']:.2f}x)"
@@ -70,7 +75,7 @@ def main():
                                    f"[{min(y for _, y in spp_curve):.5f}, {max(y for _, y in spp_curve):.5f}]")
             timing = (f"in the same {r['total_s']:.2f} s AAF reaches RMSE {equal_time:.5f}"
                       if equal_time else f"{r['total_s']:.2f} s lies outside AAF's measured times")
-            print(f"{scene}: MAAF {r['avg_spp']:.0f} spp: {quality}; {timing}; MAAF time: sampling "
+            print(f"{scene}: {r['method']} {r['avg_spp']:.0f} spp: {quality}; {timing}; MAAF time: sampling "
                   f"{r['sampling_s']:.2f} s, accumulation {r['accumulation_s']:.2f} s, filter {r['filter_s']:.2f} s")
     fig.tight_layout()
     fig.savefig(sys.argv[2], dpi=90)

@@ -46,7 +46,9 @@ int main(int argc, char **argv) {
     std::vector<std::string> scenes{"grids", "tentacles"};
     std::string output = "maaf_study.csv";
     int width = 320, height = 240, reference_spp = 4096;
-    std::vector<int> maaf_spp{4, 9, 16, 25};
+    std::vector<int> maaf_spp{4, 9, 16, 25, 64};
+    // The CLI default width scale first, then the paper's reading (MaafParams::k).
+    std::vector<std::string> maaf_k{"3", "1"};
     std::vector<float> mu_values{0.5f, 0.75f, 1.0f, 1.5f, 2.0f, 3.0f, 4.0f, 6.0f};
     app.add_option("--scenes", scenes, "Built-in scenes")->delimiter(',')->capture_default_str();
     app.add_option("-o,--output", output, "CSV path")->capture_default_str();
@@ -54,6 +56,9 @@ int main(int argc, char **argv) {
     app.add_option("--height", height)->capture_default_str();
     app.add_option("--reference-spp", reference_spp)->capture_default_str();
     app.add_option("--maaf-spp", maaf_spp, "MAAF spp values")->delimiter(',')->capture_default_str();
+    app.add_option("--maaf-k", maaf_k, "MAAF width scales k (the first is reported as MAAF)")
+        ->delimiter(',')
+        ->capture_default_str();
     app.add_option("--mu", mu_values, "AAF adaptive-sampling mu values")->delimiter(',')->capture_default_str();
     CLI11_PARSE(app, argc, argv);
 
@@ -79,13 +84,21 @@ int main(int argc, char **argv) {
                 const AovSet noisy = trace::render_scene(scene, settings);
                 const double with_maaf_s = seconds_since(start);
                 const Method &maaf = find_method("maaf");
-                start = Clock::now();
-                const AovSet filtered = filter_aovs(maaf, noisy, ChannelMap{}, maaf.default_parameters());
-                const double filter_s = seconds_since(start);
-                rows.push_back({scene, "MAAF", double(spp), double(spp), compare_channels(filtered, reference, kRgb).rmse,
-                                sampling_s, std::max(0.0, with_maaf_s - sampling_s), filter_s});
-                std::fprintf(stderr, "%-10s MAAF %3d spp: RMSE %.5f  sampling %.2f s  accumulation %.2f s  filter %.2f s\n",
-                             scene.c_str(), spp, rows.back().rmse, sampling_s, rows.back().accumulation_s, filter_s);
+                for (const std::string &k : maaf_k) {
+                    ParameterSet parameters = maaf.default_parameters();
+                    parameters.set("k", k);
+                    start = Clock::now();
+                    const AovSet filtered = filter_aovs(maaf, noisy, ChannelMap{}, parameters);
+                    const double filter_s = seconds_since(start);
+                    const std::string name = k == maaf_k.front() ? "MAAF" : "MAAF k=" + k;
+                    rows.push_back({scene, name, double(spp), double(spp),
+                                    compare_channels(filtered, reference, kRgb).rmse, sampling_s,
+                                    std::max(0.0, with_maaf_s - sampling_s), filter_s});
+                    std::fprintf(stderr,
+                                 "%-10s %s %3d spp: RMSE %.5f  sampling %.2f s  accumulation %.2f s  filter %.2f s\n",
+                                 scene.c_str(), name.c_str(), spp, rows.back().rmse, sampling_s,
+                                 rows.back().accumulation_s, filter_s);
+                }
             }
             settings.aovs = aaf_groups;
             settings.spp = 9;  // AAF Sec. 6: the first pass

@@ -53,23 +53,14 @@ void check_inputs(const MaafInputs &in, const LightPlane &light, const MaafParam
     check_size(in.object_id, width, height, "object_id");
 }
 
-/// One pixel's x-side kernels, per component p = 0 .. M-1 (at most kMaafMaxPairs).
-struct PixelKernels {
-    bool filtered = false;
-    float omega_x[kMaafMaxPairs] = {};          ///< C_x^p, rad/m
-    float inv_two_sigma_sq[kMaafMaxPairs] = {};  ///< of the primal Gaussian of std 1/sigma_x^p, m^-2
-    int radius_px[kMaafMaxPairs] = {};
-    double weight[kMaafMaxPairs] = {};  ///< mu_0 sigma_x^0, 2 mu_p sigma_x^p (the Gaussian's normalisation)
-};
-
 /// True when the stored wedge is one maaf_components() accepts.
 bool usable_wedge(float s_min, float s_max, float omega_x_max, float pixel_size) {
     return s_min >= 0 && s_max >= s_min && std::isfinite(s_max) && omega_x_max > 0 && std::isfinite(omega_x_max) &&
            pixel_size > 0 && std::isfinite(pixel_size);
 }
 
-PixelKernels pixel_kernels(const MaafInputs &in, const MaafParams &params, int pairs, int x, int y) {
-    PixelKernels k;
+MaafPixelKernel pixel_kernels(const MaafInputs &in, const MaafParams &params, int pairs, int x, int y) {
+    MaafPixelKernel k;
     const float s_min = in.s_min(x, y), s_max = in.s_max(x, y), omega_x_max = in.omega_x_max(x, y);
     const float pixel_size = in.pixel_size(x, y);
     if (in.object_id(x, y) == 0 || !usable_wedge(s_min, s_max, omega_x_max, pixel_size)) return k;
@@ -77,10 +68,13 @@ PixelKernels pixel_kernels(const MaafInputs &in, const MaafParams &params, int p
         maaf_pair_components(s_min, s_max, omega_x_max, params.omega_y_max_rad_per_m, pairs);
     for (int p = 0; p < pairs; ++p) {
         const MaafComponent &c = components[std::size_t(p)];
-        const double sigma_m = 1.0 / c.sigma_x;  // primal width of G(.; sigma_x) (MAAF Eq. 12)
+        // The Fourier Gaussian's std is k sigma_x^p (MaafParams::k; the paper's reading is k = 1).
+        const double fourier_sigma = params.k * c.sigma_x;
+        const double sigma_m = 1.0 / fourier_sigma;  // primal width of G(.; k sigma_x) (MAAF Eq. 12)
         const double radius = std::min(std::ceil(kCutoffSigmas * sigma_m / pixel_size), double(params.max_radius_px));
         k.omega_x[p] = float(c.centre_x);
-        k.inv_two_sigma_sq[p] = float(std::min(0.5 * c.sigma_x * c.sigma_x, double(std::numeric_limits<float>::max())));
+        k.inv_two_sigma_sq[p] =
+            float(std::min(0.5 * fourier_sigma * fourier_sigma, double(std::numeric_limits<float>::max())));
         k.radius_px[p] = int(radius);
         k.weight[p] = (p == 0 ? 1.0 : 2.0) * c.weight * c.sigma_x;  // MAAF Eq. 21
     }
@@ -108,6 +102,7 @@ void MaafParams::validate() const {
     if (!(normal_threshold_deg >= 0 && normal_threshold_deg <= 180))
         throw Error("MAAF normal threshold must lie in [0, 180] degrees");
     if (max_radius_px < 0) throw Error("MAAF maximum filter radius must be >= 0 pixels");
+    if (!(k > 0) || !std::isfinite(k)) throw Error("MAAF width scale k must be positive and finite");
 }
 
 void maaf_filter(const MaafInputs &in, const LightPlane &light, const MaafParams &params, PlaneView out) {
@@ -121,7 +116,7 @@ void maaf_filter(const MaafInputs &in, const LightPlane &light, const MaafParams
 
     GatherGuides guides;
     guides.resize(width, height);
-    std::vector<PixelKernels> kernels(count);
+    std::vector<MaafPixelKernel> kernels(count);
     parallel_for_rows(height, [&](int y) {
         for (int x = 0; x < width; ++x) {
             const std::size_t i = guides.index(x, y);
@@ -178,78 +173,24 @@ void maaf_filter(const MaafInputs &in, const LightPlane &light, const MaafParams
         }
     };
     auto channel = [&](int function_u, int function_v) { return std::size_t(function_u * per_axis + function_v); };
-    for (int pu = 0; pu < pairs; ++pu)
+    if (params.separable) {
+        MaafFilteredSums sums =
+            maaf_separable_filter(guides, params.normal_threshold_deg, kernels, in.pairs, pairs, values, unoccludeds);
+        numerator = std::move(sums.numerator);
+        denominator = std::move(sums.denominator);
+        central_num = std::move(sums.central_numerator);
+        central_den = std::move(sums.central_denominator);
+    }
+    for (int pu = 0; pu < pairs && !params.separable; ++pu)
         for (int pv = 0; pv < pairs; ++pv) {
             // Component pu along the light's first axis, pv along its second (MAAF Fig. 7).
-            if (params.separable) {
-                ComplexKernels k;
-                k.omega_u.resize(count);
-                k.omega_v.resize(count);
-                k.inv_u.resize(count);
-                k.inv_v.resize(count);
-                k.radius_px.resize(count);
-                for (std::size_t i = 0; i < count; ++i) {
-                    k.radius_px[i] = kernels[i].filtered ? std::max(kernels[i].radius_px[pu], kernels[i].radius_px[pv]) : 0;
-                    k.omega_u[i] = kernels[i].omega_x[pu];
-                    k.omega_v[i] = kernels[i].omega_x[pv];
-                    k.inv_u[i] = kernels[i].inv_two_sigma_sq[pu];
-                    k.inv_v[i] = kernels[i].inv_two_sigma_sq[pv];
-                }
-                // MAAF Eq. 13 regrouped as complex exponentials: for p, q >= 1,
-                // cos a cos b h_cc - cos a sin b h_cs - sin a cos b h_sc + sin a sin b h_ss
-                //   = 1/2 Re[e^{j(a+b)} ((h_cc - h_ss) + j (h_cs + h_sc))]
-                //   + 1/2 Re[e^{j(a-b)} ((h_cc + h_ss) + j (h_sc - h_cs))],
-                // and cos a h_c - sin a h_s = Re[e^{ja} (h_c + j h_s)] with one axis central.
-                struct Term {
-                    double sign_v;  ///< the phase along v: +C_v or -C_v
-                    double scale;
-                    std::vector<std::pair<double, std::size_t>> re, im;  ///< (factor, channel)
-                };
-                std::vector<Term> terms;
-                if (pu == 0 && pv == 0)
-                    terms.push_back({1.0, 1.0, {{1.0, channel(0, 0)}}, {}});
-                else if (pv == 0)
-                    terms.push_back({1.0, 1.0, {{1.0, channel(2 * pu - 1, 0)}}, {{1.0, channel(2 * pu, 0)}}});
-                else if (pu == 0)
-                    terms.push_back({1.0, 1.0, {{1.0, channel(0, 2 * pv - 1)}}, {{1.0, channel(0, 2 * pv)}}});
-                else {
-                    const std::size_t cc = channel(2 * pu - 1, 2 * pv - 1), cs = channel(2 * pu - 1, 2 * pv),
-                                      sc = channel(2 * pu, 2 * pv - 1), ss = channel(2 * pu, 2 * pv);
-                    terms.push_back({1.0, 0.5, {{1.0, cc}, {-1.0, ss}}, {{1.0, cs}, {1.0, sc}}});
-                    terms.push_back({-1.0, 0.5, {{1.0, cc}, {1.0, ss}}, {{1.0, sc}, {-1.0, cs}}});
-                }
-                for (const Term &term : terms) {
-                    ComplexKernels signed_k = k;
-                    if (term.sign_v < 0)
-                        for (float &w : signed_k.omega_v) w = -w;
-                    auto combine = [&](const std::vector<std::vector<float>> &planes) {
-                        ComplexPlane z;
-                        z.re.assign(count, 0.0);
-                        z.im.assign(count, 0.0);
-                        for (const auto &[factor, c] : term.re)
-                            for (std::size_t i = 0; i < count; ++i) z.re[i] += factor * planes[c][i];
-                        for (const auto &[factor, c] : term.im)
-                            for (std::size_t i = 0; i < count; ++i) z.im[i] += factor * planes[c][i];
-                        return z;
-                    };
-                    const std::vector<ComplexPlane> result = maaf_separable_gather(
-                        guides, params.normal_threshold_deg, signed_k, {combine(values), combine(unoccludeds)});
-                    std::vector<float> value(count), unoccluded(count);
-                    for (std::size_t i = 0; i < count; ++i) {
-                        value[i] = float(result[0].re[i]);
-                        unoccluded[i] = float(result[1].re[i]);
-                    }
-                    add(pu, pv, term.scale, value, unoccluded);
-                }
-                continue;
-            }
             GatherSettings settings;
             settings.normal_threshold_deg = params.normal_threshold_deg;
             settings.mode = GatherMode::Full2D;
             std::vector<float> omega_u(count), omega_v(count), inv_u(count), inv_v(count), out_value(count),
                 out_unoccluded(count);
             for (std::size_t i = 0; i < count; ++i) {
-                const PixelKernels &k = kernels[i];
+                const MaafPixelKernel &k = kernels[i];
                 guides.radius_px[i] = k.filtered ? std::max(k.radius_px[pu], k.radius_px[pv]) : 0;
                 omega_u[i] = k.omega_x[pu];
                 omega_v[i] = k.omega_x[pv];

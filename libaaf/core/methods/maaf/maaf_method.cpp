@@ -23,6 +23,11 @@ std::vector<ParameterInfo> maaf_parameters() {
         ParameterInfo::choice("pairs", "all", {"all", "1"},
                               "Filter pairs N per 2D subspace: all of the sums' (the tracer writes N = 3, 25 "
                               "filters in 4D) or 1, the central filter alone (AAF)"),
+        ParameterInfo::real("k", "3", "",
+                            "Width scale: each component's Fourier-domain std is k times its half-width sigma_x^p "
+                            "(1 = the paper's reading of MAAF Eq. 8-9; 3 = AAF's k, N = 1 then equals AAF's "
+                            "default filter)",
+                            0.01, 100),
         ParameterInfo::real("normal_threshold", "20", "degrees",
                             "Reject taps whose normal turns more (MAAF Sec. 6.2)", 0, 180),
         ParameterInfo::integer("max_radius", "64", "pixels", "Largest filter radius", 0, 1 << 16),
@@ -88,6 +93,7 @@ class MaafMethod final : public Method {
         if (!(params.omega_y_max_rad_per_m > 0) || !std::isfinite(params.omega_y_max_rad_per_m))
             throw InputError("header attribute '" + std::string(attr::kMaafOmegaYMax) + "' must be positive");
         params.pairs_used = parameters.get_choice("pairs") == "1" ? 1 : 0;
+        params.k = double(parameters.get_float("k"));
         params.normal_threshold_deg = parameters.get_float("normal_threshold");
         params.max_radius_px = parameters.get_int("max_radius");
         params.separable = parameters.get_choice("filter") == "separable";

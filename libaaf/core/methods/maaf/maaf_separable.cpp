@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include "aaf/core/error.h"
+#include "aaf/core/fast_exp.h"
 #include "aaf/core/parallel.h"
 
 namespace aaf {
@@ -11,61 +13,218 @@ namespace {
 
 constexpr float kPi = 3.14159265358979323846f;
 
-/// One 1D pass: every pixel gathers the taps along `vertical` (columns) or
-/// rows within its own radius, with its own kernel.
-std::vector<ComplexPlane> pass(const GatherGuides &g, float cos_threshold, const ComplexKernels &k,
-                               const std::vector<ComplexPlane> &sources, bool vertical) {
-    const std::size_t count = std::size_t(g.width) * std::size_t(g.height);
-    std::vector<ComplexPlane> out(sources.size());
-    for (ComplexPlane &plane : out) {
-        plane.re.assign(count, 0.0);
-        plane.im.assign(count, 0.0);
+/// One complex source of MAAF Eq. 13 regrouped: the channels' combination
+/// filtered with g_p(du) g_q(dv) e^{j (C_x^p du + sign_v C_x^q dv)}, its real
+/// part entering the result times `scale` mu_p sigma_p mu_q sigma_q.
+struct Term {
+    int pu = 0, pv = 0;
+    float sign_v = 1.0f;
+    double scale = 1.0;
+    std::vector<std::pair<float, std::size_t>> re, im;  ///< (factor, channel)
+};
+
+/// The terms for N = `pairs` over sums accumulated with `sum_pairs`; term 0 is the central pair.
+std::vector<Term> terms_for(int sum_pairs, int pairs) {
+    const int per_axis = maaf_functions_per_axis(sum_pairs);
+    auto channel = [per_axis](int function_u, int function_v) {
+        return std::size_t(function_u * per_axis + function_v);
+    };
+    // For p, q >= 1 (a, b the two axes' x-side phases):
+    // cos a cos b h_cc - cos a sin b h_cs - sin a cos b h_sc + sin a sin b h_ss
+    //   = 1/2 Re[e^{j(a+b)} ((h_cc - h_ss) + j (h_cs + h_sc))]
+    //   + 1/2 Re[e^{j(a-b)} ((h_cc + h_ss) + j (h_sc - h_cs))],
+    // and cos a h_c - sin a h_s = Re[e^{ja} (h_c + j h_s)] with one axis central.
+    std::vector<Term> terms;
+    for (int pu = 0; pu < pairs; ++pu)
+        for (int pv = 0; pv < pairs; ++pv) {
+            if (pu == 0 && pv == 0) {
+                terms.push_back({0, 0, 1.0f, 1.0, {{1.0f, channel(0, 0)}}, {}});
+            } else if (pv == 0) {
+                terms.push_back({pu, 0, 1.0f, 1.0, {{1.0f, channel(2 * pu - 1, 0)}}, {{1.0f, channel(2 * pu, 0)}}});
+            } else if (pu == 0) {
+                terms.push_back({0, pv, 1.0f, 1.0, {{1.0f, channel(0, 2 * pv - 1)}}, {{1.0f, channel(0, 2 * pv)}}});
+            } else {
+                const std::size_t cc = channel(2 * pu - 1, 2 * pv - 1), cs = channel(2 * pu - 1, 2 * pv),
+                                  sc = channel(2 * pu, 2 * pv - 1), ss = channel(2 * pu, 2 * pv);
+                terms.push_back({pu, pv, 1.0f, 0.5, {{1.0f, cc}, {-1.0f, ss}}, {{1.0f, cs}, {1.0f, sc}}});
+                terms.push_back({pu, pv, -1.0f, 0.5, {{1.0f, cc}, {1.0f, ss}}, {{1.0f, sc}, {-1.0f, cs}}});
+            }
+        }
+    return terms;
+}
+
+/// The terms' component indices as flat arrays for the tap loops; `padded`
+/// rounds the count up to a multiple of 8 (zero weights) so the sums vectorise.
+struct TermTable {
+    std::size_t count = 0, padded = 0;
+    std::vector<int> pu, pv;
+    std::vector<float> sign_v;
+    explicit TermTable(const std::vector<Term> &terms) : count(terms.size()), padded((terms.size() + 7) / 8 * 8) {
+        for (const Term &t : terms) {
+            pu.push_back(t.pu);
+            pv.push_back(t.pv);
+            sign_v.push_back(t.sign_v);
+        }
     }
+};
+
+/// Per-tap x-side factors of one centre's kernels: the Gaussians and phase
+/// factors of every component along both axes, then each term's complex weight.
+struct TapWeights {
+    float gauss_u[kMaafMaxPairs], gauss_v[kMaafMaxPairs];
+    float cos_u[kMaafMaxPairs], sin_u[kMaafMaxPairs], cos_v[kMaafMaxPairs], sin_v[kMaafMaxPairs];
+
+    void evaluate(const MaafPixelKernel &k, int pairs, float du, float dv) {
+        for (int p = 0; p < pairs; ++p) {
+            gauss_u[p] = fast_exp_nonpositive(-du * du * k.inv_two_sigma_sq[p]);
+            gauss_v[p] = fast_exp_nonpositive(-dv * dv * k.inv_two_sigma_sq[p]);
+        }
+        cos_u[0] = cos_v[0] = 1.0f;
+        sin_u[0] = sin_v[0] = 0.0f;
+        for (int p = 1; p < pairs; ++p) {  // e^{j C_x^p du}, shared by every pair with p on that axis
+            cos_u[p] = std::cos(k.omega_x[p] * du);
+            sin_u[p] = std::sin(k.omega_x[p] * du);
+            cos_v[p] = std::cos(k.omega_x[p] * dv);
+            sin_v[p] = std::sin(k.omega_x[p] * dv);
+        }
+    }
+    /// Every term's weight g_p(du) g_q(dv) e^{j (C_x^p du + sign_v C_x^q dv)} (MAAF Eq. 12) into re[j],
+    /// im[j]; 0 for a term whose reach `radius` is below the tap's `offset` (pixels).
+    void of_terms(const TermTable &t, const int *radius, int offset, float *re, float *im) const {
+        for (std::size_t j = 0; j < t.count; ++j) {
+            const int pu = t.pu[j], pv = t.pv[j];
+            const float a = cos_u[pu], b = sin_u[pu], c = cos_v[pv], d = t.sign_v[j] * sin_v[pv];
+            const float g = offset <= radius[j] ? gauss_u[pu] * gauss_v[pv] : 0.0f;
+            re[j] = g * (a * c - b * d);
+            im[j] = g * (a * d + b * c);
+        }
+    }
+};
+
+}  // namespace
+
+MaafFilteredSums maaf_separable_filter(const GatherGuides &g, float normal_threshold_deg,
+                                       const std::vector<MaafPixelKernel> &kernels, int sum_pairs, int pairs,
+                                       const std::vector<std::vector<float>> &value_sums,
+                                       const std::vector<std::vector<float>> &unoccluded_sums) {
+    if (pairs < 1 || pairs > sum_pairs || sum_pairs > kMaafMaxPairs)
+        throw Error("MAAF separable filter: N used must lie in [1, N of the sums]");
+    const std::size_t count = std::size_t(g.width) * std::size_t(g.height);
+    const std::vector<Term> terms = terms_for(sum_pairs, pairs);
+    const TermTable table(terms);
+    // Per pixel four blocks of `padded` floats: value re, value im, unoccluded re, unoccluded im.
+    const std::size_t term_count = terms.size(), padded = table.padded, stride = 4 * padded;
+
+    // The complex sources, pixel-interleaved so that one tap's terms are contiguous.
+    std::vector<float> sources(count * stride, 0.0f);
     parallel_for_rows(g.height, [&](int y) {
         for (int x = 0; x < g.width; ++x) {
-            const std::size_t c = g.index(x, y);
-            const int radius = k.radius_px[c];
-            if (radius == 0) {
-                for (std::size_t s = 0; s < sources.size(); ++s) {
-                    out[s].re[c] = sources[s].re[c];
-                    out[s].im[c] = sources[s].im[c];
+            const std::size_t i = g.index(x, y);
+            float *s = &sources[i * stride];
+            for (std::size_t j = 0; j < term_count; ++j) {
+                for (const auto &[factor, c] : terms[j].re) {
+                    s[j] += factor * value_sums[c][i];
+                    s[2 * padded + j] += factor * unoccluded_sums[c][i];
                 }
-                continue;
-            }
-            const float u = g.coord_u_m[c], v = g.coord_v_m[c], id = g.object_id[c];
-            const float nx = g.normal_x[c], ny = g.normal_y[c], nz = g.normal_z[c];
-            const double omega_u = k.omega_u[c], omega_v = k.omega_v[c];
-            const double inv_u = k.inv_u[c], inv_v = k.inv_v[c];
-            const int begin = std::max(0, (vertical ? y : x) - radius);
-            const int end = std::min(vertical ? g.height : g.width, (vertical ? y : x) + radius + 1);
-            for (int tap = begin; tap < end; ++tap) {
-                const std::size_t t = vertical ? g.index(x, tap) : g.index(tap, y);
-                const float cos_angle = nx * g.normal_x[t] + ny * g.normal_y[t] + nz * g.normal_z[t];
-                const bool accepted = t == c || (g.object_id[t] == id && cos_angle >= cos_threshold);
-                if (!accepted) continue;
-                const double du = double(g.coord_u_m[t]) - u, dv = double(g.coord_v_m[t]) - v;
-                const double weight = std::exp(-(du * du * inv_u + dv * dv * inv_v));
-                const double phase = omega_u * du + omega_v * dv;  // MAAF Eq. 12: e^{j (C_x x + ...)}
-                const double wc = weight * std::cos(phase), ws = weight * std::sin(phase);
-                for (std::size_t s = 0; s < sources.size(); ++s) {
-                    const double re = sources[s].re[t], im = sources[s].im[t];
-                    out[s].re[c] += wc * re - ws * im;
-                    out[s].im[c] += wc * im + ws * re;
+                for (const auto &[factor, c] : terms[j].im) {
+                    s[padded + j] += factor * value_sums[c][i];
+                    s[3 * padded + j] += factor * unoccluded_sums[c][i];
                 }
             }
         }
     });
-    return out;
-}
 
-}  // namespace
-
-std::vector<ComplexPlane> maaf_separable_gather(const GatherGuides &guides, float normal_threshold_deg,
-                                                const ComplexKernels &kernels,
-                                                const std::vector<ComplexPlane> &sources) {
     const float cos_threshold = std::cos(normal_threshold_deg * kPi / 180.0f);
-    // e^{j w.(d1 + d2)} = e^{j w.d1} e^{j w.d2}: along the column into (x, y'), then along the row.
-    return pass(guides, cos_threshold, kernels, pass(guides, cos_threshold, kernels, sources, true), false);
+    auto accepted = [&](std::size_t c, std::size_t t) {
+        const float cos_angle = g.normal_x[c] * g.normal_x[t] + g.normal_y[c] * g.normal_y[t] +
+                                g.normal_z[c] * g.normal_z[t];
+        return t == c || (g.object_id[t] == g.object_id[c] && cos_angle >= cos_threshold);
+    };
+    // Each term's reach at a pixel: max(radius_p, radius_q); 0 where it is not filtered.
+    auto term_radii = [&](const MaafPixelKernel &k, int *radius) {
+        int widest = 0;
+        for (std::size_t j = 0; j < term_count; ++j) {
+            radius[j] = k.filtered ? std::max(k.radius_px[terms[j].pu], k.radius_px[terms[j].pv]) : 0;
+            widest = std::max(widest, radius[j]);
+        }
+        return widest;
+    };
+
+    MaafFilteredSums out;
+    out.numerator.assign(count, 0.0);
+    out.denominator.assign(count, 0.0);
+    out.central_numerator.assign(count, 0.0);
+    out.central_denominator.assign(count, 0.0);
+    // A row's vertical pass feeds only that row's horizontal pass: one row's intermediates at a time.
+    parallel_for_rows(g.height, [&](int y) {
+        std::vector<float> intermediate(std::size_t(g.width) * stride), sum(stride), re(padded, 0.0f),
+            im(padded, 0.0f);
+        std::vector<int> radius(term_count);
+        TapWeights w;
+        for (int x = 0; x < g.width; ++x) {  // vertical: each pixel with its own kernel
+            const std::size_t c = g.index(x, y);
+            const MaafPixelKernel &k = kernels[c];
+            const int widest = term_radii(k, radius.data());
+            float *acc = &intermediate[std::size_t(x) * stride];
+            if (widest == 0) {
+                std::copy_n(&sources[c * stride], stride, acc);
+                continue;
+            }
+            std::fill(sum.begin(), sum.end(), 0.0f);
+            for (int ty = std::max(0, y - widest); ty <= std::min(g.height - 1, y + widest); ++ty) {
+                const std::size_t t = g.index(x, ty);
+                if (!accepted(c, t)) continue;
+                const int offset = std::abs(ty - y);
+                w.evaluate(k, pairs, g.coord_u_m[t] - g.coord_u_m[c], g.coord_v_m[t] - g.coord_v_m[c]);
+                w.of_terms(table, radius.data(), offset, re.data(), im.data());
+                const float *s = &sources[t * stride];
+                // Distinct buffers: restrict lets the compiler vectorise over the terms.
+                float *__restrict sum_v = sum.data(), *__restrict sum_u = sum.data() + 2 * padded;
+                const float *__restrict src_v = s, *__restrict src_u = s + 2 * padded;
+                const float *__restrict wr = re.data(), *__restrict wi = im.data();
+                for (std::size_t j = 0; j < padded; ++j) {  // complex weight times complex source
+                    sum_v[j] += wr[j] * src_v[j] - wi[j] * src_v[padded + j];
+                    sum_v[padded + j] += wr[j] * src_v[padded + j] + wi[j] * src_v[j];
+                    sum_u[j] += wr[j] * src_u[j] - wi[j] * src_u[padded + j];
+                    sum_u[padded + j] += wr[j] * src_u[padded + j] + wi[j] * src_u[j];
+                }
+            }
+            std::copy(sum.begin(), sum.end(), acc);
+        }
+        for (int x = 0; x < g.width; ++x) {  // horizontal: each centre with its own kernel, real parts only
+            const std::size_t c = g.index(x, y);
+            const MaafPixelKernel &k = kernels[c];
+            if (!k.filtered) continue;
+            const int widest = term_radii(k, radius.data());
+            std::fill(sum.begin(), sum.end(), 0.0f);
+            for (int tx = std::max(0, x - widest); tx <= std::min(g.width - 1, x + widest); ++tx) {
+                const std::size_t t = g.index(tx, y);
+                if (!accepted(c, t)) continue;
+                const int offset = std::abs(tx - x);
+                w.evaluate(k, pairs, g.coord_u_m[t] - g.coord_u_m[c], g.coord_v_m[t] - g.coord_v_m[c]);
+                w.of_terms(table, radius.data(), offset, re.data(), im.data());
+                const float *s = &intermediate[std::size_t(tx) * stride];
+                float *__restrict sum_v = sum.data(), *__restrict sum_u = sum.data() + 2 * padded;
+                const float *__restrict src_v = s, *__restrict src_u = s + 2 * padded;
+                const float *__restrict wr = re.data(), *__restrict wi = im.data();
+                for (std::size_t j = 0; j < padded; ++j) {  // real parts only
+                    sum_v[j] += wr[j] * src_v[j] - wi[j] * src_v[padded + j];
+                    sum_u[j] += wr[j] * src_u[j] - wi[j] * src_u[padded + j];
+                }
+            }
+            double numerator = 0, denominator = 0;
+            for (std::size_t j = 0; j < term_count; ++j) {  // MAAF Eq. 21: mu_p sigma_p mu_q sigma_q per pair
+                const double weight = terms[j].scale * k.weight[terms[j].pu] * k.weight[terms[j].pv];
+                numerator += weight * double(sum[j]);
+                denominator += weight * double(sum[2 * padded + j]);
+            }
+            out.numerator[c] = numerator;
+            out.denominator[c] = denominator;
+            out.central_numerator[c] = double(sum[0]);
+            out.central_denominator[c] = double(sum[2 * padded]);
+        }
+    });
+    return out;
 }
 
 }  // namespace aaf

@@ -35,6 +35,14 @@ struct MaafParams {
     /// Filter pairs used: 0 = all of the sums' N; 1 = the central filter
     /// alone (AAF, MAAF Sec. 5: N = 1). Other values would need other C_y.
     int pairs_used = 0;
+    /// Width scale of every component's x-side Gaussian: its Fourier-domain
+    /// standard deviation is k sigma_x^p, so its primal one is 1 / (k sigma_x^p)
+    /// metres. k = 1 is the paper's reading of sigma_x^p (MAAF Eq. 8-9: the
+    /// box half-width as the Gaussian's std, which attenuates the band to
+    /// exp(-1/2) at its edge). The default 3 is AAF's k (AAF Eq. 13, footnote
+    /// 4: the std is 3 times the band, passing it almost flat), so with N = 1
+    /// the filter is AAF's default one (k = 3, mu = 2 = MAAF's light band).
+    double k = 3.0;
     /// Taps whose normal turns more than this are rejected (MAAF Sec. 6.2: 20); degrees.
     float normal_threshold_deg = 20.0f;
     /// Taps stop at 3 standard deviations of a component's x-side Gaussian,

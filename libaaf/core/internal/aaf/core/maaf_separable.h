@@ -1,40 +1,52 @@
 #pragma once
 
-#include <array>
 #include <vector>
 
 #include "aaf/core/gather.h"
+#include "aaf/core/maaf_accumulation.h"
 
 namespace aaf {
 
-/// One complex-modulated Gaussian per pixel for maaf_separable_gather(): the
-/// tap weight exp(-(du^2 inv_u + dv^2 inv_v)) e^{j (omega_u du + omega_v dv)},
-/// du and dv the tap's displacement from the centre along the guides' two
-/// axes (metres), reaching radius_px pixels along each image axis (0 = the
-/// pixel keeps its value). Row-major, the guides' size.
-struct ComplexKernels {
-    std::vector<float> omega_u, omega_v;  ///< rad/m
-    std::vector<float> inv_u, inv_v;      ///< 1 / (2 sigma^2), m^-2
-    std::vector<int> radius_px;
+/// One pixel's x-side kernels for maaf_separable_filter(), per component
+/// p = 0 .. N-1 (p >= 0 of a pair; maaf_components.h).
+struct MaafPixelKernel {
+    bool filtered = false;                        ///< false: the pixel keeps its value (and is a plain tap)
+    float omega_x[kMaafMaxPairs] = {};            ///< C_x^p, rad/m
+    float inv_two_sigma_sq[kMaafMaxPairs] = {};   ///< 1 / (2 s^2) of the primal Gaussian of std s, m^-2
+    int radius_px[kMaafMaxPairs] = {};            ///< 3 primal standard deviations, capped; pixels
+    double weight[kMaafMaxPairs] = {};            ///< mu_0 sigma_x^0, 2 mu_p sigma_x^p (MAAF Eq. 21)
 };
 
-/// A complex source for maaf_separable_gather(): real and imaginary planes, row-major.
-struct ComplexPlane {
-    std::vector<double> re, im;
+/// What maaf_separable_filter() returns per pixel (row-major): the filtered
+/// value and unoccluded sums over all component pairs (MAAF Eq. 21, weights
+/// included), and the central pair's (p = q = 0, AAF's filter) alone.
+struct MaafFilteredSums {
+    std::vector<double> numerator, denominator;
+    std::vector<double> central_numerator, central_denominator;
 };
 
-/// MAAF's x-side filtering of complex sources (MAAF Eq. 21 with the pair of
-/// Eq. 12 kept as one complex exponential, whose phase is linear in the
-/// displacement and so splits exactly over two 1D passes): a vertical pass
-/// with each intermediate pixel's kernel, then a horizontal pass with each
-/// centre's, as AAF Sec. 6 separates its Gaussian (exact where the kernel is
-/// locally constant and image rows and columns map to the light's two axes).
-/// Unnormalised sums; taps are rejected as gather() rejects them (another
-/// object, a normal beyond the threshold; the centre always counts). Runs on
-/// the current oneTBB arena in a fixed order: thread-count independent.
-/// `sources` and the returned planes are in the same order.
-std::vector<ComplexPlane> maaf_separable_gather(const GatherGuides &guides, float normal_threshold_deg,
-                                                const ComplexKernels &kernels,
-                                                const std::vector<ComplexPlane> &sources);
+/// MAAF's x-side filtering of the (2N - 1)^2 channels of value and
+/// unoccluded sums (maaf_accumulation.h's layout; `pairs` = N used, at most
+/// the sums' `sum_pairs`) with each pixel's kernels: for every pair of
+/// components (p along the light's first axis, q along its second) the
+/// channels are regrouped into complex sources whose kernels
+/// g_p(du) g_q(dv) e^{j (C_x^p du +- C_x^q dv)} are separable (MAAF Eq. 13
+/// with the cos/sin pair of Eq. 12 kept as one complex exponential), then
+/// filtered by a vertical pass with each intermediate pixel's kernel and a
+/// horizontal pass with each centre's, as AAF Sec. 6 separates its Gaussian
+/// (exact where the kernel is locally constant and image rows and columns
+/// map to the light's two axes). du, dv: the tap's signed displacement from
+/// the centre along the light's two tangent axes (the guides' coordinates,
+/// metres). A pair's taps reach max(radius_p, radius_q) pixels along each
+/// pass (a square window, as the full-window filter); taps are rejected as
+/// gather() rejects them (another object, a normal beyond the threshold;
+/// the centre always counts). All pairs share one traversal per row, in
+/// float with fast_exp and per-tap phase factors e^{j C_x^p du} reused by
+/// every pair; each pixel's sum runs in a fixed order, so the result does
+/// not depend on the thread count. Runs on the current oneTBB arena.
+MaafFilteredSums maaf_separable_filter(const GatherGuides &guides, float normal_threshold_deg,
+                                       const std::vector<MaafPixelKernel> &kernels, int sum_pairs, int pairs,
+                                       const std::vector<std::vector<float>> &value_sums,
+                                       const std::vector<std::vector<float>> &unoccluded_sums);
 
 }  // namespace aaf
