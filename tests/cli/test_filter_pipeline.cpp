@@ -327,8 +327,8 @@ TEST_CASE("CLI filter: each bad input gives its exit code and leaves no output",
         {"truncated.exr", "truncated.exr"},
         {"text.exr", "text.exr"},
         {"missing.exr", "missing.exr"},
-        {"no_d1.exr", "missing AAF input 'd1' (channels shadow.d1)"},
-        {"no_light.exr", "missing header attribute 'aaf:light:sigma_m'"},
+        {"no_d1.exr", "missing 1 input of AAF: d1 [shadow.d1]: aaf render SCENE --aovs shadow"},
+        {"no_light.exr", "missing 1 input of AAF: header aaf:light:sigma_m: --light LIGHT.json"},
     };
     for (const auto &c : cases) {
         INFO(c.file);
