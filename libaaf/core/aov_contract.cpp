@@ -413,6 +413,20 @@ ChannelMap ChannelMap::resolved(const AovSet &aovs) const {
         }
         if (!found.empty()) names = found;
     }
+    // Blender's compositor shows only the layers under a file's view-layer
+    // prefix (TOOLCHAIN.md trap 6): where the beauty is Blender's
+    // PREFIX.Combined, every role found nowhere (an output to write, an input
+    // still missing) is named under that prefix too.
+    const std::string combined = ".Combined.R", &beauty = map.names_[Role::Beauty].front();
+    if (overridden_.count(Role::Beauty) || beauty.size() <= combined.size() ||
+        beauty.compare(beauty.size() - combined.size(), combined.size(), combined) != 0)
+        return map;
+    const std::string prefix = beauty.substr(0, beauty.size() - combined.size() + 1);  // "ViewLayer."
+    for (auto &[role, names] : map.names_) {
+        if (overridden_.count(role) || !match_channels(names, aovs).empty()) continue;
+        for (std::string &name : names)
+            if (name.compare(0, prefix.size(), prefix) != 0) name = prefix + name;
+    }
     return map;
 }
 
