@@ -313,8 +313,9 @@ void ChannelMap::set_override(const std::string &spec) {
         start = comma + 1;
     }
     const std::vector<std::string> &defaults = info->channels;
-    if (names.size() == 1 && defaults.size() > 1 && names[0].find('.') == std::string::npos) {
-        // A layer name: keep each default channel's suffix (P.X -> Pw.X).
+    if (names.size() == 1 && defaults.size() > 1) {
+        // A layer name, dotted too (Blender's ViewLayer.Position): keep each
+        // default channel's suffix (P.X -> Pw.X, ViewLayer.Position.X).
         std::string layer = names[0];
         names.clear();
         for (const std::string &name : defaults) {
