@@ -15,6 +15,9 @@
 #include "channel_options.h"
 #include "commands.h"
 #include "frame_runner.h"
+#include "light_option.h"
+#include "missing_input_report.h"
+#include "provenance.h"
 
 namespace aaf::cli {
 
@@ -66,7 +69,7 @@ std::string method_contract_line(const MethodInfo &method) {
 
 /// Options every method's subcommand shares: files, sequences, output layout.
 struct FilterOptions {
-    std::string input, output;
+    std::string input, output, light;
     std::map<std::string, std::string> parameters;  ///< given on the command line, as text
     std::vector<std::string> maps;
     int threads = 0;
@@ -84,9 +87,13 @@ void add_common_options(CLI::App &cmd, FilterOptions &options) {
         ->required();
     options.frames_option =
         cmd.add_option("--frames", options.frames, "Frames of a sequence: 1-100, 1-100x2, 1-100:2, 1,5,7-9");
+    cmd.add_option("--light", options.light,
+                   "JSON file with the key light (a scene-format light object or a scene file): replaces "
+                   "the input's aaf:light:* header, for renderers that write none");
     cmd.add_option("--progress", options.progress, "auto, lines, jsonl, openjd or none")
         ->capture_default_str();
-    cmd.add_flag("--skip-existing", options.skip_existing, "Skip frames whose output exists and reads back");
+    cmd.add_flag("--skip-existing", options.skip_existing, "Skip frames whose output is complete and up to date: made by this aaf with these settings from "
+                 "inputs unchanged since (the provenance in its header); redo stale or partial ones");
     cmd.add_flag("--skip-bad-frames", options.skip_bad_frames,
                  "Report a failed frame and continue (the exit code is still non-zero)");
     cmd.add_flag("--replace-beauty,!--keep-beauty", options.replace_beauty,
@@ -123,8 +130,40 @@ void add_method_command(CLI::App &filter, const Method &method) {
     cmd->callback([options, &method] {
         require_exr_output(options->output, "aaf filter");
         const ChannelMap channels = channel_map_from(options->maps);
-        const io::FrameFilter filter =
-            io::method_filter(method, parameters_from(method, options->parameters), channels);
+        const auto light = light_option(options->light);
+        const ParameterSet parameters = parameters_from(method, options->parameters);
+        io::FrameFilter filter = io::method_filter(method, parameters, channels);
+        // What the output records and --skip-existing compares: every setting that changes the pixels.
+        Provenance provenance;
+        provenance.method = method.info().name;
+        for (const ParameterInfo &parameter : method.info().parameters)
+            provenance.parameters += parameter.name + "=" + parameters.text(parameter.name) + " ";
+        provenance.parameters += std::string("keep_beauty=") + (options->replace_beauty ? "false" : "true") +
+                                 " half=" + (options->write.half_colour ? "true" : "false") +
+                                 " compression=" + options->write.compression;
+        for (const std::string &map : options->maps) provenance.parameters += " map:" + map;
+        const auto job_provenance = [&](const FrameJob &job) {
+            Provenance p = provenance;
+            std::vector<std::string> files{job.input};
+            if (!options->light.empty()) files.push_back(options->light);
+            p.inputs_hash = inputs_hash(files);
+            return p;
+        };
+        const Provenance *current = nullptr;  // the frame being filtered
+        // Every missing input is named at once, with its recipe, before the method runs.
+        filter.run = [&method, &current, light, channels, run = filter.run](const AovSet &input) {
+            AovSet lit;
+            if (light) {
+                lit = input;
+                apply_light_option(light, lit);
+            }
+            const AovSet &complete = light ? lit : input;
+            const std::vector<std::string> recipes = missing_input_recipes(method, complete, channels);
+            if (!recipes.empty()) throw InputError(missing_inputs_message(method, recipes));
+            AovSet output = run(complete);
+            stamp(*current, output);
+            return output;
+        };
         io::FilterFileOptions file;
         file.channels = channels;
         file.keep_beauty = !options->replace_beauty;
@@ -133,11 +172,14 @@ void add_method_command(CLI::App &filter, const Method &method) {
         RunOptions run;
         run.progress = progress_from_string(options->progress);
         run.skip_existing = options->skip_existing;
+        run.up_to_date = [&](const FrameJob &job) { return output_up_to_date(job.output, job_provenance(job)); };
         run.skip_bad_frames = options->skip_bad_frames;
         const FrameJobs jobs =
             frame_jobs(options->input, options->output, given(options->frames_option, options->frames));
         // Frames stream one at a time (bounded memory); the filter itself runs on all threads.
         const std::size_t failed = run_frames(jobs, run, [&](const FrameJob &job) {
+            const Provenance frame = job_provenance(job);
+            current = &frame;
             const io::FilterFileReport report = io::filter_file(job.input, job.output, filter, file);
             for (const std::string &warning : report.warnings)
                 std::fprintf(stderr, "aaf: warning: %s\n", warning.c_str());

@@ -11,6 +11,8 @@
 #include "aaf/core/sample_statistics.h"
 #include "aaf/io/exr_io.h"
 #include "commands.h"
+#include "light_option.h"
+#include "missing_input_report.h"
 
 namespace aaf::cli {
 
@@ -33,13 +35,17 @@ std::string format_attribute(const AttributeValue &value) {
 
 void add_info_command(CLI::App &app) {
     struct Options {
-        std::string input;
+        std::string input, light;
     };
     auto options = std::make_shared<Options>();
     CLI::App *cmd = app.add_subcommand("info", "List channels, attributes and which methods a file can feed");
     cmd->add_option("input", options->input, "Image to describe")->required();
+    cmd->add_option("--light", options->light,
+                    "JSON key light (as aaf filter --light): the methods' readiness with it in place of the "
+                    "file's aaf:light:* header");
     cmd->callback([options] {
         io::ImageLayout layout;
+        const auto light = light_option(options->light);
         AovSet aovs = io::read_aovs(options->input, &layout);
         std::printf("%s: %d x %d, %zu channels\n", options->input.c_str(), aovs.width(), aovs.height(),
                     aovs.channel_names().size());
@@ -68,18 +74,17 @@ void add_info_command(CLI::App &app) {
         if (aovs.has_channel(spp_name) && aovs.has_channel(id_name))
             std::printf("mean spp over shaded pixels: %g\n",
                         mean_spp_over_shaded(aovs.channel(spp_name), aovs.channel(id_name)));
+        if (apply_light_option(light, aovs))
+            std::printf("the light of %s replaces the file's aaf:light:* header\n", options->light.c_str());
         std::printf("attributes:\n");
         for (const auto &[name, value] : aovs.attributes)
             std::printf("  %-24s %s\n", name.c_str(), format_attribute(value).c_str());
-        std::printf("methods:\n");
+        std::printf("methods (what each lacks, with how to produce it):\n");
         for (const Method *method : methods()) {
-            const MissingInputs missing = missing_inputs(*method, aovs, channels);
-            std::string line = missing.empty() ? "ready" : "missing";
-            for (Role role : missing.roles) line += std::string(" ") + role_info(role).key;
-            if (!missing.attributes.empty())
-                line += std::string(missing.roles.empty() ? "" : ";") + " header attributes";
-            for (const std::string &name : missing.attributes) line += " " + name;
-            std::printf("  %-8s %s\n", method->info().name.c_str(), line.c_str());
+            const std::vector<std::string> recipes = missing_input_recipes(*method, aovs, channels);
+            std::printf("  %-8s %s\n", method->info().name.c_str(),
+                        recipes.empty() ? "ready" : ("missing " + std::to_string(recipes.size())).c_str());
+            for (const std::string &recipe : recipes) std::printf("             - %s\n", recipe.c_str());
         }
     });
 }

@@ -9,6 +9,7 @@
 #include <filesystem>
 #include <iostream>
 #include <memory>
+#include <mutex>
 #include <nlohmann/json.hpp>
 #include <optional>
 #include <sstream>
@@ -23,6 +24,7 @@
 #include "channel_options.h"
 #include "commands.h"
 #include "frame_runner.h"
+#include "provenance.h"
 
 namespace aaf::cli {
 
@@ -37,50 +39,84 @@ void on_interrupt(int signal) {
     std::signal(signal, SIG_DFL);
 }
 
-/// Reports the rounds of a progressive render (more than one round) in the
-/// `--progress` mode: `auto` draws a bar in place on a terminal and writes
-/// lines otherwise; `lines` writes a line at most every 10 % of the samples
-/// (stderr); `jsonl` writes a "round" event per round and `openjd` an
-/// `openjd_progress:` line per round (stdout, beside the frame events).
-class RoundReporter {
+/// Reports a render's progress in the `--progress` mode: `auto` draws a bar
+/// with the elapsed time and an ETA in place on a terminal (redrawn as the
+/// tiles of each round finish, at most every 0.25 s) and, off a terminal,
+/// writes a line at most every 10 % of the samples of a progressive render
+/// (more than one round); `lines` writes a line at every 10 % and at least
+/// every 2 s while tiles finish, whatever the render's size (stderr);
+/// `jsonl` writes a "round" event per round and `openjd` an
+/// `openjd_progress:` line per round of a progressive render (stdout,
+/// beside the frame events). Called from the render's workers too: one call
+/// at a time.
+class RenderReporter {
   public:
-    explicit RoundReporter(Progress mode)
+    explicit RenderReporter(Progress mode)
         : mode_(mode), bar_(mode == Progress::Automatic && ::isatty(STDERR_FILENO)) {}
 
-    void operator()(int done, int total) {
-        if (mode_ == Progress::None || total <= trace::kSamplesPerRound) return;
-        const double seconds =
-            std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
-        const int percent = int(100.0 * done / total);
-        if (mode_ == Progress::Jsonl) {
-            std::cout << nlohmann::json{{"event", "round"},
-                                        {"spp_done", done},
-                                        {"spp", total},
-                                        {"seconds", seconds}}
-                             .dump()
-                      << std::endl;
+    /// After each round.
+    void round(int done, int total) {
+        const std::lock_guard<std::mutex> lock(mutex_);
+        if (mode_ == Progress::Jsonl || mode_ == Progress::OpenJd) {
+            if (total <= trace::kSamplesPerRound) return;
+            if (mode_ == Progress::Jsonl)
+                std::cout << nlohmann::json{{"event", "round"},
+                                            {"spp_done", done},
+                                            {"spp", total},
+                                            {"seconds", seconds()}}
+                                 .dump()
+                          << std::endl;
+            else
+                std::cout << "openjd_progress: " << 100.0 * done / total << std::endl;
             return;
         }
-        if (mode_ == Progress::OpenJd) {
-            std::cout << "openjd_progress: " << 100.0 * done / total << std::endl;
-            return;
-        }
-        if (bar_) {
-            const int filled = percent / 5;
-            std::fprintf(stderr, "\rrender: [%-20s] %d/%d spp %.0f s",
-                         std::string(std::size_t(filled), '#').c_str(), done, total, seconds);
-            if (done == total) std::fputc('\n', stderr);
-        } else if (percent / 10 != last_decile_ || done == total) {
-            std::fprintf(stderr, "render: %d/%d spp (%d%%) %.1f s\n", done, total, percent, seconds);
-            last_decile_ = percent / 10;
-        }
-        std::fflush(stderr);
+        if (mode_ == Progress::Automatic && !bar_ && total <= trace::kSamplesPerRound) return;
+        show(done, total, /*force=*/true);
+    }
+
+    /// As the tiles of a round finish (a terminal's bar and `lines` only).
+    void within_round(double done, int total) {
+        const std::lock_guard<std::mutex> lock(mutex_);
+        if (bar_ || mode_ == Progress::Lines) show(done, total, /*force=*/false);
     }
 
   private:
+    double seconds() const {
+        return std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
+    }
+
+    void show(double done, int total, bool force) {
+        if (mode_ == Progress::None || total <= 0 || (shown_any_ && done <= shown_spp_)) return;
+        const double elapsed = seconds();
+        const int percent = int(100.0 * done / total);
+        const double eta = done > 0 ? elapsed * (total - done) / done : 0;
+        if (bar_) {
+            if (!force && elapsed - shown_s_ < 0.25) return;
+            const int filled = percent / 5;
+            std::fprintf(stderr, "\rrender: [%-20s] %d/%d spp %.0f s, ETA %.0f s ",
+                         std::string(std::size_t(filled), '#').c_str(), int(done), total, elapsed, eta);
+            if (done >= total) std::fputc('\n', stderr);
+        } else {
+            const bool new_decile = percent / 10 != last_decile_;
+            const bool due = mode_ == Progress::Lines && elapsed - shown_s_ >= 2.0;
+            if (!new_decile && !due && done < total) return;
+            if (!force && mode_ != Progress::Lines) return;
+            std::fprintf(stderr, "render: %d/%d spp (%d%%) %.1f s, ETA %.1f s\n", int(done), total, percent,
+                         elapsed, eta);
+            last_decile_ = percent / 10;
+        }
+        shown_any_ = true;
+        shown_spp_ = done;
+        shown_s_ = elapsed;
+        std::fflush(stderr);
+    }
+
     Progress mode_;
     bool bar_;
+    std::mutex mutex_;
     int last_decile_ = 0;
+    bool shown_any_ = false;
+    double shown_spp_ = 0, shown_s_ = 0;
     std::chrono::steady_clock::time_point start_ = std::chrono::steady_clock::now();
 };
 
@@ -112,6 +148,20 @@ void check_outputs_spare_inputs(const std::string &scene, const std::string &out
             if (frames->contains(frame)) outputs.push_back(io::frame_path(output, frame));
     for (const std::string &input : inputs)
         for (const std::string &path : outputs) io::check_not_same_file(input, path);
+}
+
+/// Every setting of a render that changes its pixels, "name=value ...", for
+/// its provenance (the frame included: a sequence's frames differ by it).
+std::string render_parameters(const trace::RenderSettings &settings) {
+    std::ostringstream text;
+    text << "width=" << settings.width << " height=" << settings.height << " spp=" << settings.spp
+         << " seed=" << settings.seed << " frame=" << settings.frame << " aovs=" << settings.aovs
+         << " adaptive=" << settings.adaptive << " mu=" << settings.adaptive_mu
+         << " max_spp=" << settings.max_spp << " light_bandlimit=" << to_string(settings.light_bandlimit)
+         << " light=" << (settings.light_profile ? to_string(*settings.light_profile) : "scene")
+         << " falloff=" << settings.cosine_falloff << " skip_self_occluded=" << settings.skip_self_occluded
+         << " maaf_first_pass_spp=" << settings.maaf_first_pass_spp;
+    return text.str();
 }
 
 }  // namespace
@@ -175,11 +225,13 @@ void add_render_command(CLI::App &app) {
                     "Seconds between checkpoints of a progressive render (written to -o, resumable)")
         ->capture_default_str();
     cmd->add_option("--progress", options->progress,
-                    "auto (a bar on a terminal, else lines), lines, jsonl, openjd or none: per frame for "
-                    "a sequence, per round of 1024 spp for a single render")
+                    "auto (a bar with an ETA on a terminal, else lines per 10 % of a progressive render), "
+                    "lines (every 10 % and every 2 s), jsonl, openjd (per round of 1024 spp) or none; "
+                    "per frame for a sequence")
         ->capture_default_str();
     cmd->add_flag("--skip-existing", options->skip_existing,
-                  "Skip frames whose output exists and reads back");
+                  "Skip frames whose output is complete (all spp, not a checkpoint) and up to date: made by this aaf "
+                  "with these settings from the scene files unchanged since; redo stale or partial ones");
     cmd->add_flag("--list", options->list, "List the scenes found by name and exit");
     cmd->callback([options, cmd] {
         if (options->list) {
@@ -232,19 +284,33 @@ void add_render_command(CLI::App &app) {
         RunOptions run;
         run.progress = progress_from_string(options->progress);
         run.skip_existing = options->skip_existing;
-        RoundReporter report_rounds(sequence ? Progress::None : run.progress);
+        const std::string scene_hash = inputs_hash(trace::scene_input_files(options->scene));
+        const auto job_provenance = [&](const FrameJob &job) {
+            trace::RenderSettings frame_settings = settings;
+            if (sequence) frame_settings.frame = job.frame;
+            return Provenance{"render", render_parameters(frame_settings), scene_hash};
+        };
+        run.up_to_date = [&](const FrameJob &job) { return output_up_to_date(job.output, job_provenance(job)); };
+        RenderReporter reporter(sequence ? Progress::None : run.progress);
         std::signal(SIGINT, on_interrupt);
         std::signal(SIGTERM, on_interrupt);
         const std::size_t failed = run_frames(jobs, run, [&](const FrameJob &job) {
             if (interrupt_received) throw Interrupted{};  // the frames so far are complete
             trace::RenderSettings frame_settings = settings;
             if (sequence) frame_settings.frame = job.frame;
-            frame_settings.on_progress = [&](int done, int total) { report_rounds(done, total); };
-            frame_settings.on_checkpoint = [&](const AovSet &so_far) { io::write_aovs(so_far, job.output); };
+            frame_settings.on_progress = [&](int done, int total) { reporter.round(done, total); };
+            frame_settings.on_round_progress = [&](double done, int total) { reporter.within_round(done, total); };
+            const Provenance provenance = job_provenance(job);
+            frame_settings.on_checkpoint = [&](const AovSet &so_far) {
+                AovSet stamped = so_far;
+                stamp(provenance, stamped);
+                io::write_aovs(stamped, job.output);
+            };
             frame_settings.stop_requested = [] { return interrupt_received != 0; };
             trace::RenderTimings timings;
             // Scene and resume errors name their file themselves.
-            const AovSet aovs = trace::render_scene(job.input, frame_settings, &timings);
+            AovSet aovs = trace::render_scene(job.input, frame_settings, &timings);
+            stamp(provenance, aovs);
             io::write_aovs(aovs, job.output);
             const int done = std::get<int>(aovs.attributes.at(attr::kSppDone));
             if (done < frame_settings.spp) {

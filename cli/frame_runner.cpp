@@ -116,7 +116,8 @@ std::size_t run_frames(const FrameJobs &jobs, const RunOptions &options,
         const auto start = Clock::now();
         std::string status = "ok", message;
         std::exception_ptr failure;
-        if (options.skip_existing && io::is_readable_image(job.output)) {
+        if (options.skip_existing &&
+            (options.up_to_date ? options.up_to_date(job) : io::is_readable_image(job.output))) {
             status = "skipped";
             ++skipped;
         } else {

@@ -8,6 +8,7 @@
 #include "aaf/io/atomic_file.h"
 #include "aaf/io/exr_io.h"
 #include "commands.h"
+#include "provenance.h"
 
 namespace aaf::cli {
 
@@ -64,7 +65,8 @@ void check_subcommand_names(const CLI::App &app, int argc, char **argv) {
 int run(int argc, char **argv) {
     CLI::App app{"aaf: image-space reconstruction of ray-traced distribution effects"};
     app.require_subcommand(1);
-    app.set_version_flag("--version", "aaf 0.1.0");
+    app.set_version_flag("--version", aaf_version());
+    set_command_line(argc, argv);
     // Accepted before or after the subcommand (fallthrough): every command reads images.
     app.fallthrough();
     app.add_option_function<double>(

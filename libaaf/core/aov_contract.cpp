@@ -313,8 +313,9 @@ void ChannelMap::set_override(const std::string &spec) {
         start = comma + 1;
     }
     const std::vector<std::string> &defaults = info->channels;
-    if (names.size() == 1 && defaults.size() > 1 && names[0].find('.') == std::string::npos) {
-        // A layer name: keep each default channel's suffix (P.X -> Pw.X).
+    if (names.size() == 1 && defaults.size() > 1) {
+        // A layer name, dotted too (Blender's ViewLayer.Position): keep each
+        // default channel's suffix (P.X -> Pw.X, ViewLayer.Position.X).
         std::string layer = names[0];
         names.clear();
         for (const std::string &name : defaults) {
@@ -412,6 +413,20 @@ ChannelMap ChannelMap::resolved(const AovSet &aovs) const {
             found = match_channels(prefixed, aovs, /*unique_prefix=*/true);
         }
         if (!found.empty()) names = found;
+    }
+    // Blender's compositor shows only the layers under a file's view-layer
+    // prefix (TOOLCHAIN.md trap 6): where the beauty is Blender's
+    // PREFIX.Combined, every role found nowhere (an output to write, an input
+    // still missing) is named under that prefix too.
+    const std::string combined = ".Combined.R", &beauty = map.names_[Role::Beauty].front();
+    if (overridden_.count(Role::Beauty) || beauty.size() <= combined.size() ||
+        beauty.compare(beauty.size() - combined.size(), combined.size(), combined) != 0)
+        return map;
+    const std::string prefix = beauty.substr(0, beauty.size() - combined.size() + 1);  // "ViewLayer."
+    for (auto &[role, names] : map.names_) {
+        if (overridden_.count(role) || !match_channels(names, aovs).empty()) continue;
+        for (std::string &name : names)
+            if (name.compare(0, prefix.size(), prefix) != 0) name = prefix + name;
     }
     return map;
 }

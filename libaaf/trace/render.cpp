@@ -8,9 +8,11 @@
 #include <tbb/task_arena.h>
 
 #include <algorithm>
+#include <atomic>
 #include <chrono>
 #include <cmath>
 #include <memory>
+#include <mutex>
 #include <optional>
 
 #include "aaf/core/aov_contract.h"
@@ -34,11 +36,15 @@ constexpr std::uint32_t kAdaptiveSecondPass = 1u << 30;
 /// edges) per task index over oneTBB. Each pixel is written by exactly one
 /// call, so results do not depend on the schedule.
 template <typename Body>
-void for_each_pixel_tiled(int width, int height, const Body &body) {
+void for_each_pixel_tiled(int width, int height, const Body &body,
+                          const std::function<void(double)> &on_share_done = {}) {
     const int tiles_x = (width + kTileSize - 1) / kTileSize;
     const int tiles_y = (height + kTileSize - 1) / kTileSize;
+    const int tiles_total = tiles_x * tiles_y;
+    std::atomic<int> tiles_done{0};
+    std::mutex reporting;
     tbb::parallel_for(
-        tbb::blocked_range<int>(0, tiles_x * tiles_y), [&](const tbb::blocked_range<int> &tiles) {
+        tbb::blocked_range<int>(0, tiles_total), [&](const tbb::blocked_range<int> &tiles) {
             // Denormals only slow the traversal down; flush them on every worker.
             _MM_SET_FLUSH_ZERO_MODE(_MM_FLUSH_ZERO_ON);
             _MM_SET_DENORMALS_ZERO_MODE(_MM_DENORMALS_ZERO_ON);
@@ -47,6 +53,12 @@ void for_each_pixel_tiled(int width, int height, const Body &body) {
                 const int x1 = std::min(x0 + kTileSize, width), y1 = std::min(y0 + kTileSize, height);
                 for (int y = y0; y < y1; ++y)
                     for (int x = x0; x < x1; ++x) body(x, y);
+                if (!on_share_done) continue;
+                // A report each time the finished share crosses a 32nd.
+                const int done = ++tiles_done;
+                if (done * 32 / tiles_total == (done - 1) * 32 / tiles_total) continue;
+                const std::lock_guard<std::mutex> lock(reporting);
+                on_share_done(double(done) / tiles_total);
             }
         });
 }
@@ -165,7 +177,8 @@ class Tracing {
     /// Traces `count` samples of pass `pass` for every pixel that has a
     /// receiver or a lens, or for pixel (x, y) only `count(x, y)` of them.
     template <typename Count>
-    void trace_pass(std::uint32_t pass, const Count &count, bool round_to_float) {
+    void trace_pass(std::uint32_t pass, const Count &count, bool round_to_float,
+                    const std::function<void(double)> &on_share_done = {}) {
         const bool thin_lens = scene_.camera.is_thin_lens();
         for_each_pixel_tiled(settings_.width, settings_.height, [&](int x, int y) {
             const std::size_t i = std::size_t(y) * settings_.width + x;
@@ -177,7 +190,7 @@ class Tracing {
                 for (AovAccumulator *listener : listeners_) listener->end_pixel(i);
             }
             if (round_to_float) stats_[i].round_to_float();
-        });
+        }, on_share_done);
     }
 
   private:
@@ -292,8 +305,11 @@ AovSet render_scene(const std::string &scene_name, const RenderSettings &setting
              ++round) {
             const int count = spp_done < maaf_first_pass ? maaf_first_pass - spp_done
                                                          : std::min(kSamplesPerRound, settings.spp - spp_done);
+            std::function<void(double)> on_share_done;
+            if (settings.on_round_progress)
+                on_share_done = [&](double share) { settings.on_round_progress(spp_done + share * count, settings.spp); };
             tracing.trace_pass(
-                std::uint32_t(round), [&](int, int) { return count; }, true);
+                std::uint32_t(round), [&](int, int) { return count; }, true, on_share_done);
             spp_done += count;
             if (settings.on_progress) settings.on_progress(spp_done, settings.spp);
             if (settings.on_checkpoint && spp_done < settings.spp &&

@@ -16,6 +16,7 @@
 #include <sstream>
 
 #include "aaf/core/error.h"
+#include "aaf/trace/light_file.h"
 #include "aaf/trace/render.h"
 
 namespace aaf::trace {
@@ -579,6 +580,15 @@ SceneDescription load_scene_file(const std::string &path, int width, int height)
 
     if (auto animation = root.find("animation")) read_animation(*animation, scene, camera_key);
     return scene;
+}
+
+LightPlane load_light_file(const std::string &path) {
+    const json document = parse_json_file(path);
+    const Node root(document, "", path);
+    if (!root.has("lights")) return read_light(root).plane;
+    const Node lights = root.at("lights");
+    if (lights.size() == 0) lights.fail("a scene needs at least one light");
+    return read_light(lights[0]).plane;
 }
 
 std::vector<std::string> scene_file_inputs(const std::string &path) {

@@ -267,12 +267,17 @@ TEST_CASE("CLI filter: Blender view-layer names are found without --map", "[cli]
                 .exit_code == 0);
     const aaf::AovSet a = aaf::io::read_aovs((dir / "blender_aaf.exr").string());
     const aaf::AovSet b = aaf::io::read_aovs((dir / "contract_aaf.exr").string());
-    // The same filter ran: the filtered beauty lands in Blender's Combined pass.
+    // The same filter ran: the filtered beauty lands in Blender's Combined
+    // pass, the other outputs under the same view layer (Blender hides
+    // layers without it), none outside it.
     for (int y = 0; y < kHeight; ++y)
         for (int x = 0; x < kWidth; ++x) {
             CHECK(a.channel("View Layer.Combined.G")(x, y) == b.channel("G")(x, y));
-            CHECK(a.channel("aaf.V")(x, y) == b.channel("aaf.V")(x, y));
+            CHECK(a.channel("View Layer.aaf.V")(x, y) == b.channel("aaf.V")(x, y));
+            CHECK(a.channel("View Layer.aaf_beta.X")(x, y) == b.channel("aaf_beta.X")(x, y));
+            CHECK(a.channel("View Layer.noisy.G")(x, y) == b.channel("noisy.G")(x, y));
         }
+    for (const std::string &name : a.channel_names()) CHECK(name.rfind("View Layer.", 0) == 0);
 }
 
 TEST_CASE("CLI filter: NaN and Inf inputs are replaced and counted, never spread", "[cli][pipeline]") {
@@ -327,8 +332,8 @@ TEST_CASE("CLI filter: each bad input gives its exit code and leaves no output",
         {"truncated.exr", "truncated.exr"},
         {"text.exr", "text.exr"},
         {"missing.exr", "missing.exr"},
-        {"no_d1.exr", "missing AAF input 'd1' (channels shadow.d1)"},
-        {"no_light.exr", "missing header attribute 'aaf:light:sigma_m'"},
+        {"no_d1.exr", "missing 1 input of AAF: d1 [shadow.d1]: aaf render SCENE --aovs shadow"},
+        {"no_light.exr", "missing 1 input of AAF: header aaf:light:sigma_m: --light LIGHT.json"},
     };
     for (const auto &c : cases) {
         INFO(c.file);

@@ -28,6 +28,10 @@ TEST_CASE("Channel overrides accept layers, lists, and reject bad specs", "[cont
     CHECK(map.channels(Role::Beauty) == std::vector<std::string>{"rgb.R", "rgb.G", "rgb.B"});
     map.set_override("d1=dist.light");
     CHECK(map.channel(Role::D1) == "dist.light");
+    // A Blender pass under its view layer is a layer too, dot and all.
+    map.set_override("position=ViewLayer.Position");
+    CHECK(map.channels(Role::Position) ==
+          std::vector<std::string>{"ViewLayer.Position.X", "ViewLayer.Position.Y", "ViewLayer.Position.Z"});
 
     CHECK_THROWS_WITH(map.set_override("nonsense=x"), Catch::Contains("unknown role 'nonsense'"));
     CHECK_THROWS_AS(map.set_override("position=a,b"), Error);

@@ -124,8 +124,9 @@ class ChannelMap {
     ChannelMap();
 
     /// Parses "role=name[,name...]". For a multi-channel role a single name
-    /// without a dot is a layer and gets the default suffixes
-    /// (`position=Pw` -> Pw.X, Pw.Y, Pw.Z). Throws aaf::Error on a bad spec.
+    /// is a layer and gets the default suffixes (`position=Pw` -> Pw.X,
+    /// Pw.Y, Pw.Z; `position=ViewLayer.Position` -> ViewLayer.Position.X, ...).
+    /// Throws aaf::Error on a bad spec.
     void set_override(const std::string &spec);
 
     const std::vector<std::string> &channels(Role role) const;

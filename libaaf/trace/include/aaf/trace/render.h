@@ -117,6 +117,11 @@ struct RenderSettings {
     std::string resume_source;  ///< where `resume` was read from, to name it in errors
     /// Called after each round with the samples per pixel done so far and the target.
     std::function<void(int done_spp, int total_spp)> on_progress;
+    /// Called during each round, as its tiles finish (at most 32 times a
+    /// round, one call at a time, from a worker thread), with the samples per
+    /// pixel done so far counting the round's finished share: a progress
+    /// display between the rounds' on_progress calls. Values may repeat.
+    std::function<void(double done_spp, int total_spp)> on_round_progress;
     /// Called with the complete AOVs of the render so far (progress AOVs
     /// included) at most every `checkpoint_interval_s` seconds between rounds.
     std::function<void(const AovSet &partial)> on_checkpoint;

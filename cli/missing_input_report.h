@@ -1,0 +1,26 @@
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "aaf/core/aov_contract.h"
+#include "aaf/core/aov_set.h"
+#include "aaf/core/method.h"
+
+namespace aaf::cli {
+
+/// Every input `method` lacks in `aovs` (channels found as
+/// `channels.resolved(aovs)` finds them), each with how to produce it: a
+/// role's channels and the `aaf render --aovs` group that writes them or the
+/// `--map` line for another renderer's pass (libaaf/RENDERERS.md); the
+/// missing `aaf:light:*` header attributes as one entry with `--light`, any
+/// other missing header attributes (written by the tracer) as another.
+/// Empty when the method can run.
+std::vector<std::string> missing_input_recipes(const Method &method, const AovSet &aovs,
+                                               const ChannelMap &channels);
+
+/// The entries of missing_input_recipes() on one line, for an error message:
+/// "missing N inputs of TITLE: a; b; ...".
+std::string missing_inputs_message(const Method &method, const std::vector<std::string> &recipes);
+
+}  // namespace aaf::cli
