@@ -33,10 +33,10 @@ struct AnalyzeOptions {
 /// One method's numbers for one wedge, or their means over several.
 struct MethodResult {
     std::string name;                 // as the paper names it: AAF, FSF, MAAF(2N-1)
-    double coverage = 0;              // Eq. 15, integrated numerically
-    double accuracy = 0;              // Eq. 14, integrated numerically
-    double coverage_eq = kNone;       // boxes: Eq. 16-18 from the boxes' geometry
-    double coverage_printed = kNone;  // boxes: Eq. 16-18 as printed in the paper
+    double coverage = 0;              // MAAF Eq. 15, integrated numerically
+    double accuracy = 0;              // MAAF Eq. 14, integrated numerically
+    double coverage_eq = kNone;       // boxes: MAAF Eq. 16-18 from the boxes' geometry
+    double coverage_printed = kNone;  // boxes: MAAF Eq. 16-18 as printed in the paper
 };
 
 std::string maaf_name(int pairs) {

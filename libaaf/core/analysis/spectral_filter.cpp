@@ -48,10 +48,10 @@ SpectralFilter fsf_spectral_filter(const DoubleWedge &wedge, SpectralShape shape
     check_double_wedge(wedge);
     const double spread = wedge.omega_y_max * (1.0 / wedge.s_min - 1.0 / wedge.s_max);
     SpectralComponent c;
-    c.shear = 0.5 * (1.0 / wedge.s_min + 1.0 / wedge.s_max);  // 1/s_avg, s_avg the harmonic mean (Eq. 4)
+    c.shear = 0.5 * (1.0 / wedge.s_min + 1.0 / wedge.s_max);  // 1/s_avg, s_avg the harmonic mean (MAAF Eq. 4)
     // The wedge spans Omega_y (1/s_max - 1/s_avg) .. Omega_y (1/s_min - 1/s_avg) about the shear
     // line, at most spread/2 either side at |Omega_y| = Omega_y^max: the tight parallelogram's
-    // half-width. Eq. 4's Gaussian has sigma = spread.
+    // half-width. MAAF Eq. 4's Gaussian has sigma = spread.
     c.width_x = shape == SpectralShape::Box ? 0.5 * spread : spread;
     c.width_y = wedge.omega_y_max;  // MAAF Eq. 4: G(Omega_y; Omega_y^max)
     return {shape, {c}};

@@ -90,8 +90,8 @@ FilterMetrics integrate_filter_metrics(const SpectralFilter &filter, const Doubl
         for (int i = 0; i < n; ++i) {
             const double t = (i + 0.5) / n;
             const double w = row.value(omega_y * (1.0 / wedge.s_max + t * spread));
-            filter_sum += std::abs(w);           // Eq. 15 numerator
-            error_sum += (w - 1.0) * (w - 1.0);  // Eq. 14 numerator, T = 1 on its support
+            filter_sum += std::abs(w);           // MAAF Eq. 15 numerator
+            error_sum += (w - 1.0) * (w - 1.0);  // MAAF Eq. 14 numerator, T = 1 on its support
         }
         row_area[j] = cell * n;
         row_filter[j] = cell * filter_sum;
@@ -132,7 +132,7 @@ FilterMetrics integrate_filter_metrics(const SpectralFilter &filter, const Doubl
 
 double aaf_box_coverage(const DoubleWedge &wedge) {
     check_double_wedge(wedge);
-    // MAAF Eq. 16 with the box (2 Omega_y^max/s_min) x (2 Omega_y^max) of Eq. 2's extents.
+    // MAAF Eq. 16 with the box (2 Omega_y^max/s_min) x (2 Omega_y^max) of MAAF Eq. 2's extents.
     return double_wedge_area(wedge) / (4.0 * wedge.omega_y_max * wedge.omega_y_max / wedge.s_min);
 }
 
@@ -146,7 +146,7 @@ double maaf_box_area(const DoubleWedge &wedge, int pairs) {
     const double n = pairs, side = wedge.omega_y_max / (2.0 * n - 1.0);
     const double spread = 1.0 / wedge.s_min - 1.0 / wedge.s_max;
     const double inv_s_avg = 0.5 * (1.0 / wedge.s_min + 1.0 / wedge.s_max);
-    // MAAF Eq. 17, central term 4 sigma_x^0 sigma_y^0 / side^2 = 1/s_min (Eq. 8), pairs summed:
+    // MAAF Eq. 17, central term 4 sigma_x^0 sigma_y^0 / side^2 = 1/s_min (MAAF Eq. 8), pairs summed:
     // sum_{p=1}^{N-1} [p spread + 1/s_avg] = N(N-1)/2 spread + (N-1)/s_avg.
     return 4.0 * side * side * (1.0 / wedge.s_min + n * (n - 1.0) * spread + 2.0 * (n - 1.0) * inv_s_avg);
 }

@@ -81,14 +81,14 @@ class IsgShadowMethod final : public Method {
                 // Parameter search (ISG Eq. 4-7): the mean occluder distance of the
                 // in-shadow taps within the light's projected size.
                 const float search_px = clamp_radius(screen_radius_px(light_size_m, z_eye, focal_px),
-                                                     common.max_radius_px);  // Eq. 5
+                                                     common.max_radius_px);  // ISG Eq. 5
                 double weight_sum = 0, distance_sum = 0;
                 for (const Tap &tap : search) {
                     int sx, sy;
                     if (!tap_pixel(x, y, tap, search_px, width, height, sx, sy)) continue;
                     const float d = occluder_m(sx, sy);
                     if (!(hard(sx, sy) < 0.5f) || !(d >= 0) || !std::isfinite(d))
-                        continue;  // inShadow of Eq. 6
+                        continue;  // inShadow of ISG Eq. 6
                     const float w = range(position(sx, sy), p0);
                     if (!std::isfinite(w)) continue;
                     weight_sum += w;
@@ -97,10 +97,10 @@ class IsgShadowMethod final : public Method {
                 if (!(weight_sum > 0)) continue;  // no occluder within reach: the hard value stands
                 const float d_m = float(distance_sum / weight_sum);
                 const float light_distance_m = length(light.center - p0);
-                const float penumbra_m = penumbra_radius_m(light_size_m, d_m, light_distance_m);  // Eq. 8
+                const float penumbra_m = penumbra_radius_m(light_size_m, d_m, light_distance_m);  // ISG Eq. 8
                 const float gather_px = clamp_radius(screen_radius_px(penumbra_m, z_eye, focal_px),
-                                                     common.max_radius_px);  // Eq. 9
-                // Gather (ISG Eq. 4): the hard visibility, constant spatial weight, range of Eq. 6-7.
+                                                     common.max_radius_px);  // ISG Eq. 9
+                // Gather (ISG Eq. 4): the hard visibility, constant spatial weight, range of ISG Eq. 6-7.
                 double gather_weight = 0, visibility_sum = 0;
                 for (const Tap &tap : gather) {
                     int sx, sy;

@@ -7,7 +7,7 @@ namespace aaf {
 /// How the spatially varying Gaussian of AAF Eq. 10-12 is evaluated.
 enum class AafFilterMode {
     Separable,  ///< a vertical then a horizontal 1D pass (Sec. 6); exact where beta is locally constant
-    Exact2D,    ///< the full 2D gather of Eq. 10 over the square window; slower, for measuring Sec. 6's
+    Exact2D,    ///< the full 2D gather of AAF Eq. 10 over the square window; slower, for measuring Sec. 6's
                 ///< approximation
 };
 
@@ -15,10 +15,10 @@ enum class AafFilterMode {
 enum class AafLightDistance {
     /// The tap is slid along the direction from the centre pixel to the
     /// light's centre onto the plane through the centre parallel to the light,
-    /// then measured there: equal to Eq. 12 for a receiver facing the light,
+    /// then measured there: equal to AAF Eq. 12 for a receiver facing the light,
     /// but a tilted light no longer shrinks displacements towards it.
     AlongLightDirection,
-    /// Eq. 12 as printed: the orthogonal projection onto the light's plane
+    /// AAF Eq. 12 as printed: the orthogonal projection onto the light's plane
     /// (the default: the study measured AlongLightDirection no better on the
     /// tilted scenes and worse where the light is seen edge-on, README).
     OrthogonalProjection,
@@ -31,26 +31,26 @@ struct AafParams {
     /// (Sec. 5.2): beta shrinks as 1/mu, the sampling rate grows with mu.
     float mu = 2.0f;
     /// Consistency (Sec. 5.2): each pixel's mu is raised to the value whose
-    /// sampling rate (Eq. 15/21) equals the samples the pixel actually took,
+    /// sampling rate (AAF Eq. 15/21) equals the samples the pixel actually took,
     /// so the filter narrows as samples are added and the result converges to
     /// the reference; `mu` is then the floor. This is the default whenever
     /// the spp AOV is given (AafInputs::spp valid); `mu_from_spp` makes the
     /// spp AOV required, `fixed_mu` ignores it (one mu everywhere, the
-    /// filter of Eq. 13 as printed).
+    /// filter of AAF Eq. 13 as printed).
     bool mu_from_spp = false;
     bool fixed_mu = false;
     /// Which sigma gives the light's band-limit Omega_L = 1/sigma and width
-    /// 2 sigma in Eq. 8, 13 and 15 (light_bandlimit.h); the sampling plan
+    /// 2 sigma in AAF Eq. 8, 13 and 15 (light_bandlimit.h); the sampling plan
     /// uses the same. Sigma is the paper's reading; the default accounts for
     /// the truncation of the Gaussian at the light's edges.
     LightBandlimit light_bandlimit = LightBandlimit::EquivalentWidth;
     /// Baseline "non-adaptive filter" of AAF Fig. 6 (NAF): when > 0, every pixel
-    /// AAF would filter uses this beta (world metres) instead of Eq. 13, with
+    /// AAF would filter uses this beta (world metres) instead of AAF Eq. 13, with
     /// the same taps, rejection and cut-off. 0 = AAF proper.
     float fixed_beta_m = 0.0f;
-    /// Gaussian energy spread, beta = 1 / (k Omega_x^f) (Eq. 13, footnote 4).
+    /// Gaussian energy spread, beta = 1 / (k Omega_x^f) (AAF Eq. 13, footnote 4).
     float k = 3.0f;
-    /// Occluder bandlimit relative to the pixel bandlimit, in (0, 1] (Eq. 5).
+    /// Occluder bandlimit relative to the pixel bandlimit, in (0, 1] (AAF Eq. 5).
     float alpha = 1.0f;
     /// Taps whose normal turns by more than this from the centre's are rejected
     /// (Sec. 6 "check on normal variation"); degrees.

@@ -30,7 +30,7 @@ struct GatherGuides {
     /// and, per centre pixel, shears a_u, a_v: a tap's offsets become
     /// du - a_u dn, dv - a_v dn, i.e. the tap is slid along a direction of the
     /// centre's choosing onto the centre's plane n = const (AAF: along the
-    /// direction to the light, instead of Eq. 12's orthogonal projection).
+    /// direction to the light, instead of AAF Eq. 12's orthogonal projection).
     std::vector<float> coord_n_m, shear_u, shear_v;
     bool sheared() const { return !shear_u.empty(); }
 

@@ -10,7 +10,7 @@ inline constexpr int kMaafMaxPairs = 8;
 
 /// Light-side functions per light axis, 2N - 1: function 0 is the central
 /// component's, 2p - 1 its cosine and 2p its sine for p = 1 .. N-1 (MAAF
-/// Eq. 20, the primal pair of Eq. 13).
+/// MAAF Eq. 20, the primal pair of MAAF Eq. 13).
 inline int maaf_functions_per_axis(int pairs) { return 2 * pairs - 1; }
 /// Channels per pixel, (2N - 1)^2: channel a (2N - 1) + b holds light-side
 /// function a of the first light axis times function b of the second (the 4D
@@ -26,8 +26,8 @@ std::string maaf_channel_suffix(int pairs, int channel);
 /// the sample's coordinate on the light along that axis (metres from the
 /// light's centre) and C_y^p in radians per metre.
 ///
-/// The Gaussian envelope g(y; 1/sigma_y) of Eq. 20 is the same for every
-/// component (Eq. 8: sigma_y^p does not depend on p), and is taken to be the
+/// The Gaussian envelope g(y; 1/sigma_y) of MAAF Eq. 20 is the same for every
+/// component (MAAF Eq. 8: sigma_y^p does not depend on p), and is taken to be the
 /// light's own emission profile: the renderer samples y from the light (as
 /// for AAF), so a sample's `value` already carries it. With N = 1 the sums
 /// are the renderer's plain light-weighted sums, i.e. AAF's input.
@@ -35,7 +35,7 @@ class MaafLightSide {
   public:
     MaafLightSide() = default;
     /// N = `pairs` (1 .. kMaafMaxPairs) with C_y^p = omega 2p / (2N - 1) (MAAF
-    /// Eq. 6), omega being the pixel's partitioned Omega_y^max in rad/m
+    /// MAAF Eq. 6), omega being the pixel's partitioned Omega_y^max in rad/m
     /// (maaf_partitioned_omega_y_max(); the light's Omega_y^max where a pixel
     /// has no wedge). Throws aaf::Error for pairs out of range or a negative
     /// or non-finite omega.

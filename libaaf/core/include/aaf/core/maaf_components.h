@@ -39,7 +39,7 @@ double maaf_partitioned_omega_y_max(double s_min, double s_max, double omega_x_m
 /// band-limit along Omega_x (> 0, may be +inf when no clip is wanted);
 /// omega_y_max_rad_per_m: the light's band-limit Omega_y^max (> 0, finite).
 /// The partition uses maaf_partitioned_omega_y_max() (Sec. 6.2), so with
-/// N = 1 the single component is AAF's filter (Eq. 2): sigma_x^0 =
+/// N = 1 the single component is AAF's filter (MAAF Eq. 2): sigma_x^0 =
 /// min(Omega_y^max / s_min, Omega_x^max).
 ///
 /// Degenerate wedges give finite numbers: s_min = s_max (a line) gives

@@ -63,7 +63,7 @@ struct MaafParams {
 /// x-side kernels g(du; 1/sigma_x^p) g(dv; 1/sigma_x^q) times 1, cos(C_x du)
 /// or -sin(C_x du) per axis, du, dv being a tap's signed displacement from the
 /// centre along the light's two tangent axes (world metres), summed with
-/// weights mu_p sigma_x^p (2 mu_p for p >= 1: the pair of Eq. 12-13). The
+/// weights mu_p sigma_x^p (2 mu_p for p >= 1: the pair of MAAF Eq. 12-13). The
 /// result is that sum over the value sums divided by the same sum over the
 /// unoccluded sums, so a fully lit region stays exactly lit. Taps on another
 /// object or with a normal beyond the threshold are rejected. A pixel

@@ -22,8 +22,8 @@ struct SamplingPlanParams {
 };
 
 /// AAF's adaptive sampling rate (Sec. 5.1, 6): for every pixel the total
-/// light samples n of Eq. 15 (packing (a) of Fig. 4, A_p = pixel_size^2,
-/// A_l = (2 sigma)^2; Eq. 21 when nothing clips), with sigma the light's
+/// light samples n of AAF Eq. 15 (packing (a) of Fig. 4, A_p = pixel_size^2,
+/// A_l = (2 sigma)^2; AAF Eq. 21 when nothing clips), with sigma the light's
 /// band-limit sigma under aaf.light_bandlimit (the filter's), rounded up and clamped to
 /// [first_pass_spp, max_spp]. Unoccluded pixels first borrow occluder
 /// distances within `aaf.fill_radius_px` (Sec. 6); with none, or on the

@@ -49,14 +49,14 @@ SpectralFilter aaf_spectral_filter(const DoubleWedge &wedge, SpectralShape shape
 /// (s_avg the harmonic mean of s_min and s_max), width Omega_y^max along
 /// Omega_y. As a box it is the tight parallelogram of MAAF Sec. 5, half-width
 /// Omega_y^max (1/s_min - 1/s_max) / 2 along Omega_x; as a Gaussian its sigma
-/// along Omega_x is Eq. 4's Omega_y^max (1/s_min - 1/s_max), the full width of
-/// that parallelogram (Eq. 4 as printed; AAF's and MAAF's sigmas equal their
+/// along Omega_x is MAAF Eq. 4's Omega_y^max (1/s_min - 1/s_max), the full width of
+/// that parallelogram (MAAF Eq. 4 as printed; AAF's and MAAF's sigmas equal their
 /// boxes' half-widths).
 SpectralFilter fsf_spectral_filter(const DoubleWedge &wedge, SpectralShape shape);
 
-/// The 2N - 1 components of MAAF (Eq. 9) for `pairs` = N >= 1, placed by
-/// Eq. 6-8 (maaf_components.h); Gaussians weighted by mu_p (Eq. 10) unless
-/// `mu_weights` is false (then all 1, to see what Eq. 10 costs in accuracy),
+/// The 2N - 1 components of MAAF (MAAF Eq. 9) for `pairs` = N >= 1, placed by
+/// MAAF Eq. 6-8 (maaf_components.h); Gaussians weighted by mu_p (MAAF Eq. 10) unless
+/// `mu_weights` is false (then all 1, to see what MAAF Eq. 10 costs in accuracy),
 /// boxes always unweighted as in Table 1. N = 1 is AAF's filter.
 SpectralFilter maaf_spectral_filter(const DoubleWedge &wedge, int pairs, SpectralShape shape,
                                     bool mu_weights = true);

@@ -23,10 +23,10 @@ struct WedgeIntegrationGrid {
 struct FilterMetrics {
     double accuracy = 0;         ///< alpha, MAAF Eq. 14 (1 = no L2 error over T)
     double coverage = 0;         ///< gamma, MAAF Eq. 15 (1 = no filter outside T)
-    double filter_integral = 0;  ///< the integral of |W| over the plane (Eq. 15's denominator)
+    double filter_integral = 0;  ///< the integral of |W| over the plane (MAAF Eq. 15's denominator)
 };
 
-/// alpha (Eq. 14) and gamma (Eq. 15) of `filter` for `wedge`, integrated
+/// alpha (MAAF Eq. 14) and gamma (MAAF Eq. 15) of `filter` for `wedge`, integrated
 /// numerically on `grid`. Throws aaf::Error for a bad wedge or grid.
 /// Independent of the thread count (rows summed in a fixed order).
 FilterMetrics integrate_filter_metrics(const SpectralFilter &filter, const DoubleWedge &wedge,
@@ -40,18 +40,18 @@ double aaf_box_coverage(const DoubleWedge &wedge);
 double fsf_box_coverage();
 
 /// Total area of MAAF's 2N - 1 boxes (MAAF Eq. 17) with the central box's
-/// area from Eq. 8, 4 sigma_x^0 sigma_y^0 = 4 (Omega_y^max/(2N-1))^2 / s_min.
+/// area from MAAF Eq. 8, 4 sigma_x^0 sigma_y^0 = 4 (Omega_y^max/(2N-1))^2 / s_min.
 double maaf_box_area(const DoubleWedge &wedge, int pairs);
 
 /// Coverage of MAAF's 2N - 1 boxes (MAAF Eq. 18) with the central term of
 /// maaf_box_area; N = 1 gives aaf_box_coverage.
 double maaf_box_coverage(const DoubleWedge &wedge, int pairs);
 
-/// Eq. 16 for AAF as printed, from the box area 4 (Omega_y^max / s_min)^2:
+/// MAAF Eq. 16 for AAF as printed, from the box area 4 (Omega_y^max / s_min)^2:
 /// (s_min / 4)(1 - s_min/s_max), s_min times aaf_box_coverage.
 double aaf_box_coverage_as_printed(const DoubleWedge &wedge);
 
-/// Eq. 18 as printed, with 1/s_min^2 in the central term (Eq. 17's AAF box area).
+/// MAAF Eq. 18 as printed, with 1/s_min^2 in the central term (MAAF Eq. 17's AAF box area).
 double maaf_box_coverage_as_printed(const DoubleWedge &wedge, int pairs);
 
 }  // namespace aaf

@@ -31,7 +31,7 @@ struct MaafFilteredSums {
 /// components (p along the light's first axis, q along its second) the
 /// channels are regrouped into complex sources whose kernels
 /// g_p(du) g_q(dv) e^{j (C_x^p du +- C_x^q dv)} are separable (MAAF Eq. 13
-/// with the cos/sin pair of Eq. 12 kept as one complex exponential), then
+/// with the cos/sin pair of MAAF Eq. 12 kept as one complex exponential), then
 /// filtered by a vertical pass with each intermediate pixel's kernel and a
 /// horizontal pass with each centre's, as AAF Sec. 6 separates its Gaussian
 /// (exact where the kernel is locally constant and image rows and columns

@@ -83,9 +83,9 @@ struct RenderSettings {
     unsigned aovs = aov_groups_for_method("aaf");
 
     /// AAF's two-pass adaptive sampling (Sec. 5.1, 6): after the first pass,
-    /// each pixel gets the total of Eq. 21 (aaf::plan_samples), capped at max_spp.
+    /// each pixel gets the total of AAF Eq. 21 (aaf::plan_samples), capped at max_spp.
     bool adaptive = false;
-    float adaptive_mu = 2.0f;  ///< mu of Eq. 21
+    float adaptive_mu = 2.0f;  ///< mu of AAF Eq. 21
     int max_spp = 100;         ///< cap of the adaptive total per pixel
     /// The light band-limit rule of the plan (AafParams::light_bandlimit): the filter's.
     LightBandlimit light_bandlimit = AafParams{}.light_bandlimit;
@@ -104,7 +104,7 @@ struct RenderSettings {
     /// A light sample behind the receiver's own tangent plane is occluded (the
     /// visibility counts it as blocked) and by default gives an occluder at
     /// the receiver, d2 = d1 (s2 = 0: such pixels are barely filtered and get
-    /// Eq. 21's largest rate). True: it gives no occluder distance, as the AAF
+    /// AAF Eq. 21's largest rate). True: it gives no occluder distance, as the AAF
     /// authors' code skips it; the study measured that no better on any scene
     /// and worse on curved receivers (their terminators then keep the first
     /// pass's 9 samples unfiltered), README "The study".
