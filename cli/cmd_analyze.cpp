@@ -126,12 +126,12 @@ nlohmann::ordered_json to_json(const std::vector<MethodResult> &results) {
 void print_table(const std::vector<MethodResult> &results, const AnalyzeOptions &options) {
     const bool box = !options.gauss, paper = box && options.random > 0;
     std::printf("%-10s %9s %9s", "method", "coverage", "accuracy");
-    if (box) std::printf(" %12s %12s", "Eq. 16-18", "as printed");
+    if (box) std::printf(" %14s %12s", "MAAF Eq. 16-18", "as printed");
     if (paper) std::printf(" %14s", "paper Table 1");
     std::printf("\n");
     for (const MethodResult &r : results) {
         std::printf("%-10s %9.4f %9.4f", r.name.c_str(), r.coverage, r.accuracy);
-        if (box) std::printf(" %12.4f %12.4f", r.coverage_eq, r.coverage_printed);
+        if (box) std::printf(" %14.4f %12.4f", r.coverage_eq, r.coverage_printed);
         if (paper) {
             const double value = paper_table1(r.name);
             if (std::isnan(value))
@@ -188,7 +188,7 @@ void add_analyze_command(CLI::App &app) {
     auto options = std::make_shared<AnalyzeOptions>();
     CLI::App *cmd = analyze_cmd->add_subcommand(
         "wedge",
-        "Accuracy (MAAF Eq. 14) and coverage (Eq. 15; Eq. 16-18 for boxes) of AAF, FSF and MAAF on the "
+        "Accuracy (MAAF Eq. 14) and coverage (MAAF Eq. 15; Eq. 16-18 for boxes) of AAF, FSF and MAAF on the "
         "flatland double wedge between slopes s_min and s_max, Omega_y^max = 1");
     cmd->add_option("--smin", options->s_min, "Smallest wedge slope s_min (d1/d2 - 1), > 0")
         ->check(finite_number(0));
@@ -202,10 +202,10 @@ void add_analyze_command(CLI::App &app) {
     CLI::Option *box =
         cmd->add_flag("--box", options->box, "Box and parallelogram filters (the default; Table 1)");
     CLI::Option *gauss = cmd->add_flag("--gauss", options->gauss,
-                                       "Gaussian filters weighted by mu_p (Eq. 2, 4, 9-10; Table 2)");
+                                       "Gaussian filters weighted by mu_p (MAAF Eq. 2, 4, 9-10; Table 2)");
     box->excludes(gauss);
     cmd->add_flag("--no-mu", options->no_mu,
-                  "With --gauss: MAAF's components unweighted (mu_p = 1) instead of Eq. 10's weights")
+                  "With --gauss: MAAF's components unweighted (mu_p = 1) instead of MAAF Eq. 10's weights")
         ->needs(gauss);
     cmd->add_option("--random", options->random,
                     "Average over this many random wedges 0 < s_min < s_max < 10 (sorted pairs of two "
@@ -217,7 +217,7 @@ void add_analyze_command(CLI::App &app) {
         ->capture_default_str();
     cmd->add_flag("--json", options->json,
                   "Print one JSON object keyed by method (AAF, FSF, MAAF(2N-1)), each with coverage and "
-                  "accuracy (and, for boxes, Eq. 16-18)");
+                  "accuracy (and, for boxes, MAAF Eq. 16-18)");
     cmd->callback([options] { run_wedge(*options); });
 }
 
