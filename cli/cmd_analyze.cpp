@@ -188,7 +188,7 @@ void add_analyze_command(CLI::App &app) {
     auto options = std::make_shared<AnalyzeOptions>();
     CLI::App *cmd = analyze_cmd->add_subcommand(
         "wedge",
-        "Accuracy (MAAF Eq. 14) and coverage (MAAF Eq. 15; Eq. 16-18 for boxes) of AAF, FSF and MAAF on the "
+        "Accuracy (MAAF Eq. 14) and coverage (MAAF Eq. 15; MAAF Eq. 16-18 for boxes) of AAF, FSF and MAAF on the "
         "flatland double wedge between slopes s_min and s_max, Omega_y^max = 1");
     cmd->add_option("--smin", options->s_min, "Smallest wedge slope s_min (d1/d2 - 1), > 0")
         ->check(finite_number(0));

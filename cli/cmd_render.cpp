@@ -203,8 +203,8 @@ void add_render_command(CLI::App &app) {
                     "unshadowed, depth, albedo, motion, progress")
         ->capture_default_str();
     cmd->add_flag("--adaptive", options->settings.adaptive,
-                  "Two-pass adaptive sampling (AAF Sec. 6): --spp first, then Eq. 21 per pixel");
-    cmd->add_option("--mu", options->settings.adaptive_mu, "mu of the adaptive sampling rate (Eq. 21)")
+                  "Two-pass adaptive sampling (AAF Sec. 6): --spp first, then AAF Eq. 21 per pixel");
+    cmd->add_option("--mu", options->settings.adaptive_mu, "mu of the adaptive sampling rate (AAF Eq. 21)")
         ->capture_default_str();
     cmd->add_option("--max-spp", options->settings.max_spp, "Cap on the adaptive samples per pixel")
         ->capture_default_str();

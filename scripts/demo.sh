@@ -34,7 +34,7 @@ rmse_aaf=$("$aaf" compare "$out/grids_aaf.exr" "$reference" | awk '{print $2}')
 t5=$(now)
 avg_spp=$("$aaf" info "$out/grids_noisy.exr" | awk '/^mean spp over shaded pixels/ {print $6}')
 
-# The paper's full pipeline: 9 spp first pass, per-pixel rate of Eq. 21 (mu 2, cap 100), filter.
+# The paper's full pipeline: 9 spp first pass, per-pixel rate of AAF Eq. 21 (mu 2, cap 100), filter.
 t6=$(now)
 "$aaf" render grids -o "$out/grids_adaptive.exr" --width $width --height $height --spp $spp --seed $seed \
   --adaptive --mu 2 --max-spp 100 >/dev/null
@@ -60,7 +60,7 @@ ratio() { awk -v a="$1" -v b="$2" 'BEGIN { printf "%.2f", a / b }'; }
 printf '%-22s %8s %16s %16s %8s %10s %10s\n' "sampling" "avg spp" "RMSE unfiltered" "RMSE AAF" "ratio" "render s" "filter s"
 printf '%-22s %8s %16s %16s %8s %10s %10s\n' "uniform ${spp} spp" "$avg_spp" "$rmse_noisy" "$rmse_aaf" \
   "$(ratio "$rmse_noisy" "$rmse_aaf")" "$(elapsed "$t0" "$t1")" "$(elapsed "$t1" "$t2")"
-printf '%-22s %8s %16s %16s %8s %10s %10s\n' "adaptive (Eq. 21)" "$adaptive_spp" "$rmse_adaptive" \
+printf '%-22s %8s %16s %16s %8s %10s %10s\n' "adaptive (AAF Eq. 21)" "$adaptive_spp" "$rmse_adaptive" \
   "$rmse_adaptive_aaf" "$(ratio "$rmse_adaptive" "$rmse_adaptive_aaf")" "$(elapsed "$t6" "$t7")" "$(elapsed "$t7" "$t8")"
 echo "reference: $ref_time; compare (2x): $(elapsed "$t4" "$t5") s; times include EXR I/O"
 echo "images: $out/grids_{noisy,aaf,adaptive_aaf,ref,beta,n}.png and the EXRs beside them"

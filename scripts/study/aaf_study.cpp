@@ -50,7 +50,7 @@ std::pair<double, float> best_fixed_filter(const AovSet &noisy, const AovSet &re
 
 /// The paper's reading where this implementation departs from it (README,
 /// "AAF in this implementation"): one mu everywhere, Omega_L = 1/sigma,
-/// one-sided windows at the image edge (Eq. 12's orthogonal projection is
+/// one-sided windows at the image edge (AAF Eq. 12's orthogonal projection is
 /// the default too).
 AafParams paper_params(float mu) {
     AafParams p;

@@ -6,11 +6,11 @@ Usage: scripts/study/wedge_tables.py [AAF_BINARY] [OUT_DIR]
 
 Writes, into OUT_DIR:
   table1_box.csv          Table 1: box coverage, mean over 50 random wedges (seed 1): numerical
-                          (grid 1024), Eq. 16-18 from the geometry, Eq. 16-18 as printed, the paper's
+                          (grid 1024), MAAF Eq. 16-18 from the geometry, MAAF Eq. 16-18 as printed, the paper's
   table2_gauss.csv        Table 2: Gaussian accuracy and coverage, the three named wedges and the
-                          50-wedge mean, AAF, FSF, MAAF(3/5/7); MAAF with Eq. 10's mu_p and with 1
+                          50-wedge mean, AAF, FSF, MAAF(3/5/7); MAAF with MAAF Eq. 10's mu_p and with 1
   grid_convergence.csv    coverage and accuracy against grid size for one wedge
-  table1_distributions.csv  closed-form (Eq. 16-18) means under other wedge distributions
+  table1_distributions.csv  closed-form (MAAF Eq. 16-18) means under other wedge distributions
   table1_findings.txt     what those numbers say about the paper's Table 1
 Needs only Debian's python3-numpy besides the binary. Deterministic.
 """
@@ -53,7 +53,7 @@ def table1():
 
 def table2():
     rows = []
-    for weights, flags in (("Eq. 10", []), ("1 (--no-mu)", ["--no-mu"])):
+    for weights, flags in (("MAAF Eq. 10", []), ("1 (--no-mu)", ["--no-mu"])):
         for s_min, s_max in NAMED_WEDGES:
             out = analyze("--smin", str(s_min), "--smax", str(s_max), "--gauss", "--filters", "2,3,4", *flags)
             rows += [[f"({s_min}, {s_max})", weights, m, f"{v['accuracy']:.4f}", f"{v['coverage']:.4f}"]
@@ -77,7 +77,7 @@ def convergence():
 
 
 def coverage(s_min, s_max, pairs, printed):
-    """Eq. 18 (N = 1: Eq. 16): central term 1/s_min from the geometry, 1/s_min^2 as printed."""
+    """MAAF Eq. 18 (N = 1: MAAF Eq. 16): central term 1/s_min from the geometry, 1/s_min^2 as printed."""
     spread = 1 / s_min - 1 / s_max
     inv_s_avg = (1 / s_min + 1 / s_max) / 2
     central = 1 / s_min ** 2 if printed else 1 / s_min
@@ -112,7 +112,7 @@ def investigation():
             rms = np.sqrt(np.mean((np.array(means) - np.array([PAPER_TABLE1[m] for m in columns])) ** 2))
             rows.append([name, "as printed" if printed else "geometry"] + [f"{x:.3f}" for x in means] + [f"{rms:.3f}"])
             rows.append(["  +- one standard error of a 50-wedge mean", ""] + [f"{x:.3f}" for x in errs] + [""])
-    write_csv("table1_distributions.csv", ["distribution", "Eq. 16-18"] + list(columns) + ["rms vs paper"], rows)
+    write_csv("table1_distributions.csv", ["distribution", "MAAF Eq. 16-18"] + list(columns) + ["rms vs paper"], rows)
 
     # Increments between the MAAF(3), (5), (7) columns, per wedge, over a fine grid of 0 < s_min < s_max < 10.
     g = np.linspace(0.001, 9.999, 2500)
@@ -123,7 +123,7 @@ def investigation():
     for printed in (False, True):
         c3, c5, c7 = (coverage(s_min, s_max, n, printed) for n in (2, 3, 4))
         excess = np.max((c7 - c5) - (c5 - c3))
-        lines.append(f"Eq. 18 {'as printed' if printed else 'from the geometry'}: over every wedge with 0 < s_min < "
+        lines.append(f"MAAF Eq. 18 {'as printed' if printed else 'from the geometry'}: over every wedge with 0 < s_min < "
                      f"s_max < 10, (MAAF(7) - MAAF(5)) - (MAAF(5) - MAAF(3)) is at most {excess:+.2g}; so is its mean "
                      f"over any one set of wedges. The paper's columns give (0.401 - 0.275) - (0.275 - 0.197) = "
                      f"{(0.401 - 0.275) - (0.275 - 0.197):+.3f}.")

@@ -110,7 +110,7 @@ TEST_CASE("Filtering a converged 2048 spp render with the defaults changes it by
     const double change =
         compare_channels(aaf_filter_aovs(reference, ChannelMap{}, AafParams{}), reference, rgb).rmse;
     AafParams fixed;
-    fixed.fixed_mu = true;  // the paper's Eq. 13 with mu 2 whatever the spp
+    fixed.fixed_mu = true;  // the paper's AAF Eq. 13 with mu 2 whatever the spp
     const double fixed_change =
         compare_channels(aaf_filter_aovs(reference, ChannelMap{}, fixed), reference, rgb).rmse;
     INFO("reference noise " << noise << ", change by the default filter " << change << ", by a fixed mu 2 "

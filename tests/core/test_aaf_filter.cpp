@@ -193,8 +193,8 @@ TEST_CASE("On a shadow gradient the 10 px border strip is no worse filtered than
 
 // --light-distance ray slides a tap along the direction to the light onto the
 // centre's plane parallel to the light: on such a plane nothing slides, and
-// it equals Eq. 12; on a receiver tilted towards the light it differs.
-TEST_CASE("Distances along the ray equal Eq. 12 on a receiver parallel to the light", "[aaf][filter]") {
+// it equals AAF Eq. 12; on a receiver tilted towards the light it differs.
+TEST_CASE("Distances along the ray equal AAF Eq. 12 on a receiver parallel to the light", "[aaf][filter]") {
     FlatScene scene(40, 30, 1.0f);
     scene.fill_noise(9);
     AafParams params;
@@ -203,7 +203,7 @@ TEST_CASE("Distances along the ray equal Eq. 12 on a receiver parallel to the li
     params.light_distance = AafLightDistance::OrthogonalProjection;
     CHECK(along_ray == scene.run(params));
     // Hand value: light centre (0, 2, 0) facing down, centre pixel at (1, 0, 0), tap 0.5 m above
-    // it. Eq. 12 drops the vertical offset (distance 0); sliding the tap along l = (-1, 2, 0) / sqrt 5
+    // it. AAF Eq. 12 drops the vertical offset (distance 0); sliding the tap along l = (-1, 2, 0) / sqrt 5
     // onto the centre's plane y = 0 moves it to (1.25, 0, 0): du = 0.25 m.
     FlatScene pair(2, 1, 1.0f);
     pair.px = {1.0f, 1.0f};

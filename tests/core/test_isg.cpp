@@ -47,18 +47,18 @@ TEST_CASE("ISG sample sets: k x k taps, the centre first, inside the disc or the
     CHECK_THROWS_AS(tap_set(10, TapShape::Disk, TapPattern::Grid), Error);
 }
 
-TEST_CASE("ISG formulas: Eq. 8, 9, 13 and 15 against hand-computed values", "[isg]") {
-    // Eq. 8: L d / (D - d) = 0.5 * 1 / (3 - 1).
+TEST_CASE("ISG formulas: ISG Eq. 8, 9, 13 and 15 against hand-computed values", "[isg]") {
+    // ISG Eq. 8: L d / (D - d) = 0.5 * 1 / (3 - 1).
     CHECK(penumbra_radius_m(0.5f, 1.0f, 3.0f) == Approx(0.25f));
     CHECK(penumbra_radius_m(0.5f, 0.0f, 3.0f) == 0.0f);  // contact: a hard shadow
     CHECK(std::isinf(penumbra_radius_m(0.5f, 3.0f, 3.0f)));
-    // Eq. 9: 0.25 m at 5 m with a 1000 px focal length.
+    // ISG Eq. 9: 0.25 m at 5 m with a 1000 px focal length.
     CHECK(screen_radius_px(0.25f, 5.0f, 1000.0f) == Approx(50.0f));
-    // Eq. 13: tan(alpha) = E tan(theta) / (e + E); E = 3, e = 1, theta = 45 degrees: atan(0.75).
+    // ISG Eq. 13: tan(alpha) = E tan(theta) / (e + E); E = 3, e = 1, theta = 45 degrees: atan(0.75).
     CHECK(glossy_gather_angle(0.785398163f, 1.0f, 3.0f) == Approx(std::atan(0.75f)));
     CHECK(glossy_gather_angle(0.1f, 2.0f, INFINITY) == Approx(0.1f));
     CHECK(glossy_gather_angle(0.1f, 2.0f, 0.0f) == 0.0f);  // contact: a sharp reflection
-    // Eq. 15: |z - z_f| / z c_inf.
+    // ISG Eq. 15: |z - z_f| / z c_inf.
     CHECK(circle_of_confusion_px(2.0f, 4.0f, 10.0f) == Approx(10.0f));
     CHECK(circle_of_confusion_px(4.0f, 4.0f, 10.0f) == 0.0f);
     CHECK(circle_of_confusion_px(8.0f, 4.0f, 10.0f) == Approx(5.0f));
@@ -131,7 +131,7 @@ TEST_CASE("isg-shadow: the penumbra widens with the occluder's height as ISG Eq.
     parameters.set("gather_samples", std::string("121"));
     parameters.set("light_shape", std::string("disk"));
     // A flat receiver: the range function (a Gaussian in world distance)
-    // would cap the width, so it is made flat to measure Eq. 8's geometry.
+    // would cap the width, so it is made flat to measure ISG Eq. 8's geometry.
     parameters.set("sigma", 1e3);
     parameters.set("max_radius", 200.0);
     float previous = 0;
@@ -139,7 +139,7 @@ TEST_CASE("isg-shadow: the penumbra widens with the occluder's height as ISG Eq.
         INFO("occluder " << d_m << " m above the receiver");
         const AovSet out = filter_aovs(method, shadow_edge(d_m), ChannelMap{}, parameters);
         const float measured = rise_width_px(out, role_info(Role::FilteredVisibility).channels[0]);
-        // Eq. 8 and 9: R_g = L d / (D - d) / z_eye * focal, in pixels (1 cm each).
+        // ISG Eq. 8 and 9: R_g = L d / (D - d) / z_eye * focal, in pixels (1 cm each).
         const float predicted_radius_px = kLightHalf_m * d_m / (kLightHeight_m - d_m) / kPixel_m;
         CHECK(measured > previous);
         CHECK(measured == Approx(kTenToNinetyPerRadius * predicted_radius_px).epsilon(0.2));
@@ -202,7 +202,7 @@ TEST_CASE(
         INFO("reflected object " << reflected_m << " m away");
         const AovSet out = filter_aovs(method, reflection_edge(reflected_m), ChannelMap{}, parameters);
         const float measured = rise_width_px(out, role_info(Role::GlossyReflection).channels[0]);
-        // Eq. 13 with e = 5 m; Eq. 14 with cos(theta_incident) = 1 at the edge, seen head-on.
+        // ISG Eq. 13 with e = 5 m; ISG Eq. 14 with cos(theta_incident) = 1 at the edge, seen head-on.
         const float alpha = std::atan(reflected_m * std::tan(0.02f) / (kDepth_m + reflected_m));
         CHECK(measured > previous);
         CHECK(measured == Approx(kTenToNinetyPerRadius * alpha * px_per_rad).epsilon(0.2));
@@ -250,7 +250,7 @@ TEST_CASE("isg-dof: in focus stays sharp, and a surface blurs by its circle of c
         INFO("depth " << depth_m << " m, focus 5 m");
         const AovSet out = filter_aovs(method, pinhole_edge(depth_m), ChannelMap{}, parameters);
         const float measured = rise_width_px(out, "isg_dof.G");
-        const float coc_px = (depth_m - 5.0f) / depth_m * coc_inf_px;  // Eq. 15
+        const float coc_px = (depth_m - 5.0f) / depth_m * coc_inf_px;  // ISG Eq. 15
         CHECK(measured > previous);
         CHECK(measured == Approx(kTenToNinetyPerRadius * coc_px).epsilon(0.2));
         previous = measured;

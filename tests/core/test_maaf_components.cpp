@@ -22,7 +22,7 @@ bool all_finite(const std::vector<MaafComponent> &components) {
 }
 }  // namespace
 
-TEST_CASE("MAAF components match hand-computed Eq. 6-10 for N = 2", "[maaf][components]") {
+TEST_CASE("MAAF components match hand-computed MAAF Eq. 6-10 for N = 2", "[maaf][components]") {
     // s_min = 1, s_max = 3, Omega_y^max = 10 rad/m, no pixel clip; 2N - 1 = 3 slices.
     // Omega_y^max / s_min = 10, Omega_y^max / s_max = 10/3.
     const auto c = maaf_components(1.0, 3.0, kInf, 10.0, 2);
@@ -37,16 +37,16 @@ TEST_CASE("MAAF components match hand-computed Eq. 6-10 for N = 2", "[maaf][comp
     CHECK(c[1].sigma_x == Approx(10.0 / 3.0));
     CHECK(c[1].sigma_y == Approx(10.0 / 3.0));
     CHECK(c[1].weight == Approx(1.0));
-    // p = 1: C_y = 10 * 2/3 (Eq. 6); C_x = 1/2 (10/3 * 1/3 + 10 * 3/3) = 50/9 (Eq. 7);
-    // sigma_x = 1/2 (10 * 3/3 - 10/3 * 1/3) = 40/9 (Eq. 8);
-    // mu = exp(-(50/9)^2 / 200) exp(-(20/3)^2 / 200) = exp(-0.3765432) (Eq. 10).
+    // p = 1: C_y = 10 * 2/3 (MAAF Eq. 6); C_x = 1/2 (10/3 * 1/3 + 10 * 3/3) = 50/9 (MAAF Eq. 7);
+    // sigma_x = 1/2 (10 * 3/3 - 10/3 * 1/3) = 40/9 (MAAF Eq. 8);
+    // mu = exp(-(50/9)^2 / 200) exp(-(20/3)^2 / 200) = exp(-0.3765432) (MAAF Eq. 10).
     CHECK(c[2].sign == 1);
     CHECK(c[2].centre_y == Approx(20.0 / 3.0));
     CHECK(c[2].centre_x == Approx(50.0 / 9.0));
     CHECK(c[2].sigma_x == Approx(40.0 / 9.0));
     CHECK(c[2].sigma_y == Approx(10.0 / 3.0));
     CHECK(c[2].weight == Approx(std::exp(-0.37654321)).epsilon(1e-7));
-    // The pair's other member is the mirror image (Eq. 7's symmetry).
+    // The pair's other member is the mirror image (MAAF Eq. 7's symmetry).
     CHECK(c[0].sign == -1);
     CHECK(c[0].centre_x == Approx(-c[2].centre_x));
     CHECK(c[0].centre_y == Approx(-c[2].centre_y));
@@ -54,7 +54,7 @@ TEST_CASE("MAAF components match hand-computed Eq. 6-10 for N = 2", "[maaf][comp
     CHECK(c[0].weight == Approx(c[2].weight));
 }
 
-TEST_CASE("MAAF with N = 1 is AAF's single filter (Eq. 2), clipped by the pixel band-limit", "[maaf][components]") {
+TEST_CASE("MAAF with N = 1 is AAF's single filter (MAAF Eq. 2), clipped by the pixel band-limit", "[maaf][components]") {
     const auto free = maaf_components(0.5, 2.0, kInf, 4.0, 1);
     REQUIRE(free.size() == 1);
     CHECK(free[0].sigma_x == Approx(4.0 / 0.5));  // Omega_y^max / s_min

@@ -180,7 +180,7 @@ TEST_CASE("MAAF Eq. 12-13: two offset Fourier Gaussians are a cos-modulated Gaus
         CHECK(re / (2 * kPi) == Approx(primal_pair(x)).margin(1e-9));
         CHECK(im / (2 * kPi) == Approx(0.0).margin(1e-9));  // the imaginary parts cancel
     }
-    // Eq. 13 in 2D: 2 cos(Cx x + Cy y) = 2 [cos cos - sin sin], the form the x-side passes use with
+    // MAAF Eq. 13 in 2D: 2 cos(Cx x + Cy y) = 2 [cos cos - sin sin], the form the x-side passes use with
     // a tap's displacement d = x_tap - x_centre: cos(Cx d) h_c - sin(Cx d) h_s.
     const double x = 0.21, y = -0.17;
     CHECK(2 * std::cos(c.centre_x * x + c.centre_y * y) ==

@@ -20,7 +20,7 @@ LightPlane untruncated_light() {
 
 }  // namespace
 
-TEST_CASE("Sampling plan follows Eq. 21 on a synthetic first pass", "[aaf][plan]") {
+TEST_CASE("Sampling plan follows AAF Eq. 21 on a synthetic first pass", "[aaf][plan]") {
     // Row of 12 pixels: x < 3 occluded (d2 = 1 m, 0.5 m), x in [3, 9) unoccluded but
     // within 5 px of an occluded one, x >= 9 unoccluded and too far; x = 11 background.
     const int w = 12, h = 1;
@@ -55,7 +55,7 @@ TEST_CASE("Sampling rate decreases with mu and stays finite near contact", "[aaf
         CHECK(n < previous);
         previous = n;
     }
-    // d2max -> d1 (s2 -> 0): Eq. 17 diverges, the clipped form of Eq. 8 does not.
+    // d2max -> d1 (s2 -> 0): AAF Eq. 17 diverges, the clipped form of AAF Eq. 8 does not.
     const float contact = aaf_bandlimits(2.0f, 0.4f, 1.99999f, 0.008f, 0.5f, AafParams{}).samples_per_pixel;
     CHECK(std::isfinite(contact));
 }

@@ -34,7 +34,7 @@ TEST_CASE("Wedge: membership and area match the geometry of MAAF Fig. 4", "[wedg
     CHECK_THROWS_AS(aaf::check_double_wedge({1.0, 2.0, 0.0}), aaf::Error);
 }
 
-TEST_CASE("Wedge: Eq. 16 from the boxes' geometry equals the integrated AAF and FSF box coverage",
+TEST_CASE("Wedge: MAAF Eq. 16 from the boxes' geometry equals the integrated AAF and FSF box coverage",
           "[wedge][box]") {
     const int cells = 1024;
     for (const DoubleWedge &wedge : test_wedges()) {
@@ -52,7 +52,7 @@ TEST_CASE("Wedge: Eq. 16 from the boxes' geometry equals the integrated AAF and 
     }
 }
 
-TEST_CASE("Wedge: the printed Eq. 16 and 18 are s_min times off in the central box, the integral is not",
+TEST_CASE("Wedge: the printed MAAF Eq. 16 and 18 are s_min times off in the central box, the integral is not",
           "[wedge][box]") {
     // The printed AAF box area 4 (Omega_y^max / s_min)^2 has units Omega_x^2 where an area in the
     // (Omega_x, Omega_y) plane has Omega_x Omega_y; the printed coverage scales with s_min.

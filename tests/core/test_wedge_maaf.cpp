@@ -22,14 +22,14 @@ using wedge_test::grid_of;
 using wedge_test::kPi;
 using wedge_test::test_wedges;
 
-TEST_CASE("Wedge: Eq. 18 (central box 4 sigma_x^0 sigma_y^0) equals the integrated MAAF box coverage",
+TEST_CASE("Wedge: MAAF Eq. 18 (central box 4 sigma_x^0 sigma_y^0) equals the integrated MAAF box coverage",
           "[wedge][box]") {
     const int cells = 1024;
     for (const DoubleWedge &wedge : test_wedges())
         for (int pairs : {1, 2, 3, 4, 13}) {
             CAPTURE(wedge.s_min, wedge.s_max, pairs);
             const SpectralFilter filter = aaf::maaf_spectral_filter(wedge, pairs, SpectralShape::Box);
-            CHECK(filter.integral() == Approx(aaf::maaf_box_area(wedge, pairs)).epsilon(1e-12));  // Eq. 17
+            CHECK(filter.integral() == Approx(aaf::maaf_box_area(wedge, pairs)).epsilon(1e-12));  // MAAF Eq. 17
             const aaf::FilterMetrics m = aaf::integrate_filter_metrics(filter, wedge, grid_of(cells));
             const double expected = aaf::maaf_box_coverage(wedge, pairs);
             CHECK(std::abs(m.coverage - expected) <=
@@ -37,7 +37,7 @@ TEST_CASE("Wedge: Eq. 18 (central box 4 sigma_x^0 sigma_y^0) equals the integrat
             // The boxes hold all of T and do not overlap inside it: W = 1 there.
             CHECK(m.accuracy == Approx(1.0).margin(1e-12));
         }
-    // Eq. 18 as printed (1/s_min^2 in the central term) is refused by the integral where s_min is far from 1.
+    // MAAF Eq. 18 as printed (1/s_min^2 in the central term) is refused by the integral where s_min is far from 1.
     for (const DoubleWedge &wedge : {DoubleWedge{0.2, 9.0, 1}, DoubleWedge{4.0, 9.5, 1}}) {
         const SpectralFilter filter = aaf::maaf_spectral_filter(wedge, 3, SpectralShape::Box);
         const double measured = aaf::integrate_filter_metrics(filter, wedge, grid_of(cells)).coverage;
@@ -77,7 +77,7 @@ TEST_CASE("Wedge: MAAF box coverage rises toward 1 with N", "[wedge][box]") {
             CHECK(coverage < 1.0);
             previous = coverage;
         }
-        // Eq. 18's limit: 1 / (1 + O(1/N)), so at N = 400 within 1/N of 1 times the wedge's ratio term.
+        // MAAF Eq. 18's limit: 1 / (1 + O(1/N)), so at N = 400 within 1/N of 1 times the wedge's ratio term.
         const double ratio_term = (1 / wedge.s_min + 1 / wedge.s_max) / (1 / wedge.s_min - 1 / wedge.s_max);
         CHECK(1.0 - previous < 1.5 * ratio_term / 400);
         // The integrated coverage rises too.
@@ -95,7 +95,7 @@ TEST_CASE("Wedge: MAAF box coverage rises toward 1 with N", "[wedge][box]") {
 
 TEST_CASE("Wedge: the integration converges as the grid is refined", "[wedge][convergence]") {
     const DoubleWedge wedge{0.7, 2.2, 1};
-    SECTION("boxes: the error to Eq. 18 stays under its O(1/n) bound at every grid") {
+    SECTION("boxes: the error to MAAF Eq. 18 stays under its O(1/n) bound at every grid") {
         const SpectralFilter filter = aaf::maaf_spectral_filter(wedge, 3, SpectralShape::Box);
         const double exact = aaf::maaf_box_coverage(wedge, 3);
         for (int cells : {64, 128, 256, 512, 1024, 2048, 4096}) {
@@ -125,7 +125,7 @@ TEST_CASE("Wedge: the integration converges as the grid is refined", "[wedge][co
 }
 
 TEST_CASE(
-    "Wedge: Gaussian MAAF is Eq. 9 with mu_p of Eq. 10 and covers more of T than AAF and FSF on the Table 2 "
+    "Wedge: Gaussian MAAF is MAAF Eq. 9 with mu_p of MAAF Eq. 10 and covers more of T than AAF and FSF on the Table 2 "
     "wedges",
     "[wedge][gaussian]") {
     for (const DoubleWedge &wedge :
@@ -134,7 +134,7 @@ TEST_CASE(
         const SpectralFilter maaf = aaf::maaf_spectral_filter(wedge, 3, SpectralShape::Gaussian);
         REQUIRE(maaf.components.size() == 5);
         for (const aaf::SpectralComponent &c : maaf.components) {
-            // Eq. 10 with peak-1 Gaussians: mu_p = G(C_x; W/s_min) G(C_y; W).
+            // MAAF Eq. 10 with peak-1 Gaussians: mu_p = G(C_x; W/s_min) G(C_y; W).
             const double sx = wedge.omega_y_max / wedge.s_min, sy = wedge.omega_y_max;
             CHECK(c.weight == Approx(std::exp(-0.5 * (c.center_x * c.center_x / (sx * sx) +
                                                       c.center_y * c.center_y / (sy * sy)))));

@@ -16,7 +16,7 @@ SpectralFilter maaf_spectral_filter(const DoubleWedge &wedge, int pairs, Spectra
     for (const MaafComponent &part : parts) {
         SpectralComponent c;
         c.weight = shape == SpectralShape::Gaussian && mu_weights ? part.weight
-                                                                  : 1.0;  // Eq. 9-10; Table 1 unweighted
+                                                                  : 1.0;  // MAAF Eq. 9-10; Table 1 unweighted
         c.center_x = part.centre_x;
         c.center_y = part.centre_y;
         c.width_x = part.sigma_x;

@@ -93,7 +93,7 @@ class MaafGroup final : public AovAccumulator {
         for (int y = 0; y < height; ++y)
             for (int x = 0; x < width; ++x) {
                 const std::size_t i = std::size_t(y) * std::size_t(width) + std::size_t(x);
-                // MAAF Sec. 6.2 "Pre-filtering": Eq. 20/23 with the pixel's parameters, over all its samples.
+                // MAAF Sec. 6.2 "Pre-filtering": MAAF Eq. 20/23 with the pixel's parameters, over all its samples.
                 const MaafLightSide light_side(kMaafContractPairs, double(wedges.omega_y[i]));
                 std::fill(value_sums.begin(), value_sums.end(), 0.0);
                 std::fill(unoccluded_sums.begin(), unoccluded_sums.end(), 0.0);

@@ -24,21 +24,21 @@ void AafParams::validate() const {
 AafBandlimits aaf_bandlimits(float d1_m, float d2_min_m, float d2_max_m, float pixel_size_m, float sigma_m,
                              const AafParams &params) {
     AafBandlimits b;
-    b.s1 = std::max(0.0f, d1_m / d2_min_m - 1.0f);               // Eq. 4
-    b.s2 = std::max(0.0f, d1_m / d2_max_m - 1.0f);               // Eq. 4
+    b.s1 = std::max(0.0f, d1_m / d2_min_m - 1.0f);               // AAF Eq. 4
+    b.s2 = std::max(0.0f, d1_m / d2_max_m - 1.0f);               // AAF Eq. 4
     b.omega_light = 1.0f / sigma_m;                              // Sec. 4.1: Omega_L^max = 1/sigma
     const float omega_pixel = 1.0f / pixel_size_m;               // Sec. 4.1: Omega_pix^max = 1/d
-    b.omega_x_max = params.alpha / (1.0f + b.s2) * omega_pixel;  // Eq. 6
-    b.omega_y_max = params.alpha * std::max(0.0f, 1.0f - d2_min_m / d1_m) * omega_pixel;  // Eq. 7
+    b.omega_x_max = params.alpha / (1.0f + b.s2) * omega_pixel;  // AAF Eq. 6
+    b.omega_y_max = params.alpha * std::max(0.0f, 1.0f - d2_min_m / d1_m) * omega_pixel;  // AAF Eq. 7
 
-    // Eq. 8: Omega_L / s2 is unbounded as s2 -> 0; the clip to Omega_x^max takes over.
+    // AAF Eq. 8: Omega_L / s2 is unbounded as s2 -> 0; the clip to Omega_x^max takes over.
     const float light_induced = b.s2 > 0 ? b.omega_light / b.s2 : std::numeric_limits<float>::infinity();
     b.omega_x_f0 = std::min(light_induced, b.omega_x_max);
     b.omega_x_f = params.mu * b.omega_x_f0;  // Sec. 5.2
-    // Eq. 13: beta = 1/(k mu) max(sigma s2, 1/Omega_x^max) = 1 / (k Omega_x^f).
+    // AAF Eq. 13: beta = 1/(k mu) max(sigma s2, 1/Omega_x^max) = 1 / (k Omega_x^f).
     b.beta_m = 1.0f / (params.k * b.omega_x_f);
 
-    // Eq. 15 with packing (a) of Fig. 4: A_p = d^2 and A_l = (2 sigma)^2.
+    // AAF Eq. 15 with packing (a) of Fig. 4: A_p = d^2 and A_l = (2 sigma)^2.
     const float omega_x_star = b.omega_x_f + b.omega_x_max;
     const float omega_y_star = b.omega_light + std::min(b.s1 * b.omega_x_f, b.omega_y_max);
     const float pixel_term = omega_x_star * pixel_size_m;

@@ -99,7 +99,7 @@ GatherGuides aaf_gather_guides(const AafInputs &in, const LightPlane &light, con
             if (along_light) {
                 // Delta_eff = Delta - l (n . Delta) / (n . l), l the unit direction to the
                 // light's centre: the tap slid along l onto the centre's plane parallel to
-                // the light (AAF Fig. 2's geometry), of which Eq. 12 is the case l = n.
+                // the light (AAF Fig. 2's geometry), of which AAF Eq. 12 is the case l = n.
                 const Vec3 to_light = light.center - p;
                 const float distance = length(to_light);
                 if (distance > 0) {

@@ -79,7 +79,7 @@ class IsgDofMethod final : public Method {
             const float z = depth_m(x, y);
             return z == 0 ? kInf : std::isfinite(z) && z > 0 ? z : std::nanf("");
         };
-        auto coc = [&](float z) { return circle_of_confusion_px(z, focus_m, coc_inf_px); };  // Eq. 15
+        auto coc = [&](float z) { return circle_of_confusion_px(z, focus_m, coc_inf_px); };  // ISG Eq. 15
 
         parallel_for_rows(height, [&](int y) {
             for (int x = 0; x < width; ++x) {

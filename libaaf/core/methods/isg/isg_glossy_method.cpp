@@ -97,10 +97,10 @@ class IsgGlossyMethod final : public Method {
                 const Vec3 to_eye = eye - p0;
                 const float eye_distance_m = length(to_eye);
                 const float alpha =
-                    glossy_gather_angle(theta, eye_distance_m, reflected_distance_m);  // Eq. 13
+                    glossy_gather_angle(theta, eye_distance_m, reflected_distance_m);  // ISG Eq. 13
                 const float cos_incident = std::fabs(dot(n0, to_eye)) / eye_distance_m;
                 const float gather_px =
-                    clamp_radius(alpha * px_per_rad * cos_incident, common.max_radius_px);  // Eq. 14
+                    clamp_radius(alpha * px_per_rad * cos_incident, common.max_radius_px);  // ISG Eq. 14
                 double weight = 0, sum[3] = {0, 0, 0};
                 for (const Tap &tap : gather) {
                     int sx, sy;

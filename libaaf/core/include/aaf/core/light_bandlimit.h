@@ -7,7 +7,7 @@
 namespace aaf {
 
 /// Which sigma stands for the light in AAF's band-limit Omega_L^max = 1/sigma
-/// (Sec. 4.1) and effective width 2 sigma (Eq. 15). The paper assumes an
+/// (Sec. 4.1) and effective width 2 sigma (AAF Eq. 15). The paper assumes an
 /// untruncated Gaussian; the lights here are truncated at the rectangle's
 /// edges (1 sigma for a square by default, light_plane.h), which spreads the
 /// spectrum: Omega_L = 1/sigma understates the band-limit and over-blurs.

@@ -58,7 +58,7 @@ struct MaafParams {
 };
 
 /// Multiple Axis-Aligned Filtering of soft-shadow visibility (Wu et al.
-/// 2017, Eq. 21 in 4D): per pixel the components of its wedge (MAAF Eq. 6-10),
+/// 2017, MAAF Eq. 21 in 4D): per pixel the components of its wedge (MAAF Eq. 6-10),
 /// and for each pair of components (one per light axis) the channels'
 /// x-side kernels g(du; 1/sigma_x^p) g(dv; 1/sigma_x^q) times 1, cos(C_x du)
 /// or -sin(C_x du) per axis, du, dv being a tap's signed displacement from the
