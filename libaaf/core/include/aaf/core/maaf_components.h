@@ -5,7 +5,7 @@
 namespace aaf {
 
 /// One axis-aligned Gaussian of MAAF's Fourier-domain filter in one 2D (x, y)
-/// subspace (Wu et al. 2017, Eq. 9): mu_p G(Omega_x - C_x^p; sigma_x^p)
+/// subspace (Wu et al. 2017, MAAF Eq. 9): mu_p G(Omega_x - C_x^p; sigma_x^p)
 /// G(Omega_y - C_y^p; sigma_y^p), with G(t; s) = exp(-t^2 / (2 s^2)) (peak 1).
 ///
 /// Units: every frequency is in radians per metre (not cycles): the primal
