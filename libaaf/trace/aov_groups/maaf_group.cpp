@@ -10,7 +10,7 @@ namespace aaf::trace {
 
 namespace {
 
-/// MAAF's light-side sums (Wu et al. 2017, Eq. 20/23) in two passes as the
+/// MAAF's light-side sums (Wu et al. 2017, MAAF Eq. 20/23) in two passes as the
 /// paper's Sec. 6: the pixel's first batch of samples (render.cpp traces
 /// RenderSettings::maaf_first_pass_spp of them as their own stratified pass)
 /// gives the occluder distances, hence the wedge (prefiltered over 5x5,
