@@ -6,6 +6,7 @@
 #include <fstream>
 #include <iomanip>
 #include <iterator>
+#include <random>
 #include <sstream>
 #include <string>
 #include <utility>
@@ -103,7 +104,11 @@ std::string write_two_light_scene() {
     const std::filesystem::path dir = std::filesystem::path(AAF_TEST_BINARY_DIR) / "scratch" / "golden";
     std::filesystem::create_directories(dir);
     const std::string path = (dir / "two_lights.json").string();
-    std::ofstream(path) << R"({
+    // ctest runs this file's cases as parallel processes that all write this
+    // scene: each writes its own temporary and renames it into place, so no
+    // reader ever sees a half-written file.
+    const std::string temporary = path + ".tmp-" + std::to_string(std::random_device{}());
+    std::ofstream(temporary) << R"({
   "camera": {"position": [0.5, 2.5, 1.5], "look_at": [0.5, 0, 0], "up": [0, 1, 0], "fov_y_deg": 50},
   "lights": [{"center": [0, 3, 0], "edge_u": [0.5, 0, 0], "edge_v": [0, 0, 0.5], "intensity": 10},
              {"center": [2, 2.5, 1], "edge_u": [0.3, 0, 0], "edge_v": [0, 0, 0.3], "intensity": 4,
@@ -113,6 +118,7 @@ std::string write_two_light_scene() {
     {"type": "box", "min": [0.3, 0.6, -0.2], "max": [0.7, 0.7, 0.2], "id": 2}
   ]
 })";
+    std::filesystem::rename(temporary, path);
     return path;
 }
 

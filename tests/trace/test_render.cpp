@@ -7,6 +7,7 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <random>
 #include <string>
 #include <variant>
 #include <vector>
@@ -306,7 +307,10 @@ std::string write_probe_scene(const std::string &extra_lights = "") {
     const std::filesystem::path dir = std::filesystem::path(AAF_TEST_BINARY_DIR) / "scratch" / "probe_scene";
     std::filesystem::create_directories(dir);
     const std::string path = (dir / (extra_lights.empty() ? "probe.json" : "probe_two_lights.json")).string();
-    std::ofstream(path) << R"({
+    // Parallel test processes write this scene too: a temporary renamed into
+    // place keeps any reader from seeing a half-written file.
+    const std::string temporary = path + ".tmp-" + std::to_string(std::random_device{}());
+    std::ofstream(temporary) << R"({
   "camera": {"position": [0.9, 2.5, 0], "look_at": [0.9, 0, 0], "up": [0, 0, -1], "fov_y_deg": 45},
   "lights": [{"center": [0, 3, 0], "edge_u": [0.5, 0, 0], "edge_v": [0, 0, 0.5], "intensity": 10,
               "profile": "uniform"})" +
@@ -316,6 +320,7 @@ std::string write_probe_scene(const std::string &extra_lights = "") {
     {"type": "box", "min": [0.6, 1.0, -0.1], "max": [0.7, 1.01, 0.1], "id": 2}
   ]
 })";
+    std::filesystem::rename(temporary, path);
     return path;
 }
 
