@@ -215,6 +215,37 @@ const std::vector<RoleInfo> &role_table() {
          "linear radiance",
          "output of `aaf filter isg-dof`: the pinhole image gathered over circles of confusion (ISG Eq. "
          "15-17)"},
+        {Role::RatioAnalytic,
+         "ratio_u",
+         {"ratio.U.R", "ratio.U.G", "ratio.U.B"},
+         "linear radiance",
+         "ratio estimator Eq. 20: the analytic unshadowed direct light U of every light, summed (exact "
+         "polygon irradiance for the diffuse lobe, linearly transformed cosines for GGX). Per light: the same "
+         "names with `ratio.` replaced by `ratio.L<i>.`, i < aaf:ratio:lights"},
+        {Role::RatioShadowed,
+         "ratio_s",
+         {"ratio.S.R", "ratio.S.G", "ratio.S.B"},
+         "linear radiance",
+         "ratio estimator Eq. 21 as a mean: (1/N) sum of w R L V / p over the pixel's N samples per light "
+         "(MIS weights w), summed over lights; it is also the full-stochastic estimate (Eq. 10). Per light as "
+         "ratio_u"},
+        {Role::RatioUnshadowed,
+         "ratio_un",
+         {"ratio.Un.R", "ratio.Un.G", "ratio.Un.B"},
+         "linear radiance",
+         "ratio estimator Eq. 22 as a mean: the same samples and weights as ratio_s with V = 1, so S_N / U_N "
+         "stays in [0, 1]; U - U_N + S_N is the control-variate estimate (Eq. 11). Per light as ratio_u"},
+        {Role::RatioShadowedLuminance,
+         "ratio_s_y",
+         {"ratio.S.Y"},
+         "luminance",
+         "Rec. 709 luminance of ratio_s, for the grey approximation (ratio estimator Sec. 3.4). Per light as "
+         "ratio_u"},
+        {Role::RatioUnshadowedLuminance,
+         "ratio_un_y",
+         {"ratio.Un.Y"},
+         "luminance",
+         "Rec. 709 luminance of ratio_un (ratio estimator Sec. 3.4). Per light as ratio_u"},
     };
     return table;
 }
@@ -444,6 +475,9 @@ bool is_colour_role(Role role) {
         case Role::PinholeBeauty:
         case Role::GlossyReflection:
         case Role::Defocused:
+        case Role::RatioAnalytic:
+        case Role::RatioShadowed:
+        case Role::RatioUnshadowed:
             return true;
         default:
             return false;

@@ -46,6 +46,11 @@ enum class Role {
     PinholeBeauty,       ///< ISG: the in-focus image a pinhole camera sees
     GlossyReflection,    ///< output of isg-glossy: the filtered reflection
     Defocused,           ///< output of isg-dof: the defocused image
+    RatioAnalytic,       ///< ratio estimator: analytic unshadowed direct light U (Eq. 20)
+    RatioShadowed,       ///< ratio estimator: stochastic shadowed direct light S_N (Eq. 21)
+    RatioUnshadowed,     ///< ratio estimator: stochastic unshadowed direct light U_N (Eq. 22)
+    RatioShadowedLuminance,    ///< ratio estimator: luminance of S_N (grey approximation, Sec. 3.4)
+    RatioUnshadowedLuminance,  ///< ratio estimator: luminance of U_N (grey approximation, Sec. 3.4)
 };
 
 struct RoleInfo {
@@ -92,6 +97,9 @@ inline constexpr const char *kCameraFocalPx = "aaf:camera:focal_px";  // float, 
 inline constexpr const char *kFocusDistance = "aaf:camera:focus_distance_m";  // float, plane in focus
 inline constexpr const char *kLightCount =
     "aaf:light_count";  // int, lights in the scene (light = the key light)
+/// Written by the tracer's ratio group: how many lights have their own
+/// ratio.L<i>.* layers beside the summed ratio.* layer (0 or absent = only the sum).
+inline constexpr const char *kRatioLights = "aaf:ratio:lights";  // int
 inline constexpr const char *kMaafPairs = "aaf:maaf:pairs";  // int, N of the MAAF sums
 inline constexpr const char *kMaafOmegaYMax =
     "aaf:maaf:omega_y_max";  // float, rad/m, the light's Omega_y^max of the MAAF sums
