@@ -70,70 +70,79 @@ void check_inputs(const Planes &planes, ConstPlaneView sigma_px, const std::vect
             throw Error("ratio bilateral: a source has another size");
 }
 
-/// The horizontal pass into `out` (K planes); then the vertical pass, which
-/// hands each pixel's K filtered values to `sink(x, y, values)`.
+/// At most this many planes per pass (the ratio estimator filters 6: S_N and U_N RGB).
+constexpr std::size_t kMaxPlanes = 8;
+
+/// The horizontal pass into an interleaved buffer (K floats per pixel, so a
+/// tap's values share a cache line); then the vertical pass, which hands each
+/// pixel's K filtered values to `sink(x, y, values)`. Sums run over the taps
+/// in a fixed order, so the result does not depend on the thread count.
 template <typename Sink>
 void two_passes(const RatioBilateralGuides &guides, ConstPlaneView sigma_px,
                 const RatioBilateralSettings &settings, const std::vector<std::vector<float>> &sources,
                 const Sink &sink) {
     if (!(settings.plane_sigma > 0) || !(settings.cutoff_sigmas > 0))
         throw Error("ratio bilateral: plane sigma and cut-off must be > 0");
+    if (sources.empty() || sources.size() > kMaxPlanes) throw Error("ratio bilateral: 1 to 8 planes per pass");
     const Planes planes = planes_from(guides, settings.plane_sigma);
     check_inputs(planes, sigma_px, sources);
     const int width = planes.width, height = planes.height;
-    const std::size_t k_count = sources.size();
+    const std::size_t k_count = sources.size(), count = planes.px.size();
     auto radius_of = [&](int x, int y, float &minus_half_inv_sigma_sq) {
         const float sigma = sigma_px(x, y);
         if (!(sigma > 0) || !std::isfinite(sigma) || planes.inv_scale[planes.index(x, y)] == 0) return 0;
         minus_half_inv_sigma_sq = -0.5f / (sigma * sigma);
         return int(std::ceil(settings.cutoff_sigmas * sigma));
     };
-    std::vector<std::vector<float>> horizontal(k_count, std::vector<float>(planes.px.size()));
+    std::vector<float> interleaved(count * k_count), horizontal(count * k_count);
     parallel_for_rows(height, [&](int y) {
-        std::vector<double> sums(k_count);
         for (int x = 0; x < width; ++x) {
-            const std::size_t c = planes.index(x, y);
-            float g = 0;
-            const int radius = radius_of(x, y, g);
-            if (radius == 0) {
-                for (std::size_t k = 0; k < k_count; ++k) horizontal[k][c] = sources[k][c];
-                continue;
-            }
-            std::fill(sums.begin(), sums.end(), 0.0);
-            double weight_sum = 0;
-            for (int tx = std::max(0, x - radius); tx <= std::min(width - 1, x + radius); ++tx) {
-                const std::size_t t = planes.index(tx, y);
-                const float w = tx == x ? 1.0f : tap_weight(planes, c, t, g, tx - x);
-                if (w == 0) continue;
-                weight_sum += w;
-                for (std::size_t k = 0; k < k_count; ++k) sums[k] += double(w) * sources[k][t];
-            }
-            for (std::size_t k = 0; k < k_count; ++k) horizontal[k][c] = float(sums[k] / weight_sum);
+            const std::size_t i = planes.index(x, y);
+            for (std::size_t k = 0; k < k_count; ++k) interleaved[i * k_count + k] = sources[k][i];
         }
     });
     parallel_for_rows(height, [&](int y) {
-        std::vector<double> sums(k_count);
-        std::vector<float> values(k_count);
+        for (int x = 0; x < width; ++x) {
+            const std::size_t c = planes.index(x, y);
+            float g = 0;
+            const int radius = radius_of(x, y, g);
+            float *out = &horizontal[c * k_count];
+            if (radius == 0) {
+                std::copy_n(&interleaved[c * k_count], k_count, out);
+                continue;
+            }
+            float sums[kMaxPlanes] = {};
+            float weight_sum = 0;
+            for (int tx = std::max(0, x - radius); tx <= std::min(width - 1, x + radius); ++tx) {
+                const std::size_t t = planes.index(tx, y);
+                const float w = tx == x ? 1.0f : tap_weight(planes, c, t, g, tx - x);
+                weight_sum += w;
+                const float *value = &interleaved[t * k_count];
+                for (std::size_t k = 0; k < k_count; ++k) sums[k] += w * value[k];
+            }
+            for (std::size_t k = 0; k < k_count; ++k) out[k] = sums[k] / weight_sum;
+        }
+    });
+    parallel_for_rows(height, [&](int y) {
         for (int x = 0; x < width; ++x) {
             const std::size_t c = planes.index(x, y);
             float g = 0;
             const int radius = radius_of(x, y, g);
             if (radius == 0) {
-                for (std::size_t k = 0; k < k_count; ++k) values[k] = horizontal[k][c];
-                sink(x, y, values.data());
+                sink(x, y, &horizontal[c * k_count]);
                 continue;
             }
-            std::fill(sums.begin(), sums.end(), 0.0);
-            double weight_sum = 0;
+            float sums[kMaxPlanes] = {};
+            float weight_sum = 0;
             for (int ty = std::max(0, y - radius); ty <= std::min(height - 1, y + radius); ++ty) {
                 const std::size_t t = planes.index(x, ty);
                 const float w = ty == y ? 1.0f : tap_weight(planes, c, t, g, ty - y);
-                if (w == 0) continue;
                 weight_sum += w;
-                for (std::size_t k = 0; k < k_count; ++k) sums[k] += double(w) * horizontal[k][t];
+                const float *value = &horizontal[t * k_count];
+                for (std::size_t k = 0; k < k_count; ++k) sums[k] += w * value[k];
             }
-            for (std::size_t k = 0; k < k_count; ++k) values[k] = float(sums[k] / weight_sum);
-            sink(x, y, values.data());
+            for (std::size_t k = 0; k < k_count; ++k) sums[k] /= weight_sum;
+            sink(x, y, sums);
         }
     });
 }

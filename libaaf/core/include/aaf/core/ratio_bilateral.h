@@ -34,7 +34,7 @@ struct RatioBilateralSettings {
 /// weights in the same pass. A pixel with sigma_px = 0 costs nothing and keeps
 /// its value. The vertical pass writes `composition`'s radiance (U x den(S_N) /
 /// den(U_N) for the ratio estimator) straight to `rgb`, added to it when
-/// `accumulate`. `sources` hold composition.plane_count() guide-sized planes.
+/// `accumulate`. `sources` hold composition.plane_count() guide-sized planes of finite values.
 /// Deterministic for any thread count; throws aaf::Error on mismatched sizes.
 void ratio_bilateral_compose(const RatioBilateralGuides &guides, ConstPlaneView sigma_px,
                              const RatioBilateralSettings &settings,
@@ -43,7 +43,7 @@ void ratio_bilateral_compose(const RatioBilateralGuides &guides, ConstPlaneView 
                              bool accumulate);
 
 /// The same two passes writing the filtered planes themselves (`outputs`,
-/// one per source, guide-sized; they may not alias the sources).
+/// one per source, guide-sized; they may not alias the sources; at most 8 sources).
 void ratio_bilateral(const RatioBilateralGuides &guides, ConstPlaneView sigma_px,
                      const RatioBilateralSettings &settings, const std::vector<std::vector<float>> &sources,
                      const std::vector<PlaneView> &outputs);
