@@ -50,16 +50,44 @@ Planes planes_from(const RatioBilateralGuides &guides, float plane_sigma) {
     return planes;
 }
 
-/// Weight of tap t for centre c at `offset` pixels: the Gaussian in screen
-/// space times the Gaussian of t's distance from c's tangent plane in units
-/// of plane_sigma x c's pixel footprint (scene scale, not absolute depth).
-inline float tap_weight(const Planes &planes, std::size_t c, std::size_t t, float minus_half_inv_sigma_sq,
-                        int offset) {
-    if (planes.inv_scale[t] == 0) return 0.0f;
-    const float d = (planes.px[t] - planes.px[c]) * planes.nx[c] + (planes.py[t] - planes.py[c]) * planes.ny[c] +
-                    (planes.pz[t] - planes.pz[c]) * planes.nz[c];
-    const float q = d * planes.inv_scale[c];
-    return fast_exp_nonpositive(minus_half_inv_sigma_sq * float(offset * offset) - 0.5f * q * q);
+/// The weights of `count` taps from pixel index `first` in steps of
+/// `stride`, the first at `offset` pixels from centre c: a branch-free loop
+/// over the packed planes, so it vectorises.
+void tap_weights(const Planes &planes, std::size_t c, std::size_t first, std::size_t stride, int offset,
+                 int count, float minus_half_inv_sigma_sq, std::vector<float> &weights) {
+    const float nx = planes.nx[c], ny = planes.ny[c], nz = planes.nz[c], inv_scale = planes.inv_scale[c];
+    const float plane_c = nx * planes.px[c] + ny * planes.py[c] + nz * planes.pz[c];
+    for (int j = 0; j < count; ++j) {
+        const std::size_t t = first + std::size_t(j) * stride;
+        // Distance of the tap from the centre's tangent plane, in plane_sigma footprints.
+        const float q = (nx * planes.px[t] + ny * planes.py[t] + nz * planes.pz[t] - plane_c) * inv_scale;
+        const float o = float(offset + j);
+        const float w = fast_exp_nonpositive(minus_half_inv_sigma_sq * o * o - 0.5f * q * q);
+        weights[std::size_t(j)] = planes.inv_scale[t] == 0 ? 0.0f : w;  // no surface: never a tap
+    }
+}
+
+/// sums[k] = sum_j weights[j] values[j * stride + k] / sum_j weights[j], in tap order.
+void accumulate(const std::vector<float> &weights, int count, const float *values, std::size_t stride,
+                std::size_t k_count, float *sums) {
+    float weight_sum = 0;
+    for (std::size_t k = 0; k < k_count; ++k) sums[k] = 0;
+    for (int j = 0; j < count; ++j) {
+        const float w = weights[std::size_t(j)];
+        weight_sum += w;
+        const float *value = values + std::size_t(j) * stride;
+        for (std::size_t k = 0; k < k_count; ++k) sums[k] += w * value[k];
+    }
+    for (std::size_t k = 0; k < k_count; ++k) sums[k] /= weight_sum;
+}
+
+/// The largest finite value of `view` (0 if none).
+float max_finite(ConstPlaneView view) {
+    float largest = 0;
+    for (int y = 0; y < view.height; ++y)
+        for (int x = 0; x < view.width; ++x)
+            if (std::isfinite(view(x, y))) largest = std::max(largest, view(x, y));
+    return largest;
 }
 
 void check_inputs(const Planes &planes, ConstPlaneView sigma_px, const std::vector<std::vector<float>> &sources) {
@@ -101,7 +129,9 @@ void two_passes(const RatioBilateralGuides &guides, ConstPlaneView sigma_px,
             for (std::size_t k = 0; k < k_count; ++k) interleaved[i * k_count + k] = sources[k][i];
         }
     });
+    const int max_taps = 2 * int(std::ceil(settings.cutoff_sigmas * max_finite(sigma_px))) + 1;
     parallel_for_rows(height, [&](int y) {
+        std::vector<float> weights(std::size_t(std::max(max_taps, 1)));
         for (int x = 0; x < width; ++x) {
             const std::size_t c = planes.index(x, y);
             float g = 0;
@@ -111,19 +141,15 @@ void two_passes(const RatioBilateralGuides &guides, ConstPlaneView sigma_px,
                 std::copy_n(&interleaved[c * k_count], k_count, out);
                 continue;
             }
-            float sums[kMaxPlanes] = {};
-            float weight_sum = 0;
-            for (int tx = std::max(0, x - radius); tx <= std::min(width - 1, x + radius); ++tx) {
-                const std::size_t t = planes.index(tx, y);
-                const float w = tx == x ? 1.0f : tap_weight(planes, c, t, g, tx - x);
-                weight_sum += w;
-                const float *value = &interleaved[t * k_count];
-                for (std::size_t k = 0; k < k_count; ++k) sums[k] += w * value[k];
-            }
-            for (std::size_t k = 0; k < k_count; ++k) out[k] = sums[k] / weight_sum;
+            const int first = std::max(0, x - radius), last = std::min(width - 1, x + radius);
+            tap_weights(planes, c, planes.index(first, y), 1, first - x, last - first + 1, g, weights);
+            weights[std::size_t(x - first)] = 1.0f;  // the centre always counts
+            accumulate(weights, last - first + 1, &interleaved[planes.index(first, y) * k_count], k_count,
+                       k_count, out);
         }
     });
     parallel_for_rows(height, [&](int y) {
+        std::vector<float> weights(std::size_t(std::max(max_taps, 1)));
         for (int x = 0; x < width; ++x) {
             const std::size_t c = planes.index(x, y);
             float g = 0;
@@ -132,16 +158,13 @@ void two_passes(const RatioBilateralGuides &guides, ConstPlaneView sigma_px,
                 sink(x, y, &horizontal[c * k_count]);
                 continue;
             }
-            float sums[kMaxPlanes] = {};
-            float weight_sum = 0;
-            for (int ty = std::max(0, y - radius); ty <= std::min(height - 1, y + radius); ++ty) {
-                const std::size_t t = planes.index(x, ty);
-                const float w = ty == y ? 1.0f : tap_weight(planes, c, t, g, ty - y);
-                weight_sum += w;
-                const float *value = &horizontal[t * k_count];
-                for (std::size_t k = 0; k < k_count; ++k) sums[k] += w * value[k];
-            }
-            for (std::size_t k = 0; k < k_count; ++k) sums[k] /= weight_sum;
+            const int first = std::max(0, y - radius), last = std::min(height - 1, y + radius);
+            tap_weights(planes, c, planes.index(x, first), std::size_t(width), first - y, last - first + 1, g,
+                        weights);
+            weights[std::size_t(y - first)] = 1.0f;
+            float sums[kMaxPlanes];
+            accumulate(weights, last - first + 1, &horizontal[planes.index(x, first) * k_count],
+                       std::size_t(width) * k_count, k_count, sums);
             sink(x, y, sums);
         }
     });
