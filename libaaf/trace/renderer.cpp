@@ -7,6 +7,7 @@
 #include "random.h"
 #include "shading.h"
 #include "stratified_grid.h"
+#include "surface_texture.h"
 
 namespace aaf::trace {
 
@@ -82,12 +83,16 @@ float Renderer::mean_falloff(Vec3 p, Vec3 n) const {
 
 Vec3 Renderer::unshadowed(std::size_t light_index, const Mesh &mesh, Vec3 p, Vec3 n, Vec3 eye) const {
     const SceneLight &light = scene_.lights[light_index];
+    // Shaded with the texture's albedo and the normal map's normal (the
+    // geometric normal still decides occlusion).
+    const TexturedSurface surface = texture_surface(mesh.material, p, n);
     // With the falloff inside l(y) (AAF Sec. 7), the key light's r(x) is the
     // exact unshadowed irradiance; otherwise the irradiance at the light's centre.
     const float geometry = light_index == 0 && settings_.cosine_falloff
-                               ? mean_falloff(p, n)
-                               : falloff(light.plane, p, n, light.plane.center);
-    const Vec3 brdf = evaluate_brdf(mesh.material, n, normalize(eye - p), normalize(light.plane.center - p));
+                               ? mean_falloff(p, surface.normal)
+                               : falloff(light.plane, p, surface.normal, light.plane.center);
+    const Vec3 brdf =
+        evaluate_brdf(surface.material, surface.normal, normalize(eye - p), normalize(light.plane.center - p));
     return times(brdf, light.color) * (light.intensity * geometry);
 }
 
@@ -106,6 +111,10 @@ PrimaryHit Renderer::trace_primary(int x, int y) const {
     primary.pixel_size_m = pixel_footprint(primary, x, y);
     primary.unshadowed = unshadowed(0, *primary.mesh, primary.position, primary.normal, camera.eye);
     return primary;
+}
+
+bool Renderer::light_point_blocked(const PrimaryHit &primary, Vec3 light_point) const {
+    return occluded(primary.position, primary.normal, light_point);
 }
 
 bool Renderer::occluded(Vec3 p, Vec3 n, Vec3 target) const {

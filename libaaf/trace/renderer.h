@@ -110,6 +110,10 @@ class Renderer {
         float distance_m = 0;
     };
     SecondaryHit trace_secondary(const PrimaryHit &primary, Vec3 direction) const;
+    /// Whether the shadow ray from the primary hit to `light_point` is
+    /// blocked: by the scene, or by the surface itself when the point lies
+    /// behind the hit's (geometric) tangent plane. The AAF samples' test.
+    bool light_point_blocked(const PrimaryHit &primary, Vec3 light_point) const;
 
   private:
     float pixel_footprint(const PrimaryHit &primary, int x, int y) const;
