@@ -42,6 +42,22 @@ def read_channels(path, names):
     return np.stack([pixels[:, :, index[n]] for n in names], axis=-1)
 
 
+def light_count(path):
+    image = oiio.ImageInput.open(path)
+    count = image.spec().getattribute("aaf:ratio:lights")
+    image.close()
+    return int(count or 0)
+
+
+def write_rgb(path, rgb, prefix):
+    spec = oiio.ImageSpec(rgb.shape[1], rgb.shape[0], 3, "float")
+    spec.channelnames = tuple(prefix + c for c in "RGB")
+    out = oiio.ImageOutput.create(path)
+    out.open(path, spec)
+    out.write_image(np.ascontiguousarray(rgb.astype(np.float32)))
+    out.close()
+
+
 def write_mask(path, mask):
     spec = oiio.ImageSpec(mask.shape[1], mask.shape[0], 1, "float")
     spec.channelnames = ("mask",)
@@ -59,6 +75,20 @@ def erode(mask, radius):
         n = out.shape[axis]
         out = np.logical_and.reduce([np.take(padded, range(k, k + n), axis=axis) for k in range(2 * radius + 1)])
     return out
+
+
+def ratio_limit(path):
+    """What the ratio estimator converges to at this reference's samples:
+    the sum over lights of U x S / U_N (W = 1 where U_N = 0), per channel."""
+    lights = light_count(path)
+    prefixes = [f"ratio.L{i}." for i in range(lights)] or ["ratio."]
+    total = 0
+    for p in prefixes:
+        layers = read_channels(path, [p + l + "." + c for l in ("U", "S", "Un") for c in "RGB"])
+        u, s, un = layers[..., 0:3], layers[..., 3:6], layers[..., 6:9]
+        w = np.where(un > 0, np.clip(s / np.where(un > 0, un, 1), 0, 1), 1.0)
+        total = total + u * w
+    return total
 
 
 def compare(aaf, test, reference, mask=None):
@@ -109,6 +139,12 @@ def main():
     interior_mask = os.path.join(work, "interior_mask.exr")
     write_mask(interior_mask, interior)
 
+    # The ratio estimator's own limit: U x S / U_N of the reference's samples;
+    # its distance from the reference is the error of the analytic U (LTC's fit).
+    limit = os.path.join(work, "limit.exr")
+    write_rgb(limit, ratio_limit(reference), "ratio.S.")
+    floor_rmse, floor_flip = compare(a.aaf, limit, reference)
+
     rows = []
     configs = [("noisy", "stochastic", "none", ["--denoiser", "gaussian", "--sigma", "0"]),
                ("ratio, not denoised", "ratio", "none", ["--denoiser", "gaussian", "--sigma", "0"])]
@@ -126,9 +162,10 @@ def main():
             rmse, flip = compare(a.aaf, out, reference)
             rmse_lit, _ = compare(a.aaf, out, reference, mask)
             rmse_interior, _ = compare(a.aaf, out, reference, interior_mask)
+            rmse_limit, _ = compare(a.aaf, out, limit)
             rows.append({"spp_per_light": n, "configuration": label, "estimator": estimator,
                          "denoiser": denoiser, "rmse": rmse, "flip": flip, "rmse_unshadowed": rmse_lit,
-                         "rmse_unshadowed_interior": rmse_interior})
+                         "rmse_unshadowed_interior": rmse_interior, "rmse_vs_ratio_limit": rmse_limit})
             if n == 2 and label in ("noisy", "ratio / bilateral"):
                 os.replace(out, os.path.join(work, f"picture_{'noisy' if label == 'noisy' else 'ratio'}.exr"))
     with open(os.path.join(a.out, "ratio_study.csv"), "w", newline="") as f:
@@ -142,15 +179,17 @@ def main():
     if not os.path.exists(noisy):
         run([a.aaf, "render", a.scene, *size, "--spp", str(a.sweep_spp), "--seed", "1", "--aovs", "all,ratio",
              "-o", noisy])
-    grid = {"noise_radius": ["1", "2", "3", "4", "6"], "sigma_per_noise": ["8", "16", "24", "32", "48", "64"],
-            "max_sigma": ["2", "4", "8", "12", "16"], "plane_sigma": ["0.5", "1", "2", "4"]}
+    grid = {"noise_radius": ["1", "2", "3", "4", "6"],
+            "sigma_per_noise": ["0.5", "1", "2", "3", "4", "6", "8", "16", "24"],
+            "max_sigma": ["2", "4", "8", "16"], "plane_sigma": ["0.5", "1", "2", "4"]}
     for name, values in grid.items():
         for value in values:
             out = os.path.join(work, "sweep.exr")
             run([a.aaf, "filter", "ratio", noisy, "-o", out, "--" + name.replace("_", "-"), value])
             rmse, flip = compare(a.aaf, out, reference)
+            rmse_limit, _ = compare(a.aaf, out, limit)
             sweep.append({"spp_per_light": a.sweep_spp, "parameter": name, "value": value, "rmse": rmse,
-                          "flip": flip})
+                          "flip": flip, "rmse_vs_ratio_limit": rmse_limit})
     with open(os.path.join(a.out, "ratio_sweep.csv"), "w", newline="") as f:
         w = csv.DictWriter(f, fieldnames=list(sweep[0].keys()))
         w.writeheader()
@@ -198,22 +237,28 @@ def main():
                 f"(seed 1000); noisy renders seed 1; `aaf filter ratio` defaults unless named. "
                 f"RMSE and FLIP of R,G,B against the reference's ratio.S; 'unshadowed' = RMSE over the "
                 f"{int(unshadowed.sum())} pixels whose reference S >= 0.999 U (luminance), 'interior' over the "
-                f"{int(interior.sum())} of them at least 8 pixels from any shadowed pixel.\n\n")
+                f"{int(interior.sum())} of them at least 8 pixels from any shadowed pixel. 'limit' = the "
+                f"ratio estimator's consistent limit at the reference's samples, sum over lights of "
+                f"U x S / U_N: it differs from the reference by RMSE {floor_rmse:.5f} (FLIP {floor_flip:.4f}), "
+                f"the error of the analytic U against the converged U_N, which no denoiser removes.\n\n")
         spps = sorted({r["spp_per_light"] for r in rows})
         f.write("| configuration | " + " | ".join(f"RMSE {n} spp" for n in spps) + " | "
                 + " | ".join(f"FLIP {n} spp" for n in spps) + " | " + " | ".join(f"unshadowed RMSE {n} spp" for n in spps)
-                + " | " + " | ".join(f"interior RMSE {n} spp" for n in spps) + " |\n")
-        f.write("| --- |" + " --- |" * (4 * len(spps)) + "\n")
+                + " | " + " | ".join(f"interior RMSE {n} spp" for n in spps)
+                + " | " + " | ".join(f"RMSE vs limit {n} spp" for n in spps) + " |\n")
+        f.write("| --- |" + " --- |" * (5 * len(spps)) + "\n")
         for label, *_ in configs:
             by = {r["spp_per_light"]: r for r in rows if r["configuration"] == label}
             f.write(f"| {label} | " + " | ".join(f"{by[n]['rmse']:.5f}" for n in spps) + " | "
                     + " | ".join(f"{by[n]['flip']:.4f}" for n in spps) + " | "
                     + " | ".join(f"{by[n]['rmse_unshadowed']:.2e}" for n in spps) + " | "
-                    + " | ".join(f"{by[n]['rmse_unshadowed_interior']:.2e}" for n in spps) + " |\n")
+                    + " | ".join(f"{by[n]['rmse_unshadowed_interior']:.2e}" for n in spps) + " | "
+                    + " | ".join(f"{by[n]['rmse_vs_ratio_limit']:.5f}" for n in spps) + " |\n")
         f.write(f"\nSweep of one parameter at a time, {a.sweep_spp} samples per light, ratio / bilateral:\n\n")
-        f.write("| parameter | value | RMSE | FLIP |\n| --- | --- | --- | --- |\n")
+        f.write("| parameter | value | RMSE | FLIP | RMSE vs the ratio's limit |\n| --- | --- | --- | --- | --- |\n")
         for r in sweep:
-            f.write(f"| {r['parameter']} | {r['value']} | {r['rmse']:.5f} | {r['flip']:.4f} |\n")
+            f.write(f"| {r['parameter']} | {r['value']} | {r['rmse']:.5f} | {r['flip']:.4f} | "
+                    f"{r['rmse_vs_ratio_limit']:.5f} |\n")
         if flicker:
             f.write(f"\nFlicker on a static camera, {a.flicker_frames} frames of {a.sweep_spp} samples per light "
                     "(seeds 101..), ratio / bilateral: mean frame-to-frame RMSE of R,G,B, and the last frame's RMSE "

@@ -68,7 +68,8 @@ void bind_inputs(const Method &method, const AovSet &input, const ChannelMap &fo
         if (!is_per_light_role(role)) continue;
         for (int light = 0; light < lights; ++light) {
             std::vector<std::string> names;
-            for (const std::string &name : found.channels(role)) names.push_back(per_light_channel(name, light));
+            for (const std::string &name : found.channels(role))
+                names.push_back(per_light_channel(name, light));
             images.set_light_channel_names(role, light, joined(names));
             if (!has_all(input, names)) continue;
             std::vector<ConstPlaneView> views;

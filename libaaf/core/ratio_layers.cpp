@@ -22,8 +22,8 @@ std::string per_light_channel(const std::string &channel, int light) {
     const std::string tag = "L" + std::to_string(light) + ".";
     const std::string token = "ratio.";
     for (std::size_t at = channel.find(token); at != std::string::npos; at = channel.find(token, at + 1))
-        if (at == 0 || channel[at - 1] == '.') return channel.substr(0, at + token.size()) + tag +
-                                                      channel.substr(at + token.size());
+        if (at == 0 || channel[at - 1] == '.')
+            return channel.substr(0, at + token.size()) + tag + channel.substr(at + token.size());
     const std::size_t last = channel.rfind('.');
     if (last == std::string::npos) return tag + channel;
     return channel.substr(0, last + 1) + tag + channel.substr(last + 1);

@@ -104,7 +104,8 @@ FrameFilter method_filter(const Method &method, const ParameterSet &parameters, 
     auto history = std::make_shared<AovSet>();
     filter.run = [&method, parameters, channels, history](const AovSet &input) {
         const bool has_history = method.info().uses_history && history->pixel_count() > 0;
-        AovSet output = filter_aovs(method, input, channels, parameters, {}, has_history ? history.get() : nullptr);
+        AovSet output =
+            filter_aovs(method, input, channels, parameters, {}, has_history ? history.get() : nullptr);
         if (method.info().uses_history) *history = output;
         return output;
     };

@@ -38,7 +38,7 @@ namespace {
 
 // The `aaf filter ratio` defaults (ratio_method.cpp).
 constexpr int kNoiseRadiusPx = 3;
-constexpr float kSigmaPerNoisePx = 24.0f, kMaxSigmaPx = 8.0f;
+constexpr float kSigmaPerNoisePx = 3.0f, kMaxSigmaPx = 8.0f;
 
 struct Fixture {
     int width = 0, height = 0;
@@ -98,9 +98,10 @@ const Fixture &fixture(int width, int height) {
 /// The method's sigma: E of W_N (luminance), times k, capped.
 void sigma_from_noise(const Fixture &f, std::vector<float> &w, std::vector<float> &sigma) {
     const int width = f.width, height = f.height;
-    aaf::weighted_shadow(f.layers.shadowed_y, f.layers.unshadowed_y, aaf::plane_view(w.data(), width, height));
-    aaf::ratio_noise_estimate(aaf::plane_view(static_cast<const float *>(w.data()), width, height), kNoiseRadiusPx,
-                              0, aaf::plane_view(sigma.data(), width, height));
+    aaf::weighted_shadow(f.layers.shadowed_y, f.layers.unshadowed_y,
+                         aaf::plane_view(w.data(), width, height));
+    aaf::ratio_noise_estimate(aaf::plane_view(static_cast<const float *>(w.data()), width, height),
+                              kNoiseRadiusPx, 0, aaf::plane_view(sigma.data(), width, height));
     for (float &e : sigma) e = std::min(kSigmaPerNoisePx * e, kMaxSigmaPx);
 }
 
@@ -137,7 +138,8 @@ void BM_RatioDenoiseVsOpenCv(benchmark::State &state) {
             s_packed[i * 3 + c] = f.layers.shadowed[c].data[i];
             u_packed[i * 3 + c] = f.layers.unshadowed[c].data[i];
         }
-    const cv::Mat cv_s(height, width, CV_32FC3, s_packed.data()), cv_u(height, width, CV_32FC3, u_packed.data());
+    const cv::Mat cv_s(height, width, CV_32FC3, s_packed.data()),
+        cv_u(height, width, CV_32FC3, u_packed.data());
     cv::Mat cv_s_out(height, width, CV_32FC3), cv_u_out(height, width, CV_32FC3);
     const auto opencv_blur = [&] {
         cv::GaussianBlur(cv_s, cv_s_out, cv::Size(0, 0), mean_sigma, mean_sigma);
@@ -158,8 +160,9 @@ void BM_RatioDenoiseVsOpenCv(benchmark::State &state) {
             sigma_from_noise(f, w, sigma);
             const double this_noise_ms = ms_since(t);
             t = std::chrono::steady_clock::now();
-            aaf::ratio_bilateral_compose(f.guides, aaf::plane_view(static_cast<const float *>(sigma.data()), width, height),
-                                         {}, sources, composition, rgb, false);
+            aaf::ratio_bilateral_compose(
+                f.guides, aaf::plane_view(static_cast<const float *>(sigma.data()), width, height), {},
+                sources, composition, rgb, false);
             const double this_bilateral_ms = ms_since(t);
             benchmark::DoNotOptimize(out[0].data());
             benchmark::ClobberMemory();
@@ -170,8 +173,9 @@ void BM_RatioDenoiseVsOpenCv(benchmark::State &state) {
             t = std::chrono::steady_clock::now();
             const std::vector<std::vector<float>> grey_sources = grey.sources();
             sigma_from_noise(f, w, sigma);
-            aaf::ratio_bilateral_compose(f.guides, aaf::plane_view(static_cast<const float *>(sigma.data()), width, height),
-                                         {}, grey_sources, grey, rgb, false);
+            aaf::ratio_bilateral_compose(
+                f.guides, aaf::plane_view(static_cast<const float *>(sigma.data()), width, height), {},
+                grey_sources, grey, rgb, false);
             grey_ms += ms_since(t);
             benchmark::DoNotOptimize(out[0].data());
             benchmark::ClobberMemory();

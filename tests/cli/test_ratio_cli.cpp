@@ -20,7 +20,8 @@ namespace fs = std::filesystem;
 namespace {
 
 float hash01(int x, int y, int salt) {
-    std::uint32_t h = std::uint32_t(x) * 73856093u ^ std::uint32_t(y) * 19349663u ^ std::uint32_t(salt) * 83492791u;
+    std::uint32_t h =
+        std::uint32_t(x) * 73856093u ^ std::uint32_t(y) * 19349663u ^ std::uint32_t(salt) * 83492791u;
     h ^= h >> 13;
     h *= 0x5bd1e995u;
     h ^= h >> 15;
@@ -33,7 +34,8 @@ AovSet frame_aovs(int frame, int width = 32, int height = 20) {
     AovSet aovs(width, height);
     const char *xyz[3] = {"X", "Y", "Z"}, *rgb[3] = {"R", "G", "B"};
     for (int c = 0; c < 3; ++c) {
-        PlaneView p = aovs.add_channel(std::string("P.") + xyz[c]), n = aovs.add_channel(std::string("N.") + xyz[c]);
+        PlaneView p = aovs.add_channel(std::string("P.") + xyz[c]),
+                  n = aovs.add_channel(std::string("N.") + xyz[c]);
         for (int y = 0; y < height; ++y)
             for (int x = 0; x < width; ++x) {
                 p(x, y) = c == 0 ? 0.01f * float(x) : c == 2 ? 0.01f * float(y) : 0.0f;
@@ -78,15 +80,17 @@ double frame_difference(const std::string &a, const std::string &b) {
 bool same_pixels(const std::string &a, const std::string &b) {
     const AovSet x = io::read_aovs(a), y = io::read_aovs(b);
     for (const char *c : {"R", "G", "B"})
-        if (std::memcmp(x.channel(c).data, y.channel(c).data, x.pixel_count() * sizeof(float)) != 0) return false;
+        if (std::memcmp(x.channel(c).data, y.channel(c).data, x.pixel_count() * sizeof(float)) != 0)
+            return false;
     return true;
 }
 
 }  // namespace
 
-TEST_CASE("aaf filter ratio --temporal: each frame blends with the previous output, frame 1 alone; less flicker; "
-          "any thread count",
-          "[cli][ratio]") {
+TEST_CASE(
+    "aaf filter ratio --temporal: each frame blends with the previous output, frame 1 alone; less flicker; "
+    "any thread count",
+    "[cli][ratio]") {
     const fs::path dir = scratch_dir("cli_ratio_temporal");
     const int frames = 5;
     for (int f = 1; f <= frames; ++f) {
@@ -102,8 +106,8 @@ TEST_CASE("aaf filter ratio --temporal: each frame blends with the previous outp
     };
     REQUIRE(run_aaf("filter ratio " + in + " -o " + (dir / "plain.####.exr").string() + " --progress none")
                 .exit_code == 0);
-    const auto temporal =
-        run_aaf("filter ratio " + in + " -o " + (dir / "temporal.####.exr").string() + " --temporal --progress none");
+    const auto temporal = run_aaf("filter ratio " + in + " -o " + (dir / "temporal.####.exr").string() +
+                                  " --temporal --progress none");
     INFO(temporal.output);
     REQUIRE(temporal.exit_code == 0);
     REQUIRE(run_aaf("filter ratio " + in + " -o " + (dir / "one.####.exr").string() +

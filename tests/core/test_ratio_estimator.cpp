@@ -83,7 +83,8 @@ AovSet ratio_scene(int width, int height, const std::vector<PixelFn> &lights, fl
 
 /// Deterministic per-pixel uniform numbers in [0, 1).
 float hash01(int x, int y, int salt) {
-    std::uint32_t h = std::uint32_t(x) * 73856093u ^ std::uint32_t(y) * 19349663u ^ std::uint32_t(salt) * 83492791u;
+    std::uint32_t h =
+        std::uint32_t(x) * 73856093u ^ std::uint32_t(y) * 19349663u ^ std::uint32_t(salt) * 83492791u;
     h ^= h >> 13;
     h *= 0x5bd1e995u;
     h ^= h >> 15;
@@ -124,9 +125,8 @@ AovSet run_ratio(const AovSet &input, const ParameterSet &parameters, int thread
     AovSet out;
     const tbb::global_control allow(tbb::global_control::max_allowed_parallelism, 4);
     tbb::task_arena arena(threads == 0 ? tbb::task_arena::automatic : threads);
-    arena.execute([&] {
-        out = filter_aovs(find_method("ratio"), input, ChannelMap{}, parameters, {}, history);
-    });
+    arena.execute(
+        [&] { out = filter_aovs(find_method("ratio"), input, ChannelMap{}, parameters, {}, history); });
     return out;
 }
 
@@ -139,12 +139,14 @@ float at(const AovSet &aovs, const std::string &name, int x, int y) {
 TEST_CASE("Ratio: where every sample of every tap is unoccluded the result is U exactly (1 spp)", "[ratio]") {
     // Left of x = 20 a penumbra (random visibility), right of it fully lit.
     const int width = 64, height = 24;
-    const PixelFn light = noisy_light(1, [](int x, int y, int i) { return x >= 20 || hash01(x, y, 7 + i) < 0.5f; });
+    const PixelFn light =
+        noisy_light(1, [](int x, int y, int i) { return x >= 20 || hash01(x, y, 7 + i) < 0.5f; });
     const AovSet input = ratio_scene(width, height, {light});
     for (const char *denoiser : {"bilateral", "gaussian"}) {
         INFO(denoiser);
         const AovSet out = run_ratio(input, ratio_parameters({{"denoiser", denoiser}}));
-        // Beyond the widest reach from the penumbra (noise lines 3 + box 1 + 3 x 8 px sigma cap; 12 px gaussian).
+        // Beyond the widest reach from the penumbra (noise lines 3 + box 1 + 3 x 8 px sigma cap; 12 px
+        // gaussian).
         int exact = 0;
         for (int y = 0; y < height; ++y)
             for (int x = 20 + 3 + 1 + 24 + 1; x < width; ++x) {
@@ -181,7 +183,8 @@ TEST_CASE("Ratio: W stays in [0, 1] and the ratio result between 0 and U", "[rat
             CHECK(r >= 0.0f);
             CHECK(r <= 1.0f);
         }
-    const PixelFn light = noisy_light(2, [](int x, int y, int i) { return hash01(x, y, i) < float(x) / 32.0f; });
+    const PixelFn light =
+        noisy_light(2, [](int x, int y, int i) { return hash01(x, y, i) < float(x) / 32.0f; });
     const AovSet input = ratio_scene(width, height, {light});
     const AovSet out = run_ratio(input, ratio_parameters({}));
     for (int y = 0; y < height; ++y)
@@ -207,7 +210,8 @@ TEST_CASE("Ratio: S_N = U_N = 0 gives no NaN, for every estimator and denoiser",
     for (const char *estimator : {"ratio", "stochastic", "control-variate"})
         for (const char *denoiser : {"bilateral", "gaussian"}) {
             INFO(estimator << " " << denoiser);
-            const AovSet out = run_ratio(input, ratio_parameters({{"estimator", estimator}, {"denoiser", denoiser}}));
+            const AovSet out =
+                run_ratio(input, ratio_parameters({{"estimator", estimator}, {"denoiser", denoiser}}));
             for (const char *c : {"R", "G", "B"})
                 for (int y = 0; y < 24; ++y)
                     for (int x = 0; x < 32; ++x) REQUIRE(std::isfinite(at(out, c, x, y)));
@@ -218,8 +222,10 @@ TEST_CASE("Ratio: S_N = U_N = 0 gives no NaN, for every estimator and denoiser",
     CHECK(at(out, "G", 3, 2) == 0.0f);
 }
 
-TEST_CASE("Ratio: denoising before dividing converges to S/U as more pixels are averaged, after dividing does not (Eq. 26-27)",
-          "[ratio]") {
+TEST_CASE(
+    "Ratio: denoising before dividing converges to S/U as more pixels are averaged, after dividing does not "
+    "(Eq. 26-27)",
+    "[ratio]") {
     // Every pixel has the same BRDF, light and visibility: half the light's
     // directions are occluded and carry 3x the weight of the visible half, so
     // S / U = 1 / (1 + 3) = 0.25, while a 1-sample W_N is 1 with probability 0.5.
@@ -237,16 +243,19 @@ TEST_CASE("Ratio: denoising before dividing converges to S/U as more pixels are 
     std::vector<double> before, after;
     for (float sigma : {1.0f, 4.0f, 16.0f}) {
         std::vector<float> ds(s.size()), du(s.size()), dw(s.size());
-        fixed_gaussian_filter(plane_view(s.data(), width, height), sigma, plane_view(ds.data(), width, height));
-        fixed_gaussian_filter(plane_view(u.data(), width, height), sigma, plane_view(du.data(), width, height));
-        fixed_gaussian_filter(plane_view(w.data(), width, height), sigma, plane_view(dw.data(), width, height));
+        fixed_gaussian_filter(plane_view(s.data(), width, height), sigma,
+                              plane_view(ds.data(), width, height));
+        fixed_gaussian_filter(plane_view(u.data(), width, height), sigma,
+                              plane_view(du.data(), width, height));
+        fixed_gaussian_filter(plane_view(w.data(), width, height), sigma,
+                              plane_view(dw.data(), width, height));
         double e_before = 0, e_after = 0;
         int count = 0;
         for (int y = height / 4; y < 3 * height / 4; ++y)
             for (int x = width / 4; x < 3 * width / 4; ++x) {
                 const std::size_t i = std::size_t(y) * width + x;
                 e_before += std::pow(ratio_weight(ds[i], du[i]) - reference, 2);  // Eq. 27
-                e_after += std::pow(dw[i] - reference, 2);                       // Eq. 26
+                e_after += std::pow(dw[i] - reference, 2);                        // Eq. 26
                 ++count;
             }
         before.push_back(std::sqrt(e_before / count));
@@ -258,7 +267,8 @@ TEST_CASE("Ratio: denoising before dividing converges to S/U as more pixels are 
     for (double e : after) CHECK(e > 0.2);  // converges to E[W_N] = 0.5, not 0.25
 }
 
-TEST_CASE("Ratio noise estimate: 0 on a constant W, large on noise, a comb above a step (Sec. 4.2)", "[ratio]") {
+TEST_CASE("Ratio noise estimate: 0 on a constant W, large on noise, a comb above a step (Sec. 4.2)",
+          "[ratio]") {
     const int width = 40, height = 40;
     auto estimate = [&](const std::function<float(int, int)> &w_of) {
         std::vector<float> w(width * height), e(width * height);
@@ -270,7 +280,8 @@ TEST_CASE("Ratio noise estimate: 0 on a constant W, large on noise, a comb above
     };
     for (float constant : {0.0f, 0.37f, 1.0f})
         for (float v : estimate([&](int, int) { return constant; })) CHECK(v == 0.0f);
-    const std::vector<float> noise = estimate([](int x, int y) { return hash01(x, y, 5) < 0.5f ? 1.0f : 0.0f; });
+    const std::vector<float> noise =
+        estimate([](int x, int y) { return hash01(x, y, 5) < 0.5f ? 1.0f : 0.0f; });
     const std::vector<float> comb = estimate([](int x, int) { return float(x % 2); });
     const std::vector<float> step = estimate([](int x, int) { return x < 20 ? 0.0f : 1.0f; });
     const std::size_t centre = std::size_t(20) * width + 20;
@@ -279,11 +290,12 @@ TEST_CASE("Ratio noise estimate: 0 on a constant W, large on noise, a comb above
     CHECK(noise_mean > 0.5);
     CHECK(comb[centre] > 3.0f * step[centre]);  // a variance estimate would rank them equal
     CHECK(step[centre] > 0.0f);
-    CHECK(step[centre] <= 2.0f / 5.0f);  // one unit step: at most 2 / (2 r - 1)
+    CHECK(step[centre] <= 2.0f / 5.0f);                // one unit step: at most 2 / (2 r - 1)
     CHECK(step[std::size_t(20) * width + 5] == 0.0f);  // away from the step
 }
 
-TEST_CASE("Ratio bilateral: taps across a depth discontinuity are rejected, on one plane they are not", "[ratio]") {
+TEST_CASE("Ratio bilateral: taps across a depth discontinuity are rejected, on one plane they are not",
+          "[ratio]") {
     // Left half: an umbra (S_N = 0) on a floor at y = 0; right half: lit
     // (S_N = U_N), either on the same floor or 0.5 m (50 footprints) above it.
     const int width = 40, height = 8;
@@ -308,11 +320,11 @@ TEST_CASE("Ratio bilateral: taps across a depth discontinuity are rejected, on o
         }
         guides.scale_m = aovs.channel("pixel.size");
         std::vector<float> sigma(width * height, 6.0f);
-        std::vector<std::vector<float>> sources = {std::vector<float>(aovs.channel("ratio.S.G").data,
-                                                                      aovs.channel("ratio.S.G").data + width * height)};
+        std::vector<std::vector<float>> sources = {std::vector<float>(
+            aovs.channel("ratio.S.G").data, aovs.channel("ratio.S.G").data + width * height)};
         std::vector<float> out(width * height);
-        ratio_bilateral(guides, plane_view(static_cast<const float *>(sigma.data()), width, height), {}, sources,
-                        {plane_view(out.data(), width, height)});
+        ratio_bilateral(guides, plane_view(static_cast<const float *>(sigma.data()), width, height), {},
+                        sources, {plane_view(out.data(), width, height)});
         const float leaked = out[std::size_t(4) * width + 19];  // last umbra pixel
         if (step_m > 0)
             CHECK(leaked < 1e-6f);
@@ -323,15 +335,18 @@ TEST_CASE("Ratio bilateral: taps across a depth discontinuity are rejected, on o
 
 TEST_CASE("Ratio: per-light results add up to the multi-light result", "[ratio]") {
     const int width = 48, height = 20;
-    const PixelFn a = noisy_light(2, [](int x, int y, int i) { return hash01(x, y, 20 + i) < float(x) / 48.0f; }, 1);
-    const PixelFn b = noisy_light(2, [](int x, int y, int i) { return hash01(x, y, 40 + i) < float(y) / 20.0f; }, 2);
+    const PixelFn a = noisy_light(
+        2, [](int x, int y, int i) { return hash01(x, y, 20 + i) < float(x) / 48.0f; }, 1);
+    const PixelFn b = noisy_light(
+        2, [](int x, int y, int i) { return hash01(x, y, 40 + i) < float(y) / 20.0f; }, 2);
     const AovSet both = ratio_scene(width, height, {a, b});
     const AovSet only_a = ratio_scene(width, height, {a}), only_b = ratio_scene(width, height, {b});
     for (const char *estimator : {"ratio", "stochastic", "control-variate"}) {
         INFO(estimator);
         const ParameterSet p = ratio_parameters({{"estimator", estimator}});
         const AovSet sum = run_ratio(both, p), ra = run_ratio(only_a, p), rb = run_ratio(only_b, p);
-        const AovSet summed_layer = run_ratio(both, ratio_parameters({{"estimator", estimator}, {"summed", "true"}}));
+        const AovSet summed_layer =
+            run_ratio(both, ratio_parameters({{"estimator", estimator}, {"summed", "true"}}));
         bool differs = false;
         for (const char *c : {"R", "G", "B"})
             for (int y = 0; y < height; ++y)
@@ -343,7 +358,8 @@ TEST_CASE("Ratio: per-light results add up to the multi-light result", "[ratio]"
     }
 }
 
-TEST_CASE("Ratio: a per-light layer the header promises but the file lacks is named in an input error", "[ratio]") {
+TEST_CASE("Ratio: a per-light layer the header promises but the file lacks is named in an input error",
+          "[ratio]") {
     const PixelFn a = noisy_light(1, [](int, int, int) { return true; });
     AovSet input = ratio_scene(8, 8, {a, a});
     input.attributes[attr::kRatioLights] = 3;
@@ -402,8 +418,10 @@ TEST_CASE("Ratio: --temporal lowers flicker on a static sequence and rejects a d
 }
 
 TEST_CASE("Ratio: 1 and 3 threads give identical bytes for every estimator and denoiser", "[ratio]") {
-    const PixelFn a = noisy_light(2, [](int x, int y, int i) { return hash01(x, y, 60 + i) < float(x) / 40.0f; }, 3);
-    const PixelFn b = noisy_light(1, [](int x, int y, int i) { return hash01(x, y, 80 + i) < 0.5f; }, 4);
+    const PixelFn a = noisy_light(
+        2, [](int x, int y, int i) { return hash01(x, y, 60 + i) < float(x) / 40.0f; }, 3);
+    const PixelFn b = noisy_light(
+        1, [](int x, int y, int i) { return hash01(x, y, 80 + i) < 0.5f; }, 4);
     const AovSet input = ratio_scene(40, 30, {a, b});
     for (const char *estimator : {"ratio", "stochastic", "control-variate"})
         for (const char *denoiser : {"bilateral", "gaussian"}) {
@@ -411,8 +429,9 @@ TEST_CASE("Ratio: 1 and 3 threads give identical bytes for every estimator and d
             const ParameterSet p = ratio_parameters({{"estimator", estimator}, {"denoiser", denoiser}});
             const AovSet one = run_ratio(input, p, 1), three = run_ratio(input, p, 3);
             for (const char *c : {"R", "G", "B"})
-                CHECK(std::memcmp(one.channel(c).data, three.channel(c).data, one.pixel_count() * sizeof(float)) ==
-                      0);
+                CHECK(std::memcmp(one.channel(c).data, three.channel(c).data,
+                                  one.pixel_count() * sizeof(float)) == 0);
         }
-    CHECK_THROWS_AS(run_ratio(input, ratio_parameters({{"estimator", "stochastic"}, {"grey", "true"}})), Error);
+    CHECK_THROWS_AS(run_ratio(input, ratio_parameters({{"estimator", "stochastic"}, {"grey", "true"}})),
+                    Error);
 }

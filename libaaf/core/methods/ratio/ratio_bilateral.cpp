@@ -25,8 +25,8 @@ Planes planes_from(const RatioBilateralGuides &guides, float plane_sigma) {
     planes.width = guides.scale_m.width;
     planes.height = guides.scale_m.height;
     const std::size_t count = std::size_t(planes.width) * std::size_t(planes.height);
-    for (std::vector<float> *v : {&planes.px, &planes.py, &planes.pz, &planes.nx, &planes.ny, &planes.nz,
-                                  &planes.inv_scale})
+    for (std::vector<float> *v :
+         {&planes.px, &planes.py, &planes.pz, &planes.nx, &planes.ny, &planes.nz, &planes.inv_scale})
         v->assign(count, 0.0f);
     parallel_for_rows(planes.height, [&](int y) {
         for (int x = 0; x < planes.width; ++x) {
@@ -90,7 +90,8 @@ float max_finite(ConstPlaneView view) {
     return largest;
 }
 
-void check_inputs(const Planes &planes, ConstPlaneView sigma_px, const std::vector<std::vector<float>> &sources) {
+void check_inputs(const Planes &planes, ConstPlaneView sigma_px,
+                  const std::vector<std::vector<float>> &sources) {
     if (!sigma_px.valid() || sigma_px.width != planes.width || sigma_px.height != planes.height)
         throw Error("ratio bilateral: sigma is missing or has another size");
     for (const std::vector<float> &s : sources)
@@ -111,7 +112,8 @@ void two_passes(const RatioBilateralGuides &guides, ConstPlaneView sigma_px,
                 const Sink &sink) {
     if (!(settings.plane_sigma > 0) || !(settings.cutoff_sigmas > 0))
         throw Error("ratio bilateral: plane sigma and cut-off must be > 0");
-    if (sources.empty() || sources.size() > kMaxPlanes) throw Error("ratio bilateral: 1 to 8 planes per pass");
+    if (sources.empty() || sources.size() > kMaxPlanes)
+        throw Error("ratio bilateral: 1 to 8 planes per pass");
     const Planes planes = planes_from(guides, settings.plane_sigma);
     check_inputs(planes, sigma_px, sources);
     const int width = planes.width, height = planes.height;

@@ -26,20 +26,26 @@ namespace {
 std::vector<ParameterInfo> ratio_parameters() {
     constexpr double kInf = std::numeric_limits<double>::infinity();
     return {
-        ParameterInfo::choice("estimator", "ratio", {"ratio", "stochastic", "control-variate"},
-                              "What is denoised: ratio, U x den(S_N) / den(U_N) (Eq. 25); stochastic, den(S_N) "
-                              "(Eq. 10); control-variate, den(U - U_N + S_N) (Eq. 11); same denoiser and widths"),
-        ParameterInfo::choice("denoiser", "bilateral", {"bilateral", "gaussian", "aaf"},
-                              "bilateral: the joint bilateral with sigma from the noise estimate (Sec. 4); "
-                              "gaussian: one fixed screen-space sigma (Fig. 7); aaf: AAF's per-pixel widths "
-                              "(needs the shadow group's d1/d2 and the key light's header; the key light's widths "
-                              "serve every light)"),
-        ParameterInfo::flag("grey", "One W per pixel from the luminance layers (ratio.S.Y / ratio.Un.Y, Sec. 3.4)"),
-        ParameterInfo::flag("summed", "Denoise the summed layers only, ignoring the per-light ratio.L<i>.* layers"),
+        ParameterInfo::choice(
+            "estimator", "ratio", {"ratio", "stochastic", "control-variate"},
+            "What is denoised: ratio, U x den(S_N) / den(U_N) (Eq. 25); stochastic, den(S_N) "
+            "(Eq. 10); control-variate, den(U - U_N + S_N) (Eq. 11); same denoiser and widths"),
+        ParameterInfo::choice(
+            "denoiser", "bilateral", {"bilateral", "gaussian", "aaf"},
+            "bilateral: the joint bilateral with sigma from the noise estimate (Sec. 4); "
+            "gaussian: one fixed screen-space sigma (Fig. 7); aaf: AAF's per-pixel widths "
+            "(needs the shadow group's d1/d2 and the key light's header; the key light's widths "
+            "serve every light)"),
+        ParameterInfo::flag("grey",
+                            "One W per pixel from the luminance layers (ratio.S.Y / ratio.Un.Y, Sec. 3.4)"),
+        ParameterInfo::flag("summed",
+                            "Denoise the summed layers only, ignoring the per-light ratio.L<i>.* layers"),
         ParameterInfo::integer("noise_radius", "3", "pixels",
                                "Half length of the 4 lines of the noise estimate E (Eq. 29)", 1, 64),
-        ParameterInfo::real("sigma_per_noise", "24", "pixels",
-                            "Bilateral sigma = this x E (E: mean |second difference| of W_N per pixel)", 0, kInf),
+        ParameterInfo::real(
+            "sigma_per_noise", "3", "pixels",
+            "Bilateral sigma = this x E (E: mean absolute second difference of W_N per pixel, Eq. 29)", 0,
+            kInf),
         ParameterInfo::real("max_sigma", "8", "pixels", "Cap on the bilateral sigma", 0, 64),
         ParameterInfo::real("plane_sigma", "1", "pixel footprints",
                             "Bilateral plane weight: Gaussian of a tap's distance from the centre's tangent "
@@ -61,7 +67,8 @@ struct RatioSettings {
     std::string denoiser;
     bool grey = false, summed = false, temporal = false;
     int noise_radius_px = 3;
-    float sigma_per_noise_px = 24, max_sigma_px = 8, plane_sigma = 1, gaussian_sigma_px = 4, temporal_alpha = 0.2f;
+    float sigma_per_noise_px = 3, max_sigma_px = 8, plane_sigma = 1, gaussian_sigma_px = 4,
+          temporal_alpha = 0.2f;
     std::uint32_t seed = 0;
 };
 
@@ -96,7 +103,8 @@ std::vector<float> scene_scale_m(const MethodImages &images) {
     if (images.has(Role::PixelSize)) {
         const ConstPlaneView size = images.input(Role::PixelSize);
         for (int y = 0; y < height; ++y)
-            for (int x = 0; x < width; ++x) scale[std::size_t(y) * std::size_t(width) + std::size_t(x)] = size(x, y);
+            for (int x = 0; x < width; ++x)
+                scale[std::size_t(y) * std::size_t(width) + std::size_t(x)] = size(x, y);
         return scale;
     }
     float lo[3] = {INFINITY, INFINITY, INFINITY}, hi[3] = {-INFINITY, -INFINITY, -INFINITY};
@@ -124,15 +132,15 @@ RatioLayers layers_of(const MethodImages &images, int light, bool grey) {
         return light < 0 ? images.input(role, c) : images.light_input(role, light, c);
     };
     auto has = [&](Role role) { return light < 0 ? images.has(role) : images.has_light(role, light); };
-    const std::vector<Role> needed = grey ? std::vector<Role>{Role::RatioAnalytic, Role::RatioShadowedLuminance,
-                                                              Role::RatioUnshadowedLuminance}
-                                          : std::vector<Role>{Role::RatioAnalytic, Role::RatioShadowed,
-                                                              Role::RatioUnshadowed};
+    const std::vector<Role> needed =
+        grey ? std::vector<Role>{Role::RatioAnalytic, Role::RatioShadowedLuminance,
+                                 Role::RatioUnshadowedLuminance}
+             : std::vector<Role>{Role::RatioAnalytic, Role::RatioShadowed, Role::RatioUnshadowed};
     for (Role role : needed)
         if (!has(role))
-            throw InputError(std::string("missing ratio input '") + role_info(role).key + "' (channels " +
-                             (light < 0 ? images.channel_names(role) : images.light_channel_names(role, light)) +
-                             ")");
+            throw InputError(
+                std::string("missing ratio input '") + role_info(role).key + "' (channels " +
+                (light < 0 ? images.channel_names(role) : images.light_channel_names(role, light)) + ")");
     RatioLayers layers;
     for (std::size_t c = 0; c < 3; ++c) {
         layers.analytic[c] = view(Role::RatioAnalytic, c);
@@ -187,8 +195,9 @@ std::vector<float> bilateral_sigma_px(const RatioLayers &layers, bool grey, cons
 GatherGuides aaf_guides(const MethodImages &images, const std::vector<float> &any_plane) {
     for (Role role : {Role::D1, Role::D2Min, Role::D2Max, Role::ObjectId, Role::PixelSize})
         if (!images.has(role))
-            throw InputError(std::string("--denoiser aaf needs the '") + role_info(role).key + "' input (channels " +
-                             images.channel_names(role) + "; aaf render --aovs ratio,shadow,all)");
+            throw InputError(std::string("--denoiser aaf needs the '") + role_info(role).key +
+                             "' input (channels " + images.channel_names(role) +
+                             "; aaf render --aovs ratio,shadow,all)");
     for (const std::string &name : light_attribute_names())
         if (!images.attributes().count(name))
             throw InputError("--denoiser aaf needs the key light's header attribute '" + name + "'");
@@ -228,11 +237,14 @@ class RatioMethod final : public Method {
     RatioMethod() {
         info_.name = "ratio";
         info_.title = "ratio estimator";
-        info_.summary = "Ratio estimator: analytic U times denoised S_N over denoised U_N (Heitz et al. 2018)";
-        info_.reference = "Heitz, Hill, McGuire: Combining Analytic Direct Illumination and Stochastic Shadows, 2018";
-        info_.roles.required = {Role::RatioAnalytic, Role::RatioShadowed, Role::RatioUnshadowed, Role::Position,
-                                Role::Normal};
-        info_.roles.optional = {Role::RatioShadowedLuminance, Role::RatioUnshadowedLuminance,
+        info_.summary =
+            "Ratio estimator: analytic U times denoised S_N over denoised U_N (Heitz et al. 2018)";
+        info_.reference =
+            "Heitz, Hill, McGuire: Combining Analytic Direct Illumination and Stochastic Shadows, 2018";
+        info_.roles.required = {Role::RatioAnalytic, Role::RatioShadowed, Role::RatioUnshadowed,
+                                Role::Position, Role::Normal};
+        info_.roles.optional = {Role::RatioShadowedLuminance,
+                                Role::RatioUnshadowedLuminance,
                                 Role::PixelSize,
                                 Role::Motion,
                                 Role::D1,
@@ -282,7 +294,8 @@ class RatioMethod final : public Method {
                                                          std::vector<float>(sources.front().size()));
                 if (s.denoiser == "gaussian") {
                     for (std::size_t k = 0; k < sources.size(); ++k)
-                        fixed_gaussian_filter(plane_view(sources[k].data(), width, height), s.gaussian_sigma_px,
+                        fixed_gaussian_filter(plane_view(sources[k].data(), width, height),
+                                              s.gaussian_sigma_px,
                                               plane_view(denoised[k].data(), width, height));
                 } else {
                     if (pass == 0) frequency_guides = aaf_guides(images, sources.front());
@@ -306,8 +319,8 @@ class RatioMethod final : public Method {
     static void accumulate_history(const MethodImages &images, const RatioSettings &s,
                                    const std::vector<float> &scale, const std::array<PlaneView, 3> &rgb) {
         if (!images.has(Role::Motion))
-            throw InputError("--temporal needs the 'motion' input (channels " + images.channel_names(Role::Motion) +
-                             ")");
+            throw InputError("--temporal needs the 'motion' input (channels " +
+                             images.channel_names(Role::Motion) + ")");
         for (Role role : {Role::Beauty, Role::Position, Role::Normal})
             if (!images.has_history(role)) return;
         const int width = images.width(), height = images.height();

@@ -42,7 +42,8 @@ std::vector<unsigned char> varying_windows(ConstPlaneView w, int radius) {
     parallel_for_rows(height, [&](int y) {
         for (int x = 0; x < width; ++x)
             flags[std::size_t(y) * std::size_t(width) + std::size_t(x)] =
-                (x + 1 < width && differ(w(x, y), w(x + 1, y))) || (y + 1 < height && differ(w(x, y), w(x, y + 1)));
+                (x + 1 < width && differ(w(x, y), w(x + 1, y))) ||
+                (y + 1 < height && differ(w(x, y), w(x, y + 1)));
     });
     parallel_for_rows(height, [&](int y) {
         const unsigned char *row = &flags[std::size_t(y) * std::size_t(width)];
@@ -97,7 +98,8 @@ void ratio_noise_estimate(ConstPlaneView w, int line_radius_px, std::uint32_t se
             const float turn = pixel_random(x, y, seed) * kQuarterPi;
             // The asterisk's 4 directions, 45 degrees apart, from one cosine and sine.
             const float c = std::cos(turn), s = std::sin(turn), h = 0.70710678f;
-            const float directions[4][2] = {{c, s}, {h * (c - s), h * (c + s)}, {-s, c}, {-h * (c + s), h * (c - s)}};
+            const float directions[4][2] = {
+                {c, s}, {h * (c - s), h * (c + s)}, {-s, c}, {-h * (c + s), h * (c - s)}};
             float sum = 0.0f;
             for (int l = 0; l < 4; ++l) {
                 const float dx = directions[l][0], dy = directions[l][1];

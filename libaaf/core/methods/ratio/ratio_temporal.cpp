@@ -15,7 +15,8 @@ namespace {
 void check_frame(const TemporalFrame &frame, int width, int height, const char *which) {
     auto check = [&](ConstPlaneView view) {
         if (!view.valid() || view.width != width || view.height != height)
-            throw Error(std::string("temporal accumulation: the ") + which + " frame's layers differ in size");
+            throw Error(std::string("temporal accumulation: the ") + which +
+                        " frame's layers differ in size");
     };
     for (int c = 0; c < 3; ++c) {
         check(frame.colour[c]);
@@ -50,7 +51,8 @@ void temporal_accumulate(const TemporalFrame &current, const std::array<ConstPla
             for (int c = 0; c < 3; ++c) now[c] = current.colour[c](x, y);
             float *dst = &result[(std::size_t(y) * std::size_t(width) + std::size_t(x)) * 3];
             for (int c = 0; c < 3; ++c) dst[c] = now[c];
-            const float p[3] = {current.position[0](x, y), current.position[1](x, y), current.position[2](x, y)};
+            const float p[3] = {current.position[0](x, y), current.position[1](x, y),
+                                current.position[2](x, y)};
             const float n[3] = {current.normal[0](x, y), current.normal[1](x, y), current.normal[2](x, y)};
             const float scale = current.scale_m(x, y);
             const float mx = motion[0](x, y), my = motion[1](x, y);
@@ -72,7 +74,8 @@ void temporal_accumulate(const TemporalFrame &current, const std::array<ConstPla
                                         previous.normal[2](tx, ty)};
                     const float h[3] = {previous.colour[0](tx, ty), previous.colour[1](tx, ty),
                                         previous.colour[2](tx, ty)};
-                    if (!std::isfinite(q[0] + q[1] + q[2] + m[0] + m[1] + m[2] + h[0] + h[1] + h[2])) continue;
+                    if (!std::isfinite(q[0] + q[1] + q[2] + m[0] + m[1] + m[2] + h[0] + h[1] + h[2]))
+                        continue;
                     // Disocclusion: the previous surface must lie on this pixel's tangent plane ...
                     const float d = (q[0] - p[0]) * n[0] + (q[1] - p[1]) * n[1] + (q[2] - p[2]) * n[2];
                     if (std::fabs(d) > settings.plane_tolerance * scale) continue;
@@ -92,7 +95,9 @@ void temporal_accumulate(const TemporalFrame &current, const std::array<ConstPla
     });
     for (int y = 0; y < height; ++y)
         for (int x = 0; x < width; ++x)
-            for (int c = 0; c < 3; ++c) out[c](x, y) = result[(std::size_t(y) * std::size_t(width) + std::size_t(x)) * 3 + std::size_t(c)];
+            for (int c = 0; c < 3; ++c)
+                out[c](x, y) =
+                    result[(std::size_t(y) * std::size_t(width) + std::size_t(x)) * 3 + std::size_t(c)];
 }
 
 }  // namespace aaf
