@@ -179,7 +179,7 @@ def main():
     if not os.path.exists(noisy):
         run([a.aaf, "render", a.scene, *size, "--spp", str(a.sweep_spp), "--seed", "1", "--aovs", "all,ratio",
              "-o", noisy])
-    grid = {"noise_radius": ["1", "2", "3", "4", "6"],
+    grid = {"noise_radius": ["1", "2", "3", "4", "6", "8", "12"],
             "sigma_per_noise": ["0.5", "1", "2", "3", "4", "6", "8", "16", "24"],
             "max_sigma": ["2", "4", "8", "16"], "plane_sigma": ["0.5", "1", "2", "4"]}
     for name, values in grid.items():

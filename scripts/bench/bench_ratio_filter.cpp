@@ -37,7 +37,7 @@
 namespace {
 
 // The `aaf filter ratio` defaults (ratio_method.cpp).
-constexpr int kNoiseRadiusPx = 3;
+constexpr int kNoiseRadiusPx = 6;
 constexpr float kSigmaPerNoisePx = 3.0f, kMaxSigmaPx = 8.0f;
 
 struct Fixture {

@@ -40,7 +40,7 @@ std::vector<ParameterInfo> ratio_parameters() {
                             "One W per pixel from the luminance layers (ratio.S.Y / ratio.Un.Y, Sec. 3.4)"),
         ParameterInfo::flag("summed",
                             "Denoise the summed layers only, ignoring the per-light ratio.L<i>.* layers"),
-        ParameterInfo::integer("noise_radius", "3", "pixels",
+        ParameterInfo::integer("noise_radius", "6", "pixels",
                                "Half length of the 4 lines of the noise estimate E (Eq. 29)", 1, 64),
         ParameterInfo::real(
             "sigma_per_noise", "3", "pixels",
@@ -66,7 +66,7 @@ struct RatioSettings {
     RatioEstimator estimator = RatioEstimator::Ratio;
     std::string denoiser;
     bool grey = false, summed = false, temporal = false;
-    int noise_radius_px = 3;
+    int noise_radius_px = 6;
     float sigma_per_noise_px = 3, max_sigma_px = 8, plane_sigma = 1, gaussian_sigma_px = 4,
           temporal_alpha = 0.2f;
     std::uint32_t seed = 0;
