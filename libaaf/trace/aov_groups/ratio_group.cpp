@@ -2,6 +2,7 @@
 #include <tbb/parallel_for.h>
 
 #include <algorithm>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -39,6 +40,20 @@ std::vector<RatioLayers> trace_all_ratio_layers(const RenderState &state) {
     return layers;
 }
 
+/// The layers of one render, traced at the group's first write and kept:
+/// a progressive render writes its groups at every checkpoint, and the ratio
+/// samples (all N of them, whatever the rounds done) need tracing only once.
+class RatioLayerCache {
+  public:
+    const std::vector<RatioLayers> &get(const RenderState &state) const {
+        if (!layers_) layers_ = trace_all_ratio_layers(state);
+        return *layers_;
+    }
+
+  private:
+    mutable std::optional<std::vector<RatioLayers>> layers_;
+};
+
 /// `name` with its leading "ratio." replaced by "ratio.L<light>.".
 std::string per_light_name(const std::string &name, std::size_t light) {
     return "ratio.L" + std::to_string(light) + "." + name.substr(std::string("ratio.").size());
@@ -66,7 +81,7 @@ class RatioGroup final : public AovAccumulator {
     }
 
     void write(const RenderState &state, AovSet &aovs) const override {
-        const std::vector<RatioLayers> layers = trace_all_ratio_layers(state);
+        const std::vector<RatioLayers> &layers = cache_.get(state);
         const std::size_t lights = state.scene.lights.size();
         const Role roles[] = {Role::RatioAnalytic, Role::RatioShadowed, Role::RatioUnshadowed,
                               Role::RatioShadowedLuminance, Role::RatioUnshadowedLuminance};
@@ -102,6 +117,9 @@ class RatioGroup final : public AovAccumulator {
             views[0][4][0](x, y) = float(luminance(totals[2]));
         });
     }
+
+  private:
+    RatioLayerCache cache_;
 };
 
 /// The two estimators the ratio estimator is compared with, from the same
@@ -116,7 +134,7 @@ class RatioEstimatorsGroup final : public AovAccumulator {
     std::vector<Role> roles() const override { return {}; }
 
     void write(const RenderState &state, AovSet &aovs) const override {
-        const std::vector<RatioLayers> layers = trace_all_ratio_layers(state);
+        const std::vector<RatioLayers> &layers = cache_.get(state);
         const std::size_t lights = state.scene.lights.size();
         const auto stochastic = add_channels(aovs, {"ratio.sto.R", "ratio.sto.G", "ratio.sto.B"});
         const auto control_variate = add_channels(aovs, {"ratio.cv.R", "ratio.cv.G", "ratio.cv.B"});
@@ -135,6 +153,9 @@ class RatioEstimatorsGroup final : public AovAccumulator {
             set3(control_variate, x, y, Vec3{float(cv[0]), float(cv[1]), float(cv[2])});
         });
     }
+
+  private:
+    RatioLayerCache cache_;
 };
 
 }  // namespace
