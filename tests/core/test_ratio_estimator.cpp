@@ -145,11 +145,11 @@ TEST_CASE("Ratio: where every sample of every tap is unoccluded the result is U 
     for (const char *denoiser : {"bilateral", "gaussian"}) {
         INFO(denoiser);
         const AovSet out = run_ratio(input, ratio_parameters({{"denoiser", denoiser}}));
-        // Beyond the widest reach from the penumbra (noise lines 3 + box 1 + 3 x 8 px sigma cap; 12 px
-        // gaussian).
+        // Beyond the widest reach from the penumbra (default noise lines 6 + box 1 + 3 x 8 px sigma
+        // cap; 12 px gaussian).
         int exact = 0;
         for (int y = 0; y < height; ++y)
-            for (int x = 20 + 3 + 1 + 24 + 1; x < width; ++x) {
+            for (int x = 20 + 6 + 1 + 24 + 1; x < width; ++x) {
                 for (const char *c : {"R", "G", "B"})
                     CHECK(at(out, std::string(c), x, y) == at(input, std::string("ratio.U.") + c, x, y));
                 ++exact;
