@@ -6,6 +6,7 @@
 
 #include "aaf/core/error.h"
 #include "aaf/core/fast_exp.h"
+#include "aaf/core/gather_rows.h"
 #include "aaf/core/parallel.h"
 
 namespace aaf {
@@ -20,7 +21,7 @@ constexpr float kPi = 3.14159265358979323846f;
 constexpr int kLanes = 8;
 /// Channels gathered per sweep over the taps; more are done in further sweeps
 /// with the same weights.
-constexpr int kMaxChannelsPerSweep = 4;
+constexpr int kMaxChannelsPerSweep = detail::kMaxGatherChannels;
 
 /// The tap weight's modulation m_u(du) m_v(dv) at one centre pixel.
 struct PixelModulation {
@@ -187,6 +188,22 @@ void sweep_all(const GatherGuides &g, float cos_threshold, bool symmetric_border
                const AxisModulation &mod_u = {}, const AxisModulation &mod_v = {}, bool normalise = true) {
     for (std::size_t first = 0; first < sources.size(); first += kMaxChannelsPerSweep) {
         const std::size_t count = std::min<std::size_t>(kMaxChannelsPerSweep, sources.size() - first);
+        if (!Modulated) {
+            // The SIMD rows (gather_rows.h): the same bits as gather_sweep's loops.
+            detail::GatherSweep sweep;
+            sweep.guides = &g;
+            sweep.cos_threshold = cos_threshold;
+            sweep.symmetric_borders = symmetric_borders;
+            sweep.along_x = along_x;
+            sweep.along_y = along_y;
+            sweep.channels = int(count);
+            for (std::size_t k = 0; k < count; ++k) {
+                sweep.source[k] = sources[first + k].data();
+                sweep.output[k] = outputs[first + k].data();
+            }
+            parallel_for_rows(g.height, [&](int y) { detail::gather_row(sweep, y); });
+            continue;
+        }
         auto run = [&](auto channels) {
             constexpr int K = decltype(channels)::value;
             Planes<K> planes;
