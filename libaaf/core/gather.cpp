@@ -172,12 +172,27 @@ PackedPlanes pack(const std::vector<ConstPlaneView> &views) {
     return planes;
 }
 
+/// Writes the transpose of a row-major width x height plane into `out`
+/// (height x width) in 32 x 32 blocks, so that both sides stay in cache;
+/// block rows in parallel (each element is written once: no ordering issue).
+template <typename T>
+void transpose_into(const T *plane, int width, int height, T *out) {
+    constexpr int kBlock = 32;
+    parallel_for_rows((height + kBlock - 1) / kBlock, [&](int block_row) {
+        const int y0 = block_row * kBlock, y1 = std::min(height, y0 + kBlock);
+        for (int x0 = 0; x0 < width; x0 += kBlock) {
+            const int x1 = std::min(width, x0 + kBlock);
+            for (int y = y0; y < y1; ++y)
+                for (int x = x0; x < x1; ++x)
+                    out[std::size_t(x) * std::size_t(height) + std::size_t(y)] =
+                        plane[std::size_t(y) * std::size_t(width) + std::size_t(x)];
+        }
+    });
+}
+
 std::vector<float> transposed(const std::vector<float> &plane, int width, int height) {
     std::vector<float> out(plane.size());
-    for (int y = 0; y < height; ++y)
-        for (int x = 0; x < width; ++x)
-            out[std::size_t(x) * std::size_t(height) + std::size_t(y)] =
-                plane[std::size_t(y) * std::size_t(width) + x];
+    transpose_into(plane.data(), width, height, out.data());
     return out;
 }
 
@@ -288,9 +303,7 @@ GatherGuides GatherGuides::transposed() const {
     auto swap_axes = [&](const auto &plane, auto &out) {
         out.resize(plane.size());
         if (plane.empty()) return;  // an optional plane left out
-        for (int y = 0; y < height; ++y)
-            for (int x = 0; x < width; ++x)
-                out[std::size_t(x) * std::size_t(height) + std::size_t(y)] = plane[index(x, y)];
+        transpose_into(plane.data(), width, height, out.data());
     };
     swap_axes(coord_u_m, t.coord_u_m);
     swap_axes(coord_v_m, t.coord_v_m);
