@@ -33,7 +33,7 @@ for size in "${sizes[@]}"; do
     w="${size%x*}"
     h="${size#*x}"
     in="$dir/grids_${size}.exr"
-    [ -f "$in" ] || "$aaf" render grids --width "$w" --height "$h" --aovs aaf,isg -o "$in" --progress none >/dev/null
+    [ -f "$in" ] || "$aaf" render grids --width "$w" --height "$h" --aovs aaf,isg,depth -o "$in" --progress none >/dev/null
     declare -A times=()
     for ((r = 0; r < reps; ++r)); do
         for what in oiiotool aaf gaussian isg-shadow; do
