@@ -143,7 +143,7 @@ TEST_CASE("A group that wants samples sees every sample the shadow sums see", "[
     const PrimaryHit primary = renderer.trace_primary(32, 40);
     REQUIRE(primary.found);
     ShadowStats stats;
-    renderer.trace_shadows(primary, 32, 40, 7, 0, 37, stats, listeners);
+    renderer.trace_shadows(primary, 32, 40, 7, 0, 37, true, stats, listeners);
     CHECK(group.count == 37);
     CHECK(stats.taken == 37);
     CHECK(group.weight_sum == stats.weight_sum);
