@@ -18,6 +18,7 @@ std::vector<std::unique_ptr<Method>> &registry() {
         builtin.push_back(make_isg_shadow_method());  // Robison, Shirley 2009
         builtin.push_back(make_isg_glossy_method());
         builtin.push_back(make_isg_dof_method());
+        builtin.push_back(make_maaf6_method());     // Wu et al. 2017, Sec. 6.2
         return builtin;
     }();
     return methods;

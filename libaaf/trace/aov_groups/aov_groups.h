@@ -28,5 +28,7 @@ std::unique_ptr<AovAccumulator> make_progress_group();
 std::unique_ptr<AovAccumulator> make_maaf_group();
 /// ISG's image-space maps and distribution-ray-traced references (isg_group.cpp).
 std::unique_ptr<AovAccumulator> make_isg_group();
+/// maaf6.*: MAAF for combined effects, path samples of its own (maaf6_group.cpp).
+std::unique_ptr<AovAccumulator> make_maaf6_group();
 
 }  // namespace aaf::trace
