@@ -102,7 +102,12 @@ void Maaf6Group::write(const RenderState &state, AovSet &aovs) const {
             for (int d = 0; d < 4; ++d) {
                 float a, b;
                 rng.next_float2(a, b);
-                *points[d] = strata.point(std::uint32_t(k), keys[d], a, b);  // each dimension its own permutation
+                // Each dimension pairs sample k with its own permutation of the strata: with
+                // one shared order (a full grid is not permuted) the lens, light and bounce
+                // points would share strata, a correlation that biases the product integral.
+                const std::uint32_t index =
+                    d == 0 ? std::uint32_t(k) : permute_index(std::uint32_t(k), std::uint32_t(n), keys[d]);
+                *points[d] = strata.point(index, keys[d], a, b);
             }
             const PathSample s = sampler.trace(x, y, numbers);
             Stored stored{};
