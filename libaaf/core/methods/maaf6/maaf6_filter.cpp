@@ -62,16 +62,20 @@ void maaf6_filter_layer(const Maaf6LayerInputs &layer, const Maaf6SharedInputs &
                 continue;
             }
             Maaf6Wedge wedge;
-            wedge.has_y = layer.y_max(x, y) >= 0 && layer.y_min(x, y) >= 0;
+            // Non-finite inputs (a broken pixel) count as no wedge: they stay in their own pixel.
+            wedge.has_y = layer.y_max(x, y) >= 0 && layer.y_min(x, y) >= 0 && std::isfinite(layer.y_max(x, y)) &&
+                          layer.y_max(x, y) >= layer.y_min(x, y);
             wedge.y_min = wedge.has_y ? double(layer.y_min(x, y)) : 0.0;
             wedge.y_max = wedge.has_y ? double(layer.y_max(x, y)) : 0.0;
             wedge.omega_y_max = layer.omega_y_max;
-            wedge.has_u = shared.omega_u_max > 0;
+            wedge.has_u = shared.omega_u_max > 0 && std::isfinite(shared.u_min(x, y)) &&
+                          std::isfinite(shared.u_max(x, y)) && shared.u_max(x, y) >= shared.u_min(x, y);
             wedge.u_min = double(shared.u_min(x, y));
             wedge.u_max = double(shared.u_max(x, y));
             wedge.omega_u_max = shared.omega_u_max;
             wedge.omega_x_max = double(shared.omega_x(x, y));
-            if (!wedge.has_y && !(wedge.has_u && wedge.u_min * wedge.u_max > 0)) {
+            if ((!wedge.has_y && !(wedge.has_u && wedge.u_min * wedge.u_max > 0)) || !(wedge.omega_x_max > 0) ||
+                !std::isfinite(wedge.omega_x_max)) {
                 // No wedge to filter along (a pinhole without y-wedge, or the focal-plane box):
                 // the pixel band is the pixel itself; MAAF Sec. 6.2 adds samples there instead.
                 for (int c = 0; c < 3; ++c) out[std::size_t(c)](x, y) = own_mean(c);
