@@ -1,6 +1,9 @@
 // MAAF for combined effects on a small render of `room`: each effect alone
 // converges to its reference as spp grows, and MAAF and its axis-aligned
 // baseline (--pairs 1) each bring the 16-spp render closer to its reference.
+#include <tbb/global_control.h>
+#include <tbb/task_arena.h>
+
 #include <catch2/catch.hpp>
 #include <cmath>
 #include <string>
@@ -97,5 +100,31 @@ TEST_CASE("maaf6: the axis-aligned baseline (--pairs 1) reduces the error of ind
             for (int y = 0; y < noisy.height(); ++y)
                 for (int x = 0; x < noisy.width(); ++x) REQUIRE(out(x, y) == in(x, y));
         }
+    }
+}
+
+TEST_CASE("maaf6: the render and both filters give the same bytes for any thread count", "[maaf6]") {
+    auto render = [](int threads) {
+        trace::RenderSettings settings;
+        settings.width = 32;
+        settings.height = 24;
+        settings.spp = 8;
+        settings.threads = threads;
+        settings.aovs = trace::parse_aov_groups("maaf6");
+        return trace::render_scene("room", settings);
+    };
+    const AovSet one = render(1), three = render(3);
+    REQUIRE(one.channel_names() == three.channel_names());
+    for (const std::string &name : one.channel_names()) {
+        INFO(name);
+        REQUIRE(one.plane(one.index_of(name)) == three.plane(three.index_of(name)));
+    }
+    const tbb::global_control allow(tbb::global_control::max_allowed_parallelism, 4);
+    for (const char *pairs : {"all", "1"}) {
+        AovSet a, b;
+        tbb::task_arena(1).execute([&] { a = filtered(one, pairs); });
+        tbb::task_arena(3).execute([&] { b = filtered(three, pairs); });
+        for (const char *name : {"R", "G", "B"})
+            REQUIRE(a.plane(a.index_of(name)) == b.plane(b.index_of(name)));
     }
 }

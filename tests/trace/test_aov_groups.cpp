@@ -160,6 +160,8 @@ TEST_CASE("The groups AAF reads follow from the roles it declares", "[trace][gro
     CHECK(aov_groups_writing({}) == 0);
     unsigned all = 0;
     for (const AovGroupInfo &info : aov_group_table()) all |= info.group;
-    // "all" leaves out maaf, whose first pass restratifies the samples, and isg, which traces rays of its own
-    CHECK(all == (kAovsAll | kAovMaaf | kAovIsg));
+    // "all" leaves out maaf, whose first pass restratifies the samples, and isg and maaf6, which trace
+    // rays of their own
+    CHECK(all == (kAovsAll | kAovMaaf | kAovIsg | kAovMaaf6));
+    CHECK((kAovsAll & kAovMaaf6) == 0);
 }
