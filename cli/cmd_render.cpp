@@ -161,6 +161,7 @@ std::string render_parameters(const trace::RenderSettings &settings) {
          << " light=" << (settings.light_profile ? to_string(*settings.light_profile) : "scene")
          << " falloff=" << settings.cosine_falloff << " skip_self_occluded=" << settings.skip_self_occluded
          << " maaf_first_pass_spp=" << settings.maaf_first_pass_spp;
+    if (settings.aovs & trace::kAovMaaf6) text << " maaf6_effects=" << settings.maaf6_effects;
     return text.str();
 }
 
@@ -201,6 +202,9 @@ void add_render_command(CLI::App &app) {
     cmd->add_option("--aovs", options->aovs,
                     "AOV groups, comma-separated: aaf (default), all, shadow, position, normal, id, "
                     "unshadowed, depth, albedo, motion, progress")
+        ->capture_default_str();
+    cmd->add_option("--maaf6-effects", options->settings.maaf6_effects,
+                    "With --aovs maaf6: the effects its path samples trace, any of defocus,shadows,indirect")
         ->capture_default_str();
     cmd->add_flag("--adaptive", options->settings.adaptive,
                   "Two-pass adaptive sampling (AAF Sec. 6): --spp first, then AAF Eq. 21 per pixel");

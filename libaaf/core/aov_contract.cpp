@@ -19,6 +19,20 @@ std::vector<std::string> maaf_channel_names(const std::string &prefix) {
     return names;
 }
 
+/// The (2N-1)^2 maaf6 channel names of one layer, with `.R/.G/.B` per channel when `rgb`.
+std::vector<std::string> maaf6_channel_names(const std::string &prefix, bool rgb) {
+    std::vector<std::string> names;
+    for (int c = 0; c < maaf_channel_count(kMaafContractPairs); ++c) {
+        const std::string base = prefix + maaf_channel_suffix(kMaafContractPairs, c);
+        if (!rgb) {
+            names.push_back(base);
+            continue;
+        }
+        for (const char *colour : {".R", ".G", ".B"}) names.push_back(base + colour);
+    }
+    return names;
+}
+
 }  // namespace
 
 const std::vector<RoleInfo> &role_table() {
@@ -246,6 +260,56 @@ const std::vector<RoleInfo> &role_table() {
          {"ratio.Un.Y"},
          "luminance",
          "Rec. 709 luminance of ratio_un (ratio estimator Sec. 3.4). Per light as ratio_u"},
+        {Role::Maaf6Direct,
+         "maaf6_direct",
+         {"maaf6.direct.R", "maaf6.direct.G", "maaf6.direct.B"},
+         "linear radiance",
+         "MAAF 6D (Sec. 6.2): mean over the pixel's path samples of the direct light at the lens ray's hit, "
+         "one shadow ray to the area light; the beauty of a maaf6 render is this plus maaf6_indirect"},
+        {Role::Maaf6Indirect,
+         "maaf6_indirect",
+         {"maaf6.indirect.R", "maaf6.indirect.G", "maaf6.indirect.B"},
+         "linear radiance",
+         "MAAF 6D: mean of the one-bounce diffuse indirect light (cosine-sampled bounce, one shadow ray at the "
+         "bounce point), 0 when the effect is off"},
+        {Role::Maaf6DirectSums,
+         "maaf6_direct_sums",
+         maaf6_channel_names("maaf6.direct.V_", true),
+         "linear radiance, summed over samples",
+         "MAAF Eq. 23 by Monte Carlo, N = 3: V_<a><b>.R/G/B is the sum over the pixel's samples of the direct "
+         "radiance times phi_a(y1, u1) phi_b(y2, u2); phi_c0 = 1, phi_cp = cos(C_y^p y + C_u^p u), phi_sp = "
+         "sin(...), y_i the light point and u_i the lens point along the pixel's tangent axis t_i (metres), "
+         "C from `aaf::maaf6_pair_components` of maaf6_wedge; `aaf::Maaf6SampleSide::accumulate` writes it"},
+        {Role::Maaf6DirectWeights,
+         "maaf6_direct_weights",
+         maaf6_channel_names("maaf6.direct.W_", false),
+         "luminance, summed over samples",
+         "as maaf6_direct_sums with the sample's unoccluded luminance (its radiance with visibility 1) instead of "
+         "its radiance: the filter divides by these, filtered alike, and multiplies by the pixel's own mean"},
+        {Role::Maaf6IndirectSums,
+         "maaf6_indirect_sums",
+         maaf6_channel_names("maaf6.indirect.V_", true),
+         "linear radiance, summed over samples",
+         "as maaf6_direct_sums for the indirect radiance, with y_i = the bounce direction's tan along t_i "
+         "(unitless, the unit plane above the receiver)"},
+        {Role::Maaf6IndirectWeights,
+         "maaf6_indirect_weights",
+         maaf6_channel_names("maaf6.indirect.W_", false),
+         "samples",
+         "as maaf6_direct_sums for the indirect layer with weight 1 (channel c0c0 counts the samples)"},
+        {Role::Maaf6Wedge,
+         "maaf6_wedge",
+         {"maaf6.direct.ymin", "maaf6.direct.ymax", "maaf6.indirect.ymin", "maaf6.indirect.ymax", "maaf6.umin",
+          "maaf6.umax", "maaf6.omegax"},
+         "slopes: unitless (direct, u), metres (indirect); rad/m",
+         "the 3D wedges of the first pass averaged over 5x5 (MAAF Sec. 6.2): direct y slopes d1/d2 - 1, "
+         "indirect y slopes = reflector distance z, defocus slopes 1 - z/F (either sign), -1 in both y "
+         "channels = no y-wedge; the pixel band-limit 2 / pixel size"},
+        {Role::Maaf6Spp,
+         "maaf6_spp",
+         {"maaf6.spp"},
+         "samples",
+         "path samples of the pixel: --spp plus the focal-plane extra (MAAF Sec. 6.2, at most 100)"},
     };
     return table;
 }

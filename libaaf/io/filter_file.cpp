@@ -61,6 +61,8 @@ AovSet without_channels(const AovSet &aovs, const std::vector<std::string> &drop
 void warn_if_defocused(const std::string &path, const AovSet &aovs, const FrameFilter &filter,
                        FilterFileReport &report) {
     if (filter.composes_beauty.empty()) return;
+    // A maaf6 render's layers are traced through the lens: its filter keeps the defocus.
+    if (aovs.attributes.count(attr::kMaaf6Pairs)) return;
     auto it = aovs.attributes.find(attr::kApertureRadius);
     const float *aperture = it == aovs.attributes.end() ? nullptr : std::get_if<float>(&it->second);
     if (aperture && *aperture > 0)

@@ -30,6 +30,7 @@ struct RenderState {
     const Renderer *renderer = nullptr;
     int spp = 0;
     std::uint64_t seed = 0;
+    std::string maaf6_effects = "defocus,shadows,indirect";  ///< RenderSettings::maaf6_effects
 
     /// Calls `body(x, y, primary, stats)` for every pixel, row by row.
     template <typename Body>

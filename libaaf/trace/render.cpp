@@ -19,6 +19,7 @@
 #include "aaf/core/error.h"
 #include "aaf/core/sampling_plan.h"
 #include "aov_group.h"
+#include "path_sample.h"
 #include "renderer.h"
 #include "scene_description.h"
 #include "scene_file.h"
@@ -165,7 +166,8 @@ class Tracing {
     RenderState state(const Camera &previous_camera) const {
         return {
             scene_,          previous_camera,  primaries_, stats_,        renderer_.has_separate_radiance(),
-            settings_.width, settings_.height, &renderer_, settings_.spp, settings_.seed};
+            settings_.width, settings_.height, &renderer_, settings_.spp, settings_.seed,
+            settings_.maaf6_effects};
     }
     std::vector<ShadowStats> &stats() { return stats_; }
 
@@ -261,6 +263,10 @@ void validate_render_settings(const RenderSettings &settings) {
         throw Error("MAAF first-pass spp must lie in [1, 1048576]");
     if ((settings.aovs & kAovMaaf) && settings.resume)
         throw Error("a render with the maaf AOVs cannot be resumed (they need every sample, kept in memory)");
+    if (settings.aovs & kAovMaaf6) {
+        if (settings.resume) throw Error("a render with the maaf6 AOVs cannot be resumed (they trace their own samples)");
+        parse_maaf6_effects(settings.maaf6_effects);
+    }
 }
 
 AovSet render_scene(const std::string &scene_name, const RenderSettings &settings, RenderTimings *timings) {

@@ -213,6 +213,50 @@ def gallery():
     }
 
 
+def room():
+    """For MAAF's combined effects (Sec. 6.2, like its conference room): a
+    closed room with a red and a green side wall (visible one-bounce colour
+    bleeding), a 1.2 m ceiling light, a table with objects, and spheres and a
+    box from near the lens to the back wall through a thin lens focused on
+    the table (shallow depth of field)."""
+    return {
+        "format_version": 1, "name": "room",
+        "camera": {"type": "thin_lens", "position": [0, 1.3, 3.4], "look_at": [0, 0.75, -0.6], "fov_y_deg": 50,
+                   "aperture_radius_m": 0.06, "focus_distance_m": 3.7},
+        "materials": {"floor": {"albedo": [0.7, 0.65, 0.6]},
+                      "white": {"albedo": 0.75},
+                      "red": {"albedo": [0.8, 0.15, 0.12]},
+                      "green": {"albedo": [0.15, 0.7, 0.2]},
+                      "wood": {"albedo": [0.6, 0.45, 0.3]},
+                      "blue": {"albedo": [0.2, 0.35, 0.8]},
+                      "yellow": {"albedo": [0.85, 0.75, 0.3]}},
+        "lights": [{"center": [0, 2.95, -0.4], "edge_u": [1.2, 0, 0], "edge_v": [0, 0, 1.2], "intensity": 30,
+                    "profile": "uniform"}],
+        "objects": [
+            {"type": "plane", "size": [6, 10], "id": 1, "material": "floor"},
+            {"type": "plane", "size": [6, 10], "id": 2, "material": "white",
+             "transform": {"translate": [0, 3, 0]}},
+            {"type": "plane", "size": [6, 3], "id": 3, "material": "white",
+             "transform": {"rotate_deg": [90, 0, 0], "translate": [0, 1.5, -3]}},
+            {"type": "plane", "size": [3, 10], "id": 4, "material": "red",
+             "transform": {"rotate_deg": [0, 0, 90], "translate": [-2.2, 1.5, 0]}},
+            {"type": "plane", "size": [3, 10], "id": 5, "material": "green",
+             "transform": {"rotate_deg": [0, 0, 90], "translate": [2.2, 1.5, 0]}},
+            {"type": "box", "min": [-0.8, 0.7, -0.5], "max": [0.8, 0.76, 0.3], "id": 6, "material": "wood",
+             "transform": {"translate": [0, 0, -0.3]}},
+            {"type": "box", "min": [-0.05, 0, -0.05], "max": [0.05, 0.7, 0.05], "id": 7, "material": "wood",
+             "transform": {"translate": [-0.7, 0, -0.1]}},
+            {"type": "box", "min": [-0.05, 0, -0.05], "max": [0.05, 0.7, 0.05], "id": 7, "material": "wood",
+             "transform": {"translate": [0.7, 0, -0.1]}},
+            {"type": "sphere", "center": [-0.3, 0.94, -0.3], "radius": 0.18, "id": 8, "material": "blue"},
+            {"type": "box", "min": [0.1, 0.76, -0.6], "max": [0.45, 1.1, -0.3], "id": 9, "material": "yellow"},
+            {"type": "sphere", "center": [0.55, 0.3, 1.9], "radius": 0.3, "id": 10, "material": "red"},
+            {"type": "sphere", "center": [-1.2, 0.45, -2.2], "radius": 0.45, "id": 11, "material": "white"},
+            {"type": "box", "min": [-0.3, 0, -0.3], "max": [0.3, 1.2, 0.3], "id": 12, "material": "blue",
+             "transform": {"rotate_deg": [0, 30, 0], "translate": [1.3, 0, -2.3]}}],
+    }
+
+
 def rect_light(center, edge_u, edge_v, intensity):
     return {"center": center, "edge_u": [round(v, 6) for v in edge_u], "edge_v": [round(v, 6) for v in edge_v],
             "intensity": intensity}
@@ -331,7 +375,7 @@ def main():
     os.makedirs(out_dir, exist_ok=True)
     scenes = {"grids": grids(), "spheres": spheres(out_dir), "tentacles": tentacles(out_dir), "bench": bench(),
               "studio": studio(), "gallery": gallery(), "tilted": tilted(), "grazing": grazing(),
-              "contact": contact(), "livingroom": livingroom()}
+              "contact": contact(), "livingroom": livingroom(), "room": room()}
     for name, scene in scenes.items():
         with open(os.path.join(out_dir, name + ".json"), "w") as out:
             json.dump(scene, out, indent=1)

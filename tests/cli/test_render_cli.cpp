@@ -41,7 +41,7 @@ TEST_CASE("CLI: render --list shows the shipped scenes", "[cli][render]") {
     CHECK(result.exit_code == 0);
     for (const char *name :
          {"grids", "spheres", "tentacles", "bench", "studio", "gallery", "tilted", "grazing", "contact",
-          "livingroom"})
+          "livingroom", "room"})
         CHECK_THAT(result.output, Catch::Contains(std::string(name) + "\n"));
 }
 

@@ -30,7 +30,7 @@ const AovSet &realistic_input() {
         settings.width = 40;
         settings.height = 30;
         settings.spp = 4;
-        settings.aovs = trace::kAovsAll | trace::kAovMaaf | trace::kAovIsg;  // "all" leaves out maaf and isg
+        settings.aovs = trace::kAovsAll | trace::kAovMaaf | trace::kAovIsg | trace::kAovMaaf6;  // "all" leaves out maaf, isg, maaf6
         AovSet rendered = trace::render_scene("grids", settings);
         for (const RoleInfo &role : role_table())
             for (const std::string &name : role.channels)

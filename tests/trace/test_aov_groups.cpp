@@ -160,7 +160,8 @@ TEST_CASE("The groups AAF reads follow from the roles it declares", "[trace][gro
     CHECK(aov_groups_writing({}) == 0);
     unsigned all = 0;
     for (const AovGroupInfo &info : aov_group_table()) all |= info.group;
-    // "all" leaves out maaf, whose first pass restratifies the samples, and isg
-    // and the ratio groups, which trace rays of their own
-    CHECK(all == (kAovsAll | kAovMaaf | kAovIsg | kAovRatio | kAovRatioEstimators));
+    // "all" leaves out maaf, whose first pass restratifies the samples, and isg,
+    // the ratio groups and maaf6, which trace rays of their own
+    CHECK(all == (kAovsAll | kAovMaaf | kAovIsg | kAovRatio | kAovRatioEstimators | kAovMaaf6));
+    CHECK((kAovsAll & kAovMaaf6) == 0);
 }

@@ -14,5 +14,6 @@ std::unique_ptr<Method> make_isg_shadow_method();
 std::unique_ptr<Method> make_isg_glossy_method();
 std::unique_ptr<Method> make_isg_dof_method();
 std::unique_ptr<Method> make_ratio_method();
+std::unique_ptr<Method> make_maaf6_method();
 
 }  // namespace aaf

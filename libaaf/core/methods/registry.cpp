@@ -19,6 +19,7 @@ std::vector<std::unique_ptr<Method>> &registry() {
         builtin.push_back(make_isg_glossy_method());
         builtin.push_back(make_isg_dof_method());
         builtin.push_back(make_ratio_method());  // Heitz, Hill, McGuire 2018
+        builtin.push_back(make_maaf6_method());     // Wu et al. 2017, Sec. 6.2
         return builtin;
     }();
     return methods;

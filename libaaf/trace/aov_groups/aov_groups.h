@@ -32,5 +32,7 @@ std::unique_ptr<AovAccumulator> make_isg_group();
 std::unique_ptr<AovAccumulator> make_ratio_group();
 /// ratio.sto.*, ratio.cv.*: full-stochastic and control-variate estimates from the same samples.
 std::unique_ptr<AovAccumulator> make_ratio_estimators_group();
+/// maaf6.*: MAAF for combined effects, path samples of its own (maaf6_group.cpp).
+std::unique_ptr<AovAccumulator> make_maaf6_group();
 
 }  // namespace aaf::trace

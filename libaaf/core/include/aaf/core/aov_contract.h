@@ -51,6 +51,14 @@ enum class Role {
     RatioUnshadowed,     ///< ratio estimator: stochastic unshadowed direct light U_N (Eq. 22)
     RatioShadowedLuminance,    ///< ratio estimator: luminance of S_N (grey approximation, Sec. 3.4)
     RatioUnshadowedLuminance,  ///< ratio estimator: luminance of U_N (grey approximation, Sec. 3.4)
+    Maaf6Direct,               ///< MAAF 6D: noisy direct radiance (soft shadows through the lens)
+    Maaf6Indirect,             ///< MAAF 6D: noisy one-bounce indirect radiance
+    Maaf6DirectSums,           ///< MAAF 6D: direct radiance times the (y, u) functions, per colour
+    Maaf6DirectWeights,        ///< MAAF 6D: the same functions alone (normalisation)
+    Maaf6IndirectSums,         ///< MAAF 6D: indirect radiance times the (y, u) functions, per colour
+    Maaf6IndirectWeights,      ///< MAAF 6D: the same functions alone (normalisation)
+    Maaf6Wedge,                ///< MAAF 6D: the 3D wedges the sums were accumulated with
+    Maaf6Spp,                  ///< MAAF 6D: path samples of the pixel (first pass + rest + focal-plane extra)
 };
 
 struct RoleInfo {
@@ -103,6 +111,14 @@ inline constexpr const char *kRatioLights = "aaf:ratio:lights";  // int
 inline constexpr const char *kMaafPairs = "aaf:maaf:pairs";  // int, N of the MAAF sums
 inline constexpr const char *kMaafOmegaYMax =
     "aaf:maaf:omega_y_max";  // float, rad/m, the light's Omega_y^max of the MAAF sums
+/// Written by the tracer's maaf6 group (MAAF Sec. 6.2, combined effects).
+inline constexpr const char *kMaaf6Pairs = "aaf:maaf6:pairs";                // int, N of the maaf6 sums
+inline constexpr const char *kMaaf6OmegaDirect = "aaf:maaf6:omega_y_direct";  // float, rad/m, light band
+inline constexpr const char *kMaaf6OmegaIndirect = "aaf:maaf6:omega_y_indirect";  // float, rad, bounce band
+inline constexpr const char *kMaaf6OmegaLens = "aaf:maaf6:omega_u";          // float, rad/m, 0 = pinhole
+inline constexpr const char *kMaaf6Effects = "aaf:maaf6:effects";            // string, e.g. "defocus,shadows,indirect"
+inline constexpr const char *kMaaf6SamplingS = "aaf:maaf6:sampling_s";       // float, seconds tracing paths
+inline constexpr const char *kMaaf6PrefilterS = "aaf:maaf6:prefilter_s";     // float, seconds wedges + sums
 }  // namespace attr
 
 void write_light_attributes(const LightPlane &light, AovSet &aovs);

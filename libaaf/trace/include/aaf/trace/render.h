@@ -40,6 +40,8 @@ enum AovGroup : unsigned {
     /// ratio.sto.*, ratio.cv.*: the full-stochastic and control-variate
     /// estimates from the ratio group's samples (traced again when both are asked for).
     kAovRatioEstimators = 1u << 12,
+    /// maaf6.*: MAAF for combined effects (Sec. 6.2); traces path samples of its own.
+    kAovMaaf6 = 1u << 13,
 };
 /// "all": every group that only records the light samples; maaf (whose first
 /// pass changes how the samples are stratified), isg, ratio and
@@ -100,6 +102,9 @@ struct RenderSettings {
     /// traced as a pass of their own before the rest, whose occluder distances
     /// set the light-side frequencies every sample is accumulated with.
     int maaf_first_pass_spp = 16;
+    /// With the maaf6 group: the effects its path samples trace (path_sample.h), any of
+    /// "defocus,shadows,indirect"; the others are off (pinhole, the light's centre, no bounce).
+    std::string maaf6_effects = "defocus,shadows,indirect";
 
     /// Overrides the lights' emission profile (AAF Sec. 7: uniform lights).
     std::optional<LightProfile> light_profile;

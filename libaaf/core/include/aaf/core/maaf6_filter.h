@@ -1,0 +1,61 @@
+#pragma once
+
+#include <array>
+#include <vector>
+
+#include "aaf/core/light_plane.h"
+#include "aaf/core/plane_view.h"
+
+namespace aaf {
+
+/// One layer (direct or indirect) of a maaf6 render (libaaf/AOV_CONTRACT.md,
+/// "The maaf6.* layer"), with the pixel data every layer shares.
+struct Maaf6LayerInputs {
+    std::vector<ConstPlaneView> sums;     ///< 3 (2N-1)^2 planes: channel c's R, G, B at 3c .. 3c+2
+    std::vector<ConstPlaneView> weights;  ///< (2N-1)^2 planes
+    ConstPlaneView y_min, y_max;          ///< the layer's y slopes; -1 in both = no y-wedge
+    double omega_y_max = 0;               ///< the layer's Omega_y^max (light: rad/m; indirect: rad)
+};
+
+struct Maaf6SharedInputs {
+    ConstPlaneView u_min, u_max;  ///< defocus slopes 1 - z/F
+    ConstPlaneView omega_x;       ///< pixel band-limit, rad/m
+    std::array<ConstPlaneView, 3> position, normal;
+    ConstPlaneView object_id;  ///< 0 = background (no primary hit)
+    ConstPlaneView pixel_size;
+    ConstPlaneView samples;  ///< path samples per pixel (maaf6.spp)
+    double omega_u_max = 0;  ///< 0 = pinhole (no u-wedge)
+};
+
+struct Maaf6FilterParams {
+    int stored_pairs = 3;  ///< N of the sums
+    int pairs_used = 3;    ///< N of the filter: stored_pairs, or 1 (the central filter alone: AAF)
+    double k = 1;          ///< width scale, as `aaf filter maaf --k` (1: the paper's reading)
+    float normal_threshold_deg = 20;  ///< MAAF Sec. 6.2: taps whose normal turns more are rejected
+    int max_radius_px = 12;
+};
+
+/// Filters one layer (MAAF Eq. 21-22 with the 6D product of MAAF Sec. 6.2):
+/// for every pixel i, with t1, t2 its maaf6_tangent_frame() and components
+/// maaf6_pair_components() of its wedge, out = sum_j g_j sum_ab K_a(d1) K_b(d2)
+/// sums_j[ab] / (the same with weights_j[ab]), d_k = (P_j - P_i) . t_k (the
+/// tap minus the centre: see the README for the orientation),
+/// g_j = exp(-d_n^2 / (2 s^2)) / samples_j with d_n = (P_i - P_j) . n
+/// the distance off the tangent plane and s the central component's primal
+/// std (so taps are per-pixel means, as AAF filters, and a step in depth
+/// counts as AAF's world distance does), times the pixel's own mean weight
+/// weights_i[c0c0] / samples_i (1 with unit weights; the mean unoccluded
+/// luminance for direct light: AAF's r(x) V(x) factoring), over
+/// the window of radius min(max_radius, ceil(3 k / sigma_x^0 / pixel size)),
+/// taps on the background or beyond the normal threshold rejected. A
+/// constant radiance stays exactly constant. Where the denominator is below
+/// a tenth of the central term's alone, the central term alone is used (AAF's
+/// filter), then the pixel's own mean; negative results are clamped to 0; the
+/// background keeps its mean, and so does a pixel without a y-wedge whose
+/// u-wedge is absent (pinhole) or the focal-plane box (MAAF Sec. 6.2 gives
+/// it more samples instead: its pixel band is the pixel itself). No NaN or Inf leaves it (inputs finite).
+/// Writes `out` (3 planes). Throws aaf::Error on mismatched sizes.
+void maaf6_filter_layer(const Maaf6LayerInputs &layer, const Maaf6SharedInputs &shared, const LightPlane &light,
+                        const Maaf6FilterParams &params, const std::array<PlaneView, 3> &out);
+
+}  // namespace aaf

@@ -1,0 +1,140 @@
+#include "aaf/core/maaf6_filter.h"
+
+#include <algorithm>
+#include <cmath>
+#include <string>
+
+#include "aaf/core/error.h"
+#include "aaf/core/maaf6.h"
+#include "aaf/core/parallel.h"
+
+namespace aaf {
+
+namespace {
+
+constexpr double kPi = 3.14159265358979323846;
+
+Vec3 read3(const std::array<ConstPlaneView, 3> &v, int x, int y) {
+    return {v[0](x, y), v[1](x, y), v[2](x, y)};
+}
+
+void check(const ConstPlaneView &v, int width, int height, const char *what) {
+    if (!v.valid() || v.width != width || v.height != height)
+        throw Error(std::string("MAAF 6D input '") + what + "' is missing or has another size");
+}
+
+}  // namespace
+
+void maaf6_filter_layer(const Maaf6LayerInputs &layer, const Maaf6SharedInputs &shared, const LightPlane &light,
+                        const Maaf6FilterParams &params, const std::array<PlaneView, 3> &out) {
+    const int width = shared.object_id.width, height = shared.object_id.height;
+    const int stored_n = 2 * params.stored_pairs - 1;
+    if (params.pairs_used != 1 && params.pairs_used != params.stored_pairs)
+        throw Error("MAAF 6D: the filter uses all stored pairs or 1");
+    if (int(layer.sums.size()) != 3 * stored_n * stored_n || int(layer.weights.size()) != stored_n * stored_n)
+        throw Error("MAAF 6D: a layer needs 3 (2N-1)^2 sums and (2N-1)^2 weights");
+    for (const ConstPlaneView &v : layer.sums) check(v, width, height, "sums");
+    for (const ConstPlaneView &v : layer.weights) check(v, width, height, "weights");
+    check(layer.y_min, width, height, "ymin");
+    check(layer.y_max, width, height, "ymax");
+    check(shared.u_min, width, height, "umin");
+    check(shared.u_max, width, height, "umax");
+    check(shared.omega_x, width, height, "omegax");
+    check(shared.pixel_size, width, height, "pixel_size");
+    check(shared.samples, width, height, "spp");
+    for (int c = 0; c < 3; ++c) {
+        check(shared.position[std::size_t(c)], width, height, "position");
+        check(shared.normal[std::size_t(c)], width, height, "normal");
+    }
+    if (!(params.k > 0)) throw Error("MAAF 6D: k must be positive");
+    const double cos_threshold = std::cos(double(params.normal_threshold_deg) * kPi / 180.0);
+    const int used_n = 2 * params.pairs_used - 1;
+
+    parallel_for_rows(height, [&](int y) {
+        std::vector<double> k1(static_cast<std::size_t>(used_n)), k2(static_cast<std::size_t>(used_n));
+        for (int x = 0; x < width; ++x) {
+            const float own_count = shared.samples(x, y);
+            auto own_mean = [&](int c) { return own_count > 0 ? layer.sums[std::size_t(c)](x, y) / own_count : 0.0f; };
+            // The filtered ratio times the pixel's own mean weight (AAF's r(x) V(x) factoring).
+            const double own_weight = own_count > 0 ? double(layer.weights[0](x, y)) / double(own_count) : 0.0;
+            if (shared.object_id(x, y) == 0) {
+                for (int c = 0; c < 3; ++c) out[std::size_t(c)](x, y) = own_mean(c);
+                continue;
+            }
+            Maaf6Wedge wedge;
+            // Non-finite inputs (a broken pixel) count as no wedge: they stay in their own pixel.
+            wedge.has_y = layer.y_max(x, y) >= 0 && layer.y_min(x, y) >= 0 && std::isfinite(layer.y_max(x, y)) &&
+                          layer.y_max(x, y) >= layer.y_min(x, y);
+            wedge.y_min = wedge.has_y ? double(layer.y_min(x, y)) : 0.0;
+            wedge.y_max = wedge.has_y ? double(layer.y_max(x, y)) : 0.0;
+            wedge.omega_y_max = layer.omega_y_max;
+            wedge.has_u = shared.omega_u_max > 0 && std::isfinite(shared.u_min(x, y)) &&
+                          std::isfinite(shared.u_max(x, y)) && shared.u_max(x, y) >= shared.u_min(x, y);
+            wedge.u_min = double(shared.u_min(x, y));
+            wedge.u_max = double(shared.u_max(x, y));
+            wedge.omega_u_max = shared.omega_u_max;
+            wedge.omega_x_max = double(shared.omega_x(x, y));
+            if ((!wedge.has_y && !(wedge.has_u && wedge.u_min * wedge.u_max > 0)) || !(wedge.omega_x_max > 0) ||
+                !std::isfinite(wedge.omega_x_max)) {
+                // No wedge to filter along (a pinhole without y-wedge, or the focal-plane box):
+                // the pixel band is the pixel itself; MAAF Sec. 6.2 adds samples there instead.
+                for (int c = 0; c < 3; ++c) out[std::size_t(c)](x, y) = own_mean(c);
+                continue;
+            }
+            const std::vector<Maaf6Component> pairs = maaf6_pair_components(wedge, params.pairs_used);
+            const Vec3 p = read3(shared.position, x, y), n = normalize(read3(shared.normal, x, y));
+            Vec3 t1, t2;
+            maaf6_tangent_frame(n, light.axis_u, light.axis_v, t1, t2);
+            const double std_m = pairs[0].sigma_x > 0 ? params.k / pairs[0].sigma_x : 1e30;
+            const double reach_px = 3.0 * std_m / std::max(1e-12, double(shared.pixel_size(x, y)));
+            const int r = int(std::min(double(params.max_radius_px), std::ceil(reach_px)));
+            double num[3] = {0, 0, 0}, den = 0, num0[3] = {0, 0, 0}, den0 = 0;
+            for (int ty = std::max(0, y - r); ty <= std::min(height - 1, y + r); ++ty)
+                for (int tx = std::max(0, x - r); tx <= std::min(width - 1, x + r); ++tx) {
+                    if (shared.object_id(tx, ty) == 0) continue;
+                    const Vec3 nt = read3(shared.normal, tx, ty);
+                    const float len = length(nt);
+                    if (!(len > 0) || double(dot(n, nt)) < cos_threshold * double(len)) continue;
+                    // The tap minus the centre: h(x) = sum f(x', y, u) w(x - x', y, u) sees the
+                    // spectrum at (Omega_x, -Omega_y, -Omega_u), and our y, u axes point the way
+                    // that puts the wedge at positive slopes (README, "MAAF for combined effects").
+                    const Vec3 d = read3(shared.position, tx, ty) - p;
+                    maaf6_x_kernel(pairs, params.k, double(dot(d, t1)), k1.data());
+                    maaf6_x_kernel(pairs, params.k, double(dot(d, t2)), k2.data());
+                    // Off the tangent plane (a step in depth, another surface of the same
+                    // normal), the central Gaussian of that distance: AAF's world distance.
+                    const double off_plane = double(dot(d, n)) / std_m;
+                    const double depth_weight = std::exp(-0.5 * off_plane * off_plane);
+                    // Per-pixel means, as AAF filters them: a pixel with more samples (the
+                    // focal-plane extra) is not weighted more than its neighbours.
+                    const float count = shared.samples(tx, ty);
+                    if (!(count > 0)) continue;
+                    const double per_sample = depth_weight / double(count);
+                    for (double &value : k1) value *= per_sample;
+                    for (int a = 0; a < used_n; ++a)
+                        for (int b = 0; b < used_n; ++b) {
+                            const int c = a * stored_n + b;  // the layout of the stored N
+                            const double kernel = k1[std::size_t(a)] * k2[std::size_t(b)];
+                            den += kernel * double(layer.weights[std::size_t(c)](tx, ty));
+                            for (int col = 0; col < 3; ++col)
+                                num[col] += kernel * double(layer.sums[std::size_t(3 * c + col)](tx, ty));
+                        }
+                    const double central = k1[0] * k2[0];
+                    den0 += central * double(layer.weights[0](tx, ty));
+                    for (int col = 0; col < 3; ++col) num0[col] += central * double(layer.sums[std::size_t(col)](tx, ty));
+                }
+            for (int col = 0; col < 3; ++col) {
+                // The offset components can cancel most of the normalisation: below a tenth of the
+                // central term's, fall back to the central term (AAF's filter) rather than amplify noise.
+                double v = den > 0.1 * den0 && den0 > 1e-12 ? own_weight * num[col] / den
+                           : den0 > 1e-12                   ? own_weight * num0[col] / den0
+                                                            : double(own_mean(col));
+                if (!std::isfinite(v)) v = double(own_mean(col));
+                v = std::max(0.0, v);  // radiance is not negative; the offset kernels' ringing can be
+                out[std::size_t(col)](x, y) = float(v);
+            }
+        }
+    });
+}
+
+}  // namespace aaf

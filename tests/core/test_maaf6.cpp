@@ -1,0 +1,227 @@
+// MAAF for combined effects (Wu et al. 2017, Sec. 6.2): the 3D partition,
+// the 6D accumulation layout and the filter's normalisation, against values
+// computed by hand.
+#include <catch2/catch.hpp>
+#include <cmath>
+#include <random>
+#include <vector>
+
+#include "aaf/core/maaf6.h"
+#include "aaf/core/maaf6_filter.h"
+#include "aaf/core/maaf_components.h"
+
+using namespace aaf;
+
+namespace {
+
+/// y-wedge [1, 2] with Omega_y^max 10 and a u-wedge of slopes [u_min, u_max] (Omega_u^max 100).
+Maaf6Wedge example_wedge(double u_min, double u_max) {
+    Maaf6Wedge w;
+    w.has_y = true;
+    w.y_min = 1;
+    w.y_max = 2;
+    w.omega_y_max = 10;
+    w.has_u = true;
+    w.u_min = u_min;
+    w.u_max = u_max;
+    w.omega_u_max = 100;
+    w.omega_x_max = 1e6;
+    return w;
+}
+
+}  // namespace
+
+TEST_CASE("MAAF 6D without a lens is the 2D partition of MAAF Eq. 6-10", "[maaf6]") {
+    Maaf6Wedge w = example_wedge(0, 0);
+    w.has_u = false;
+    const std::vector<Maaf6Component> six = maaf6_pair_components(w, 3);
+    const std::vector<MaafComponent> two = maaf_pair_components(1, 2, 1e6, 10, 3);
+    REQUIRE(six.size() == 3);
+    for (std::size_t p = 0; p < 3; ++p) {
+        CHECK(six[p].centre_x == Approx(two[p].centre_x));
+        CHECK(six[p].sigma_x == Approx(two[p].sigma_x));
+        CHECK(six[p].centre_y == Approx(two[p].centre_y));
+        CHECK(six[p].weight == Approx(two[p].weight));
+        CHECK(six[p].centre_u == 0);
+    }
+}
+
+TEST_CASE("MAAF 6D maps each component's x range through the u-wedge (Fig. 11c), by hand", "[maaf6]") {
+    // Eq. 6-8 with Omega = 10, extents 10 / 1 and 10 / 2, 2N - 1 = 5:
+    // p = 1: x in [1, 6]; p = 2: x in [3, 10]; p = 0: x in [-2, 2].
+    const std::vector<Maaf6Component> c = maaf6_pair_components(example_wedge(0.5, 1.0), 3);
+    CHECK(c[1].centre_x == Approx(3.5));
+    CHECK(c[1].sigma_x == Approx(2.5));
+    CHECK(c[1].centre_y == Approx(4));
+    CHECK(c[1].centre_u == Approx(3.25));  // u in [0.5 * 1, 1.0 * 6]
+    CHECK(c[1].sigma_u == Approx(2.75));
+    CHECK(c[2].centre_x == Approx(6.5));
+    CHECK(c[2].centre_y == Approx(8));
+    CHECK(c[2].centre_u == Approx(5.75));  // u in [0.5 * 3, 1.0 * 10]
+    CHECK(c[2].sigma_u == Approx(4.25));
+    CHECK(c[0].sigma_x == Approx(2));
+    CHECK(c[0].centre_u == Approx(0));
+    CHECK(c[0].sigma_u == Approx(2));  // u in [-2, 2]
+    // Slopes of both signs (the focal-plane box): p = 1's products -0.5, -3, 1, 6.
+    const std::vector<Maaf6Component> box = maaf6_pair_components(example_wedge(-0.5, 1.0), 3);
+    CHECK(box[1].centre_u == Approx(1.5));
+    CHECK(box[1].sigma_u == Approx(4.5));
+}
+
+TEST_CASE("MAAF 6D lowers the x band to the u-wedge's and clips u to its band", "[maaf6]") {
+    // One-signed u slopes [2, 4] with Omega_u^max 4: Omega_x <= 4 / 2 = 2, so Omega_y is clipped to 1 * 2.
+    Maaf6Wedge w = example_wedge(2, 4);
+    w.omega_u_max = 4;
+    const std::vector<Maaf6Component> c = maaf6_pair_components(w, 3);
+    const std::vector<MaafComponent> two = maaf_pair_components(1, 2, 2, 10, 3);
+    for (std::size_t p = 0; p < 3; ++p) {
+        CHECK(c[p].centre_x == Approx(two[p].centre_x));
+        CHECK(c[p].centre_y == Approx(two[p].centre_y));
+        CHECK(std::fabs(c[p].centre_u) + c[p].sigma_u <= 4 + 1e-9);
+    }
+}
+
+TEST_CASE("MAAF 6D without a y-wedge partitions the u-wedge; the focal-plane box keeps the central filter",
+          "[maaf6]") {
+    Maaf6Wedge w = example_wedge(-1.0, -0.5);
+    w.has_y = false;
+    const std::vector<Maaf6Component> c = maaf6_pair_components(w, 3);
+    const std::vector<MaafComponent> two = maaf_pair_components(0.5, 1.0, 1e6, 100, 3);
+    for (std::size_t p = 0; p < 3; ++p) {
+        CHECK(c[p].centre_x == Approx(two[p].centre_x));
+        CHECK(c[p].centre_u == Approx(-two[p].centre_y));  // negative slopes: Omega_u = s Omega_x < 0
+        CHECK(c[p].centre_y == 0);
+    }
+    w.u_min = -0.5;
+    w.u_max = 1.0;
+    const std::vector<Maaf6Component> box = maaf6_pair_components(w, 3);
+    CHECK(box[0].sigma_x == Approx(1e6));
+    CHECK(box[1].weight == 0);
+    CHECK(box[2].weight == 0);
+}
+
+TEST_CASE("MAAF 6D accumulation: one sample's 25 channels by hand, radiance times both subspaces' functions",
+          "[maaf6]") {
+    const std::vector<Maaf6Component> c = maaf6_pair_components(example_wedge(0.5, 1.0), 3);
+    const Maaf6SampleSide side(c);
+    REQUIRE(side.channels() == 25);
+    std::vector<double> rgb(75, 0.0), weight(25, 0.0);
+    const float value[3] = {1, 2, 3};
+    const double y1 = 0.1, u1 = 0.02, y2 = -0.2, u2 = 0.05;
+    side.accumulate(y1, u1, y2, u2, value, 0.5, rgb.data(), weight.data());
+    // Channel (c1, s2) = 1 * 5 + 4: cos(C_y^1 y1 + C_u^1 u1) sin(C_y^2 y2 + C_u^2 u2).
+    const double expected = std::cos(4 * y1 + 3.25 * u1) * std::sin(8 * y2 + 5.75 * u2);
+    CHECK(weight[9] == Approx(0.5 * expected));
+    CHECK(rgb[27] == Approx(1 * expected));
+    CHECK(rgb[28] == Approx(2 * expected));
+    CHECK(rgb[29] == Approx(3 * expected));
+    // Channel (s2, c0) = 4 * 5 + 0 uses subspace 1's coordinates only.
+    CHECK(weight[20] == Approx(0.5 * std::sin(8 * y1 + 5.75 * u1)));
+    CHECK(weight[0] == 0.5);
+    // A swapped subspace would give another value.
+    CHECK(std::fabs(rgb[27] - std::cos(4 * y2 + 3.25 * u2) * std::sin(8 * y1 + 5.75 * u1)) > 1e-3);
+}
+
+TEST_CASE("MAAF 6D x kernel is MAAF Eq. 13's cos/-sin pair with k-scaled envelopes", "[maaf6]") {
+    const std::vector<Maaf6Component> c = maaf6_pair_components(example_wedge(0.5, 1.0), 3);
+    double kernel[5];
+    const double dx = 0.3, k = 3;
+    maaf6_x_kernel(c, k, dx, kernel);
+    auto g = [&](double sigma) { return std::exp(-0.5 * (dx * sigma / k) * (dx * sigma / k)); };
+    CHECK(kernel[0] == Approx(g(c[0].sigma_x)));
+    CHECK(kernel[1] == Approx(2 * c[1].weight * std::cos(c[1].centre_x * dx) * g(c[1].sigma_x)));
+    CHECK(kernel[2] == Approx(-2 * c[1].weight * std::sin(c[1].centre_x * dx) * g(c[1].sigma_x)));
+    CHECK(kernel[4] == Approx(-2 * c[2].weight * std::sin(c[2].centre_x * dx) * g(c[2].sigma_x)));
+}
+
+TEST_CASE("MAAF 6D tangent frame: orthonormal, the light's axis_u on a floor under it", "[maaf6]") {
+    Vec3 t1, t2;
+    maaf6_tangent_frame({0, 1, 0}, {1, 0, 0}, {0, 0, 1}, t1, t2);
+    CHECK(t1.x == Approx(1));
+    CHECK(std::fabs(t2.z) == Approx(1));
+    maaf6_tangent_frame({1, 0, 0}, {1, 0, 0}, {0, 0, 1}, t1, t2);  // a wall facing along axis_u
+    CHECK(std::fabs(dot(t1, Vec3{1, 0, 0})) < 1e-6);
+    CHECK(dot(t1, t2) == Approx(0).margin(1e-6));
+    CHECK(length(t2) == Approx(1));
+}
+
+TEST_CASE("MAAF 6D filter: a fully lit region keeps each pixel's own mean exactly, whatever the wedges",
+          "[maaf6]") {
+    // Each sample's radiance is c times its unoccluded weight (nothing occluded): the filtered ratio is c
+    // and the output c times the pixel's own mean weight, i.e. its own mean (AAF's r(x) V(x) with V = 1);
+    // with unit weights that is a constant image.
+    const int width = 24, height = 16, n = width * height;
+    std::vector<std::vector<float>> sums(75, std::vector<float>(n)), weights(25, std::vector<float>(n));
+    std::vector<float> ymin(n), ymax(n), umin(n), umax(n), omegax(n, 200.0f), id(n, 1.0f), size(n, 0.01f),
+        spp(n, 16.0f), own[3];
+    for (auto &o : own) o.assign(n, 0.0f);
+    std::vector<float> pos[3], nrm[3];
+    for (int c = 0; c < 3; ++c) {
+        pos[c].assign(n, 0.0f);
+        nrm[c].assign(n, c == 1 ? 1.0f : 0.0f);
+    }
+    const bool unit_weights = GENERATE(true, false);
+    std::mt19937 rng(7);
+    std::uniform_real_distribution<double> unit(0, 1);
+    const float value[3] = {0.25f, 0.5f, 0.75f};
+    for (int i = 0; i < n; ++i) {
+        pos[0][std::size_t(i)] = 0.01f * float(i % width);
+        pos[2][std::size_t(i)] = 0.01f * float(i / width);
+        Maaf6Wedge w = example_wedge(-0.2 + 0.6 * unit(rng), 0.5 + unit(rng));
+        w.y_min = 0.5 + unit(rng);
+        w.y_max = w.y_min + unit(rng);
+        w.omega_x_max = 200;
+        ymin[std::size_t(i)] = float(w.y_min);
+        ymax[std::size_t(i)] = float(w.y_max);
+        umin[std::size_t(i)] = float(w.u_min);
+        umax[std::size_t(i)] = float(w.u_max);
+        w.y_min = double(ymin[std::size_t(i)]);
+        const Maaf6SampleSide side(maaf6_pair_components(w, 3));
+        std::vector<double> rgb(75, 0.0), weight(25, 0.0);
+        for (int s = 0; s < 16; ++s) {
+            const double w_s = unit_weights ? 1.0 : 0.2 + unit(rng);
+            const float lit[3] = {float(value[0] * w_s), float(value[1] * w_s), float(value[2] * w_s)};
+            side.accumulate(unit(rng) - 0.5, 0.1 * unit(rng), unit(rng) - 0.5, 0.1 * unit(rng), lit, w_s, rgb.data(),
+                            weight.data());
+        }
+        for (int c = 0; c < 3; ++c) own[c][std::size_t(i)] = float(rgb[std::size_t(c)] / 16.0);
+        for (int c = 0; c < 75; ++c) sums[std::size_t(c)][std::size_t(i)] = float(rgb[std::size_t(c)]);
+        for (int c = 0; c < 25; ++c) weights[std::size_t(c)][std::size_t(i)] = float(weight[std::size_t(c)]);
+    }
+    Maaf6LayerInputs layer;
+    for (auto &p : sums) layer.sums.push_back(plane_view<const float>(p.data(), width, height));
+    for (auto &p : weights) layer.weights.push_back(plane_view<const float>(p.data(), width, height));
+    layer.y_min = plane_view<const float>(ymin.data(), width, height);
+    layer.y_max = plane_view<const float>(ymax.data(), width, height);
+    layer.omega_y_max = 10;
+    Maaf6SharedInputs shared;
+    shared.u_min = plane_view<const float>(umin.data(), width, height);
+    shared.u_max = plane_view<const float>(umax.data(), width, height);
+    shared.omega_x = plane_view<const float>(omegax.data(), width, height);
+    for (int c = 0; c < 3; ++c) {
+        shared.position[std::size_t(c)] = plane_view<const float>(pos[c].data(), width, height);
+        shared.normal[std::size_t(c)] = plane_view<const float>(nrm[c].data(), width, height);
+    }
+    shared.object_id = plane_view<const float>(id.data(), width, height);
+    shared.pixel_size = plane_view<const float>(size.data(), width, height);
+    shared.samples = plane_view<const float>(spp.data(), width, height);
+    shared.omega_u_max = 100;
+    LightPlane light;
+    light.axis_u = {1, 0, 0};
+    light.axis_v = {0, 0, 1};
+    std::vector<float> out[3];
+    for (auto &o : out) o.assign(n, -1.0f);
+    const std::array<PlaneView, 3> views = {plane_view(out[0].data(), width, height),
+                                            plane_view(out[1].data(), width, height),
+                                            plane_view(out[2].data(), width, height)};
+    for (int pairs : {3, 1}) {
+        Maaf6FilterParams params;
+        params.pairs_used = pairs;
+        maaf6_filter_layer(layer, shared, light, params, views);
+        for (int c = 0; c < 3; ++c)
+            for (int i = 0; i < n; ++i) {
+                REQUIRE(out[c][std::size_t(i)] == Approx(own[c][std::size_t(i)]).epsilon(1e-4));
+                if (unit_weights) REQUIRE(out[c][std::size_t(i)] == Approx(value[c]).epsilon(1e-4));
+            }
+    }
+}
