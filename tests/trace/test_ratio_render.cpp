@@ -232,3 +232,64 @@ TEST_CASE("Ratio: --aovs all leaves the ratio groups out; they are asked for by 
     CHECK(trace::parse_aov_groups("ratio") == trace::kAovRatio);
     CHECK(trace::parse_aov_groups("ratio_estimators") == trace::kAovRatioEstimators);
 }
+
+TEST_CASE("Ratio: with both techniques in use U_N converges per pixel at a fixed seed, also when N fills the grid",
+          "[trace][ratio]") {
+    // A glossy floor draws from the light and from the GGX lobe. At a perfect
+    // square N the stratified grid is filled in sample order, so a technique
+    // choice stratified over the sample index alone gave each technique a
+    // fixed band of rows of the square (an azimuth band of the lobe): U_N was
+    // unbiased over seeds but stopped converging as N grew. The reference is
+    // the same integrand, R L over the light, on a fine area grid.
+    trace::RenderSettings settings = ratio_settings(1);
+    const std::string path = write_scene("open_glossy", false, true);
+    const trace::SceneDescription scene = trace::load_scene_file(path, settings.width, settings.height);
+    const trace::Renderer renderer(scene, settings);
+    constexpr int kGrid = 256;
+    const int spps[] = {16, 64, 256, 1024};
+    for (std::size_t light = 0; light < scene.lights.size(); ++light) {
+        double squared[4] = {0, 0, 0, 0}, sum_reference = 0;
+        int count = 0;
+        for (int y = 1; y < settings.height; y += 3)
+            for (int x = 1; x < settings.width; x += 3) {
+                const trace::PrimaryHit primary = renderer.trace_primary(x, y);
+                if (!primary.found) continue;
+                const trace::SceneLight &emitter = scene.lights[light];
+                const RectLight rect = trace::ratio_light(emitter);
+                const trace::TexturedSurface surface =
+                    trace::texture_surface(primary.mesh->material, primary.position, primary.normal);
+                const Vec3 wo = normalize(scene.camera.eye - primary.position);
+                double reference = 0;
+                for (int j = 0; j < kGrid; ++j)
+                    for (int i = 0; i < kGrid; ++i) {
+                        const float u = ((i + 0.5f) / kGrid - 0.5f) * emitter.plane.width_m;
+                        const float v = ((j + 0.5f) / kGrid - 0.5f) * emitter.plane.height_m;
+                        const Vec3 to_light = emitter.plane.point_at(u, v) - primary.position;
+                        const float distance_sq = dot(to_light, to_light);
+                        const Vec3 wi = to_light / std::sqrt(distance_sq);
+                        const float cos_light = -dot(emitter.plane.normal, wi);
+                        const float cos_surface = dot(surface.normal, wi);
+                        if (!(cos_light > 0) || !(cos_surface > 0)) continue;
+                        const Vec3 f = trace::evaluate_brdf(surface.material, surface.normal, wo, wi);
+                        reference += double(f.x) * rect.radiance.x * cos_surface * cos_light / distance_sq;
+                    }
+                reference *= double(emitter.plane.width_m) * emitter.plane.height_m / (double(kGrid) * kGrid);
+                if (!(reference > 0)) continue;
+                for (int k = 0; k < 4; ++k) {
+                    const trace::RatioLayers layers = trace::trace_ratio_layers(
+                        renderer, scene, primary, light, spps[k], settings.seed, std::uint64_t(y * 100 + x));
+                    squared[k] += (layers.unshadowed.x - reference) * (layers.unshadowed.x - reference);
+                }
+                sum_reference += reference;
+                ++count;
+            }
+        REQUIRE(count > 20);
+        double errors[4];
+        for (int k = 0; k < 4; ++k) errors[k] = std::sqrt(squared[k] / count) / (sum_reference / count);
+        INFO("light " << light << ": relative RMS errors of U_N at 16, 64, 256, 1024 spp: " << errors[0] << " "
+                      << errors[1] << " " << errors[2] << " " << errors[3]);
+        // Monte Carlo halves its error per quadrupling; allow some slack per step.
+        for (int k = 1; k < 4; ++k) CHECK(errors[k] < 0.7 * errors[k - 1]);
+        CHECK(errors[3] < errors[0] / 4);
+    }
+}
