@@ -250,8 +250,8 @@ TEST_CASE("Ratio: with both techniques in use U_N converges per pixel at a fixed
     for (std::size_t light = 0; light < scene.lights.size(); ++light) {
         double squared[4] = {0, 0, 0, 0}, sum_reference = 0;
         int count = 0;
-        for (int y = 1; y < settings.height; y += 3)
-            for (int x = 1; x < settings.width; x += 3) {
+        for (int y = 0; y < settings.height; y += 2)
+            for (int x = 0; x < settings.width; x += 2) {
                 const trace::PrimaryHit primary = renderer.trace_primary(x, y);
                 if (!primary.found) continue;
                 const trace::SceneLight &emitter = scene.lights[light];
@@ -283,13 +283,14 @@ TEST_CASE("Ratio: with both techniques in use U_N converges per pixel at a fixed
                 sum_reference += reference;
                 ++count;
             }
-        REQUIRE(count > 20);
+        REQUIRE(count > 60);
         double errors[4];
         for (int k = 0; k < 4; ++k) errors[k] = std::sqrt(squared[k] / count) / (sum_reference / count);
         INFO("light " << light << ": relative RMS errors of U_N at 16, 64, 256, 1024 spp: " << errors[0] << " "
                       << errors[1] << " " << errors[2] << " " << errors[3]);
-        // Monte Carlo halves its error per quadrupling; allow some slack per step.
-        for (int k = 1; k < 4; ++k) CHECK(errors[k] < 0.7 * errors[k - 1]);
-        CHECK(errors[3] < errors[0] / 4);
+        // Monte Carlo at least halves its error per quadrupling (stratified,
+        // faster); allow slack per step, not over the whole range.
+        for (int k = 1; k < 4; ++k) CHECK(errors[k] < 0.8 * errors[k - 1]);
+        CHECK(errors[3] < errors[0] / 8);
     }
 }
