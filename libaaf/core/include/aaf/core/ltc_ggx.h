@@ -38,7 +38,10 @@ Coefficients lookup(double roughness, double cos_view);
 /// The two integrals over a polygon whose Schlick-weighted combination
 /// F0 * magnitude_term + (1 - F0) * fresnel_term approximates the polygon's
 /// integral of f(wo, wi) cos(theta_i) (uniform radiance 1): the LTC's
-/// clamped-cosine integral over M^-1 P times `magnitude` and `fresnel`.
+/// clamped-cosine integral over M^-1 P times `magnitude`, and that times
+/// Schlick's weight (1 - wi . h)^5 at the polygon's mean direction under the
+/// LTC (not the table's `fresnel`, the lobe's hemispherical mean, which near
+/// grazing views is dominated by directions a light does not cover).
 struct PolygonIntegral {
     double magnitude_term = 0;
     double fresnel_term = 0;
