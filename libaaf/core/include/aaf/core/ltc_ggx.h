@@ -23,7 +23,8 @@ inline constexpr double kMinCosView = 1e-3;
 /// One table entry, bilinearly interpolated: M^-1 = [[a, 0, b], [0, c, 0],
 /// [d, 0, 1]] in the ShadingFrame (view in the x-z plane), the lobe's
 /// hemispherical integral `magnitude` (no Fresnel) and `fresnel`, the same
-/// integral weighted by Schlick's (1 - wi . h)^5.
+/// integral weighted by Schlick's (1 - wi . h)^5 (the fit's record; integrate()
+/// weights each polygon by Schlick at its own mean direction instead).
 struct Coefficients {
     double a = 1, b = 0, c = 1, d = 0;
     double magnitude = 0;
