@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "aaf/core/ggx.h"
 #include "aaf/core/ltc_ggx_table.h"
 
 namespace aaf::ltc_ggx {
@@ -11,6 +12,20 @@ namespace {
 
 const float *cell(int row, int column) {
     return ltc_ggx_table::kData + 6 * (std::size_t(row) * std::size_t(ltc_ggx_table::kSize) + std::size_t(column));
+}
+
+/// The solid-angle-weighted mean direction of a polygon above the horizon,
+/// unnormalised: the vector form factor sum_k theta_k (v_k x v_k+1) / |v_k x v_k+1|,
+/// oriented to the upper hemisphere.
+Vec3d mean_direction(const LocalPolygon &polygon) {
+    Vec3d sum{0, 0, 0};
+    for (int k = 0; k < polygon.count; ++k) {
+        const Vec3d a = polygon.vertices[std::size_t(k)], b = polygon.vertices[std::size_t((k + 1) % polygon.count)];
+        const Vec3d c = cross(a, b);
+        const double sine = length(c);
+        if (sine > 0) sum = sum + c * (std::atan2(sine, dot(a, b)) / sine);
+    }
+    return sum.z < 0 ? sum * -1.0 : sum;
 }
 
 }  // namespace
@@ -40,9 +55,19 @@ PolygonIntegral integrate(const LocalPolygon &polygon, double roughness, double 
         const Vec3d p = polygon.vertices[std::size_t(k)];
         transformed.add({m.a * p.x + m.b * p.z, m.c * p.y, m.d * p.x + p.z});
     }
-    const double clamped_cosine_integral = polygon_form_factor(transformed);
+    const LocalPolygon clipped = clip_to_upper_hemisphere(transformed);
+    if (clipped.count < 3) return result;
+    const double clamped_cosine_integral = std::fabs(polygon_edge_integral(clipped));
     result.magnitude_term = clamped_cosine_integral * m.magnitude;
-    result.fresnel_term = clamped_cosine_integral * m.fresnel;
+    // Schlick's weight at the polygon's mean direction under the LTC (the
+    // mean over M^-1 P mapped back by M), not the table's hemispherical mean:
+    // a light sees only its part of the lobe, and near grazing views the
+    // hemispherical mean is dominated by directions the light does not cover.
+    const Vec3d f = mean_direction(clipped);
+    const double det = m.a - m.b * m.d;  // M = [[1 / det, 0, -b / det], [0, 1 / c, 0], [-d / det, 0, a / det]]
+    const Vec3d wi = normalize(Vec3d{(f.x - m.b * f.z) / det, f.y / m.c, (m.a * f.z - m.d * f.x) / det});
+    const Vec3d wo{std::sqrt(std::max(0.0, 1 - cos_view * cos_view)), 0, cos_view};
+    if (wi.z > 0) result.fresnel_term = result.magnitude_term * ggx::schlick_weight(wo, wi);
     return result;
 }
 

@@ -71,6 +71,7 @@ RatioLayers trace_ratio_layers(const Renderer &renderer, const SceneDescription 
     PixelRng rng(seed ^ kRatioStream, pixel_index, std::uint32_t(light_index));
     const std::uint32_t stratum_key = rng.next_u32();
     const double selection_offset = rng.next_float();
+    const std::uint32_t selection_key = rng.next_u32();
     const StratifiedGrid strata{std::uint32_t(samples)};
     double shadowed[3] = {0, 0, 0}, unshadowed[3] = {0, 0, 0};
     for (int k = 0; k < samples; ++k) {
@@ -78,11 +79,15 @@ RatioLayers trace_ratio_layers(const Renderer &renderer, const SceneDescription 
         rng.next_float2(u1, u2);
         const UnitPoint cell = strata.point(std::uint32_t(k), stratum_key, u1, u2);
         // The technique, stratified over the pixel's samples by a randomly
-        // shifted lattice: sample k draws from the glossy lobe when
-        // frac(k / N + offset) < q_glossy. For each k that value is uniform and
-        // independent of the sample's stratum (whose index is k when N fills
-        // the grid), so every sample follows the mixture density.
-        double selection = double(k) / samples + selection_offset;
+        // shifted lattice over a hashed permutation of the sample index:
+        // sample k draws from the glossy lobe when frac(pi(k) / N + offset) <
+        // q_glossy. For each k that value is uniform, so every sample follows
+        // the mixture density. The permutation matters: when N fills the grid
+        // sample k's stratum is cell k, and a lattice over k itself gives each
+        // technique a contiguous band of rows (an azimuth band of the lobe) that
+        // no N refines, so U_N and S_N would not converge per pixel.
+        const std::uint32_t order = permute_index(std::uint32_t(k), std::uint32_t(samples), selection_key);
+        double selection = double(order) / samples + selection_offset;
         selection -= std::floor(selection);
         const bool from_lobe = selection < q_glossy;
         Vec3d y, wi_local;

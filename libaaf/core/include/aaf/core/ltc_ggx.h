@@ -23,7 +23,8 @@ inline constexpr double kMinCosView = 1e-3;
 /// One table entry, bilinearly interpolated: M^-1 = [[a, 0, b], [0, c, 0],
 /// [d, 0, 1]] in the ShadingFrame (view in the x-z plane), the lobe's
 /// hemispherical integral `magnitude` (no Fresnel) and `fresnel`, the same
-/// integral weighted by Schlick's (1 - wi . h)^5.
+/// integral weighted by Schlick's (1 - wi . h)^5 (the fit's record; integrate()
+/// weights each polygon by Schlick at its own mean direction instead).
 struct Coefficients {
     double a = 1, b = 0, c = 1, d = 0;
     double magnitude = 0;
@@ -38,7 +39,10 @@ Coefficients lookup(double roughness, double cos_view);
 /// The two integrals over a polygon whose Schlick-weighted combination
 /// F0 * magnitude_term + (1 - F0) * fresnel_term approximates the polygon's
 /// integral of f(wo, wi) cos(theta_i) (uniform radiance 1): the LTC's
-/// clamped-cosine integral over M^-1 P times `magnitude` and `fresnel`.
+/// clamped-cosine integral over M^-1 P times `magnitude`, and that times
+/// Schlick's weight (1 - wi . h)^5 at the polygon's mean direction under the
+/// LTC (not the table's `fresnel`, the lobe's hemispherical mean, which near
+/// grazing views is dominated by directions a light does not cover).
 struct PolygonIntegral {
     double magnitude_term = 0;
     double fresnel_term = 0;
