@@ -199,7 +199,7 @@ TEST_CASE("invalid option values of filter, compare, preview and plan exit 2 wit
     CHECK(names_in(dir) == before);
 }
 
-TEST_CASE("the option parser's own errors are one aaf: error line and exit 2; help exits 0",
+TEST_CASE("the option parser's own errors are one aaf: error line and exit 2, help exits 0",
           "[cli][reliability]") {
     const fs::path dir = scratch_dir("reliability_parse_errors");
     write_flat(dir / "a.exr", 0.5f);
@@ -280,7 +280,7 @@ TEST_CASE("The memory budget flag --memory-limit-gb lowers and raises the image 
     CHECK(run_aaf("info " + image + " --memory-limit-gb 0").exit_code == 2);
 }
 
-TEST_CASE("More threads than cores run without a oneTBB warning; more than 1024 is a usage error",
+TEST_CASE("More threads than cores run without a oneTBB warning, more than 1024 is a usage error",
           "[cli][reliability]") {
     const fs::path dir = scratch_dir("many_threads");
     const std::string noisy = (dir / "noisy.exr").string(), out = (dir / "out.exr").string();

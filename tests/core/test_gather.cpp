@@ -117,7 +117,7 @@ TEST_CASE("Gather: the result does not depend on the thread count", "[gather]") 
     CHECK(same_bytes(one, three));
 }
 
-TEST_CASE("Modulated gather: without factors it is the 2D gather; with cos/sin it is the hand-summed kernel",
+TEST_CASE("Modulated gather: without factors it is the 2D gather, with cos/sin it is the hand-summed kernel",
           "[gather]") {
     const int w = 15, h = 11, radius = 4;
     const float spacing = 0.01f, sigma = 0.02f;

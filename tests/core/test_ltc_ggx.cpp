@@ -51,7 +51,7 @@ TEST_CASE("LTC GGX: polygon integrals match brute-force quadrature within the do
         }
 }
 
-TEST_CASE("LTC GGX: the table's magnitude is the lobe's hemispherical integral; zero below the horizon",
+TEST_CASE("LTC GGX: the table's magnitude is the lobe's hemispherical integral, zero below the horizon",
           "[ratio][ltc]") {
     // A light covering the whole upper hemisphere (a huge square just above
     // the point) collects the lobe's whole hemispherical integral at normal

@@ -81,7 +81,7 @@ TEST_CASE("MAAF 6D lowers the x band to the u-wedge's and clips u to its band", 
     }
 }
 
-TEST_CASE("MAAF 6D without a y-wedge partitions the u-wedge; the focal-plane box keeps the central filter",
+TEST_CASE("MAAF 6D without a y-wedge partitions the u-wedge, the focal-plane box keeps the central filter",
           "[maaf6]") {
     Maaf6Wedge w = example_wedge(-1.0, -0.5);
     w.has_y = false;

@@ -308,7 +308,7 @@ TEST_CASE("MAAF's width scale k: N = 1 with the default k = 3 is AAF's default f
     CHECK(n1_against_aaf(1.0, AafParams{}) > 1e-2f);
 }
 
-TEST_CASE("MAAF reconstructs a dense-sampled soft shadow; a wrong light coordinate does not", "[maaf][filter]") {
+TEST_CASE("MAAF reconstructs a dense-sampled soft shadow, a wrong light coordinate does not", "[maaf][filter]") {
     // An occluder half-plane x + z < x0 at light-plane distance d2 = 1.2 m (s = 2/1.2 - 1 = 2/3) under a
     // uniform light of side 0.2 m (sampled on a 24 x 24 grid), pixels 3 cm apart: the shadow at receiver (X, Z) from light point (y1, y2) is
     // v(X + Z + s (y1 + y2)) (MAAF Sec. 3), a diagonal edge involving both light axes. With a dense grid

@@ -109,7 +109,7 @@ TEST_CASE("Ratio: without occluders S_N equals U_N bit for bit, per light and su
         }
 }
 
-TEST_CASE("Ratio: S_N <= U_N, both >= 0, W in [0, 1], background zero; the estimators follow from the layers",
+TEST_CASE("Ratio: S_N <= U_N, both >= 0, W in [0, 1], background zero, the estimators follow from the layers",
           "[trace][ratio]") {
     trace::RenderSettings settings = ratio_settings(2);
     settings.width = 48;
@@ -234,9 +234,13 @@ TEST_CASE("Ratio: E[S_N] (MIS of light and GGX samples) equals an independent ar
     CHECK(checked > 20);
 }
 
-TEST_CASE("Ratio: --aovs all leaves the ratio groups out; they are asked for by name", "[trace][ratio]") {
+TEST_CASE("Ratio: --aovs all leaves the ratio groups out, they are asked for by name", "[trace][ratio]") {
     CHECK((trace::parse_aov_groups("all") & (trace::kAovRatio | trace::kAovRatioEstimators)) == 0u);
-    CHECK(trace::parse_aov_groups("ratio") == trace::kAovRatio);
+    // "ratio" is also a method's name: it asks for every group the method reads (the ratio layer,
+    // positions and normals), as `--aovs aaf` does for AAF.
+    CHECK(trace::parse_aov_groups("ratio") == trace::aov_groups_for_method("ratio"));
+    CHECK((trace::parse_aov_groups("ratio") & trace::kAovRatio) != 0u);
+    CHECK((trace::parse_aov_groups("ratio") & trace::kAovRatioEstimators) == 0u);
     CHECK(trace::parse_aov_groups("ratio_estimators") == trace::kAovRatioEstimators);
 }
 

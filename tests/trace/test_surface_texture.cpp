@@ -55,7 +55,7 @@ TEST_CASE("Textures: checker and bump are read, bad values are one line naming t
     }
 }
 
-TEST_CASE("Textures: an untextured material is unchanged; the checker alternates; the bump tilts the normal",
+TEST_CASE("Textures: an untextured material is unchanged, the checker alternates, the bump tilts the normal",
           "[trace][texture]") {
     trace::Material plain;
     plain.albedo = {0.3f, 0.5f, 0.7f};
