@@ -179,6 +179,7 @@ int main(int argc, char **argv) {
                 {"AF_fixed_mu_default", [](AafParams &p) { p.fixed_mu = true; }},
                 {"AF_bandlimit_sigma", [](AafParams &p) { p.light_bandlimit = LightBandlimit::Sigma; }},
                 {"AF_bandlimit_spectrum", [](AafParams &p) { p.light_bandlimit = LightBandlimit::Spectrum; }},
+                {"AF_light_axes_shortest", [](AafParams &p) { p.light_axes = AafLightAxes::Shortest; }},
                 {"AF_distance_ray",
                  [](AafParams &p) { p.light_distance = AafLightDistance::AlongLightDirection; }},
                 {"AF_borders_clip", [](AafParams &p) { p.symmetric_borders = false; }},

@@ -33,6 +33,10 @@ std::vector<ParameterInfo> aaf_parameters() {
             "light's edges: equivalent_width (the spectrum's area), spectrum (falls to "
             "exp(-1/2) where the truncated profile's does) or sigma (the paper's untruncated "
             "reading); the plan (aaf plan, render --adaptive) must use the same"),
+        ParameterInfo::choice("light_axes", "per_axis", {"per_axis", "shortest"},
+                              "per_axis: each light axis its own band-limit, an anisotropic Gaussian in the "
+                              "light's plane; shortest: the sharper axis's for both (isotropic); the plan "
+                              "must use the same"),
         ParameterInfo::real("k", "3", "", "Gaussian spread factor of AAF Eq. 13", 0, kInf, /*min_open=*/true),
         ParameterInfo::real("alpha", "1", "", "Occluder bandlimit over pixel bandlimit (AAF Eq. 5)", 0, 1,
                             /*min_open=*/true),
@@ -62,6 +66,7 @@ AafParams params_from(const ParameterSet &set) {
     p.mu_from_spp = set.get_bool("mu_from_spp");
     p.fixed_mu = set.get_bool("fixed_mu");
     p.light_bandlimit = light_bandlimit_from_string(set.get_choice("light_bandlimit"));
+    p.light_axes = light_axes_from_string(set.get_choice("light_axes"));
     p.k = set.get_float("k");
     p.alpha = set.get_float("alpha");
     p.normal_threshold_deg = set.get_float("normal_threshold");
@@ -138,6 +143,7 @@ ParameterSet aaf_parameter_set(const AafParams &params) {
     set.set("mu_from_spp", params.mu_from_spp);
     set.set("fixed_mu", params.fixed_mu);
     set.set("light_bandlimit", std::string(to_string(params.light_bandlimit)));
+    set.set("light_axes", std::string(to_string(params.light_axes)));
     set.set("k", double(params.k));
     set.set("alpha", double(params.alpha));
     set.set("normal_threshold", double(params.normal_threshold_deg));

@@ -18,7 +18,7 @@ void plan_samples(const SamplingPlanInputs &in, const LightPlane &light, const A
     if (params.first_pass_spp < 1 || params.max_spp < params.first_pass_spp)
         throw Error("sampling plan needs 1 <= first-pass spp <= max spp");
     // The filter's band-limit (aaf_filter.cpp): the plan samples for the filter that will run.
-    const float light_sigma_m = light_bandlimit_sigma_m(light, aaf.light_bandlimit);
+    const LightBandlimitAxes light_sigma_m = aaf_light_sigmas_m(light, aaf);
     const int width = in.d1.width, height = in.d1.height;
     for (ConstPlaneView view : {in.d2_min, in.d2_max, in.object_id, in.pixel_size, ConstPlaneView(spp_out)})
         if (!view.valid() || view.width != width || view.height != height)
@@ -34,8 +34,8 @@ void plan_samples(const SamplingPlanInputs &in, const LightPlane &light, const A
             float n = float(params.first_pass_spp);
             if (in.object_id(x, y) != 0 && d1 > 0 && pixel_size > 0 && std::isfinite(pixel_size) &&
                 has_occluder(occluders.d2_max_m[i])) {
-                const float rate = aaf_bandlimits(d1, occluders.d2_min_m[i], occluders.d2_max_m[i],
-                                                  pixel_size, light_sigma_m, aaf)
+                const float rate = aaf_bandlimits_axes(d1, occluders.d2_min_m[i], occluders.d2_max_m[i],
+                                                       pixel_size, light_sigma_m, aaf)
                                        .samples_per_pixel;
                 if (std::isfinite(rate))
                     n = std::ceil(rate);

@@ -1,5 +1,7 @@
 #pragma once
 
+#include <string>
+
 #include "aaf/core/light_bandlimit.h"
 
 namespace aaf {
@@ -24,6 +26,23 @@ enum class AafLightDistance {
     OrthogonalProjection,
 };
 
+/// How a rectangular light's two axes enter the band-limit (light_bandlimit.h).
+enum class AafLightAxes {
+    /// Each light axis its own band-limit, so the filter is an anisotropic
+    /// Gaussian in the light's plane (beta_u along axis_u, beta_v along axis_v)
+    /// and the rate of AAF Eq. 15 a product of the two axes' factors: a long
+    /// light blurs more along its long axis.
+    PerAxis,
+    /// The sharper axis's band-limit for both: an isotropic filter, narrower
+    /// than either axis needs along the long one (the paper's square light
+    /// cannot tell the two apart).
+    Shortest,
+};
+
+const char *to_string(AafLightAxes axes);
+/// Parses "per_axis" or "shortest"; throws aaf::Error otherwise.
+AafLightAxes light_axes_from_string(const std::string &name);
+
 /// Parameters of Axis-Aligned Filtering (Mehta et al. 2012). The defaults are
 /// the paper's (Sec. 6: k = 3, alpha = 1, mu = 2).
 struct AafParams {
@@ -44,6 +63,7 @@ struct AafParams {
     /// uses the same. Sigma is the paper's reading; the default accounts for
     /// the truncation of the Gaussian at the light's edges.
     LightBandlimit light_bandlimit = LightBandlimit::EquivalentWidth;
+    AafLightAxes light_axes = AafLightAxes::PerAxis;
     /// Baseline "non-adaptive filter" of AAF Fig. 6 (NAF): when > 0, every pixel
     /// AAF would filter uses this beta (world metres) instead of AAF Eq. 13, with
     /// the same taps, rejection and cut-off. 0 = AAF proper.
