@@ -131,7 +131,9 @@ def print_tables(rows, scenes):
     print()
     print("Same adaptive render, one setting changed from the defaults (RMSE):")
     columns = [("AF", "defaults"), ("AF_bandlimit_sigma", "band-limit 1/sigma (paper)"),
-               ("AF_bandlimit_spectrum", "band-limit spectrum"), ("AF_distance_ray", "distance along the ray"),
+               ("AF_bandlimit_spectrum", "band-limit spectrum"), ("AF_light_axes_shortest", "one band-limit (sharper axis)"),
+               ("AF_pixel_receiver", "receiver pixel footprint"), ("AF_distance_plane", "distance: plane (Eq. 12)"),
+               ("AF_distance_ray", "distance along the ray"),
                ("AF_borders_clip", "one-sided borders"), ("AF_fixed_mu_default", "fixed mu 2 (paper)"),
                ("AF_paper", "paper's filter")]
     print("| scene | " + " | ".join(label for _, label in columns) + " |")

@@ -20,6 +20,13 @@ AafLightAxes light_axes_from_string(const std::string &name) {
     throw Error("unknown light axes rule " + quoted(name) + " (expected per_axis or shortest)");
 }
 
+float projected_pixel_size_m(float pixel_size_m, Vec3 receiver_normal, Vec3 light_normal) {
+    const float length_n = length(receiver_normal);
+    if (!(length_n > 0) || !std::isfinite(length_n)) return pixel_size_m;
+    const float cos_planes = std::fabs(dot(receiver_normal, light_normal)) / length_n;
+    return pixel_size_m * std::clamp(cos_planes, kDegenerateProjectionCos, 1.0f);
+}
+
 void AafParams::validate() const {
     if (!(mu > 0)) throw Error("AAF parameter mu must be positive");
     if (!(k > 0)) throw Error("AAF parameter k must be positive");

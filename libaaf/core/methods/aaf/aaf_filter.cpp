@@ -47,10 +47,14 @@ void check_inputs(const AafInputs &in, const LightPlane &light, const AafParams 
 struct PixelBeta {
     float u_m = 0, v_m = 0;
 };
-PixelBeta pixel_beta_m(const AafInputs &in, LightBandlimitAxes bandlimit_sigma_m, const AafParams &params,
-                       const FilledOccluders &occluders, int x, int y) {
+PixelBeta pixel_beta_m(const AafInputs &in, const LightPlane &light, LightBandlimitAxes bandlimit_sigma_m,
+                       const AafParams &params, const FilledOccluders &occluders, int x, int y) {
     const std::size_t i = std::size_t(y) * std::size_t(in.visibility.width) + std::size_t(x);
-    const float d1 = in.d1(x, y), pixel_size = in.pixel_size(x, y);
+    const float d1 = in.d1(x, y);
+    float pixel_size = in.pixel_size(x, y);
+    if (params.projected_pixel && std::isfinite(pixel_size))
+        pixel_size = projected_pixel_size_m(
+            pixel_size, Vec3{in.normal[0](x, y), in.normal[1](x, y), in.normal[2](x, y)}, light.normal);
     const float d2_min = occluders.d2_min_m[i], d2_max = occluders.d2_max_m[i];
     if (in.object_id(x, y) == 0 || !(d1 > 0) || !(pixel_size > 0) || !std::isfinite(pixel_size) ||
         !has_occluder(d2_max))
@@ -83,7 +87,7 @@ GatherGuides aaf_gather_guides(const AafInputs &in, const LightPlane &light, con
     // One band-limit per light axis: the Gaussian is anisotropic in the light's plane.
     const bool anisotropic = bandlimit_sigma_m.u_m != bandlimit_sigma_m.v_m;
     if (anisotropic) guides.inv_two_sigma_sq_v.assign(std::size_t(guides.width) * std::size_t(guides.height), 0.0f);
-    const bool along_light = params.light_distance == AafLightDistance::AlongLightDirection;
+    const bool along_light = params.light_distance != AafLightDistance::OrthogonalProjection;
     if (along_light) {
         const std::size_t count = std::size_t(guides.width) * std::size_t(guides.height);
         guides.coord_n_m.assign(count, 0.0f);
@@ -111,7 +115,13 @@ GatherGuides aaf_gather_guides(const AafInputs &in, const LightPlane &light, con
                 // the light (AAF Fig. 2's geometry), of which AAF Eq. 12 is the case l = n.
                 const Vec3 to_light = light.center - p;
                 const float distance = length(to_light);
-                if (distance > 0) {
+                const Vec3 receiver_normal{in.normal[0](x, y), in.normal[1](x, y), in.normal[2](x, y)};
+                const float receiver_length = length(receiver_normal);
+                // Guarded: AAF Eq. 12's projection (no shear) wherever it does not collapse the receiver.
+                const bool projection_holds =
+                    params.light_distance == AafLightDistance::Guarded && receiver_length > 0 &&
+                    std::fabs(dot(receiver_normal, light.normal)) >= kDegenerateProjectionCos * receiver_length;
+                if (distance > 0 && !projection_holds) {
                     const Vec3 l = to_light / distance;
                     // Nearly edge-on (|n . l| < 0.05, 87 degrees) the shear is held at 20.
                     constexpr float kMinCos = 0.05f;
@@ -131,7 +141,7 @@ GatherGuides aaf_gather_guides(const AafInputs &in, const LightPlane &light, con
             guides.normal_z[i] = unit.z;
             guides.object_id[i] = in.object_id(x, y);
 
-            const PixelBeta beta = pixel_beta_m(in, bandlimit_sigma_m, params, occluders, x, y);
+            const PixelBeta beta = pixel_beta_m(in, light, bandlimit_sigma_m, params, occluders, x, y);
             if (!(beta.u_m > 0) || !(beta.v_m > 0) || !std::isfinite(beta.u_m) || !std::isfinite(beta.v_m))
                 continue;
             // beta is in world metres; the reach in pixels follows from the pixel's footprint.

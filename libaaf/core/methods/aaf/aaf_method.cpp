@@ -54,9 +54,14 @@ std::vector<ParameterInfo> aaf_parameters() {
         ParameterInfo::choice("borders", "symmetric", {"symmetric", "clip"},
                               "symmetric: near the image edge the window shrinks on both sides and stays "
                               "centred; clip: cut on the edge side only (one-sided, biased on gradients)"),
-        ParameterInfo::choice("light_distance", "plane", {"plane", "ray"},
-                              "Tap distance in the light's plane: ray (slid along the direction to the light "
-                              "first) or plane (AAF Eq. 12's orthogonal projection)"),
+        ParameterInfo::choice("light_distance", "guarded", {"guarded", "plane", "ray"},
+                              "Tap distance in the light's plane: plane (AAF Eq. 12's orthogonal projection), "
+                              "ray (slid along the direction to the light first) or guarded (plane, and ray "
+                              "where a receiver is within 6 degrees of perpendicular to the light's plane)"),
+        ParameterInfo::choice("pixel_footprint", "projected", {"projected", "receiver"},
+                              "Pixel size d of the pixel band-limit 1/d (AAF Eq. 6, 15): projected onto the "
+                              "light's plane like the tap distances, or the receiver's own (the paper); the "
+                              "plan must use the same"),
     };
 }
 
@@ -75,8 +80,11 @@ AafParams params_from(const ParameterSet &set) {
     p.fixed_beta_m = set.get_float("fixed_beta");
     p.mode = set.get_choice("filter") == "2d" ? AafFilterMode::Exact2D : AafFilterMode::Separable;
     p.symmetric_borders = set.get_choice("borders") == "symmetric";
-    p.light_distance = set.get_choice("light_distance") == "plane" ? AafLightDistance::OrthogonalProjection
-                                                                   : AafLightDistance::AlongLightDirection;
+    const std::string distance = set.get_choice("light_distance");
+    p.light_distance = distance == "plane" ? AafLightDistance::OrthogonalProjection
+                       : distance == "ray" ? AafLightDistance::AlongLightDirection
+                                           : AafLightDistance::Guarded;
+    p.projected_pixel = set.get_choice("pixel_footprint") == "projected";
     return p;
 }
 
@@ -153,7 +161,10 @@ ParameterSet aaf_parameter_set(const AafParams &params) {
     set.set("filter", std::string(params.mode == AafFilterMode::Exact2D ? "2d" : "separable"));
     set.set("borders", std::string(params.symmetric_borders ? "symmetric" : "clip"));
     set.set("light_distance",
-            std::string(params.light_distance == AafLightDistance::OrthogonalProjection ? "plane" : "ray"));
+            std::string(params.light_distance == AafLightDistance::OrthogonalProjection  ? "plane"
+                        : params.light_distance == AafLightDistance::AlongLightDirection ? "ray"
+                                                                                         : "guarded"));
+    set.set("pixel_footprint", std::string(params.projected_pixel ? "projected" : "receiver"));
     return set;
 }
 

@@ -3,6 +3,7 @@
 #include <string>
 
 #include "aaf/core/light_bandlimit.h"
+#include "aaf/core/vec3.h"
 
 namespace aaf {
 
@@ -20,11 +21,28 @@ enum class AafLightDistance {
     /// then measured there: equal to AAF Eq. 12 for a receiver facing the light,
     /// but a tilted light no longer shrinks displacements towards it.
     AlongLightDirection,
-    /// AAF Eq. 12 as printed: the orthogonal projection onto the light's plane
-    /// (the default: the study measured AlongLightDirection no better on the
-    /// tilted scenes and worse where the light is seen edge-on, README).
+    /// AAF Eq. 12 as printed: the orthogonal projection onto the light's plane.
     OrthogonalProjection,
+    /// The orthogonal projection, except at receivers within ~6 degrees of
+    /// perpendicular to the light's plane (|n . n_L| < kDegenerateProjectionCos),
+    /// where it collapses their displacements to nothing (every tap of such a
+    /// face would weigh 1, whatever beta) and the distance is measured along
+    /// the direction to the light instead (the default: README, "AAF in this
+    /// implementation").
+    Guarded,
 };
+
+/// Below this |cos| between a receiver's normal and the light's, AAF Eq. 12's
+/// projection is treated as degenerate (AafLightDistance::Guarded) and the
+/// projected pixel footprint (AafParams::projected_pixel) stops shrinking.
+inline constexpr float kDegenerateProjectionCos = 0.1f;
+
+/// The pixel footprint in the light plane's units: the receiver's footprint
+/// `pixel_size_m` shrinks by |cos| of the angle between the receiver's and
+/// the light's planes along one axis under AAF Eq. 12's projection; the
+/// smaller axis bounds the band-limit (AAF Eq. 6). `receiver_normal` need not
+/// be unit; a zero or non-finite one leaves the footprint as it is.
+float projected_pixel_size_m(float pixel_size_m, Vec3 receiver_normal, Vec3 light_normal);
 
 /// How a rectangular light's two axes enter the band-limit (light_bandlimit.h).
 enum class AafLightAxes {
@@ -86,7 +104,12 @@ struct AafParams {
     /// unbiased on gradients); false: cut on the edge side only, the kernel
     /// one-sided (the plain reading of Sec. 6).
     bool symmetric_borders = true;
-    AafLightDistance light_distance = AafLightDistance::OrthogonalProjection;
+    AafLightDistance light_distance = AafLightDistance::Guarded;
+    /// The pixel band-limit Omega_pix = 1/d of AAF Sec. 4.1 (Eq. 6, 15) with d
+    /// measured in the light plane's units, like the tap distances of Eq. 12
+    /// (projected_pixel_size_m()); false: the receiver's own footprint (the
+    /// paper's reading, exact for a receiver parallel to the light).
+    bool projected_pixel = true;
 
     /// Throws aaf::Error naming the first parameter out of range.
     void validate() const;
