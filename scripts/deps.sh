@@ -7,6 +7,7 @@ packages=(
   libopencv-dev          # OpenImageIO's CMake target names /usr/include/opencv4; bench_aaf_filter's GaussianBlur yardstick
   libopencolorio-dev libcli11-dev catch2 libembree-dev libtbb-dev
   libtinyobjloader-dev nlohmann-json3-dev libbenchmark-dev
+  libhwy-dev             # Google Highway: the core's SIMD gather with runtime dispatch (a private dependency)
   python3-openimageio python3-numpy   # scripts/make_bad_corpus.py (run with /usr/bin/python3)
   python3-dev python3-pybind11         # the Python module aaf (libaaf/python), built for /usr/bin/python3
 )

@@ -4,6 +4,7 @@
 
 #include "aaf/core/error.h"
 #include "aaf/core/quoted.h"
+#include "aaf/core/ratio_layers.h"
 
 namespace aaf {
 
@@ -60,6 +61,22 @@ void bind_inputs(const Method &method, const AovSet &input, const ChannelMap &fo
         for (const std::string &name : names) views.push_back(input.channel(name));
         images.set_input(role, views);
     }
+    // The ratio roles' per-light layers, named after the summed layer's channels.
+    const int lights = ratio_light_count(input.attributes);
+    images.set_light_count(lights);
+    for (Role role : roles) {
+        if (!is_per_light_role(role)) continue;
+        for (int light = 0; light < lights; ++light) {
+            std::vector<std::string> names;
+            for (const std::string &name : found.channels(role))
+                names.push_back(per_light_channel(name, light));
+            images.set_light_channel_names(role, light, joined(names));
+            if (!has_all(input, names)) continue;
+            std::vector<ConstPlaneView> views;
+            for (const std::string &name : names) views.push_back(input.channel(name));
+            images.set_light_input(role, light, views);
+        }
+    }
 }
 
 }  // namespace
@@ -87,7 +104,7 @@ std::vector<std::string> method_input_channels(const Method &method, const Chann
 }
 
 AovSet filter_aovs(const Method &method, const AovSet &input, const ChannelMap &channels,
-                   const ParameterSet &parameters, const ProgressMonitor &monitor) {
+                   const ParameterSet &parameters, const ProgressMonitor &monitor, const AovSet *history) {
     // Other renderers' names are found through the synonym table.
     const ChannelMap found = channels.resolved(input);
     check_inputs(method, input, found);
@@ -104,6 +121,23 @@ AovSet filter_aovs(const Method &method, const AovSet &input, const ChannelMap &
 
     MethodImages images(input.width(), input.height(), input.attributes);
     bind_inputs(method, input, found, images);
+    if (history && (history->width() != input.width() || history->height() != input.height()))
+        throw InputError("the previous frame is " + std::to_string(history->width()) + "x" +
+                         std::to_string(history->height()) + ", this one " + std::to_string(input.width()) +
+                         "x" + std::to_string(input.height()));
+    if (history) {
+        // The previous frame's channels of every role the method reads or writes.
+        std::vector<Role> roles = method.info().roles.required;
+        for (const std::vector<Role> *more : {&method.info().roles.optional, &outputs})
+            roles.insert(roles.end(), more->begin(), more->end());
+        for (Role role : roles) {
+            const std::vector<std::string> &names = found.channels(role);
+            if (!has_all(*history, names)) continue;
+            std::vector<ConstPlaneView> views;
+            for (const std::string &name : names) views.push_back(history->channel(name));
+            images.set_history(role, views);
+        }
+    }
     for (Role role : outputs) {
         if (role == Role::Beauty) continue;
         std::vector<PlaneView> views;

@@ -6,6 +6,7 @@
 
 #include "aaf/core/error.h"
 #include "aaf/core/fast_exp.h"
+#include "aaf/core/gather_rows.h"
 #include "aaf/core/parallel.h"
 
 namespace aaf {
@@ -20,7 +21,7 @@ constexpr float kPi = 3.14159265358979323846f;
 constexpr int kLanes = 8;
 /// Channels gathered per sweep over the taps; more are done in further sweeps
 /// with the same weights.
-constexpr int kMaxChannelsPerSweep = 4;
+constexpr int kMaxChannelsPerSweep = detail::kMaxGatherChannels;
 
 /// The tap weight's modulation m_u(du) m_v(dv) at one centre pixel.
 struct PixelModulation {
@@ -173,12 +174,27 @@ PackedPlanes pack(const std::vector<ConstPlaneView> &views) {
     return planes;
 }
 
+/// Writes the transpose of a row-major width x height plane into `out`
+/// (height x width) in 32 x 32 blocks, so that both sides stay in cache;
+/// block rows in parallel (each element is written once: no ordering issue).
+template <typename T>
+void transpose_into(const T *plane, int width, int height, T *out) {
+    constexpr int kBlock = 32;
+    parallel_for_rows((height + kBlock - 1) / kBlock, [&](int block_row) {
+        const int y0 = block_row * kBlock, y1 = std::min(height, y0 + kBlock);
+        for (int x0 = 0; x0 < width; x0 += kBlock) {
+            const int x1 = std::min(width, x0 + kBlock);
+            for (int y = y0; y < y1; ++y)
+                for (int x = x0; x < x1; ++x)
+                    out[std::size_t(x) * std::size_t(height) + std::size_t(y)] =
+                        plane[std::size_t(y) * std::size_t(width) + std::size_t(x)];
+        }
+    });
+}
+
 std::vector<float> transposed(const std::vector<float> &plane, int width, int height) {
     std::vector<float> out(plane.size());
-    for (int y = 0; y < height; ++y)
-        for (int x = 0; x < width; ++x)
-            out[std::size_t(x) * std::size_t(height) + std::size_t(y)] =
-                plane[std::size_t(y) * std::size_t(width) + x];
+    transpose_into(plane.data(), width, height, out.data());
     return out;
 }
 
@@ -189,6 +205,22 @@ void sweep_all(const GatherGuides &g, float cos_threshold, bool symmetric_border
                const AxisModulation &mod_u = {}, const AxisModulation &mod_v = {}, bool normalise = true) {
     for (std::size_t first = 0; first < sources.size(); first += kMaxChannelsPerSweep) {
         const std::size_t count = std::min<std::size_t>(kMaxChannelsPerSweep, sources.size() - first);
+        if (!Modulated) {
+            // The SIMD rows (gather_rows.h): the same bits as gather_sweep's loops.
+            detail::GatherSweep sweep;
+            sweep.guides = &g;
+            sweep.cos_threshold = cos_threshold;
+            sweep.symmetric_borders = symmetric_borders;
+            sweep.along_x = along_x;
+            sweep.along_y = along_y;
+            sweep.channels = int(count);
+            for (std::size_t k = 0; k < count; ++k) {
+                sweep.source[k] = sources[first + k].data();
+                sweep.output[k] = outputs[first + k].data();
+            }
+            parallel_for_rows(g.height, [&](int y) { detail::gather_row(sweep, y); });
+            continue;
+        }
         auto run = [&](auto channels) {
             constexpr int K = decltype(channels)::value;
             Planes<K> planes;
@@ -275,9 +307,7 @@ GatherGuides GatherGuides::transposed() const {
     auto swap_axes = [&](const auto &plane, auto &out) {
         out.resize(plane.size());
         if (plane.empty()) return;  // an optional plane left out
-        for (int y = 0; y < height; ++y)
-            for (int x = 0; x < width; ++x)
-                out[std::size_t(x) * std::size_t(height) + std::size_t(y)] = plane[index(x, y)];
+        transpose_into(plane.data(), width, height, out.data());
     };
     swap_axes(coord_u_m, t.coord_u_m);
     swap_axes(coord_v_m, t.coord_v_m);

@@ -24,4 +24,25 @@ const std::string &MethodImages::channel_names(Role role) const {
     return it == names_.end() ? unknown : it->second;
 }
 
+ConstPlaneView MethodImages::light_input(Role role, int light, std::size_t channel) const {
+    auto it = light_inputs_.find({role, light});
+    if (it == light_inputs_.end() || channel >= it->second.size())
+        throw Error(std::string("input '") + role_info(role).key + "' of light " + std::to_string(light) +
+                    " is not available to this method");
+    return it->second[channel];
+}
+
+ConstPlaneView MethodImages::history(Role role, std::size_t channel) const {
+    auto it = history_.find(role);
+    if (it == history_.end() || channel >= it->second.size())
+        throw Error(std::string("the previous frame's '") + role_info(role).key + "' is not available");
+    return it->second[channel];
+}
+
+const std::string &MethodImages::light_channel_names(Role role, int light) const {
+    static const std::string unknown = "?";
+    auto it = light_names_.find({role, light});
+    return it == light_names_.end() ? unknown : it->second;
+}
+
 }  // namespace aaf

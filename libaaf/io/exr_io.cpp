@@ -240,6 +240,13 @@ void copy_part(OIIO::ImageInput &source, int part, OIIO::ImageOutput &output, co
 }  // namespace
 
 bool is_known_compression(const std::string &name) {
+    // zip:N and zips:N: ZIP at deflate level N (1 fastest, 9 smallest); any
+    // reader decodes them as plain zip.
+    const std::size_t colon = name.find(':');
+    if (colon != std::string::npos) {
+        const std::string codec = name.substr(0, colon), level = name.substr(colon + 1);
+        return (codec == "zip" || codec == "zips") && level.size() == 1 && level[0] >= '1' && level[0] <= '9';
+    }
     return lossless_compressions().count(name) || is_lossy_compression(name);
 }
 

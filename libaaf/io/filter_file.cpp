@@ -1,10 +1,12 @@
 #include "aaf/io/filter_file.h"
 
 #include <algorithm>
+#include <memory>
 #include <utility>
 
 #include "aaf/core/error.h"
 #include "aaf/core/filter_aovs.h"
+#include "aaf/core/ratio_layers.h"
 #include "aaf/core/thread_count.h"
 #include "aaf/io/atomic_file.h"
 
@@ -84,10 +86,28 @@ void warn_if_non_finite(const std::string &path, FilterFileReport &report) {
 FrameFilter method_filter(const Method &method, const ParameterSet &parameters, const ChannelMap &channels) {
     FrameFilter filter;
     filter.input_channels = [&method, channels](const AovSet &input) {
-        return method_input_channels(method, channels.resolved(input));
+        const ChannelMap found = channels.resolved(input);
+        std::vector<std::string> names = method_input_channels(method, found);
+        // The ratio roles' per-light layers are inputs too (ratio_layers.h).
+        std::vector<Role> roles = method.info().roles.required;
+        roles.insert(roles.end(), method.info().roles.optional.begin(), method.info().roles.optional.end());
+        const int lights = ratio_light_count(input.attributes);
+        for (Role role : roles)
+            if (is_per_light_role(role))
+                for (int light = 0; light < lights; ++light)
+                    for (const std::string &name : found.channels(role))
+                        names.push_back(per_light_channel(name, light));
+        return names;
     };
-    filter.run = [&method, parameters, channels](const AovSet &input) {
-        return filter_aovs(method, input, channels, parameters);
+    // A method that reads the previous frame's output gets the last frame
+    // this pipeline filtered (frames run in order, one at a time).
+    auto history = std::make_shared<AovSet>();
+    filter.run = [&method, parameters, channels, history](const AovSet &input) {
+        const bool has_history = method.info().uses_history && history->pixel_count() > 0;
+        AovSet output =
+            filter_aovs(method, input, channels, parameters, {}, has_history ? history.get() : nullptr);
+        if (method.info().uses_history) *history = output;
+        return output;
     };
     const std::vector<Role> &outputs = method.info().roles.outputs;
     if (std::find(outputs.begin(), outputs.end(), Role::Beauty) != outputs.end())

@@ -62,6 +62,10 @@ class AovAccumulator {
 
     /// Whether begin_pixel, add_sample and end_pixel are to be called.
     virtual bool wants_samples() const { return false; }
+    /// Whether its samples need their occluder distance d2_m in every pass (a
+    /// closest-hit query per shadow ray); otherwise passes after the first
+    /// round trace visibility only and hand it samples with d2_m = 0.
+    virtual bool wants_occluder_distances() const { return wants_samples(); }
     /// Sizes its per-pixel state for `pixel_count` pixels (row-major), once,
     /// before any sample; with a resumption, before restore().
     virtual void begin_render(std::size_t pixel_count) { (void)pixel_count; }

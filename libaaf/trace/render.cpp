@@ -158,6 +158,7 @@ class Tracing {
         for (const std::unique_ptr<AovAccumulator> &accumulator : accumulators) {
             accumulator->begin_render(primaries_.size());
             if (accumulator->wants_samples()) listeners_.push_back(accumulator.get());
+            listeners_want_distances_ = listeners_want_distances_ || accumulator->wants_occluder_distances();
         }
     }
 
@@ -175,18 +176,20 @@ class Tracing {
     }
 
     /// Traces `count` samples of pass `pass` for every pixel that has a
-    /// receiver or a lens, or for pixel (x, y) only `count(x, y)` of them.
+    /// receiver or a lens, or for pixel (x, y) only `count(x, y)` of them;
+    /// with occluder distances when `stats_distances` or a listener wants them.
     template <typename Count>
-    void trace_pass(std::uint32_t pass, const Count &count, bool round_to_float,
+    void trace_pass(std::uint32_t pass, const Count &count, bool round_to_float, bool stats_distances,
                     const std::function<void(double)> &on_share_done = {}) {
+        const bool distances = stats_distances || listeners_want_distances_;
         const bool thin_lens = scene_.camera.is_thin_lens();
         for_each_pixel_tiled(settings_.width, settings_.height, [&](int x, int y) {
             const std::size_t i = std::size_t(y) * settings_.width + x;
             const int samples = count(x, y);
             if ((primaries_[i].found || thin_lens) && samples > 0) {
                 for (AovAccumulator *listener : listeners_) listener->begin_pixel(i, primaries_[i]);
-                renderer_.trace_shadows(primaries_[i], x, y, i, pass, std::uint32_t(samples), stats_[i],
-                                        listeners_);
+                renderer_.trace_shadows(primaries_[i], x, y, i, pass, std::uint32_t(samples), distances,
+                                        stats_[i], listeners_);
                 for (AovAccumulator *listener : listeners_) listener->end_pixel(i);
             }
             if (round_to_float) stats_[i].round_to_float();
@@ -200,6 +203,7 @@ class Tracing {
     std::vector<PrimaryHit> primaries_;
     std::vector<ShadowStats> stats_;
     std::vector<AovAccumulator *> listeners_;
+    bool listeners_want_distances_ = false;
 };
 
 /// The groups a render writes: those asked for, plus what resuming needs.
@@ -280,6 +284,10 @@ AovSet render_scene(const std::string &scene_name, const RenderSettings &setting
                        : 0;
     // MAAF's first pass (Sec. 6.2) is a round of its own, stratified by itself.
     const int maaf_first_pass = (groups & kAovMaaf) ? std::min(settings.maaf_first_pass_spp, settings.spp) : 0;
+    // d2min/d2max are statistics of the first round, the sparse first pass
+    // AAF takes d1 and d2 from (AAF Sec. 6); later rounds and the adaptive
+    // second pass need visibility only, which any hit answers.
+    const bool stats_distances = (groups & kAovShadow) || settings.adaptive;
     auto render_so_far = [&](int done) {
         AovSet aovs(settings.width, settings.height);
         write_aovs(state, accumulators, groups, aovs);
@@ -311,7 +319,8 @@ AovSet render_scene(const std::string &scene_name, const RenderSettings &setting
             if (settings.on_round_progress)
                 on_share_done = [&](double share) { settings.on_round_progress(spp_done + share * count, settings.spp); };
             tracing.trace_pass(
-                std::uint32_t(round), [&](int, int) { return count; }, true, on_share_done);
+                std::uint32_t(round), [&](int, int) { return count; }, true, stats_distances && round == 0,
+                on_share_done);
             spp_done += count;
             if (settings.on_progress) settings.on_progress(spp_done, settings.spp);
             if (settings.on_checkpoint && spp_done < settings.spp &&
@@ -329,7 +338,8 @@ AovSet render_scene(const std::string &scene_name, const RenderSettings &setting
             measured.plan_s = seconds_since(start);
             start = Clock::now();
             tracing.trace_pass(
-                kAdaptiveSecondPass, [&](int x, int y) { return int(totals(x, y)) - settings.spp; }, false);
+                kAdaptiveSecondPass, [&](int x, int y) { return int(totals(x, y)) - settings.spp; }, false,
+                false);
             measured.second_pass_s = seconds_since(start);
         }
     });

@@ -7,6 +7,7 @@
 #include "random.h"
 #include "shading.h"
 #include "stratified_grid.h"
+#include "surface_texture.h"
 
 namespace aaf::trace {
 
@@ -82,12 +83,16 @@ float Renderer::mean_falloff(Vec3 p, Vec3 n) const {
 
 Vec3 Renderer::unshadowed(std::size_t light_index, const Mesh &mesh, Vec3 p, Vec3 n, Vec3 eye) const {
     const SceneLight &light = scene_.lights[light_index];
+    // Shaded with the texture's albedo and the normal map's normal (the
+    // geometric normal still decides occlusion).
+    const TexturedSurface surface = texture_surface(mesh.material, p, n);
     // With the falloff inside l(y) (AAF Sec. 7), the key light's r(x) is the
     // exact unshadowed irradiance; otherwise the irradiance at the light's centre.
     const float geometry = light_index == 0 && settings_.cosine_falloff
-                               ? mean_falloff(p, n)
-                               : falloff(light.plane, p, n, light.plane.center);
-    const Vec3 brdf = evaluate_brdf(mesh.material, n, normalize(eye - p), normalize(light.plane.center - p));
+                               ? mean_falloff(p, surface.normal)
+                               : falloff(light.plane, p, surface.normal, light.plane.center);
+    const Vec3 brdf =
+        evaluate_brdf(surface.material, surface.normal, normalize(eye - p), normalize(light.plane.center - p));
     return times(brdf, light.color) * (light.intensity * geometry);
 }
 
@@ -108,6 +113,10 @@ PrimaryHit Renderer::trace_primary(int x, int y) const {
     return primary;
 }
 
+bool Renderer::light_point_blocked(const PrimaryHit &primary, Vec3 light_point) const {
+    return occluded(primary.position, primary.normal, light_point);
+}
+
 bool Renderer::occluded(Vec3 p, Vec3 n, Vec3 target) const {
     // A light point behind the receiver's own tangent plane is occluded by the
     // (closed) surface at the receiver itself.
@@ -125,7 +134,7 @@ Vec3 Renderer::shade(const Mesh &mesh, Vec3 p, Vec3 n, Vec3 eye, UnitPoint u, st
 }
 
 void Renderer::trace_key_light(const PrimaryHit &primary, Vec3 origin, float d1, float centre_falloff,
-                               LightSample &sample) const {
+                               bool occluder_distances, LightSample &sample) const {
     const LightPlane &light = scene_.key_light();
     sample.y_u_m = light_samplers_[0].warp_u(sample.y_unit.s);
     sample.y_v_m = light_samplers_[0].warp_v(sample.y_unit.t);
@@ -137,11 +146,16 @@ void Renderer::trace_key_light(const PrimaryHit &primary, Vec3 origin, float d1,
         sample.weight = falloff(light, p, primary.normal, target) / centre_falloff;
     if (dot(primary.normal, target - p) <= 0) {
         sample.visible = false;  // behind the receiver's own tangent plane
-        sample.d2_m = settings_.skip_self_occluded ? 0.0f : d1;
+        sample.d2_m = settings_.skip_self_occluded || !occluder_distances ? 0.0f : d1;
         return;
     }
     // t = 1 reaches the light point; stop just short of it.
     const Vec3 direction = target - origin;
+    if (!occluder_distances) {
+        // Visibility alone: any hit answers it (rtcOccluded1), d2_m stays 0.
+        sample.visible = !bvh_.occluded(origin, direction, 0.0f, kShadowRayReach);
+        return;
+    }
     const Hit hit = bvh_.intersect(origin, direction, 0.0f, kShadowRayReach);
     if (hit.found) {
         sample.visible = false;
@@ -171,8 +185,8 @@ Vec3 Renderer::separate_radiance(const PrimaryHit &primary, Vec3 focus, PixelRng
 }
 
 void Renderer::trace_shadows(const PrimaryHit &primary, int x, int y, std::uint64_t pixel_index,
-                             std::uint32_t pass, std::uint32_t count, ShadowStats &stats,
-                             const std::vector<AovAccumulator *> &listeners) const {
+                             std::uint32_t pass, std::uint32_t count, bool occluder_distances,
+                             ShadowStats &stats, const std::vector<AovAccumulator *> &listeners) const {
     const LightPlane &light = scene_.key_light();
     const Camera &camera = scene_.camera;
     PixelRng rng(settings_.seed, pixel_index, pass);
@@ -197,7 +211,7 @@ void Renderer::trace_shadows(const PrimaryHit &primary, int x, int y, std::uint6
         // The key light's visibility at the central hit (none for a thin
         // lens's background pixel, which only gathers lens rays).
         sample.has_receiver = primary.found;
-        if (primary.found) trace_key_light(primary, origin, d1, centre_falloff, sample);
+        if (primary.found) trace_key_light(primary, origin, d1, centre_falloff, occluder_distances, sample);
         if (separate) sample.radiance = separate_radiance(primary, focus, secondary_rng, sample);
         stats.add(sample);
         for (AovAccumulator *listener : listeners) listener->add_sample(pixel_index, sample);

@@ -84,9 +84,11 @@ class Renderer {
     /// Traces `count` samples of pass `pass`, stratified among themselves,
     /// and adds them to `stats` and to each of `listeners` (add_sample with
     /// `pixel_index`): one key-light shadow ray from the primary hit each,
-    /// plus one per other light and, with a thin lens, a lens ray.
+    /// plus one per other light and, with a thin lens, a lens ray. With
+    /// `occluder_distances` false the key light's rays ask for visibility
+    /// only (any hit, cheaper than the closest) and every sample's d2_m is 0.
     void trace_shadows(const PrimaryHit &primary, int x, int y, std::uint64_t pixel_index, std::uint32_t pass,
-                       std::uint32_t count, ShadowStats &stats,
+                       std::uint32_t count, bool occluder_distances, ShadowStats &stats,
                        const std::vector<AovAccumulator *> &listeners) const;
 
     /// True when the beauty is not r(x) times the key light's visibility.
@@ -110,6 +112,10 @@ class Renderer {
         float distance_m = 0;
     };
     SecondaryHit trace_secondary(const PrimaryHit &primary, Vec3 direction) const;
+    /// Whether the shadow ray from the primary hit to `light_point` is
+    /// blocked: by the scene, or by the surface itself when the point lies
+    /// behind the hit's (geometric) tangent plane. The AAF samples' test.
+    bool light_point_blocked(const PrimaryHit &primary, Vec3 light_point) const;
 
   private:
     float pixel_footprint(const PrimaryHit &primary, int x, int y) const;
@@ -129,9 +135,10 @@ class Renderer {
     /// Fills `sample`'s light point (from its y_unit), weight, visibility and
     /// occluder distance for the key light seen from the primary hit, whose
     /// offset ray origin is `origin`, plane distance `d1` and falloff
-    /// towards the light's centre `centre_falloff` (0 without the falloff).
+    /// towards the light's centre `centre_falloff` (0 without the falloff);
+    /// the occluder distance only with `occluder_distances` (else 0).
     void trace_key_light(const PrimaryHit &primary, Vec3 origin, float d1, float centre_falloff,
-                         LightSample &sample) const;
+                         bool occluder_distances, LightSample &sample) const;
     /// The radiance `sample` traces apart from r(x) V(x): the other lights'
     /// shading at the primary hit, or with a thin lens that of every light
     /// seen through a lens ray aimed at `focus` (filling the sample's lens

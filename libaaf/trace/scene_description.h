@@ -19,6 +19,15 @@ struct Material {
     /// the mirror direction outside which the glossy reflection is zero,
     /// written to the isg AOVs; 0 = not glossy. The beauty does not use it.
     float theta_max_deg = 0;
+    /// Procedural albedo texture: a 3D checker of cubes `checker_size_m` on a
+    /// side in world space, alternating `albedo` and `checker_albedo`; 0 = none.
+    float checker_size_m = 0;
+    Vec3 checker_albedo{0.2f, 0.2f, 0.2f};
+    /// Procedural normal map: the shading normal tilts by the tangential part
+    /// of the gradient of bump_slope * (period / 2 pi) * (sin kx + sin ky + sin kz),
+    /// k = 2 pi / bump_period_m (world space); a slope of 0 = none.
+    float bump_slope = 0;
+    float bump_period_m = 0.1f;
 
     bool has_specular() const { return specular.x > 0 || specular.y > 0 || specular.z > 0; }
 };

@@ -255,12 +255,30 @@ json parse_json_file(const std::string &path) {
 }
 
 Material read_material(const Node &node) {
-    node.allow_only({"albedo", "specular", "roughness", "theta_max_deg"});
+    node.allow_only({"albedo", "specular", "roughness", "theta_max_deg", "checker", "bump"});
     Material material;
     if (auto albedo = node.find("albedo")) material.albedo = albedo->vec3_or_scalar();
     if (auto specular = node.find("specular")) material.specular = specular->vec3_or_scalar();
     if (auto roughness = node.find("roughness")) material.roughness = roughness->number();
     if (auto theta = node.find("theta_max_deg")) material.theta_max_deg = theta->number();
+    if (auto checker = node.find("checker")) {
+        checker->allow_only({"size_m", "albedo"});
+        material.checker_size_m = checker->at("size_m").number();
+        if (!(material.checker_size_m >= 1e-4f && material.checker_size_m <= 1e4f))
+            checker->at("size_m").fail("checker size_m must lie in [1e-4, 1e4] metres");
+        if (auto second = checker->find("albedo")) material.checker_albedo = second->vec3_or_scalar();
+        for (int c = 0; c < 3; ++c)
+            if (material.checker_albedo[c] < 0 || material.checker_albedo[c] > 1)
+                checker->fail("checker albedo must lie in [0, 1]");
+    }
+    if (auto bump = node.find("bump")) {
+        bump->allow_only({"slope", "period_m"});
+        material.bump_slope = bump->at("slope").number();
+        if (auto period = bump->find("period_m")) material.bump_period_m = period->number();
+        if (!(material.bump_slope >= 0 && material.bump_slope <= 10)) bump->fail("bump slope must lie in [0, 10]");
+        if (!(material.bump_period_m >= 1e-4f && material.bump_period_m <= 1e4f))
+            bump->fail("bump period_m must lie in [1e-4, 1e4] metres");
+    }
     for (int c = 0; c < 3; ++c)
         if (material.albedo[c] < 0 || material.albedo[c] > 1 || material.specular[c] < 0 ||
             material.specular[c] > 1)

@@ -35,6 +35,14 @@ std::uint64_t scene_hash(const SceneDescription &scene, const RenderSettings &se
         h.add(mesh.material.roughness);
         // Hashed only when set, so scenes from before it keep their hashes (and resume).
         if (mesh.material.theta_max_deg > 0) h.add(mesh.material.theta_max_deg);
+        if (mesh.material.checker_size_m > 0) {
+            h.add(mesh.material.checker_size_m);
+            h.add(mesh.material.checker_albedo);
+        }
+        if (mesh.material.bump_slope > 0) {
+            h.add(mesh.material.bump_slope);
+            h.add(mesh.material.bump_period_m);
+        }
         h.add(std::int64_t(mesh.positions.size()));
         for (Vec3 p : mesh.positions) h.add(p);
         h.add(std::int64_t(mesh.indices.size()));

@@ -1,6 +1,7 @@
 // Speed of the AAF filter (libaaf core) and of its shared world-space gather
 // against OpenCV's cv::GaussianBlur and the project's own fixed-width
-// Gaussian, on the same 9 spp render of `grids`, at 640x480 and 1920x1080.
+// Gaussian, on the same 9 spp render of `grids`, at 640x480, 1920x1080 and
+// 3840x2160 (the machine's default threads only at 4K).
 // Run: ./scripts/bench.sh
 //
 // BM_AafVsBaselines times every filter alternately inside each iteration, so
@@ -9,6 +10,8 @@
 //   gather_ms   gather() alone, one channel, on guides built once outside the timing
 //   opencv_ms   cv::GaussianBlur on the visibility (CV_32F), sigma = mean AAF beta in
 //               pixels, kernel size OpenCV's default for that sigma, OpenCV's own threads
+//   bilateral_ms  cv::bilateralFilter on the same image: spatial sigma the same, range
+//               sigma 0.1 (visibility lies in [0, 1]), diameter OpenCV's default (-1)
 //   fixed_ms    aaf::fixed_gaussian_filter with the same sigma
 //   gather3_ms  gather() of 3 channels with the same weights in one pass
 //   3x_gather1_ms  the same 3 channels as 3 one-channel gathers
@@ -137,12 +140,14 @@ void BM_AafVsBaselines(benchmark::State &state) {
     cv::Mat cv_dst(height, width, CV_32F);
     const double sigma = f.mean_sigma_px;
     const auto opencv_blur = [&] { cv::GaussianBlur(cv_src, cv_dst, cv::Size(0, 0), sigma, sigma); };
+    cv::Mat cv_bilateral(height, width, CV_32F);
+    const auto opencv_bilateral = [&] { cv::bilateralFilter(cv_src, cv_bilateral, -1, 0.1, sigma); };
     const int opencv_default = threads == 0 ? -1 : threads;  // -1: OpenCV's default count
     cv::setNumThreads(opencv_default);
     const int opencv_threads = cv::getNumThreads();
     int tbb_threads = 0;
     double aaf_ms = 0, gather_ms = 0, opencv_ms = 0, opencv_1t_ms = 0, fixed_ms = 0, gather3_ms = 0,
-           gather1x3_ms = 0;
+           gather1x3_ms = 0, bilateral_ms = 0;
     aaf::run_with_threads(threads, [&] {
         tbb_threads = tbb::this_task_arena::max_concurrency();
 
@@ -150,6 +155,7 @@ void BM_AafVsBaselines(benchmark::State &state) {
         opencv_blur();
         aaf::gather(f.guides, f.settings, {vis}, {outputs3[0]});
         aaf::fixed_gaussian_filter(vis, f.mean_sigma_px, outputs3[0]);
+        opencv_bilateral();
 
         for (auto _ : state) {
             auto t = std::chrono::steady_clock::now();
@@ -168,6 +174,12 @@ void BM_AafVsBaselines(benchmark::State &state) {
             opencv_blur();
             opencv_ms += ms_since(t);
             benchmark::DoNotOptimize(cv_dst.data);
+            benchmark::ClobberMemory();
+
+            t = std::chrono::steady_clock::now();
+            opencv_bilateral();
+            bilateral_ms += ms_since(t);
+            benchmark::DoNotOptimize(cv_bilateral.data);
             benchmark::ClobberMemory();
 
             // The same blur on one OpenCV thread: shows how much OpenCV's threading buys.
@@ -206,6 +218,11 @@ void BM_AafVsBaselines(benchmark::State &state) {
     state.counters["fixed_ms"] = fixed_ms / iters;
     state.counters["gather3_ms"] = gather3_ms / iters;
     state.counters["3x_gather1_ms"] = gather1x3_ms / iters;
+    state.counters["bilateral_ms"] = bilateral_ms / iters;
+    state.counters["aaf_over_bilateral"] = aaf_ms / bilateral_ms;
+    const double megapixels = double(n) / 1e6;
+    state.counters["aaf_ms_per_Mpx"] = aaf_ms / iters / megapixels;
+    state.counters["opencv_ms_per_Mpx"] = opencv_ms / iters / megapixels;
     state.counters["gather_over_opencv"] = gather_ms / opencv_ms;
     state.counters["aaf_over_opencv"] = aaf_ms / opencv_ms;
     state.counters["fixed_over_opencv"] = fixed_ms / opencv_ms;
@@ -225,6 +242,7 @@ BENCHMARK(BM_AafVsBaselines)
     ->ArgNames({"width", "height", "threads"})
     ->Args({640, 480, 0})
     ->Args({1920, 1080, 0})
+    ->Args({3840, 2160, 0})
     ->Args({640, 480, 1})
     ->Args({1920, 1080, 1})
     ->Unit(benchmark::kMillisecond)

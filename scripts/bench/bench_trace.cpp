@@ -9,6 +9,8 @@
 //   tracer      Renderer::trace_shadows over every pixel (what `aaf render`
 //               runs per sample: RNG, light sampling, a closest-hit query for
 //               the occluder distance d2, statistics)
+//   tracer_visibility  the same with visibility only (any hit), what later
+//               rounds and the adaptive second pass run
 //   occluded1   rtcOccluded1 on the stored rays (the fastest possible answer
 //               to "is it blocked")
 //   intersect1  rtcIntersect1 on the stored rays (what d2 needs)
@@ -132,14 +134,14 @@ double seconds(const std::chrono::steady_clock::time_point &start) {
     return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
 
-std::size_t run_tracer(const Fixture &f) {
+std::size_t run_tracer(const Fixture &f, bool occluder_distances) {
     std::size_t traced = 0;
     for (int y = 0; y < kHeight; ++y)
         for (int x = 0; x < kWidth; ++x) {
             const std::size_t i = std::size_t(y) * kWidth + x;
             if (!f.primaries[i].found) continue;
             ShadowStats stats;
-            f.renderer->trace_shadows(f.primaries[i], x, y, i, 0, kSpp, stats, {});
+            f.renderer->trace_shadows(f.primaries[i], x, y, i, 0, kSpp, occluder_distances, stats, {});
             traced += stats.taken;
             benchmark::DoNotOptimize(stats);
         }
@@ -255,7 +257,7 @@ void BM_Throughput(benchmark::State &state, const std::string &scene_name) {
     Fixture &f = fixture(scene_name);
     set_flush_to_zero(true);
     const RTCScene scene = f.renderer->bvh().handle();
-    double tracer_s = 0, occluded_s = 0, intersect_s = 0, sampling_s = 0;
+    double tracer_s = 0, tracer_visibility_s = 0, occluded_s = 0, intersect_s = 0, sampling_s = 0;
     std::size_t tracer_rays = 0;
     for (auto _ : state) {
         auto sampling_start = std::chrono::steady_clock::now();
@@ -264,8 +266,11 @@ void BM_Throughput(benchmark::State &state, const std::string &scene_name) {
         benchmark::DoNotOptimize(sink);
         sampling_s += seconds(sampling_start);
         auto start = std::chrono::steady_clock::now();
-        tracer_rays += run_tracer(f);
+        tracer_rays += run_tracer(f, true);
         tracer_s += seconds(start);
+        start = std::chrono::steady_clock::now();
+        benchmark::DoNotOptimize(run_tracer(f, false));
+        tracer_visibility_s += seconds(start);
         start = std::chrono::steady_clock::now();
         benchmark::DoNotOptimize(run_occluded1(scene, f.rays));
         occluded_s += seconds(start);
@@ -286,6 +291,9 @@ void BM_Throughput(benchmark::State &state, const std::string &scene_name) {
     // ray; count only the rays it traces, as the stored set does.
     state.counters["tracer_over_occluded1"] = (rays * n / tracer_s) / (rays * n / occluded_s);
     state.counters["tracer_over_intersect1"] = (rays * n / tracer_s) / (rays * n / intersect_s);
+    // Visibility-only passes (later rounds, the adaptive second pass) against the same floor.
+    state.counters["tracer_visibility_Mrays_s"] = rays * n / tracer_visibility_s / 1e6;
+    state.counters["tracer_visibility_over_occluded1"] = occluded_s / tracer_visibility_s;
 }
 
 void BM_Packets(benchmark::State &state, const std::string &scene_name) {
@@ -403,11 +411,11 @@ void BM_Denormals(benchmark::State &state, const std::string &scene_name) {
     for (auto _ : state) {
         set_flush_to_zero(true);
         auto start = std::chrono::steady_clock::now();
-        benchmark::DoNotOptimize(run_tracer(f));
+        benchmark::DoNotOptimize(run_tracer(f, true));
         ftz_s += seconds(start);
         set_flush_to_zero(false);
         start = std::chrono::steady_clock::now();
-        benchmark::DoNotOptimize(run_tracer(f));
+        benchmark::DoNotOptimize(run_tracer(f, true));
         plain_s += seconds(start);
     }
     set_flush_to_zero(true);

@@ -277,13 +277,61 @@ def contact():
             "lights": [rect_light([1.3, 2.4, 0.0], edge_u, edge_v, 30.0)], "objects": objects}
 
 
+def livingroom():
+    """For the ratio estimator (Heitz, Hill, McGuire 2018, Fig. 11's living
+    room): three rectangular lights of different colours and sizes (a large
+    bluish ceiling panel, a warm panel off to the camera's left, a small white
+    spot), a checker-textured glossy floor and rug, normal-mapped (bumped)
+    walls and sofa, and furniture casting penumbrae of several widths."""
+    def box(lo, hi, id_, material):
+        return {"type": "box", "min": lo, "max": hi, "id": id_, "material": material}
+    legs = [box([x, 0, z], [x + 0.05, 0.5, z + 0.05], 5, "wood") for x in (-0.05, 1.0) for z in (-0.55, 0.1)]
+    return {
+        "format_version": 1, "name": "livingroom",
+        "camera": {"type": "pinhole", "position": [0.3, 1.55, 4.0], "look_at": [0, 0.6, -0.6], "fov_y_deg": 50},
+        "materials": {
+            "floor": {"albedo": [0.62, 0.48, 0.34], "specular": 0.04, "roughness": 0.35,
+                      "checker": {"size_m": 0.3, "albedo": [0.42, 0.3, 0.2]}, "bump": {"slope": 0.08, "period_m": 0.15}},
+            "plaster": {"albedo": [0.72, 0.68, 0.6], "bump": {"slope": 0.35, "period_m": 0.07}},
+            "fabric": {"albedo": [0.3, 0.42, 0.62], "bump": {"slope": 0.3, "period_m": 0.04}},
+            "rug": {"albedo": [0.75, 0.7, 0.6], "checker": {"size_m": 0.12, "albedo": [0.65, 0.15, 0.12]}},
+            "wood": {"albedo": [0.45, 0.27, 0.14], "specular": 0.05, "roughness": 0.3},
+            "gold": {"albedo": [0.3, 0.2, 0.05], "specular": [0.9, 0.7, 0.3], "roughness": 0.3},
+            "lamp": {"albedo": [0.8, 0.8, 0.8]}},
+        "lights": [
+            {"center": [0.0, 2.7, -0.3], "edge_u": [1.6, 0, 0], "edge_v": [0, 0, 1.0], "intensity": 45,
+             "color": [0.75, 0.85, 1.0], "profile": "uniform"},
+            {"center": [-2.2, 1.3, 0.4], "edge_u": [0.3, 0.52, 0], "edge_v": [0, 0, 0.8], "intensity": 14,
+             "color": [1.0, 0.6, 0.3], "profile": "uniform"},
+            {"center": [1.4, 2.1, 0.8], "edge_u": [0.2, 0, 0], "edge_v": [0, 0, 0.2], "intensity": 12,
+             "color": [1.0, 1.0, 1.0], "profile": "uniform"}],
+        "objects": [
+            {"type": "plane", "size": [12, 12], "id": 1, "material": "floor"},
+            {"type": "plane", "size": [12, 6], "id": 2, "material": "plaster",
+             "transform": {"rotate_deg": [90, 0, 0], "translate": [0, 3, -2.6]}},
+            {"type": "plane", "size": [6, 12], "id": 2, "material": "plaster",
+             "transform": {"rotate_deg": [0, 0, 90], "translate": [-2.8, 3, 0]}},
+            box([-1.2, 0.0, -0.9], [1.5, 0.01, 1.1], 3, "rug"),
+            box([-1.7, 0, -2.4], [-0.1, 0.42, -1.6], 4, "fabric"),
+            box([-1.7, 0.42, -2.4], [-0.1, 0.95, -2.12], 4, "fabric"),
+            box([-0.1, 0.5, -0.6], [1.1, 0.56, 0.2], 5, "wood"),
+            *legs,
+            {"type": "sphere", "center": [0.55, 0.76, -0.25], "radius": 0.2, "segments": 48, "id": 6,
+             "material": "gold"},
+            {"type": "cylinder", "radius": 0.04, "height": 1.4, "segments": 16, "id": 7, "material": "lamp",
+             "transform": {"translate": [1.7, 0, -1.6]}},
+            {"type": "sphere", "center": [1.7, 1.5, -1.6], "radius": 0.16, "segments": 32, "id": 7,
+             "material": "lamp"}],
+    }
+
+
 def main():
     root = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
     out_dir = sys.argv[1] if len(sys.argv) > 1 else os.path.join(root, "testdata", "scenes")
     os.makedirs(out_dir, exist_ok=True)
     scenes = {"grids": grids(), "spheres": spheres(out_dir), "tentacles": tentacles(out_dir), "bench": bench(),
               "studio": studio(), "gallery": gallery(), "tilted": tilted(), "grazing": grazing(),
-              "contact": contact()}
+              "contact": contact(), "livingroom": livingroom()}
     for name, scene in scenes.items():
         with open(os.path.join(out_dir, name + ".json"), "w") as out:
             json.dump(scene, out, indent=1)

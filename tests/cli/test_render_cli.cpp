@@ -40,7 +40,8 @@ TEST_CASE("CLI: render --list shows the shipped scenes", "[cli][render]") {
     const auto result = run_aaf("render --list");
     CHECK(result.exit_code == 0);
     for (const char *name :
-         {"grids", "spheres", "tentacles", "bench", "studio", "gallery", "tilted", "grazing", "contact"})
+         {"grids", "spheres", "tentacles", "bench", "studio", "gallery", "tilted", "grazing", "contact",
+          "livingroom"})
         CHECK_THAT(result.output, Catch::Contains(std::string(name) + "\n"));
 }
 

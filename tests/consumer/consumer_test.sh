@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # Installs the already-built tree into a scratch prefix and builds and runs
 # three tiny consumer projects against it with find_package(aaf CONFIG):
-#   core: COMPONENTS core with every package but oneTBB disabled (fails if
+#   core: COMPONENTS core with every package but oneTBB (and Highway, the
+#         core's private link-only dependency) disabled (fails if
 #         the core's config asks for OpenImageIO, OpenColorIO, Embree, ...);
 #         filters a small plane with aaf::fixed_gaussian_filter.
 #   io:   COMPONENTS io with the tracer's packages disabled; writes an EXR
@@ -51,7 +52,7 @@ io_packages=(-DCMAKE_DISABLE_FIND_PACKAGE_OpenImageIO=ON -DCMAKE_DISABLE_FIND_PA
              -DCMAKE_DISABLE_FIND_PACKAGE_Imath=ON -DCMAKE_DISABLE_FIND_PACKAGE_OpenColorIO=ON
              -DCMAKE_DISABLE_FIND_PACKAGE_PkgConfig=ON)
 
-echo "== core consumer (only oneTBB findable)"
+echo "== core consumer (only oneTBB and Highway findable)"
 configure_build core "${io_packages[@]}" "${trace_packages[@]}"
 "$work/core/core_consumer"
 

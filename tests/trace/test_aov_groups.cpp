@@ -143,7 +143,7 @@ TEST_CASE("A group that wants samples sees every sample the shadow sums see", "[
     const PrimaryHit primary = renderer.trace_primary(32, 40);
     REQUIRE(primary.found);
     ShadowStats stats;
-    renderer.trace_shadows(primary, 32, 40, 7, 0, 37, stats, listeners);
+    renderer.trace_shadows(primary, 32, 40, 7, 0, 37, true, stats, listeners);
     CHECK(group.count == 37);
     CHECK(stats.taken == 37);
     CHECK(group.weight_sum == stats.weight_sum);
@@ -160,6 +160,7 @@ TEST_CASE("The groups AAF reads follow from the roles it declares", "[trace][gro
     CHECK(aov_groups_writing({}) == 0);
     unsigned all = 0;
     for (const AovGroupInfo &info : aov_group_table()) all |= info.group;
-    // "all" leaves out maaf, whose first pass restratifies the samples, and isg, which traces rays of its own
-    CHECK(all == (kAovsAll | kAovMaaf | kAovIsg));
+    // "all" leaves out maaf, whose first pass restratifies the samples, and isg
+    // and the ratio groups, which trace rays of their own
+    CHECK(all == (kAovsAll | kAovMaaf | kAovIsg | kAovRatio | kAovRatioEstimators));
 }

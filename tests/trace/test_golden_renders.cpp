@@ -131,6 +131,7 @@ TEST_CASE("Every shipped scene renders its AOVs to the golden bytes", "[trace][g
         {"gallery", 0x639d919e9ac57a29},  // ISG's scene
         {"grazing", 0x65871c4496bcc36d},
         {"grids", 0xbd31581f9b481346},
+        {"livingroom", 0x3b2868655ca47e02},  // the ratio estimator's scene: textures, normal maps, three lights
         {"spheres", 0x5073d42e01a884a4},
         {"studio", 0x3586db5a555daeb2},  // thin lens, two lights, animated camera
         {"tentacles", 0x28a0179939ec69dd},
@@ -165,9 +166,15 @@ TEST_CASE("An adaptive render gives the golden bytes", "[trace][golden]") {
     settings.spp = 9;
     settings.adaptive = true;
     settings.max_spp = 40;
-    // The plan measures the pixel footprint in the light plane's units (AafParams::projected_pixel):
-    // the boxes' sides, perpendicular to the light, plan more samples than with the receiver's footprint.
-    check_golden(trace::render_scene("grids", settings), 0x5d668d280eb0ee66);
+    // Changed on purpose twice: when the second pass began tracing visibility
+    // only (occluder distances from the first pass, AAF Sec. 6: only
+    // shadow.d2min/d2max differed), then when the plan began measuring the
+    // pixel footprint in the light plane's units (AafParams::projected_pixel:
+    // the boxes' sides, perpendicular to the light, plan more samples).
+    check_golden(trace::render_scene("grids", settings), 0x3cc564471d824c29);
+    // The receiver's footprint (the paper's reading) still gives the previous bytes.
+    settings.projected_pixel = false;
+    check_golden(trace::render_scene("grids", settings), 0x2abb606c2b16197a);
 }
 
 TEST_CASE("Two lights, a uniform profile and the cosine falloff give the golden bytes", "[trace][golden]") {

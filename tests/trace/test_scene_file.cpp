@@ -394,7 +394,8 @@ TEST_CASE("Scene file: the files a scene reads are the scene and each OBJ it loa
 
 TEST_CASE("Scene names resolve to the shipped scene files", "[trace][scene]") {
     for (const char *name :
-         {"grids", "spheres", "tentacles", "bench", "studio", "gallery", "tilted", "grazing", "contact"}) {
+         {"grids", "spheres", "tentacles", "bench", "studio", "gallery", "tilted", "grazing", "contact",
+          "livingroom"}) {
         const std::string path = trace::resolve_scene(name);
         INFO(name);
         CHECK(fs::path(path).filename() == std::string(name) + ".json");

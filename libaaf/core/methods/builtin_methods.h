@@ -13,5 +13,6 @@ std::unique_ptr<Method> make_maaf_method();
 std::unique_ptr<Method> make_isg_shadow_method();
 std::unique_ptr<Method> make_isg_glossy_method();
 std::unique_ptr<Method> make_isg_dof_method();
+std::unique_ptr<Method> make_ratio_method();
 
 }  // namespace aaf

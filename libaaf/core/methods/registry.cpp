@@ -18,6 +18,7 @@ std::vector<std::unique_ptr<Method>> &registry() {
         builtin.push_back(make_isg_shadow_method());  // Robison, Shirley 2009
         builtin.push_back(make_isg_glossy_method());
         builtin.push_back(make_isg_dof_method());
+        builtin.push_back(make_ratio_method());  // Heitz, Hill, McGuire 2018
         return builtin;
     }();
     return methods;

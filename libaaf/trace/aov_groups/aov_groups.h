@@ -28,5 +28,9 @@ std::unique_ptr<AovAccumulator> make_progress_group();
 std::unique_ptr<AovAccumulator> make_maaf_group();
 /// ISG's image-space maps and distribution-ray-traced references (isg_group.cpp).
 std::unique_ptr<AovAccumulator> make_isg_group();
+/// ratio.*: the ratio estimator's U, S_N, U_N, summed and per light (ratio_group.cpp).
+std::unique_ptr<AovAccumulator> make_ratio_group();
+/// ratio.sto.*, ratio.cv.*: full-stochastic and control-variate estimates from the same samples.
+std::unique_ptr<AovAccumulator> make_ratio_estimators_group();
 
 }  // namespace aaf::trace

@@ -1,5 +1,6 @@
 #include <type_traits>
 
+#include "../surface_texture.h"
 #include "aov_groups.h"
 
 namespace aaf::trace {
@@ -69,11 +70,12 @@ std::unique_ptr<AovAccumulator> make_depth_group() {
 }
 
 // Reflectances in [0, 1] need no more than half's 11 bits; the beauty stays
-// float, since references are compared to 1e-4.
+// float, since references are compared to 1e-4. A textured material's albedo
+// at the primary hit.
 std::unique_ptr<AovAccumulator> make_albedo_group() {
     return std::make_unique<PrimaryHitGroup<Vec3>>(
         AovGroupInfo{kAovAlbedo, "albedo", "albedo.R, albedo.G, albedo.B"}, Role::Albedo, Precision::Half,
-        [](const PrimaryHit &p) { return p.mesh->material.albedo; });
+        [](const PrimaryHit &p) { return texture_surface(p.mesh->material, p.position, p.normal).material.albedo; });
 }
 
 }  // namespace aaf::trace

@@ -32,8 +32,11 @@ std::vector<std::string> method_input_channels(const Method &method, const Chann
 /// method's declared order; when the method composes a new beauty, the input
 /// beauty is kept as Role::NoisyBeauty. Throws aaf::InputError naming the
 /// first missing input or attribute, aaf::Error for bad parameters,
-/// aaf::Cancelled when `monitor` asks to stop.
+/// aaf::Cancelled when `monitor` asks to stop. `history`, when given, is the
+/// previous frame's output of the same method (MethodImages::history), of
+/// the same size (else aaf::InputError).
 AovSet filter_aovs(const Method &method, const AovSet &input, const ChannelMap &channels,
-                   const ParameterSet &parameters, const ProgressMonitor &monitor = {});
+                   const ParameterSet &parameters, const ProgressMonitor &monitor = {},
+                   const AovSet *history = nullptr);
 
 }  // namespace aaf

@@ -36,6 +36,9 @@ struct MethodInfo {
     std::vector<ParameterInfo> parameters;
     /// Per-image header attributes the method cannot run without (attr::).
     std::vector<std::string> required_attributes;
+    /// True when the method reads the previous frame's output (MethodImages::history)
+    /// on a sequence: the pipeline then keeps each frame's output for the next.
+    bool uses_history = false;
 };
 
 /// The images a method runs on: read-only views of its input roles (those
@@ -65,12 +68,41 @@ class MethodImages {
     void set_channel_names(Role role, std::string names) { names_[role] = std::move(names); }
     void set_output(Role role, std::vector<PlaneView> views) { outputs_[role] = std::move(views); }
 
+    /// Per-light layers of the ratio roles (ratio_layers.h): how many lights
+    /// the input declares (attr::kRatioLights, 0 = only the summed layers),
+    /// whether light `light`'s channels of input `role` are all present, and
+    /// those channels; light_input throws aaf::Error when absent.
+    int light_count() const { return light_count_; }
+    bool has_light(Role role, int light) const { return light_inputs_.count({role, light}) != 0; }
+    ConstPlaneView light_input(Role role, int light, std::size_t channel = 0) const;
+    /// The per-light channel names looked for, comma-separated, for messages.
+    const std::string &light_channel_names(Role role, int light) const;
+
+    void set_light_count(int count) { light_count_ = count; }
+    void set_light_input(Role role, int light, std::vector<ConstPlaneView> views) {
+        light_inputs_[{role, light}] = std::move(views);
+    }
+    void set_light_channel_names(Role role, int light, std::string names) {
+        light_names_[{role, light}] = std::move(names);
+    }
+
+    /// The previous frame's output of this method, when it runs over a
+    /// sequence and asked for it (MethodInfo::uses_history): whether role
+    /// `role` (an input or an output role) is present in it, and its channels.
+    bool has_history(Role role) const { return history_.count(role) != 0; }
+    ConstPlaneView history(Role role, std::size_t channel = 0) const;
+    void set_history(Role role, std::vector<ConstPlaneView> views) { history_[role] = std::move(views); }
+
   private:
     int width_, height_;
     const std::map<std::string, AttributeValue> *attributes_;
     std::map<Role, std::vector<ConstPlaneView>> inputs_;
     std::map<Role, std::vector<PlaneView>> outputs_;
     std::map<Role, std::string> names_;
+    int light_count_ = 0;
+    std::map<std::pair<Role, int>, std::vector<ConstPlaneView>> light_inputs_;
+    std::map<std::pair<Role, int>, std::string> light_names_;
+    std::map<Role, std::vector<ConstPlaneView>> history_;
 };
 
 /// A filtering method. Implementations are stateless and thread-safe; each

@@ -34,10 +34,16 @@ enum AovGroup : unsigned {
     /// isg.*, reflect.*, gloss.theta_max, glossy.*, pinhole.*: ISG's maps and
     /// references; traces rays of its own (a glossy reference of spp rays).
     kAovIsg = 1u << 10,
+    /// ratio.U/S/Un (+ .Y), summed and per light: the ratio estimator's layer;
+    /// traces spp samples per light of its own (MIS of light and GGX).
+    kAovRatio = 1u << 11,
+    /// ratio.sto.*, ratio.cv.*: the full-stochastic and control-variate
+    /// estimates from the ratio group's samples (traced again when both are asked for).
+    kAovRatioEstimators = 1u << 12,
 };
 /// "all": every group that only records the light samples; maaf (whose first
-/// pass changes how the samples are stratified) and isg (which traces rays of
-/// its own) are asked for by name.
+/// pass changes how the samples are stratified), isg, ratio and
+/// ratio_estimators (which trace rays of their own) are asked for by name.
 inline constexpr unsigned kAovsAll = (kAovProgress << 1) - 1;
 
 /// Name (as `--aovs` spells it) and contents of each group.

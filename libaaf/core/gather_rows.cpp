@@ -1,0 +1,366 @@
+// The unmodulated gather's inner loops (gather_rows.h) for every instruction
+// set Google Highway targets, chosen at run time. Highway is a private
+// implementation dependency of aaf_core: no public header includes it.
+#include "aaf/core/gather_rows.h"
+
+#include <algorithm>
+#include <cstddef>
+#include <cstdint>
+
+// Arrays of vectors need sized vector types: no scalable (SVE, RVV) targets.
+#ifndef HWY_DISABLED_TARGETS
+#define HWY_DISABLED_TARGETS (HWY_SVE | HWY_SVE2 | HWY_SVE_256 | HWY_SVE2_128 | HWY_RVV)
+#endif
+#undef HWY_TARGET_INCLUDE
+#define HWY_TARGET_INCLUDE "gather_rows.cpp"
+#include <hwy/foreach_target.h>  // IWYU pragma: keep
+#include <hwy/highway.h>
+
+HWY_BEFORE_NAMESPACE();
+namespace aaf::detail {
+namespace HWY_NAMESPACE {
+namespace hn = hwy::HWY_NAMESPACE;
+
+/// Partial sums per pixel; fast_exp.h's kLanes in the scalar loops it replaces.
+constexpr int kSums = 8;
+using D = hn::CappedTag<float, kSums>;
+using DI = hn::RebindToSigned<D>;
+using V = hn::Vec<D>;
+constexpr int kLanes = HWY_MIN(kSums, int(HWY_LANES(float)));
+constexpr int kBlocks = kSums / kLanes;  ///< vectors per run of kSums taps
+
+/// fast_exp_nonpositive (fast_exp.h) lane by lane, operation for operation,
+/// so every lane gives the scalar function's bits.
+HWY_INLINE V fast_exp_nonpositive(V x) {
+    const D d;
+    const DI di;
+    const V above_floor = hn::IfThenElse(hn::Gt(x, hn::Set(d, -87.0f)), x, hn::Set(d, -87.0f));
+    const V clamped = hn::IfThenElse(hn::Lt(above_floor, hn::Zero(d)), above_floor, hn::Zero(d));
+    // Truncation towards zero, as static_cast<int>.
+    const auto k_int = hn::ConvertTo(di, hn::Sub(hn::Mul(clamped, hn::Set(d, 1.44269504088896341f)),
+                                                 hn::Set(d, 0.5f)));
+    const V k = hn::ConvertTo(d, k_int);
+    const V r = hn::Sub(hn::Sub(clamped, hn::Mul(k, hn::Set(d, 0.693145751953125f))),
+                        hn::Mul(k, hn::Set(d, 1.428606765330187045e-06f)));
+    V p = hn::Set(d, 1.0f / 720.0f);
+    p = hn::Add(hn::Mul(p, r), hn::Set(d, 1.0f / 120.0f));
+    p = hn::Add(hn::Mul(p, r), hn::Set(d, 1.0f / 24.0f));
+    p = hn::Add(hn::Mul(p, r), hn::Set(d, 1.0f / 6.0f));
+    p = hn::Add(hn::Mul(p, r), hn::Set(d, 0.5f));
+    p = hn::Add(hn::Mul(p, r), hn::Set(d, 1.0f));
+    p = hn::Add(hn::Mul(p, r), hn::Set(d, 1.0f));
+    const V scale = hn::BitCast(d, hn::ShiftLeft<23>(hn::Add(k_int, hn::Set(di, 127))));
+    return hn::Mul(p, scale);
+}
+
+/// The guides' planes one tap reads, from tap index `t` on.
+struct TapPlanes {
+    const float *u, *v, *n, *normal_x, *normal_y, *normal_z, *id;
+};
+
+/// What a centre pixel compares its taps with.
+struct Centre {
+    V u, v, n, shear_u, shear_v, normal_x, normal_y, normal_z, id, inv_two_sigma_sq, cos_threshold;
+    V inv_two_sigma_sq_v;  ///< along v, when the guides are anisotropic
+    bool anisotropic = false;
+};
+
+/// The Gaussian's exponent: -(du^2 + dv^2) / (2 sigma^2) (AAF Eq. 11), or
+/// with the guides' per-axis widths -du^2 a_u - dv^2 a_v.
+HWY_INLINE V gaussian_exponent(V du, V dv, V inv_two_sigma_sq, V inv_two_sigma_sq_v, bool anisotropic) {
+    if (anisotropic)
+        return hn::Neg(hn::Add(hn::Mul(hn::Mul(du, du), inv_two_sigma_sq), hn::Mul(hn::Mul(dv, dv), inv_two_sigma_sq_v)));
+    return hn::Mul(hn::Neg(hn::Add(hn::Mul(du, du), hn::Mul(dv, dv))), inv_two_sigma_sq);
+}
+
+/// Adds kLanes taps from index `t` into the partial sums of block `b`;
+/// with `Tail`, only the lanes in `active`.
+template <int K, bool Sheared, bool Tail>
+HWY_INLINE void accumulate(const TapPlanes &g, const float *const *source, std::size_t t, const Centre &c,
+                           hn::Mask<D> active, V (&sum)[K][kBlocks], V (&weight_sum)[kBlocks], int b) {
+    const D d;
+    const V cos_angle = hn::Add(hn::Add(hn::Mul(c.normal_x, hn::LoadU(d, g.normal_x + t)),
+                                        hn::Mul(c.normal_y, hn::LoadU(d, g.normal_y + t))),
+                                hn::Mul(c.normal_z, hn::LoadU(d, g.normal_z + t)));
+    const auto accepted = hn::And(hn::Eq(hn::LoadU(d, g.id + t), c.id), hn::Ge(cos_angle, c.cos_threshold));
+    V du = hn::Sub(hn::LoadU(d, g.u + t), c.u), dv = hn::Sub(hn::LoadU(d, g.v + t), c.v);
+    if (Sheared) {
+        const V dn = hn::Sub(hn::LoadU(d, g.n + t), c.n);
+        du = hn::Sub(du, hn::Mul(c.shear_u, dn));
+        dv = hn::Sub(dv, hn::Mul(c.shear_v, dn));
+    }
+    // AAF Eq. 11; the scalar loop's accepted (0 or 1) times the weight.
+    const V exponent = gaussian_exponent(du, dv, c.inv_two_sigma_sq, c.inv_two_sigma_sq_v, c.anisotropic);
+    const V weight = hn::IfThenElseZero(accepted, fast_exp_nonpositive(exponent));
+    if (Tail) {
+        weight_sum[b] = hn::IfThenElse(active, hn::Add(weight_sum[b], weight), weight_sum[b]);
+        for (int k = 0; k < K; ++k)
+            sum[k][b] = hn::IfThenElse(active, hn::Add(sum[k][b], hn::Mul(weight, hn::LoadU(d, source[k] + t))),
+                                       sum[k][b]);
+    } else {
+        weight_sum[b] = hn::Add(weight_sum[b], weight);
+        for (int k = 0; k < K; ++k) sum[k][b] = hn::Add(sum[k][b], hn::Mul(weight, hn::LoadU(d, source[k] + t)));
+    }
+}
+
+/// gather.cpp's gather_pixel for an unmodulated sweep: pixel (x, y) over
+/// taps |ox| <= reach_x, |oy| <= reach_y.
+template <int K, bool Sheared>
+void gather_pixel(const GatherSweep &s, int x, int y, int reach_x, int reach_y) {
+    const D d;
+    const GatherGuides &g = *s.guides;
+    const std::size_t c = g.index(x, y);
+    const float normal_x = g.normal_x[c], normal_y = g.normal_y[c], normal_z = g.normal_z[c], id = g.object_id[c];
+    Centre centre;
+    centre.u = hn::Set(d, g.coord_u_m[c]);
+    centre.v = hn::Set(d, g.coord_v_m[c]);
+    centre.n = hn::Set(d, Sheared ? g.coord_n_m[c] : 0.0f);
+    centre.shear_u = hn::Set(d, Sheared ? g.shear_u[c] : 0.0f);
+    centre.shear_v = hn::Set(d, Sheared ? g.shear_v[c] : 0.0f);
+    centre.normal_x = hn::Set(d, normal_x);
+    centre.normal_y = hn::Set(d, normal_y);
+    centre.normal_z = hn::Set(d, normal_z);
+    centre.id = hn::Set(d, id);
+    centre.inv_two_sigma_sq = hn::Set(d, g.inv_two_sigma_sq[c]);
+    centre.anisotropic = g.anisotropic();
+    centre.inv_two_sigma_sq_v = hn::Set(d, centre.anisotropic ? g.inv_two_sigma_sq_v[c] : 0.0f);
+    centre.cos_threshold = hn::Set(d, s.cos_threshold);
+    const TapPlanes planes{g.coord_u_m.data(), g.coord_v_m.data(), Sheared ? g.coord_n_m.data() : nullptr,
+                           g.normal_x.data(),  g.normal_y.data(),  g.normal_z.data(),
+                           g.object_id.data()};
+    const int x_begin = std::max(0, x - reach_x), x_end = std::min(g.width, x + reach_x + 1);
+    const int y_begin = std::max(0, y - reach_y), y_end = std::min(g.height, y + reach_y + 1);
+
+    V sum[K][kBlocks], weight_sum[kBlocks];
+    for (int b = 0; b < kBlocks; ++b) {
+        weight_sum[b] = hn::Zero(d);
+        for (int k = 0; k < K; ++k) sum[k][b] = hn::Zero(d);
+    }
+    const auto all = hn::FirstN(d, kLanes);
+    // A row's last taps (fewer than kSums) go to sums 0, 1, ...; at the
+    // planes' very end they are copied into zero-padded buffers first, so no
+    // load reads past a plane.
+    const std::size_t plane_size = std::size_t(g.width) * std::size_t(g.height);
+    alignas(64) float tail[7 + kMaxGatherChannels][kSums];
+    const TapPlanes tail_planes{tail[0], tail[1], tail[2], tail[3], tail[4], tail[5], tail[6]};
+    const float *tail_source[kMaxGatherChannels] = {tail[7], tail[8], tail[9], tail[10]};
+    for (int ty = y_begin; ty < y_end; ++ty) {
+        const std::size_t row = std::size_t(ty) * std::size_t(g.width);
+        int tx = x_begin;
+        for (; tx + kSums <= x_end; tx += kSums)
+            for (int b = 0; b < kBlocks; ++b)
+                accumulate<K, Sheared, false>(planes, s.source, row + std::size_t(tx + b * kLanes), centre, all, sum,
+                                              weight_sum, b);
+        const int rest = x_end - tx;
+        if (rest == 0) continue;
+        const std::size_t first = row + std::size_t(tx);
+        if (first + kSums <= plane_size) {
+            // Loads past the row's end stay inside the planes; those lanes are masked out.
+            for (int b = 0; b * kLanes < rest; ++b)
+                accumulate<K, Sheared, true>(planes, s.source, first + std::size_t(b * kLanes), centre,
+                                             hn::FirstN(d, std::size_t(rest - b * kLanes)), sum, weight_sum, b);
+            continue;
+        }
+        const float *from[7] = {planes.u, planes.v, planes.n, planes.normal_x, planes.normal_y, planes.normal_z,
+                                planes.id};
+        for (int p = 0; p < 7; ++p)
+            for (int i = 0; i < kSums; ++i) tail[p][i] = from[p] && i < rest ? from[p][first + i] : 0.0f;
+        for (int k = 0; k < K; ++k)
+            for (int i = 0; i < kSums; ++i) tail[7 + k][i] = i < rest ? s.source[k][first + i] : 0.0f;
+        for (int b = 0; b * kLanes < rest; ++b)
+            accumulate<K, Sheared, true>(tail_planes, tail_source, std::size_t(b * kLanes), centre,
+                                         hn::FirstN(d, std::size_t(rest - b * kLanes)), sum, weight_sum, b);
+    }
+    alignas(64) float lanes[K + 1][kSums];
+    for (int b = 0; b < kBlocks; ++b) {
+        hn::Store(weight_sum[b], d, lanes[K] + b * kLanes);
+        for (int k = 0; k < K; ++k) hn::Store(sum[k][b], d, lanes[k] + b * kLanes);
+    }
+    float total[K] = {}, total_weight = 0;
+    for (int lane = 0; lane < kSums; ++lane) {
+        for (int k = 0; k < K; ++k) total[k] += lanes[k][lane];
+        total_weight += lanes[K][lane];
+    }
+    // The centre always counts: a NaN or zero normal fails its own test, so
+    // it is added back with weight 1.
+    const bool centre_counted =
+        (normal_x * normal_x + normal_y * normal_y + normal_z * normal_z) >= s.cos_threshold && id == id;
+    if (!centre_counted) {
+        for (int k = 0; k < K; ++k) total[k] += s.source[k][c];
+        total_weight += 1.0f;
+    }
+    for (int k = 0; k < K; ++k) s.output[k][c] = total[k] / total_weight;
+}
+
+/// Lanes' worth of floats from `plane` at element `index` (may be negative
+/// or run past `size`): a plain load inside the plane, else through a
+/// zero-padded copy (the plane's first and last pixels).
+HWY_INLINE V load_guarded(const float *plane, std::ptrdiff_t index, std::ptrdiff_t size) {
+    const D d;
+    if (index >= 0 && index + kLanes <= size) return hn::LoadU(d, plane + index);
+    alignas(64) float padded[kLanes];
+    for (int i = 0; i < kLanes; ++i) padded[i] = index + i >= 0 && index + i < size ? plane[index + i] : 0.0f;
+    return hn::Load(d, padded);
+}
+
+/// One row of a sweep along x only (both passes of the separable gather):
+/// kLanes neighbouring centre pixels per vector, one lane each, all walking
+/// the same tap offsets. Each pixel's sums run over its taps from left to
+/// right, one add at a time, so neither the lane count nor the threads
+/// change a bit.
+template <int K, bool Sheared>
+void gather_row_along_x(const GatherSweep &s, int y) {
+    const D d;
+    const DI di;
+    const GatherGuides &g = *s.guides;
+    const std::ptrdiff_t size = std::ptrdiff_t(g.width) * g.height, row = std::ptrdiff_t(y) * g.width;
+    const float *const normal_x = g.normal_x.data(), *const normal_y = g.normal_y.data(),
+                       *const normal_z = g.normal_z.data(), *const id = g.object_id.data(),
+                       *const coord_u = g.coord_u_m.data(), *const coord_v = g.coord_v_m.data(),
+                       *const coord_n = Sheared ? g.coord_n_m.data() : nullptr;
+    const V cos_threshold = hn::Set(d, s.cos_threshold);
+    for (int x0 = 0; x0 < g.width; x0 += kLanes) {
+        const std::ptrdiff_t c0 = row + x0;
+        // Each lane's reach: its radius, cut at the image's edges as gather_row_k cuts it.
+        alignas(64) std::int32_t reach[kLanes];
+        int widest = -1;
+        for (int i = 0; i < kLanes; ++i) {
+            const int x = x0 + i;
+            reach[i] = -1;  // past the row's end: no taps
+            if (x >= g.width) continue;
+            int r = g.radius_px[std::size_t(c0 + i)];
+            if (s.symmetric_borders) r = std::min({r, x, g.width - 1 - x});
+            reach[i] = g.radius_px[std::size_t(c0 + i)] == 0 ? -1 : r;
+            widest = std::max(widest, reach[i]);
+        }
+        V sum[K], weight_sum = hn::Zero(d);
+        for (int k = 0; k < K; ++k) sum[k] = hn::Zero(d);
+        if (widest >= 0) {
+            const V u = load_guarded(coord_u, c0, size), v = load_guarded(coord_v, c0, size);
+            const V n = Sheared ? load_guarded(coord_n, c0, size) : hn::Zero(d);
+            const V shear_u = Sheared ? load_guarded(g.shear_u.data(), c0, size) : hn::Zero(d);
+            const V shear_v = Sheared ? load_guarded(g.shear_v.data(), c0, size) : hn::Zero(d);
+            const V nx = load_guarded(normal_x, c0, size), ny = load_guarded(normal_y, c0, size),
+                    nz = load_guarded(normal_z, c0, size), centre_id = load_guarded(id, c0, size);
+            const V inv_two_sigma_sq = load_guarded(g.inv_two_sigma_sq.data(), c0, size);
+            const bool anisotropic = g.anisotropic();
+            const V inv_two_sigma_sq_v =
+                anisotropic ? load_guarded(g.inv_two_sigma_sq_v.data(), c0, size) : hn::Zero(d);
+            const auto reach_v = hn::Load(di, reach);
+            const auto x_v = hn::Iota(di, x0);
+            for (int o = -widest; o <= widest; ++o) {
+                // |o| <= reach and 0 <= x + o < width, lane by lane.
+                const auto x_tap = hn::Add(x_v, hn::Set(di, o));
+                const auto inside = hn::And(hn::And(hn::Gt(reach_v, hn::Set(di, (o < 0 ? -o : o) - 1)),
+                                                    hn::Gt(x_tap, hn::Set(di, -1))),
+                                            hn::Lt(x_tap, hn::Set(di, g.width)));
+                const auto active = hn::RebindMask(d, inside);
+                const std::ptrdiff_t t = c0 + o;
+                const V cos_angle = hn::Add(hn::Add(hn::Mul(nx, load_guarded(normal_x, t, size)),
+                                                    hn::Mul(ny, load_guarded(normal_y, t, size))),
+                                            hn::Mul(nz, load_guarded(normal_z, t, size)));
+                const auto accepted =
+                    hn::And(hn::Eq(load_guarded(id, t, size), centre_id), hn::Ge(cos_angle, cos_threshold));
+                V du = hn::Sub(load_guarded(coord_u, t, size), u), dv = hn::Sub(load_guarded(coord_v, t, size), v);
+                if (Sheared) {
+                    const V dn = hn::Sub(load_guarded(coord_n, t, size), n);
+                    du = hn::Sub(du, hn::Mul(shear_u, dn));
+                    dv = hn::Sub(dv, hn::Mul(shear_v, dn));
+                }
+                // AAF Eq. 11
+                const V exponent = gaussian_exponent(du, dv, inv_two_sigma_sq, inv_two_sigma_sq_v, anisotropic);
+                const V weight = hn::IfThenElseZero(accepted, fast_exp_nonpositive(exponent));
+                weight_sum = hn::IfThenElse(active, hn::Add(weight_sum, weight), weight_sum);
+                for (int k = 0; k < K; ++k)
+                    sum[k] = hn::IfThenElse(
+                        active, hn::Add(sum[k], hn::Mul(weight, load_guarded(s.source[k], t, size))), sum[k]);
+            }
+        }
+        alignas(64) float lanes[K + 1][kLanes];
+        hn::Store(weight_sum, d, lanes[K]);
+        for (int k = 0; k < K; ++k) hn::Store(sum[k], d, lanes[k]);
+        for (int i = 0; i < kLanes && x0 + i < g.width; ++i) {
+            const std::size_t c = std::size_t(c0 + i);
+            if (reach[i] < 0) {  // radius 0: the pixel keeps its value
+                for (int k = 0; k < K; ++k) s.output[k][c] = s.source[k][c];
+                continue;
+            }
+            float total_weight = lanes[K][i];
+            // The centre always counts: a NaN or zero normal fails its own
+            // test, so it is added back with weight 1.
+            const bool centre_counted = (normal_x[c] * normal_x[c] + normal_y[c] * normal_y[c] +
+                                         normal_z[c] * normal_z[c]) >= s.cos_threshold &&
+                                        id[c] == id[c];
+            if (!centre_counted) total_weight += 1.0f;
+            for (int k = 0; k < K; ++k)
+                s.output[k][c] = (centre_counted ? lanes[k][i] : lanes[k][i] + s.source[k][c]) / total_weight;
+        }
+    }
+}
+
+template <int K, bool Sheared>
+void gather_row_k(const GatherSweep &s, int y) {
+    if (s.along_x && !s.along_y) return gather_row_along_x<K, Sheared>(s, y);
+    const GatherGuides &g = *s.guides;
+    for (int x = 0; x < g.width; ++x) {
+        const std::size_t c = g.index(x, y);
+        const int radius = g.radius_px[c];
+        if (radius == 0) {
+            for (int k = 0; k < K; ++k) s.output[k][c] = s.source[k][c];
+            continue;
+        }
+        int reach_x = s.along_x ? radius : 0, reach_y = s.along_y ? radius : 0;
+        if (s.symmetric_borders) {
+            // gather.cpp: a window cut by an edge is cut on the other side too.
+            reach_x = std::min({reach_x, x, g.width - 1 - x});
+            reach_y = std::min({reach_y, y, g.height - 1 - y});
+        }
+        gather_pixel<K, Sheared>(s, x, y, reach_x, reach_y);
+    }
+}
+
+template <bool Sheared>
+void gather_row_sheared(const GatherSweep &s, int y) {
+    switch (s.channels) {
+        case 1:
+            return gather_row_k<1, Sheared>(s, y);
+        case 2:
+            return gather_row_k<2, Sheared>(s, y);
+        case 3:
+            return gather_row_k<3, Sheared>(s, y);
+        default:
+            return gather_row_k<4, Sheared>(s, y);
+    }
+}
+
+const char *GatherRowTarget() {
+    return hwy::TargetName(HWY_TARGET);
+}
+
+void GatherRow(const GatherSweep &s, int y) {
+    if (s.guides->sheared())
+        gather_row_sheared<true>(s, y);
+    else
+        gather_row_sheared<false>(s, y);
+}
+
+}  // namespace HWY_NAMESPACE
+}  // namespace aaf::detail
+HWY_AFTER_NAMESPACE();
+
+#if HWY_ONCE
+namespace aaf::detail {
+
+HWY_EXPORT(GatherRow);
+HWY_EXPORT(GatherRowTarget);
+
+void gather_row(const GatherSweep &sweep, int y) {
+    HWY_DYNAMIC_DISPATCH(GatherRow)(sweep, y);
+}
+
+const char *gather_row_target() {
+    return HWY_DYNAMIC_DISPATCH(GatherRowTarget)();
+}
+
+}  // namespace aaf::detail
+#endif

@@ -1,0 +1,36 @@
+#pragma once
+
+#include "aaf/core/gather.h"
+
+namespace aaf::detail {
+
+/// The most channels one unmodulated sweep gathers with the same weights.
+inline constexpr int kMaxGatherChannels = 4;
+
+/// One unmodulated gather sweep (gather.cpp): `channels` sources in, as many
+/// outputs, planes of the guides' size, row-major.
+struct GatherSweep {
+    const GatherGuides *guides = nullptr;
+    float cos_threshold = 1.0f;
+    bool symmetric_borders = false;
+    bool along_x = true, along_y = false;
+    int channels = 1;  ///< [1, kMaxGatherChannels]
+    const float *source[kMaxGatherChannels] = {};
+    float *output[kMaxGatherChannels] = {};
+};
+
+/// Gathers every pixel of row `y` of `sweep` (AAF Eq. 10-12, as gather()
+/// documents) with the widest SIMD instruction set the CPU offers (Google
+/// Highway's runtime dispatch). A sweep along x only (each pass of the
+/// separable gather) puts neighbouring centre pixels in the lanes, each
+/// summing its taps left to right; a 2D sweep puts a pixel's taps in 8
+/// interleaved partial sums, added in order at the end. Either way the order
+/// is fixed and multiplies and adds stay separate (no fused multiply-add), so
+/// the bits are the same for every instruction set and thread count.
+void gather_row(const GatherSweep &sweep, int y);
+
+/// Name of the instruction set gather_row runs with now (Highway's target
+/// name, e.g. "AVX2"), for tests and benchmarks.
+const char *gather_row_target();
+
+}  // namespace aaf::detail

@@ -1,0 +1,41 @@
+#include "aaf/core/ratio_layers.h"
+
+#include "aaf/core/error.h"
+#include "aaf/core/quoted.h"
+
+namespace aaf {
+
+bool is_per_light_role(Role role) {
+    switch (role) {
+        case Role::RatioAnalytic:
+        case Role::RatioShadowed:
+        case Role::RatioUnshadowed:
+        case Role::RatioShadowedLuminance:
+        case Role::RatioUnshadowedLuminance:
+            return true;
+        default:
+            return false;
+    }
+}
+
+std::string per_light_channel(const std::string &channel, int light) {
+    const std::string tag = "L" + std::to_string(light) + ".";
+    const std::string token = "ratio.";
+    for (std::size_t at = channel.find(token); at != std::string::npos; at = channel.find(token, at + 1))
+        if (at == 0 || channel[at - 1] == '.')
+            return channel.substr(0, at + token.size()) + tag + channel.substr(at + token.size());
+    const std::size_t last = channel.rfind('.');
+    if (last == std::string::npos) return tag + channel;
+    return channel.substr(0, last + 1) + tag + channel.substr(last + 1);
+}
+
+int ratio_light_count(const std::map<std::string, AttributeValue> &attributes) {
+    const auto it = attributes.find(attr::kRatioLights);
+    if (it == attributes.end()) return 0;
+    const int *count = std::get_if<int>(&it->second);
+    if (!count || *count < 0)
+        throw InputError("header attribute " + quoted(attr::kRatioLights) + " must be a non-negative int");
+    return *count;
+}
+
+}  // namespace aaf

@@ -1,0 +1,42 @@
+#!/usr/bin/env bash
+# Runs the benchmark suite once and writes its results, with the commands
+# that produced them, to scripts/bench/results/suite_<UTC date>.md:
+#   bench_aaf_filter  AAF and its gather against OpenCV GaussianBlur (same mean
+#                     width) and bilateralFilter at 640x480, 1920x1080, 3840x2160
+#   bench_maaf_filter MAAF against AAF on the same render (640x480)
+#   bench_trace       the tracer against raw Embree loops on the same rays
+#   bench_io.sh       aaf filter end to end against an oiiotool copy, peak memory,
+#                     the adaptive frame
+# Every figure is a median; every ratio is of timings taken alternately in
+# the same run. On a shared machine absolute times move with the load; the
+# ratios are the figures. REPS (default 3) sets the repetitions.
+set -euo pipefail
+root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
+reps="${REPS:-3}"
+bench="$root/build/scripts/bench"
+out="$root/scripts/bench/results/suite_$(date -u +%Y-%m-%d).md"
+run() {
+    echo
+    echo "\`\`\`"
+    echo "\$ $*"
+    "$@" 2>&1 | grep -v '^\*\*\*' | sed 's/  */ /g'
+    echo "\`\`\`"
+}
+{
+    echo "# Benchmark suite, $(date -u +%FT%TZ)"
+    echo
+    echo "$(nproc) CPUs ($(grep -m1 'model name' /proc/cpuinfo | cut -d: -f2 | xargs)), load average $(cut -d' ' -f1-3 /proc/loadavg) at the start."
+    echo "Produced by: REPS=$reps scripts/bench_all.sh"
+    run "$bench/bench_aaf_filter" --benchmark_repetitions="$reps" --benchmark_report_aggregates_only=true
+    run "$bench/bench_maaf_filter" --benchmark_filter='640' --benchmark_repetitions="$reps" \
+        --benchmark_report_aggregates_only=true
+    run "$bench/bench_trace" --benchmark_filter='BM_Throughput|BM_Packets' --benchmark_repetitions="$reps" \
+        --benchmark_report_aggregates_only=true
+    echo
+    echo "\$ REPS=$reps scripts/bench_io.sh"
+    echo
+    REPS="$reps" "$root/scripts/bench_io.sh"
+    echo
+    echo "Load average at the end: $(cut -d' ' -f1-3 /proc/loadavg)."
+} > "$out"
+echo "$out"

@@ -1,0 +1,77 @@
+#!/usr/bin/env bash
+# `aaf filter` end to end against the I/O floor, and the adaptive frame.
+#
+# For each size (default 640x480 1920x1080 3840x2160) it renders the grids
+# scene once (9 spp, the CLI's default AOVs) and then times, alternately in
+# the same loop so that load on a shared machine hits all alike:
+#   oiiotool      oiiotool in.exr -o out.exr   (read and write the same file:
+#                 the floor any filter that reads and writes it pays)
+#   aaf_filter    aaf filter aaf in.exr -o out.exr   (CLI defaults)
+#   each method   aaf filter METHOD (maaf needs the maaf AOVs: left out here)
+# and, at 640x480 only, the adaptive frame (aaf render grids --adaptive, then
+# aaf filter aaf, written). Peak memory of one aaf filter run comes from
+# /usr/bin/time -v; the frame's AOV bytes are width x height x the bytes of
+# its channels as stored. Prints a Markdown table of medians (REPS, default 5).
+# Usage: scripts/bench_io.sh [WIDTHxHEIGHT ...]
+set -euo pipefail
+root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
+aaf="${AAF:-$root/build/cli/aaf}"
+reps="${REPS:-5}"
+dir="${AAF_BENCH_DIR:-/tmp/aaf_bench_io}"
+mkdir -p "$dir"
+sizes=("$@")
+[ ${#sizes[@]} -gt 0 ] || sizes=(640x480 1920x1080 3840x2160)
+
+now() { date +%s.%N; }
+median() { sort -g | awk '{a[NR]=$1} END {print (NR % 2) ? a[(NR + 1) / 2] : (a[NR / 2] + a[NR / 2 + 1]) / 2}'; }
+
+echo "Machine: $(nproc) CPUs, load average $(cut -d' ' -f1-3 /proc/loadavg) at the start, $(date -u +%FT%TZ); REPS=$reps; aaf $("$aaf" --version 2>/dev/null | head -n1)"
+echo
+echo "| size | oiiotool copy ms | aaf filter aaf ms | aaf / oiiotool | gaussian ms | isg-shadow ms | ms per Mpixel (aaf) | peak RSS MiB | AOV bytes MiB | RSS / AOV bytes |"
+echo "| --- | --- | --- | --- | --- | --- | --- | --- | --- | --- |"
+for size in "${sizes[@]}"; do
+    w="${size%x*}"
+    h="${size#*x}"
+    in="$dir/grids_${size}.exr"
+    [ -f "$in" ] || "$aaf" render grids --width "$w" --height "$h" --aovs aaf,isg,depth -o "$in" --progress none >/dev/null
+    declare -A times=()
+    for ((r = 0; r < reps; ++r)); do
+        for what in oiiotool aaf gaussian isg-shadow; do
+            t=$(now)
+            case "$what" in
+                oiiotool) oiiotool "$in" -o "$dir/copy.exr" ;;
+                *) "$aaf" filter "$what" "$in" -o "$dir/out.exr" >/dev/null ;;
+            esac
+            times[$what]+="$(echo "($(now) - $t) * 1000" | bc -l) "
+        done
+    done
+    declare -A med=()
+    for what in oiiotool aaf gaussian isg-shadow; do
+        med[$what]=$(echo "${times[$what]}" | tr ' ' '\n' | grep . | median)
+    done
+    rss_kb=$(/usr/bin/time -v "$aaf" filter aaf "$in" -o "$dir/out.exr" 2>&1 >/dev/null |
+        awk -F: '/Maximum resident set size/ {gsub(/ /, "", $2); print $2}')
+    # Bytes of the input's channels as stored (half 2, float 4) times the pixels.
+    aov_bytes=$(oiiotool --info -v "$in" | awk -v px=$((w * h)) '
+        /channel list:/ {
+            n = split($0, parts, ",")
+            for (i = 1; i <= n; ++i) bytes += (parts[i] ~ /\(half\)/) ? 2 : 4
+        }
+        END { print bytes * px }')
+    awk -v s="$size" -v o="${med[oiiotool]}" -v a="${med[aaf]}" -v g="${med[gaussian]}" -v i="${med[isg-shadow]}" \
+        -v mp="$(echo "$w * $h / 1000000" | bc -l)" -v rss="$rss_kb" -v bytes="$aov_bytes" 'BEGIN {
+        printf "| %s | %.0f | %.0f | %.2f | %.0f | %.0f | %.0f | %.0f | %.1f | %.2f |\n",
+            s, o, a, a / o, g, i, a / mp, rss / 1024, bytes / 1048576, rss * 1024 / bytes }'
+    unset times med
+done
+
+# The adaptive frame at 640x480: render (9 spp first pass, the CLI defaults) + filter + write.
+frame=()
+for ((r = 0; r < reps; ++r)); do
+    t=$(now)
+    "$aaf" render grids --adaptive -o "$dir/adaptive.exr" --progress none >/dev/null
+    "$aaf" filter aaf "$dir/adaptive.exr" -o "$dir/adaptive_filtered.exr" >/dev/null
+    frame+=("$(echo "($(now) - $t) * 1000" | bc -l)")
+done
+echo
+echo "Adaptive 640x480 grids frame (aaf render grids --adaptive; aaf filter aaf): median $(printf '%s\n' "${frame[@]}" | median | xargs printf '%.0f') ms"
