@@ -183,7 +183,8 @@ TEST_CASE("Gather: with a v width plane a tap weighs exp(-du^2 a_u - dv^2 a_v)",
         return weight(centre - x, centre - y) / sum;
     };
     for (auto [ox, oy] : {std::pair{2, 0}, std::pair{0, 2}, std::pair{1, 1}, std::pair{3, -1}})
-        CHECK(out[g.index(centre + ox, centre + oy)] == Approx(expected(centre + ox, centre + oy)).epsilon(2e-3));
+        CHECK(out[g.index(centre + ox, centre + oy)] ==
+              Approx(expected(centre + ox, centre + oy)).epsilon(2e-3));
     // Along u the kernel is wider: at 2 px the weights are 0.80 along u and 0.25 along v.
     CHECK(out[g.index(centre + 2, centre)] > 2.5f * out[g.index(centre, centre + 2)]);
 
@@ -197,7 +198,7 @@ TEST_CASE("Gather: with a v width plane a tap weighs exp(-du^2 a_u - dv^2 a_v)",
 
     // A v plane of another size is refused.
     g.inv_two_sigma_sq_v.resize(5);
-    CHECK_THROWS_AS(gather(g, settings, {plane_view(impulse.data(), size, size)},
-                           {plane_view(out.data(), size, size)}),
-                    Error);
+    CHECK_THROWS_AS(
+        gather(g, settings, {plane_view(impulse.data(), size, size)}, {plane_view(out.data(), size, size)}),
+        Error);
 }

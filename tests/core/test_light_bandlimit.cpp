@@ -76,8 +76,8 @@ TEST_CASE("Each axis of a rectangle has its own band-limit, from its own half-ex
     CHECK(axes.v_m == Approx(0.25 * std::erf(1 / std::sqrt(2.0))));
     CHECK(light_bandlimit_sigma_m(wide, LightBandlimit::EquivalentWidth) == std::min(axes.u_m, axes.v_m));
     // Turning the rectangle swaps the axes.
-    const LightBandlimitAxes turned =
-        light_bandlimit_axes_m(rectangle(0.5f, 2.0f, 0.25f, LightProfile::Gaussian), LightBandlimit::Spectrum);
+    const LightBandlimitAxes turned = light_bandlimit_axes_m(
+        rectangle(0.5f, 2.0f, 0.25f, LightProfile::Gaussian), LightBandlimit::Spectrum);
     const LightBandlimitAxes straight = light_bandlimit_axes_m(wide, LightBandlimit::Spectrum);
     CHECK(turned.u_m == straight.v_m);
     CHECK(turned.v_m == straight.u_m);

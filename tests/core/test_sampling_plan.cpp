@@ -31,9 +31,9 @@ TEST_CASE("Sampling plan follows AAF Eq. 21 on a synthetic first pass", "[aaf][p
         d2_max[x] = 1.0f;
     }
     id[11] = 0.0f;
-    SamplingPlanInputs in{plane_view(d1.data(), w, h), plane_view(d2_min.data(), w, h),
+    SamplingPlanInputs in{plane_view(d1.data(), w, h),     plane_view(d2_min.data(), w, h),
                           plane_view(d2_max.data(), w, h), plane_view(id.data(), w, h),
-                          plane_view(size.data(), w, h), {}};
+                          plane_view(size.data(), w, h),   {}};
     SamplingPlanParams params;
     plan_samples(in, untruncated_light(), AafParams{}, params, plane_view(spp.data(), w, h));
     // Hand value (see test_aaf_bandlimits): n = 4 * 49 * 0.54^2 = 57.15 -> 58 samples.

@@ -88,8 +88,8 @@ LightBandlimitAxes aaf_light_sigmas_m(const LightPlane &light, const AafParams &
 
 float mu_for_samples(float samples, float d1_m, float d2_min_m, float d2_max_m, float pixel_size_m,
                      float sigma_m, const AafParams &params) {
-    return mu_for_samples(samples, d1_m, d2_min_m, d2_max_m, pixel_size_m, LightBandlimitAxes{sigma_m, sigma_m},
-                          params);
+    return mu_for_samples(samples, d1_m, d2_min_m, d2_max_m, pixel_size_m,
+                          LightBandlimitAxes{sigma_m, sigma_m}, params);
 }
 
 float mu_for_samples(float samples, float d1_m, float d2_min_m, float d2_max_m, float pixel_size_m,

@@ -86,7 +86,8 @@ GatherGuides aaf_gather_guides(const AafInputs &in, const LightPlane &light, con
     const LightBandlimitAxes bandlimit_sigma_m = aaf_light_sigmas_m(light, params);
     // One band-limit per light axis: the Gaussian is anisotropic in the light's plane.
     const bool anisotropic = bandlimit_sigma_m.u_m != bandlimit_sigma_m.v_m;
-    if (anisotropic) guides.inv_two_sigma_sq_v.assign(std::size_t(guides.width) * std::size_t(guides.height), 0.0f);
+    if (anisotropic)
+        guides.inv_two_sigma_sq_v.assign(std::size_t(guides.width) * std::size_t(guides.height), 0.0f);
     const bool along_light = params.light_distance != AafLightDistance::OrthogonalProjection;
     if (along_light) {
         const std::size_t count = std::size_t(guides.width) * std::size_t(guides.height);
@@ -118,9 +119,10 @@ GatherGuides aaf_gather_guides(const AafInputs &in, const LightPlane &light, con
                 const Vec3 receiver_normal{in.normal[0](x, y), in.normal[1](x, y), in.normal[2](x, y)};
                 const float receiver_length = length(receiver_normal);
                 // Guarded: AAF Eq. 12's projection (no shear) wherever it does not collapse the receiver.
-                const bool projection_holds =
-                    params.light_distance == AafLightDistance::Guarded && receiver_length > 0 &&
-                    std::fabs(dot(receiver_normal, light.normal)) >= kDegenerateProjectionCos * receiver_length;
+                const bool projection_holds = params.light_distance == AafLightDistance::Guarded &&
+                                              receiver_length > 0 &&
+                                              std::fabs(dot(receiver_normal, light.normal)) >=
+                                                  kDegenerateProjectionCos * receiver_length;
                 if (distance > 0 && !projection_holds) {
                     const Vec3 l = to_light / distance;
                     // Nearly edge-on (|n . l| < 0.05, 87 degrees) the shear is held at 20.
@@ -146,8 +148,8 @@ GatherGuides aaf_gather_guides(const AafInputs &in, const LightPlane &light, con
                 continue;
             // beta is in world metres; the reach in pixels follows from the pixel's footprint.
             const float widest = std::max(beta.u_m, beta.v_m);
-            const float radius =
-                std::min(std::ceil(kCutoffSigmas * widest / in.pixel_size(x, y)), float(params.max_radius_px));
+            const float radius = std::min(std::ceil(kCutoffSigmas * widest / in.pixel_size(x, y)),
+                                          float(params.max_radius_px));
             // The beta output: the isotropic width of the same area, sqrt(beta_u beta_v).
             beta_m[i] = anisotropic ? std::sqrt(beta.u_m * beta.v_m) : beta.u_m;
             // A beta below ~1e-19 m (pixel.size near 0) squares to 0 or a

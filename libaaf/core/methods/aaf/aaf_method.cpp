@@ -54,10 +54,11 @@ std::vector<ParameterInfo> aaf_parameters() {
         ParameterInfo::choice("borders", "symmetric", {"symmetric", "clip"},
                               "symmetric: near the image edge the window shrinks on both sides and stays "
                               "centred; clip: cut on the edge side only (one-sided, biased on gradients)"),
-        ParameterInfo::choice("light_distance", "guarded", {"guarded", "plane", "ray"},
-                              "Tap distance in the light's plane: plane (AAF Eq. 12's orthogonal projection), "
-                              "ray (slid along the direction to the light first) or guarded (plane, and ray "
-                              "where a receiver is within 6 degrees of perpendicular to the light's plane)"),
+        ParameterInfo::choice(
+            "light_distance", "guarded", {"guarded", "plane", "ray"},
+            "Tap distance in the light's plane: plane (AAF Eq. 12's orthogonal projection), "
+            "ray (slid along the direction to the light first) or guarded (plane, and ray "
+            "where a receiver is within 6 degrees of perpendicular to the light's plane)"),
         ParameterInfo::choice("pixel_footprint", "projected", {"projected", "receiver"},
                               "Pixel size d of the pixel band-limit 1/d (AAF Eq. 6, 15): projected onto the "
                               "light's plane like the tap distances, or the receiver's own (the paper); the "

@@ -40,7 +40,8 @@ void plan_samples(const SamplingPlanInputs &in, const LightPlane &light, const A
             // The filter's footprint (aaf_filter.cpp): the plan samples for the filter that will run.
             if (aaf.projected_pixel && has_normal && std::isfinite(pixel_size))
                 pixel_size = projected_pixel_size_m(
-                    pixel_size, Vec3{in.normal[0](x, y), in.normal[1](x, y), in.normal[2](x, y)}, light.normal);
+                    pixel_size, Vec3{in.normal[0](x, y), in.normal[1](x, y), in.normal[2](x, y)},
+                    light.normal);
             float n = float(params.first_pass_spp);
             if (in.object_id(x, y) != 0 && d1 > 0 && pixel_size > 0 && std::isfinite(pixel_size) &&
                 has_occluder(occluders.d2_max_m[i])) {
