@@ -157,7 +157,7 @@ def print_tables(rows, scenes):
               f"| {float(so['mean_beta_px']):.2f} | {float(af['avg_spp']):.1f} | {float(af['rmse']):.5f} "
               f"| {float(af['filtered_share']):.3f} | {float(af['mean_beta_px']):.2f} |")
     print()
-    print("The paper's pipeline (plan with 1/sigma; filter as printed: fixed mu 2, 1/sigma, one-sided borders) "
+    print("The paper's pipeline (plan with 1/sigma; filter as printed: fixed mu 2, 1/sigma, one-sided borders, receiver pixel footprint) "
           "against the defaults:")
     print("| scene | paper: avg spp | RMSE unfiltered | RMSE AAF | reduction | defaults: avg spp | RMSE AAF "
           "| reduction |")
