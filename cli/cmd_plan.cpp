@@ -17,6 +17,8 @@ void add_plan_command(CLI::App &app) {
         std::string input, output;
         AafParams aaf;
         std::string light_bandlimit = to_string(AafParams{}.light_bandlimit);
+        std::string light_axes = to_string(AafParams{}.light_axes);
+        std::string pixel_footprint = AafParams{}.projected_pixel ? "projected" : "receiver";
         SamplingPlanParams plan;
         std::vector<std::string> maps;
         int threads = 0;
@@ -37,6 +39,13 @@ void add_plan_command(CLI::App &app) {
                     "Light band-limit rule (use the filter's --light-bandlimit)")
         ->check(CLI::IsMember({"spectrum", "equivalent_width", "sigma"}))
         ->capture_default_str();
+    cmd->add_option("--light-axes", options->light_axes, "Light axes rule (use the filter's --light-axes)")
+        ->check(CLI::IsMember({"per_axis", "shortest"}))
+        ->capture_default_str();
+    cmd->add_option("--pixel-footprint", options->pixel_footprint,
+                    "Pixel footprint (use the filter's --pixel-footprint; projected needs the normal)")
+        ->check(CLI::IsMember({"projected", "receiver"}))
+        ->capture_default_str();
     cmd->add_option("--first-pass", options->plan.first_pass_spp, "Samples the first pass took per pixel")
         ->check(finite_number(1, HUGE_VAL, /*low_allowed=*/true))
         ->capture_default_str();
@@ -53,6 +62,8 @@ void add_plan_command(CLI::App &app) {
             throw UsageError("--first-pass " + std::to_string(options->plan.first_pass_spp) +
                              " is above --max-spp " + std::to_string(options->plan.max_spp));
         options->aaf.light_bandlimit = light_bandlimit_from_string(options->light_bandlimit);
+        options->aaf.light_axes = light_axes_from_string(options->light_axes);
+        options->aaf.projected_pixel = options->pixel_footprint == "projected";
         const ChannelMap channels = channel_map_from(options->maps);
         require_exr_output(options->output, "aaf plan");
         io::check_not_same_file(options->input, options->output);

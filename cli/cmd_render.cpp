@@ -158,6 +158,8 @@ std::string render_parameters(const trace::RenderSettings &settings) {
          << " seed=" << settings.seed << " frame=" << settings.frame << " aovs=" << settings.aovs
          << " adaptive=" << settings.adaptive << " mu=" << settings.adaptive_mu
          << " max_spp=" << settings.max_spp << " light_bandlimit=" << to_string(settings.light_bandlimit)
+         << " light_axes=" << to_string(settings.light_axes)
+         << " pixel_footprint=" << (settings.projected_pixel ? "projected" : "receiver")
          << " light=" << (settings.light_profile ? to_string(*settings.light_profile) : "scene")
          << " falloff=" << settings.cosine_falloff << " skip_self_occluded=" << settings.skip_self_occluded
          << " maaf_first_pass_spp=" << settings.maaf_first_pass_spp;
@@ -171,6 +173,8 @@ void add_render_command(CLI::App &app) {
     struct Options {
         std::string scene, output, light, aovs = "aaf", frames, resume, progress = "auto";
         std::string light_bandlimit = to_string(trace::RenderSettings{}.light_bandlimit);
+        std::string light_axes = to_string(trace::RenderSettings{}.light_axes);
+        std::string pixel_footprint = trace::RenderSettings{}.projected_pixel ? "projected" : "receiver";
         trace::RenderSettings settings;
         double checkpoint_s = 60;
         bool list = false, skip_existing = false;
@@ -216,6 +220,14 @@ void add_render_command(CLI::App &app) {
                     "Light band-limit rule of the adaptive plan (the filter's --light-bandlimit)")
         ->check(CLI::IsMember({"spectrum", "equivalent_width", "sigma"}))
         ->capture_default_str();
+    cmd->add_option("--light-axes", options->light_axes,
+                    "Light axes rule of the adaptive plan (the filter's --light-axes)")
+        ->check(CLI::IsMember({"per_axis", "shortest"}))
+        ->capture_default_str();
+    cmd->add_option("--pixel-footprint", options->pixel_footprint,
+                    "Pixel footprint of the adaptive plan (the filter's --pixel-footprint)")
+        ->check(CLI::IsMember({"projected", "receiver"}))
+        ->capture_default_str();
     cmd->add_option("--light", options->light, "Override the lights' profile: gaussian or uniform")
         ->check(CLI::IsMember({"gaussian", "uniform"}));
     cmd->add_flag("--falloff", options->settings.cosine_falloff,
@@ -248,6 +260,8 @@ void add_render_command(CLI::App &app) {
         trace::RenderSettings &settings = options->settings;
         if (!options->light.empty()) settings.light_profile = light_profile_from_string(options->light);
         settings.light_bandlimit = light_bandlimit_from_string(options->light_bandlimit);
+        settings.light_axes = light_axes_from_string(options->light_axes);
+        settings.projected_pixel = options->pixel_footprint == "projected";
         try {
             settings.aovs = trace::parse_aov_groups(options->aovs);
         } catch (const Error &e) {

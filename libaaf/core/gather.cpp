@@ -62,10 +62,12 @@ void gather_pixel(const GatherGuides &g, float cos_threshold, const Planes<K> &p
     const float u = g.coord_u_m[c], v = g.coord_v_m[c], id = g.object_id[c];
     const float nx = g.normal_x[c], ny = g.normal_y[c], nz = g.normal_z[c];
     const float inv_two_sigma_sq = g.inv_two_sigma_sq[c];
+    const float guide_inv_v = g.anisotropic() ? g.inv_two_sigma_sq_v[c] : inv_two_sigma_sq;
     const bool anisotropic =
-        Modulated && (modulation.inv_two_sigma_sq_u >= 0 || modulation.inv_two_sigma_sq_v >= 0);
+        g.anisotropic() ||
+        (Modulated && (modulation.inv_two_sigma_sq_u >= 0 || modulation.inv_two_sigma_sq_v >= 0));
     const float inv_u = modulation.inv_two_sigma_sq_u >= 0 ? modulation.inv_two_sigma_sq_u : inv_two_sigma_sq;
-    const float inv_v = modulation.inv_two_sigma_sq_v >= 0 ? modulation.inv_two_sigma_sq_v : inv_two_sigma_sq;
+    const float inv_v = modulation.inv_two_sigma_sq_v >= 0 ? modulation.inv_two_sigma_sq_v : guide_inv_v;
     // GatherGuides::shear_u/v: the tap's offset along the third axis slides it
     // along the centre's own direction onto the centre's plane.
     const float n = Sheared ? g.coord_n_m[c] : 0.0f;
@@ -251,6 +253,8 @@ void check_guides(const GatherGuides &g) {
     for (const std::vector<float> *plane : {&g.coord_u_m, &g.coord_v_m, &g.normal_x, &g.normal_y, &g.normal_z,
                                             &g.object_id, &g.inv_two_sigma_sq})
         if (plane->size() != count) throw Error("gather guides: a plane does not match the guides' size");
+    if (!g.inv_two_sigma_sq_v.empty() && g.inv_two_sigma_sq_v.size() != count)
+        throw Error("gather guides: the v width plane must match the guides' size or be empty");
     for (const std::vector<float> *plane : {&g.coord_n_m, &g.shear_u, &g.shear_v})
         if (plane->size() != (g.sheared() ? count : 0))
             throw Error("gather guides: the shear planes must all match the guides' size or all be empty");
@@ -312,6 +316,7 @@ GatherGuides GatherGuides::transposed() const {
     swap_axes(normal_z, t.normal_z);
     swap_axes(object_id, t.object_id);
     swap_axes(inv_two_sigma_sq, t.inv_two_sigma_sq);
+    swap_axes(inv_two_sigma_sq_v, t.inv_two_sigma_sq_v);
     swap_axes(coord_n_m, t.coord_n_m);
     swap_axes(shear_u, t.shear_u);
     swap_axes(shear_v, t.shear_v);

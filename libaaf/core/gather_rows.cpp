@@ -61,7 +61,17 @@ struct TapPlanes {
 /// What a centre pixel compares its taps with.
 struct Centre {
     V u, v, n, shear_u, shear_v, normal_x, normal_y, normal_z, id, inv_two_sigma_sq, cos_threshold;
+    V inv_two_sigma_sq_v;  ///< along v, when the guides are anisotropic
+    bool anisotropic = false;
 };
+
+/// The Gaussian's exponent: -(du^2 + dv^2) / (2 sigma^2) (AAF Eq. 11), or
+/// with the guides' per-axis widths -du^2 a_u - dv^2 a_v.
+HWY_INLINE V gaussian_exponent(V du, V dv, V inv_two_sigma_sq, V inv_two_sigma_sq_v, bool anisotropic) {
+    if (anisotropic)
+        return hn::Neg(hn::Add(hn::Mul(hn::Mul(du, du), inv_two_sigma_sq), hn::Mul(hn::Mul(dv, dv), inv_two_sigma_sq_v)));
+    return hn::Mul(hn::Neg(hn::Add(hn::Mul(du, du), hn::Mul(dv, dv))), inv_two_sigma_sq);
+}
 
 /// Adds kLanes taps from index `t` into the partial sums of block `b`;
 /// with `Tail`, only the lanes in `active`.
@@ -80,7 +90,7 @@ HWY_INLINE void accumulate(const TapPlanes &g, const float *const *source, std::
         dv = hn::Sub(dv, hn::Mul(c.shear_v, dn));
     }
     // AAF Eq. 11; the scalar loop's accepted (0 or 1) times the weight.
-    const V exponent = hn::Mul(hn::Neg(hn::Add(hn::Mul(du, du), hn::Mul(dv, dv))), c.inv_two_sigma_sq);
+    const V exponent = gaussian_exponent(du, dv, c.inv_two_sigma_sq, c.inv_two_sigma_sq_v, c.anisotropic);
     const V weight = hn::IfThenElseZero(accepted, fast_exp_nonpositive(exponent));
     if (Tail) {
         weight_sum[b] = hn::IfThenElse(active, hn::Add(weight_sum[b], weight), weight_sum[b]);
@@ -112,6 +122,8 @@ void gather_pixel(const GatherSweep &s, int x, int y, int reach_x, int reach_y) 
     centre.normal_z = hn::Set(d, normal_z);
     centre.id = hn::Set(d, id);
     centre.inv_two_sigma_sq = hn::Set(d, g.inv_two_sigma_sq[c]);
+    centre.anisotropic = g.anisotropic();
+    centre.inv_two_sigma_sq_v = hn::Set(d, centre.anisotropic ? g.inv_two_sigma_sq_v[c] : 0.0f);
     centre.cos_threshold = hn::Set(d, s.cos_threshold);
     const TapPlanes planes{g.coord_u_m.data(), g.coord_v_m.data(), Sheared ? g.coord_n_m.data() : nullptr,
                            g.normal_x.data(),  g.normal_y.data(),  g.normal_z.data(),
@@ -231,6 +243,9 @@ void gather_row_along_x(const GatherSweep &s, int y) {
             const V nx = load_guarded(normal_x, c0, size), ny = load_guarded(normal_y, c0, size),
                     nz = load_guarded(normal_z, c0, size), centre_id = load_guarded(id, c0, size);
             const V inv_two_sigma_sq = load_guarded(g.inv_two_sigma_sq.data(), c0, size);
+            const bool anisotropic = g.anisotropic();
+            const V inv_two_sigma_sq_v =
+                anisotropic ? load_guarded(g.inv_two_sigma_sq_v.data(), c0, size) : hn::Zero(d);
             const auto reach_v = hn::Load(di, reach);
             const auto x_v = hn::Iota(di, x0);
             for (int o = -widest; o <= widest; ++o) {
@@ -253,7 +268,7 @@ void gather_row_along_x(const GatherSweep &s, int y) {
                     dv = hn::Sub(dv, hn::Mul(shear_v, dn));
                 }
                 // AAF Eq. 11
-                const V exponent = hn::Mul(hn::Neg(hn::Add(hn::Mul(du, du), hn::Mul(dv, dv))), inv_two_sigma_sq);
+                const V exponent = gaussian_exponent(du, dv, inv_two_sigma_sq, inv_two_sigma_sq_v, anisotropic);
                 const V weight = hn::IfThenElseZero(accepted, fast_exp_nonpositive(exponent));
                 weight_sum = hn::IfThenElse(active, hn::Add(weight_sum, weight), weight_sum);
                 for (int k = 0; k < K; ++k)

@@ -84,20 +84,24 @@ LightBandlimit light_bandlimit_from_string(const std::string &name) {
                 " (expected sigma, spectrum or equivalent_width)");
 }
 
-float light_bandlimit_sigma_m(const LightPlane &light, LightBandlimit rule) {
+LightBandlimitAxes light_bandlimit_axes_m(const LightPlane &light, LightBandlimit rule) {
     light.validate();
-    if (rule == LightBandlimit::Sigma) return light.sigma_m;
+    if (rule == LightBandlimit::Sigma) return {light.sigma_m, light.sigma_m};
     const double sigma = light.profile == LightProfile::Gaussian ? double(light.sigma_m) : 0.0;
-    double omega = 0;
-    for (double half_extent : {0.5 * light.width_m, 0.5 * light.height_m}) {
+    auto axis_sigma = [&](double half_extent) {
         const AxisProfile axis{half_extent, sigma};
         // Beyond 8 sigma the truncation is invisible in float: the paper's Gaussian.
         const double axis_omega = sigma > 0 && half_extent >= 8 * sigma ? 1 / sigma
                                   : rule == LightBandlimit::Spectrum    ? spectrum_bandlimit(axis)
                                                                         : equivalent_width_bandlimit(axis);
-        omega = std::max(omega, axis_omega);
-    }
-    return float(1 / omega);
+        return float(1 / axis_omega);
+    };
+    return {axis_sigma(0.5 * light.width_m), axis_sigma(0.5 * light.height_m)};
+}
+
+float light_bandlimit_sigma_m(const LightPlane &light, LightBandlimit rule) {
+    const LightBandlimitAxes axes = light_bandlimit_axes_m(light, rule);
+    return std::min(axes.u_m, axes.v_m);
 }
 
 }  // namespace aaf

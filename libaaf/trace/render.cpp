@@ -227,6 +227,8 @@ AovSet plan_second_pass(const RenderState &state, const Accumulators &accumulato
     AafParams aaf;
     aaf.mu = settings.adaptive_mu;
     aaf.light_bandlimit = settings.light_bandlimit;
+    aaf.light_axes = settings.light_axes;
+    aaf.projected_pixel = settings.projected_pixel;
     SamplingPlanParams params;
     params.first_pass_spp = settings.spp;
     params.max_spp = settings.max_spp;

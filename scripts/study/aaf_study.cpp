@@ -58,6 +58,7 @@ AafParams paper_params(float mu) {
     p.fixed_mu = true;
     p.light_bandlimit = LightBandlimit::Sigma;
     p.light_distance = AafLightDistance::OrthogonalProjection;
+    p.projected_pixel = false;
     p.symmetric_borders = false;
     return p;
 }
@@ -179,8 +180,12 @@ int main(int argc, char **argv) {
                 {"AF_fixed_mu_default", [](AafParams &p) { p.fixed_mu = true; }},
                 {"AF_bandlimit_sigma", [](AafParams &p) { p.light_bandlimit = LightBandlimit::Sigma; }},
                 {"AF_bandlimit_spectrum", [](AafParams &p) { p.light_bandlimit = LightBandlimit::Spectrum; }},
+                {"AF_light_axes_shortest", [](AafParams &p) { p.light_axes = AafLightAxes::Shortest; }},
                 {"AF_distance_ray",
                  [](AafParams &p) { p.light_distance = AafLightDistance::AlongLightDirection; }},
+                {"AF_distance_plane",
+                 [](AafParams &p) { p.light_distance = AafLightDistance::OrthogonalProjection; }},
+                {"AF_pixel_receiver", [](AafParams &p) { p.projected_pixel = false; }},
                 {"AF_borders_clip", [](AafParams &p) { p.symmetric_borders = false; }},
             };
             for (const auto &ablation : ablations) {
@@ -197,8 +202,10 @@ int main(int argc, char **argv) {
             study.add("AS_skip_self_occluded", "AF", default_mu, skipped, AafParams{});
             // The paper's pipeline: its plan (Omega_L = 1/sigma) and its filter settings.
             settings.light_bandlimit = LightBandlimit::Sigma;
+            settings.projected_pixel = false;
             const AovSet paper = trace::render_scene(scene, settings);
             settings.light_bandlimit = trace::RenderSettings{}.light_bandlimit;
+            settings.projected_pixel = trace::RenderSettings{}.projected_pixel;
             study.add_unfiltered("AS_paper", default_mu, paper);
             study.add("AS_paper", "AF_paper", default_mu, paper, paper_params(float(default_mu)));
             study.add("AS_paper", "AF", default_mu, paper, AafParams{});

@@ -1,9 +1,15 @@
 #include <catch2/catch.hpp>
+#include <cmath>
 
 #include "aaf/core/aaf_bandlimits.h"
 
 using aaf::aaf_bandlimits;
+using aaf::aaf_bandlimits_axes;
+using aaf::AafAxisBandlimits;
+using aaf::AafBandlimits;
 using aaf::AafParams;
+using aaf::LightBandlimitAxes;
+using aaf::mu_for_samples;
 
 TEST_CASE("AAF slopes, bandlimits and beta match hand-computed values", "[aaf][bandlimits]") {
     // d1 = 2 m, d2min = 0.5 m, d2max = 1 m, d = 1 cm, sigma = 0.5 m, paper defaults.
@@ -66,4 +72,37 @@ TEST_CASE("AAF slopes are never negative when an occluder is measured beyond the
     CHECK(b.s1 == 0.0f);
     CHECK(b.s2 == 0.0f);
     CHECK(b.beta_m > 0.0f);
+}
+
+TEST_CASE(
+    "AAF per light axis: equal sigmas give the isotropic analysis, unequal ones a beta and rate per axis",
+    "[aaf][bandlimits]") {
+    AafParams params;
+    const float d1 = 2.0f, d2_min = 1.0f, d2_max = 1.5f, pixel = 0.01f;
+    const AafBandlimits iso = aaf_bandlimits(d1, d2_min, d2_max, pixel, 0.3f, params);
+    const AafAxisBandlimits same = aaf_bandlimits_axes(d1, d2_min, d2_max, pixel, {0.3f, 0.3f}, params);
+    CHECK(same.u.beta_m == iso.beta_m);
+    CHECK(same.v.beta_m == iso.beta_m);
+    CHECK(same.samples_per_pixel == iso.samples_per_pixel);
+
+    const AafBandlimits long_axis = aaf_bandlimits(d1, d2_min, d2_max, pixel, 0.6f, params);
+    const AafAxisBandlimits both = aaf_bandlimits_axes(d1, d2_min, d2_max, pixel, {0.6f, 0.3f}, params);
+    // AAF Eq. 8 and 13 per axis: the longer axis (larger sigma, lower band-limit) blurs more.
+    CHECK(both.u.beta_m == long_axis.beta_m);
+    CHECK(both.v.beta_m == iso.beta_m);
+    CHECK(both.u.beta_m > both.v.beta_m);
+    // AAF Eq. 15 per axis: the rate is the product of the axes' factors, the
+    // geometric mean of the two isotropic rates.
+    CHECK(
+        both.samples_per_pixel ==
+        Approx(std::sqrt(double(iso.samples_per_pixel) * double(long_axis.samples_per_pixel))).epsilon(1e-5));
+
+    // mu from spp inverts the per-axis rate.
+    const float samples = 3 * both.samples_per_pixel;
+    const float mu =
+        mu_for_samples(samples, d1, d2_min, d2_max, pixel, LightBandlimitAxes{0.6f, 0.3f}, params);
+    AafParams at_mu = params;
+    at_mu.mu = mu;
+    CHECK(aaf_bandlimits_axes(d1, d2_min, d2_max, pixel, {0.6f, 0.3f}, at_mu).samples_per_pixel ==
+          Approx(samples).epsilon(1e-3));
 }

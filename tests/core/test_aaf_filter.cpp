@@ -273,3 +273,42 @@ TEST_CASE("AAF rejects mismatched inputs and bad parameters", "[aaf][filter]") {
     CHECK_THROWS_WITH(aaf_filter(in, scene.light, AafParams{}, {plane_view(out.data(), 8, 8), {}}),
                       Catch::Contains("d1"));
 }
+
+TEST_CASE("Guarded distances: AAF Eq. 12 where the projection holds, along the ray where it collapses a wall",
+          "[aaf][filter]") {
+    // The pair of the test above: centre at (1, 0, 0), tap 0.5 m above it, light facing down.
+    FlatScene pair(2, 1, 1.0f);
+    pair.px = {1.0f, 1.0f};
+    pair.py = {0.0f, 0.5f};
+    pair.pz = {0.0f, 0.0f};
+    AafParams params;  // guarded is the default
+    auto tap_du = [&](const GatherGuides &g) {
+        return g.coord_u_m[1] - g.coord_u_m[0] - g.shear_u[0] * (g.coord_n_m[1] - g.coord_n_m[0]);
+    };
+    // A floor (normal parallel to the light's): AAF Eq. 12, the vertical offset dropped.
+    GatherGuides floor = aaf_gather_guides(pair.inputs(), pair.light, params);
+    REQUIRE(floor.sheared());
+    CHECK(tap_du(floor) == 0.0f);
+    // A wall (normal +x, perpendicular to the light's): Eq. 12 would put both
+    // points at one spot; along the ray the tap is 0.25 m away, as above.
+    pair.nx = {1.0f, 1.0f};
+    pair.ny = {0.0f, 0.0f};
+    CHECK(std::fabs(tap_du(aaf_gather_guides(pair.inputs(), pair.light, params))) == Approx(0.25f));
+    params.light_distance = AafLightDistance::OrthogonalProjection;
+    CHECK(!aaf_gather_guides(pair.inputs(), pair.light, params).sheared());
+}
+
+TEST_CASE("The pixel footprint in the light plane's units shrinks by the planes' cosine, down to 0.1",
+          "[aaf][bandlimits]") {
+    const Vec3 down{0, -1, 0};
+    CHECK(projected_pixel_size_m(0.01f, {0, 1, 0}, down) == Approx(0.01f));
+    CHECK(projected_pixel_size_m(0.01f, {0, 2, 0}, down) == Approx(0.01f));  // any length
+    CHECK(projected_pixel_size_m(0.01f, {std::sqrt(3.0f) / 2, 0.5f, 0}, down) == Approx(0.005f));
+    CHECK(projected_pixel_size_m(0.01f, {1, 0, 0}, down) == Approx(0.01f * kDegenerateProjectionCos));
+    CHECK(projected_pixel_size_m(0.01f, {0, 0, 0}, down) == 0.01f);
+    // A smaller footprint raises the pixel band-limit (AAF Eq. 6): beta where it clips shrinks.
+    AafParams params;
+    const float beta_receiver = aaf_bandlimits(2.0f, 1.999f, 1.999f, 0.01f, 0.3f, params).beta_m;
+    const float beta_projected = aaf_bandlimits(2.0f, 1.999f, 1.999f, 0.005f, 0.3f, params).beta_m;
+    CHECK(beta_projected == Approx(beta_receiver / 2).epsilon(1e-3));
+}

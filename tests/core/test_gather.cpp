@@ -157,3 +157,48 @@ TEST_CASE("Gather: mismatched sizes and counts are errors", "[gather]") {
     bad.normal_threshold_deg = 200;
     CHECK_THROWS_AS(gather(g, bad, {plane_view(a.data(), 8, 8)}, {plane_view(a.data(), 8, 8)}), Error);
 }
+
+TEST_CASE("Gather: with a v width plane a tap weighs exp(-du^2 a_u - dv^2 a_v)", "[gather]") {
+    // A unit impulse at the centre of a flat plane: the 2D gather at a
+    // neighbour (ox, oy) is its weight towards the impulse over its weight sum.
+    const int size = 21, centre = 10;
+    const float spacing = 0.01f, sigma_u = 0.03f, sigma_v = 0.012f;
+    GatherGuides g = flat_guides(size, size, spacing, sigma_u, 9);
+    g.inv_two_sigma_sq_v.assign(std::size_t(size) * size, 1.0f / (2.0f * sigma_v * sigma_v));
+    std::vector<float> impulse(std::size_t(size) * size, 0.0f), out(impulse.size());
+    impulse[g.index(centre, centre)] = 1.0f;
+    GatherSettings settings;
+    settings.mode = GatherMode::Full2D;
+    gather(g, settings, {plane_view(impulse.data(), size, size)}, {plane_view(out.data(), size, size)});
+
+    auto weight = [&](int ox, int oy) {
+        const double du = ox * spacing, dv = oy * spacing;
+        return std::exp(-du * du / (2.0 * sigma_u * sigma_u) - dv * dv / (2.0 * sigma_v * sigma_v));
+    };
+    auto expected = [&](int x, int y) {  // the window of (x, y), cut by nothing at these offsets
+        double sum = 0;
+        for (int ty = y - 9; ty <= y + 9; ++ty)
+            for (int tx = x - 9; tx <= x + 9; ++tx)
+                if (tx >= 0 && ty >= 0 && tx < size && ty < size) sum += weight(tx - x, ty - y);
+        return weight(centre - x, centre - y) / sum;
+    };
+    for (auto [ox, oy] : {std::pair{2, 0}, std::pair{0, 2}, std::pair{1, 1}, std::pair{3, -1}})
+        CHECK(out[g.index(centre + ox, centre + oy)] ==
+              Approx(expected(centre + ox, centre + oy)).epsilon(2e-3));
+    // Along u the kernel is wider: at 2 px the weights are 0.80 along u and 0.25 along v.
+    CHECK(out[g.index(centre + 2, centre)] > 2.5f * out[g.index(centre, centre + 2)]);
+
+    // The separable passes carry the same widths.
+    std::vector<float> separable(impulse.size());
+    settings.mode = GatherMode::Separable;
+    gather(g, settings, {plane_view(impulse.data(), size, size)}, {plane_view(separable.data(), size, size)});
+    for (auto [ox, oy] : {std::pair{2, 0}, std::pair{0, 2}, std::pair{1, 1}})
+        CHECK(separable[g.index(centre + ox, centre + oy)] ==
+              Approx(out[g.index(centre + ox, centre + oy)]).epsilon(2e-3));
+
+    // A v plane of another size is refused.
+    g.inv_two_sigma_sq_v.resize(5);
+    CHECK_THROWS_AS(
+        gather(g, settings, {plane_view(impulse.data(), size, size)}, {plane_view(out.data(), size, size)}),
+        Error);
+}

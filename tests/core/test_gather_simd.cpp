@@ -21,7 +21,7 @@ namespace {
 /// Guides with everything the kernels branch on: radii 0 to 7 (some reaching
 /// past the edges), two objects, a NaN id, zero and tilted normals, widths
 /// that vary per pixel; optionally the shear planes.
-GatherGuides varied_guides(int width, int height, bool sheared) {
+GatherGuides varied_guides(int width, int height, bool sheared, bool anisotropic = false) {
     std::mt19937 rng(7);
     std::uniform_real_distribution<float> unit(0.0f, 1.0f);
     GatherGuides g;
@@ -40,6 +40,10 @@ GatherGuides varied_guides(int width, int height, bool sheared) {
         }
     g.object_id[g.index(3, 2)] = std::nanf("");
     g.normal_x[g.index(5, 4)] = g.normal_z[g.index(5, 4)] = 0.0f;
+    if (anisotropic) {  // a second width along v (AAF: one band-limit per light axis)
+        g.inv_two_sigma_sq_v.resize(g.coord_u_m.size());
+        for (float &w : g.inv_two_sigma_sq_v) w = 1.0f / (2.0f * std::pow(0.005f + 0.03f * unit(rng), 2.0f));
+    }
     if (sheared) {
         g.coord_n_m.resize(g.coord_u_m.size());
         g.shear_u.resize(g.coord_u_m.size());
@@ -105,11 +109,12 @@ double reference_along_x(const GatherGuides &g, const std::vector<float> &source
 TEST_CASE("Gather SIMD: every instruction set of the build gives the same bits", "[gather][simd]") {
     const std::vector<std::int64_t> targets = hwy::SupportedAndGeneratedTargets();
     REQUIRE(!targets.empty());
+    for (const bool anisotropic : {false, true})
     for (const bool sheared : {false, true})
         for (const GatherMode mode : {GatherMode::Separable, GatherMode::Full2D})
             for (const int channels : {1, 3, 5}) {
                 // 29 columns: a partial vector at each row's end for every lane count.
-                const GatherGuides g = varied_guides(29, 13, sheared);
+                const GatherGuides g = varied_guides(29, 13, sheared, anisotropic);
                 std::vector<float> first;
                 std::set<std::string> names;
                 for (const std::int64_t target : targets) {
@@ -117,7 +122,8 @@ TEST_CASE("Gather SIMD: every instruction set of the build gives the same bits",
                     names.insert(detail::gather_row_target());
                     const std::vector<float> result = run(g, mode, channels);
                     if (first.empty()) first = result;
-                    INFO("target " << hwy::TargetName(target) << ", sheared " << sheared << ", channels "
+                    INFO("target " << hwy::TargetName(target) << ", anisotropic " << anisotropic << ", sheared "
+                                   << sheared << ", channels "
                                    << channels << ", 2D " << (mode == GatherMode::Full2D));
                     CHECK(std::memcmp(result.data(), first.data(), first.size() * sizeof(float)) == 0);
                 }

@@ -67,3 +67,22 @@ TEST_CASE("A rectangle's band-limit is its narrower axis's", "[aaf][light]") {
     CHECK(light_bandlimit_from_string(to_string(LightBandlimit::EquivalentWidth)) ==
           LightBandlimit::EquivalentWidth);
 }
+
+TEST_CASE("Each axis of a rectangle has its own band-limit, from its own half-extent", "[aaf][light]") {
+    // 2 m x 0.5 m at sigma 0.25: the long axis is cut at 4 sigma, the short at 1 sigma.
+    const LightPlane wide = rectangle(2.0f, 0.5f, 0.25f, LightProfile::Gaussian);
+    const LightBandlimitAxes axes = light_bandlimit_axes_m(wide, LightBandlimit::EquivalentWidth);
+    CHECK(axes.u_m == Approx(0.25 * std::erf(4 / std::sqrt(2.0))));
+    CHECK(axes.v_m == Approx(0.25 * std::erf(1 / std::sqrt(2.0))));
+    CHECK(light_bandlimit_sigma_m(wide, LightBandlimit::EquivalentWidth) == std::min(axes.u_m, axes.v_m));
+    // Turning the rectangle swaps the axes.
+    const LightBandlimitAxes turned = light_bandlimit_axes_m(
+        rectangle(0.5f, 2.0f, 0.25f, LightProfile::Gaussian), LightBandlimit::Spectrum);
+    const LightBandlimitAxes straight = light_bandlimit_axes_m(wide, LightBandlimit::Spectrum);
+    CHECK(turned.u_m == straight.v_m);
+    CHECK(turned.v_m == straight.u_m);
+    // The paper's reading has one sigma for both.
+    const LightBandlimitAxes paper = light_bandlimit_axes_m(wide, LightBandlimit::Sigma);
+    CHECK(paper.u_m == 0.25f);
+    CHECK(paper.v_m == 0.25f);
+}

@@ -31,9 +31,9 @@ TEST_CASE("Sampling plan follows AAF Eq. 21 on a synthetic first pass", "[aaf][p
         d2_max[x] = 1.0f;
     }
     id[11] = 0.0f;
-    SamplingPlanInputs in{plane_view(d1.data(), w, h), plane_view(d2_min.data(), w, h),
+    SamplingPlanInputs in{plane_view(d1.data(), w, h),     plane_view(d2_min.data(), w, h),
                           plane_view(d2_max.data(), w, h), plane_view(id.data(), w, h),
-                          plane_view(size.data(), w, h)};
+                          plane_view(size.data(), w, h),   {}};
     SamplingPlanParams params;
     plan_samples(in, untruncated_light(), AafParams{}, params, plane_view(spp.data(), w, h));
     // Hand value (see test_aaf_bandlimits): n = 4 * 49 * 0.54^2 = 57.15 -> 58 samples.
@@ -63,7 +63,7 @@ TEST_CASE("Sampling rate decreases with mu and stays finite near contact", "[aaf
 TEST_CASE("Sampling plan rejects bad parameters", "[aaf][plan]") {
     std::vector<float> a(4, 1.0f), out(4);
     SamplingPlanInputs in{plane_view(a.data(), 2, 2), plane_view(a.data(), 2, 2), plane_view(a.data(), 2, 2),
-                          plane_view(a.data(), 2, 2), plane_view(a.data(), 2, 2)};
+                          plane_view(a.data(), 2, 2), plane_view(a.data(), 2, 2), {}};
     SamplingPlanParams bad;
     bad.max_spp = 4;
     CHECK_THROWS_AS(plan_samples(in, untruncated_light(), AafParams{}, bad, plane_view(out.data(), 2, 2)),

@@ -167,9 +167,14 @@ TEST_CASE("An adaptive render gives the golden bytes", "[trace][golden]") {
     settings.spp = 9;
     settings.adaptive = true;
     settings.max_spp = 40;
-    // Changed on purpose when the second pass began tracing visibility only
-    // (occluder distances from the first pass, AAF Sec. 6): only shadow.d2min
-    // and shadow.d2max differ from the previous golden 0x9c334cc080e83b97.
+    // Changed on purpose twice: when the second pass began tracing visibility
+    // only (occluder distances from the first pass, AAF Sec. 6: only
+    // shadow.d2min/d2max differed), then when the plan began measuring the
+    // pixel footprint in the light plane's units (AafParams::projected_pixel:
+    // the boxes' sides, perpendicular to the light, plan more samples).
+    check_golden(trace::render_scene("grids", settings), 0x3cc564471d824c29);
+    // The receiver's footprint (the paper's reading) still gives the previous bytes.
+    settings.projected_pixel = false;
     check_golden(trace::render_scene("grids", settings), 0x2abb606c2b16197a);
 }
 

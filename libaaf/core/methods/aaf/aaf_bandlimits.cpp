@@ -6,8 +6,26 @@
 
 #include "aaf/core/aaf_params.h"
 #include "aaf/core/error.h"
+#include "aaf/core/quoted.h"
 
 namespace aaf {
+
+const char *to_string(AafLightAxes axes) {
+    return axes == AafLightAxes::Shortest ? "shortest" : "per_axis";
+}
+
+AafLightAxes light_axes_from_string(const std::string &name) {
+    if (name == "per_axis") return AafLightAxes::PerAxis;
+    if (name == "shortest") return AafLightAxes::Shortest;
+    throw Error("unknown light axes rule " + quoted(name) + " (expected per_axis or shortest)");
+}
+
+float projected_pixel_size_m(float pixel_size_m, Vec3 receiver_normal, Vec3 light_normal) {
+    const float length_n = length(receiver_normal);
+    if (!(length_n > 0) || !std::isfinite(length_n)) return pixel_size_m;
+    const float cos_planes = std::fabs(dot(receiver_normal, light_normal)) / length_n;
+    return pixel_size_m * std::clamp(cos_planes, kDegenerateProjectionCos, 1.0f);
+}
 
 void AafParams::validate() const {
     if (!(mu > 0)) throw Error("AAF parameter mu must be positive");
@@ -47,13 +65,40 @@ AafBandlimits aaf_bandlimits(float d1_m, float d2_min_m, float d2_max_m, float p
     return b;
 }
 
+AafAxisBandlimits aaf_bandlimits_axes(float d1_m, float d2_min_m, float d2_max_m, float pixel_size_m,
+                                      LightBandlimitAxes sigma, const AafParams &params) {
+    AafAxisBandlimits b;
+    b.u = aaf_bandlimits(d1_m, d2_min_m, d2_max_m, pixel_size_m, sigma.u_m, params);
+    if (sigma.v_m == sigma.u_m) {
+        b.v = b.u;
+        b.samples_per_pixel = b.u.samples_per_pixel;
+        return b;
+    }
+    b.v = aaf_bandlimits(d1_m, d2_min_m, d2_max_m, pixel_size_m, sigma.v_m, params);
+    // AAF Eq. 15 per axis: each aaf_bandlimits() rate is its axis's factor squared.
+    b.samples_per_pixel = std::sqrt(b.u.samples_per_pixel) * std::sqrt(b.v.samples_per_pixel);
+    return b;
+}
+
+LightBandlimitAxes aaf_light_sigmas_m(const LightPlane &light, const AafParams &params) {
+    LightBandlimitAxes sigma = light_bandlimit_axes_m(light, params.light_bandlimit);
+    if (params.light_axes == AafLightAxes::Shortest) sigma.u_m = sigma.v_m = std::min(sigma.u_m, sigma.v_m);
+    return sigma;
+}
+
 float mu_for_samples(float samples, float d1_m, float d2_min_m, float d2_max_m, float pixel_size_m,
                      float sigma_m, const AafParams &params) {
+    return mu_for_samples(samples, d1_m, d2_min_m, d2_max_m, pixel_size_m,
+                          LightBandlimitAxes{sigma_m, sigma_m}, params);
+}
+
+float mu_for_samples(float samples, float d1_m, float d2_min_m, float d2_max_m, float pixel_size_m,
+                     LightBandlimitAxes sigma, const AafParams &params) {
     constexpr float kMaxMu = 1e4f;
     AafParams trial = params;
     auto rate = [&](float mu) {
         trial.mu = mu;
-        return aaf_bandlimits(d1_m, d2_min_m, d2_max_m, pixel_size_m, sigma_m, trial).samples_per_pixel;
+        return aaf_bandlimits_axes(d1_m, d2_min_m, d2_max_m, pixel_size_m, sigma, trial).samples_per_pixel;
     };
     if (!(rate(params.mu) < samples)) return params.mu;
     if (rate(kMaxMu) <= samples) return kMaxMu;

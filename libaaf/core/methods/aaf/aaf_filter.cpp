@@ -41,22 +41,32 @@ void check_inputs(const AafInputs &in, const LightPlane &light, const AafParams 
     if (params.mu_from_spp || (!params.fixed_mu && in.spp.valid())) check_size(in.spp, width, height, "spp");
 }
 
-/// beta of AAF Eq. 13 at pixel (x, y) in world metres, or 0 where AAF does
-/// not filter (background, no occluder nearby, unusable distances).
-float pixel_beta_m(const AafInputs &in, float bandlimit_sigma_m, const AafParams &params,
-                   const FilledOccluders &occluders, int x, int y) {
+/// beta of AAF Eq. 13 along the light's two axes at pixel (x, y), world
+/// metres, or 0 where AAF does not filter (background, no occluder nearby,
+/// unusable distances).
+struct PixelBeta {
+    float u_m = 0, v_m = 0;
+};
+PixelBeta pixel_beta_m(const AafInputs &in, const LightPlane &light, LightBandlimitAxes bandlimit_sigma_m,
+                       const AafParams &params, const FilledOccluders &occluders, int x, int y) {
     const std::size_t i = std::size_t(y) * std::size_t(in.visibility.width) + std::size_t(x);
-    const float d1 = in.d1(x, y), pixel_size = in.pixel_size(x, y);
+    const float d1 = in.d1(x, y);
+    float pixel_size = in.pixel_size(x, y);
+    if (params.projected_pixel && std::isfinite(pixel_size))
+        pixel_size = projected_pixel_size_m(
+            pixel_size, Vec3{in.normal[0](x, y), in.normal[1](x, y), in.normal[2](x, y)}, light.normal);
     const float d2_min = occluders.d2_min_m[i], d2_max = occluders.d2_max_m[i];
     if (in.object_id(x, y) == 0 || !(d1 > 0) || !(pixel_size > 0) || !std::isfinite(pixel_size) ||
         !has_occluder(d2_max))
-        return 0.0f;
-    if (params.fixed_beta_m > 0) return params.fixed_beta_m;
+        return {};
+    if (params.fixed_beta_m > 0) return {params.fixed_beta_m, params.fixed_beta_m};
     AafParams pixel_params = params;
     if (!params.fixed_mu && in.spp.valid())  // AAF Sec. 5.2: the filter follows the samples actually taken
         pixel_params.mu =
             mu_for_samples(in.spp(x, y), d1, d2_min, d2_max, pixel_size, bandlimit_sigma_m, params);
-    return aaf_bandlimits(d1, d2_min, d2_max, pixel_size, bandlimit_sigma_m, pixel_params).beta_m;
+    const AafAxisBandlimits b =
+        aaf_bandlimits_axes(d1, d2_min, d2_max, pixel_size, bandlimit_sigma_m, pixel_params);
+    return {b.u.beta_m, b.v.beta_m};
 }
 
 }  // namespace
@@ -73,8 +83,12 @@ GatherGuides aaf_gather_guides(const AafInputs &in, const LightPlane &light, con
     // AAF Sec. 6: unoccluded pixels take the occluder distances of their neighbours.
     const FilledOccluders occluders =
         fill_occluder_distances(in.d2_min, in.d2_max, in.object_id, params.fill_radius_px);
-    const float bandlimit_sigma_m = light_bandlimit_sigma_m(light, params.light_bandlimit);
-    const bool along_light = params.light_distance == AafLightDistance::AlongLightDirection;
+    const LightBandlimitAxes bandlimit_sigma_m = aaf_light_sigmas_m(light, params);
+    // One band-limit per light axis: the Gaussian is anisotropic in the light's plane.
+    const bool anisotropic = bandlimit_sigma_m.u_m != bandlimit_sigma_m.v_m;
+    if (anisotropic)
+        guides.inv_two_sigma_sq_v.assign(std::size_t(guides.width) * std::size_t(guides.height), 0.0f);
+    const bool along_light = params.light_distance != AafLightDistance::OrthogonalProjection;
     if (along_light) {
         const std::size_t count = std::size_t(guides.width) * std::size_t(guides.height);
         guides.coord_n_m.assign(count, 0.0f);
@@ -102,7 +116,14 @@ GatherGuides aaf_gather_guides(const AafInputs &in, const LightPlane &light, con
                 // the light (AAF Fig. 2's geometry), of which AAF Eq. 12 is the case l = n.
                 const Vec3 to_light = light.center - p;
                 const float distance = length(to_light);
-                if (distance > 0) {
+                const Vec3 receiver_normal{in.normal[0](x, y), in.normal[1](x, y), in.normal[2](x, y)};
+                const float receiver_length = length(receiver_normal);
+                // Guarded: AAF Eq. 12's projection (no shear) wherever it does not collapse the receiver.
+                const bool projection_holds = params.light_distance == AafLightDistance::Guarded &&
+                                              receiver_length > 0 &&
+                                              std::fabs(dot(receiver_normal, light.normal)) >=
+                                                  kDegenerateProjectionCos * receiver_length;
+                if (distance > 0 && !projection_holds) {
                     const Vec3 l = to_light / distance;
                     // Nearly edge-on (|n . l| < 0.05, 87 degrees) the shear is held at 20.
                     constexpr float kMinCos = 0.05f;
@@ -122,17 +143,23 @@ GatherGuides aaf_gather_guides(const AafInputs &in, const LightPlane &light, con
             guides.normal_z[i] = unit.z;
             guides.object_id[i] = in.object_id(x, y);
 
-            const float beta = pixel_beta_m(in, bandlimit_sigma_m, params, occluders, x, y);
-            if (!(beta > 0) || !std::isfinite(beta)) continue;
+            const PixelBeta beta = pixel_beta_m(in, light, bandlimit_sigma_m, params, occluders, x, y);
+            if (!(beta.u_m > 0) || !(beta.v_m > 0) || !std::isfinite(beta.u_m) || !std::isfinite(beta.v_m))
+                continue;
             // beta is in world metres; the reach in pixels follows from the pixel's footprint.
-            const float radius =
-                std::min(std::ceil(kCutoffSigmas * beta / in.pixel_size(x, y)), float(params.max_radius_px));
-            beta_m[i] = beta;
+            const float widest = std::max(beta.u_m, beta.v_m);
+            const float radius = std::min(std::ceil(kCutoffSigmas * widest / in.pixel_size(x, y)),
+                                          float(params.max_radius_px));
+            // The beta output: the isotropic width of the same area, sqrt(beta_u beta_v).
+            beta_m[i] = anisotropic ? std::sqrt(beta.u_m * beta.v_m) : beta.u_m;
             // A beta below ~1e-19 m (pixel.size near 0) squares to 0 or a
             // denormal: the largest float instead of inf keeps the centre tap's
             // exponent 0 * that = 0 (weight 1), where inf would give 0 * inf = NaN.
-            guides.inv_two_sigma_sq[i] =
-                std::min(1.0f / (2.0f * beta * beta), std::numeric_limits<float>::max());
+            auto inv_two_sigma_sq = [](float b) {
+                return std::min(1.0f / (2.0f * b * b), std::numeric_limits<float>::max());
+            };
+            guides.inv_two_sigma_sq[i] = inv_two_sigma_sq(beta.u_m);
+            if (anisotropic) guides.inv_two_sigma_sq_v[i] = inv_two_sigma_sq(beta.v_m);
             guides.radius_px[i] = int(radius);
         }
     });

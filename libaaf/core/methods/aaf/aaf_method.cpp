@@ -33,6 +33,10 @@ std::vector<ParameterInfo> aaf_parameters() {
             "light's edges: equivalent_width (the spectrum's area), spectrum (falls to "
             "exp(-1/2) where the truncated profile's does) or sigma (the paper's untruncated "
             "reading); the plan (aaf plan, render --adaptive) must use the same"),
+        ParameterInfo::choice("light_axes", "per_axis", {"per_axis", "shortest"},
+                              "per_axis: each light axis its own band-limit, an anisotropic Gaussian in the "
+                              "light's plane; shortest: the sharper axis's for both (isotropic); the plan "
+                              "must use the same"),
         ParameterInfo::real("k", "3", "", "Gaussian spread factor of AAF Eq. 13", 0, kInf, /*min_open=*/true),
         ParameterInfo::real("alpha", "1", "", "Occluder bandlimit over pixel bandlimit (AAF Eq. 5)", 0, 1,
                             /*min_open=*/true),
@@ -50,9 +54,15 @@ std::vector<ParameterInfo> aaf_parameters() {
         ParameterInfo::choice("borders", "symmetric", {"symmetric", "clip"},
                               "symmetric: near the image edge the window shrinks on both sides and stays "
                               "centred; clip: cut on the edge side only (one-sided, biased on gradients)"),
-        ParameterInfo::choice("light_distance", "plane", {"plane", "ray"},
-                              "Tap distance in the light's plane: ray (slid along the direction to the light "
-                              "first) or plane (AAF Eq. 12's orthogonal projection)"),
+        ParameterInfo::choice(
+            "light_distance", "guarded", {"guarded", "plane", "ray"},
+            "Tap distance in the light's plane: plane (AAF Eq. 12's orthogonal projection), "
+            "ray (slid along the direction to the light first) or guarded (plane, and ray "
+            "where a receiver is within 6 degrees of perpendicular to the light's plane)"),
+        ParameterInfo::choice("pixel_footprint", "projected", {"projected", "receiver"},
+                              "Pixel size d of the pixel band-limit 1/d (AAF Eq. 6, 15): projected onto the "
+                              "light's plane like the tap distances, or the receiver's own (the paper); the "
+                              "plan must use the same"),
     };
 }
 
@@ -62,6 +72,7 @@ AafParams params_from(const ParameterSet &set) {
     p.mu_from_spp = set.get_bool("mu_from_spp");
     p.fixed_mu = set.get_bool("fixed_mu");
     p.light_bandlimit = light_bandlimit_from_string(set.get_choice("light_bandlimit"));
+    p.light_axes = light_axes_from_string(set.get_choice("light_axes"));
     p.k = set.get_float("k");
     p.alpha = set.get_float("alpha");
     p.normal_threshold_deg = set.get_float("normal_threshold");
@@ -70,8 +81,11 @@ AafParams params_from(const ParameterSet &set) {
     p.fixed_beta_m = set.get_float("fixed_beta");
     p.mode = set.get_choice("filter") == "2d" ? AafFilterMode::Exact2D : AafFilterMode::Separable;
     p.symmetric_borders = set.get_choice("borders") == "symmetric";
-    p.light_distance = set.get_choice("light_distance") == "plane" ? AafLightDistance::OrthogonalProjection
-                                                                   : AafLightDistance::AlongLightDirection;
+    const std::string distance = set.get_choice("light_distance");
+    p.light_distance = distance == "plane" ? AafLightDistance::OrthogonalProjection
+                       : distance == "ray" ? AafLightDistance::AlongLightDirection
+                                           : AafLightDistance::Guarded;
+    p.projected_pixel = set.get_choice("pixel_footprint") == "projected";
     return p;
 }
 
@@ -138,6 +152,7 @@ ParameterSet aaf_parameter_set(const AafParams &params) {
     set.set("mu_from_spp", params.mu_from_spp);
     set.set("fixed_mu", params.fixed_mu);
     set.set("light_bandlimit", std::string(to_string(params.light_bandlimit)));
+    set.set("light_axes", std::string(to_string(params.light_axes)));
     set.set("k", double(params.k));
     set.set("alpha", double(params.alpha));
     set.set("normal_threshold", double(params.normal_threshold_deg));
@@ -147,7 +162,10 @@ ParameterSet aaf_parameter_set(const AafParams &params) {
     set.set("filter", std::string(params.mode == AafFilterMode::Exact2D ? "2d" : "separable"));
     set.set("borders", std::string(params.symmetric_borders ? "symmetric" : "clip"));
     set.set("light_distance",
-            std::string(params.light_distance == AafLightDistance::OrthogonalProjection ? "plane" : "ray"));
+            std::string(params.light_distance == AafLightDistance::OrthogonalProjection  ? "plane"
+                        : params.light_distance == AafLightDistance::AlongLightDirection ? "ray"
+                                                                                         : "guarded"));
+    set.set("pixel_footprint", std::string(params.projected_pixel ? "projected" : "receiver"));
     return set;
 }
 

@@ -1,6 +1,7 @@
 #pragma once
 
 #include "aaf/core/aaf_params.h"
+#include "aaf/core/light_bandlimit.h"
 
 namespace aaf {
 
@@ -27,11 +28,30 @@ struct AafBandlimits {
 AafBandlimits aaf_bandlimits(float d1_m, float d2_min_m, float d2_max_m, float pixel_size_m, float sigma_m,
                              const AafParams &params);
 
+/// AAF at one pixel with one band-limit per light axis: AAF's 4D analysis
+/// is a product of two 2D ones (x1, y1) and (x2, y2) (Sec. 4), so each axis
+/// has its own Eq. 8 and 13, and Eq. 15's rate is the product of the axes'
+/// pixel and light factors. Equal sigmas give aaf_bandlimits() on both axes,
+/// with the same rate.
+struct AafAxisBandlimits {
+    AafBandlimits u;  ///< along the light's axis_u
+    AafBandlimits v;  ///< along the light's axis_v
+    float samples_per_pixel = 0;
+};
+AafAxisBandlimits aaf_bandlimits_axes(float d1_m, float d2_min_m, float d2_max_m, float pixel_size_m,
+                                      LightBandlimitAxes sigma, const AafParams &params);
+
+/// The sigmas AAF uses for `light` under params.light_bandlimit and params.light_axes.
+LightBandlimitAxes aaf_light_sigmas_m(const LightPlane &light, const AafParams &params);
+
 /// The mu (>= params.mu) at which the sampling rate of Eq. 15 reaches
 /// `samples`: n grows monotonically with mu, so bisection finds it to 1e-4
 /// relative; returns params.mu when even that rate exceeds `samples`, and at
 /// most 1e4 (a filter far below one pixel).
 float mu_for_samples(float samples, float d1_m, float d2_min_m, float d2_max_m, float pixel_size_m,
                      float sigma_m, const AafParams &params);
+/// The same with the per-axis rate of aaf_bandlimits_axes().
+float mu_for_samples(float samples, float d1_m, float d2_min_m, float d2_max_m, float pixel_size_m,
+                     LightBandlimitAxes sigma, const AafParams &params);
 
 }  // namespace aaf

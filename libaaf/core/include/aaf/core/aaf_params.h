@@ -1,6 +1,9 @@
 #pragma once
 
+#include <string>
+
 #include "aaf/core/light_bandlimit.h"
+#include "aaf/core/vec3.h"
 
 namespace aaf {
 
@@ -18,11 +21,45 @@ enum class AafLightDistance {
     /// then measured there: equal to AAF Eq. 12 for a receiver facing the light,
     /// but a tilted light no longer shrinks displacements towards it.
     AlongLightDirection,
-    /// AAF Eq. 12 as printed: the orthogonal projection onto the light's plane
-    /// (the default: the study measured AlongLightDirection no better on the
-    /// tilted scenes and worse where the light is seen edge-on, README).
+    /// AAF Eq. 12 as printed: the orthogonal projection onto the light's plane.
     OrthogonalProjection,
+    /// The orthogonal projection, except at receivers within ~6 degrees of
+    /// perpendicular to the light's plane (|n . n_L| < kDegenerateProjectionCos),
+    /// where it collapses their displacements to nothing (every tap of such a
+    /// face would weigh 1, whatever beta) and the distance is measured along
+    /// the direction to the light instead (the default: README, "AAF in this
+    /// implementation").
+    Guarded,
 };
+
+/// Below this |cos| between a receiver's normal and the light's, AAF Eq. 12's
+/// projection is treated as degenerate (AafLightDistance::Guarded) and the
+/// projected pixel footprint (AafParams::projected_pixel) stops shrinking.
+inline constexpr float kDegenerateProjectionCos = 0.1f;
+
+/// The pixel footprint in the light plane's units: the receiver's footprint
+/// `pixel_size_m` shrinks by |cos| of the angle between the receiver's and
+/// the light's planes along one axis under AAF Eq. 12's projection; the
+/// smaller axis bounds the band-limit (AAF Eq. 6). `receiver_normal` need not
+/// be unit; a zero or non-finite one leaves the footprint as it is.
+float projected_pixel_size_m(float pixel_size_m, Vec3 receiver_normal, Vec3 light_normal);
+
+/// How a rectangular light's two axes enter the band-limit (light_bandlimit.h).
+enum class AafLightAxes {
+    /// Each light axis its own band-limit, so the filter is an anisotropic
+    /// Gaussian in the light's plane (beta_u along axis_u, beta_v along axis_v)
+    /// and the rate of AAF Eq. 15 a product of the two axes' factors: a long
+    /// light blurs more along its long axis.
+    PerAxis,
+    /// The sharper axis's band-limit for both: an isotropic filter, narrower
+    /// than either axis needs along the long one (the paper's square light
+    /// cannot tell the two apart).
+    Shortest,
+};
+
+const char *to_string(AafLightAxes axes);
+/// Parses "per_axis" or "shortest"; throws aaf::Error otherwise.
+AafLightAxes light_axes_from_string(const std::string &name);
 
 /// Parameters of Axis-Aligned Filtering (Mehta et al. 2012). The defaults are
 /// the paper's (Sec. 6: k = 3, alpha = 1, mu = 2).
@@ -44,6 +81,7 @@ struct AafParams {
     /// uses the same. Sigma is the paper's reading; the default accounts for
     /// the truncation of the Gaussian at the light's edges.
     LightBandlimit light_bandlimit = LightBandlimit::EquivalentWidth;
+    AafLightAxes light_axes = AafLightAxes::PerAxis;
     /// Baseline "non-adaptive filter" of AAF Fig. 6 (NAF): when > 0, every pixel
     /// AAF would filter uses this beta (world metres) instead of AAF Eq. 13, with
     /// the same taps, rejection and cut-off. 0 = AAF proper.
@@ -66,7 +104,12 @@ struct AafParams {
     /// unbiased on gradients); false: cut on the edge side only, the kernel
     /// one-sided (the plain reading of Sec. 6).
     bool symmetric_borders = true;
-    AafLightDistance light_distance = AafLightDistance::OrthogonalProjection;
+    AafLightDistance light_distance = AafLightDistance::Guarded;
+    /// The pixel band-limit Omega_pix = 1/d of AAF Sec. 4.1 (Eq. 6, 15) with d
+    /// measured in the light plane's units, like the tap distances of Eq. 12
+    /// (projected_pixel_size_m()); false: the receiver's own footprint (the
+    /// paper's reading, exact for a receiver parallel to the light).
+    bool projected_pixel = true;
 
     /// Throws aaf::Error naming the first parameter out of range.
     void validate() const;

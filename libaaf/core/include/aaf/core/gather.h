@@ -24,6 +24,11 @@ struct GatherGuides {
     std::vector<float> object_id;
     /// 1 / (2 sigma^2) of the pixel's Gaussian, metres^-2.
     std::vector<float> inv_two_sigma_sq;
+    /// Optional (empty, or guide-sized): the Gaussian's 1 / (2 sigma^2) along
+    /// v, so a tap weighs exp(-du^2 inv_two_sigma_sq - dv^2 this); empty =
+    /// isotropic (AAF: one band-limit per light axis, aaf_bandlimits_axes()).
+    std::vector<float> inv_two_sigma_sq_v;
+    bool anisotropic() const { return !inv_two_sigma_sq_v.empty(); }
     /// Taps reach this many pixels along each filtered axis; 0 = the pixel keeps its value.
     std::vector<int> radius_px;
     /// Optional (all empty, or all guide-sized): a third coordinate n (metres)

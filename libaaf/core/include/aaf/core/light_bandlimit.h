@@ -34,4 +34,15 @@ LightBandlimit light_bandlimit_from_string(const std::string &name);
 /// gives sigma_m. Throws aaf::Error unless the light validates.
 float light_bandlimit_sigma_m(const LightPlane &light, LightBandlimit rule);
 
+/// The band-limit sigma of each of the light's axes on its own (metres):
+/// u along axis_u (half-extent width/2), v along axis_v (height/2). AAF's
+/// analysis is separable in the light's two axes (the 4D spectrum of Sec. 4
+/// is a product of two 2D wedges), so a rectangle gets one band-limit per
+/// axis; light_bandlimit_sigma_m() is the smaller of the two.
+struct LightBandlimitAxes {
+    float u_m = 0;
+    float v_m = 0;
+};
+LightBandlimitAxes light_bandlimit_axes_m(const LightPlane &light, LightBandlimit rule);
+
 }  // namespace aaf

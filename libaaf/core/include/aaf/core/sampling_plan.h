@@ -1,5 +1,7 @@
 #pragma once
 
+#include <array>
+
 #include "aaf/core/aaf_params.h"
 #include "aaf/core/aov_contract.h"
 #include "aaf/core/light_plane.h"
@@ -14,6 +16,10 @@ struct SamplingPlanInputs {
     ConstPlaneView d2_max;
     ConstPlaneView object_id;
     ConstPlaneView pixel_size;
+    /// Optional (all three or none): the receiver's normal, for the projected
+    /// pixel footprint (AafParams::projected_pixel); without it the plan uses
+    /// the receiver's footprint.
+    std::array<ConstPlaneView, 3> normal;
 };
 
 struct SamplingPlanParams {

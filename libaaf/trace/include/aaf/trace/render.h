@@ -97,6 +97,10 @@ struct RenderSettings {
     int max_spp = 100;         ///< cap of the adaptive total per pixel
     /// The light band-limit rule of the plan (AafParams::light_bandlimit): the filter's.
     LightBandlimit light_bandlimit = AafParams{}.light_bandlimit;
+    /// The light axes rule of the plan (AafParams::light_axes): the filter's.
+    AafLightAxes light_axes = AafParams{}.light_axes;
+    /// The plan's pixel footprint (AafParams::projected_pixel): the filter's.
+    bool projected_pixel = AafParams{}.projected_pixel;
 
     /// With the maaf group: the samples of MAAF's first pass (Sec. 6.2: 16),
     /// traced as a pass of their own before the rest, whose occluder distances
