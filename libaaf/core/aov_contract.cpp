@@ -241,14 +241,14 @@ const std::vector<RoleInfo> &role_table() {
          {"ratio.S.R", "ratio.S.G", "ratio.S.B"},
          "linear radiance",
          "ratio estimator Eq. 21 as a mean: (1/N) sum of w R L V / p over the pixel's N samples per light "
-         "(MIS weights w), summed over lights; it is also the full-stochastic estimate (Eq. 10). Per light as "
+         "(MIS weights w), summed over lights; it is also the full-stochastic estimate (ratio estimator Eq. 10). Per light as "
          "ratio_u"},
         {Role::RatioUnshadowed,
          "ratio_un",
          {"ratio.Un.R", "ratio.Un.G", "ratio.Un.B"},
          "linear radiance",
          "ratio estimator Eq. 22 as a mean: the same samples and weights as ratio_s with V = 1, so S_N / U_N "
-         "stays in [0, 1]; U - U_N + S_N is the control-variate estimate (Eq. 11). Per light as ratio_u"},
+         "stays in [0, 1]; U - U_N + S_N is the control-variate estimate (ratio estimator Eq. 11). Per light as ratio_u"},
         {Role::RatioShadowedLuminance,
          "ratio_s_y",
          {"ratio.S.Y"},

@@ -10,7 +10,7 @@ namespace {
 
 constexpr double kPi = 3.14159265358979323846;
 
-/// theta * n.z for the edge a -> b (Ratio estimator Eq. 20 with Lambert's
+/// theta * n.z for the edge a -> b (ratio estimator Eq. 20 with Lambert's
 /// edge formula). atan2 of the unnormalised sine and cosine is scale-free and
 /// well conditioned at both ends of [0, pi], where acos of a dot product is not.
 double edge_term(Vec3d a, Vec3d b) {

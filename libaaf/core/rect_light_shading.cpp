@@ -28,7 +28,7 @@ UnshadowedLight rect_light_unshadowed(const RectLight &light, Vec3 p, Vec3 n, Ve
     LocalPolygon polygon;
     for (const Vec3d &corner : corners) polygon.add(frame.to_local(corner));
 
-    // Ratio estimator Eq. 20 for the Lambertian lobe: (rho / pi) L times the
+    // ratio estimator Eq. 20 for the Lambertian lobe: (rho / pi) L times the
     // clipped cosine-weighted solid angle, i.e. rho L times the form factor.
     const double form_factor = polygon_form_factor(polygon);
     for (int c = 0; c < 3; ++c) {

@@ -1,3 +1,4 @@
+#include "concentric_disc.h"
 #include "path_sample.h"
 
 #include <algorithm>
@@ -24,24 +25,6 @@ Vec3 times(Vec3 a, Vec3 b) {
     return {a.x * b.x, a.y * b.y, a.z * b.z};
 }
 
-/// Shirley-Chiu concentric map of the unit square onto the unit disc (as renderer.cpp's thin lens).
-void concentric_disc(float u1, float u2, float &dx, float &dy) {
-    const float a = 2 * u1 - 1, b = 2 * u2 - 1;
-    if (a == 0 && b == 0) {
-        dx = dy = 0;
-        return;
-    }
-    float r, phi;
-    if (std::fabs(a) > std::fabs(b)) {
-        r = a;
-        phi = (kPi / 4) * (b / a);
-    } else {
-        r = b;
-        phi = (kPi / 2) - (kPi / 4) * (a / b);
-    }
-    dx = r * std::cos(phi);
-    dy = r * std::sin(phi);
-}
 
 }  // namespace
 

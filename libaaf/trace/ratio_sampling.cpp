@@ -56,7 +56,7 @@ RatioLayers trace_ratio_layers(const Renderer &renderer, const SceneDescription 
     const Vec3 wo = normalize(scene.camera.eye - p);
     const RectLight light = ratio_light(scene.lights[light_index]);
     const SurfaceReflectance reflectance{material.albedo, material.specular, material.roughness};
-    // Ratio estimator Eq. 20.
+    // ratio estimator Eq. 20.
     const UnshadowedLight u = rect_light_unshadowed(light, p, n, wo, reflectance);
     layers.analytic = u.total();
 
@@ -110,7 +110,7 @@ RatioLayers trace_ratio_layers(const Renderer &renderer, const SceneDescription 
         const Vec3 brdf = evaluate_brdf(material, n, wo, to_float(wi_world));
         const bool visible = !renderer.light_point_blocked(primary, to_float(y));
         for (int c = 0; c < 3; ++c) {
-            // Ratio estimator Eq. 21-22: R L / p, with V for S_N.
+            // ratio estimator Eq. 21-22: R L / p, with V for S_N.
             const double value = double(brdf[c]) * double(light.radiance[c]) * cos_surface / density;
             unshadowed[c] += value;
             if (visible) shadowed[c] += value;

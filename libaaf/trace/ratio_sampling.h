@@ -8,8 +8,7 @@
 
 namespace aaf::trace {
 
-/// One light's ratio estimator layers at one pixel (Ratio estimator Eq.
-/// 20-22), per channel, W / (m^2 sr): the analytic U and the means over the
+/// One light's layers at one pixel (ratio estimator Eq. 20-22), per channel, W / (m^2 sr): the analytic U and the means over the
 /// pixel's N samples of w R L V / p (S_N) and w R L / p (U_N).
 struct RatioLayers {
     Vec3 analytic;

@@ -1,3 +1,4 @@
+#include "concentric_disc.h"
 #include "renderer.h"
 
 #include <algorithm>
@@ -13,7 +14,6 @@ namespace aaf::trace {
 
 namespace {
 
-constexpr float kPi = 3.14159265358979323846f;
 constexpr int kFalloffQuadrature = 16;  // per axis
 /// Shadow rays end at this fraction of the way to the light point.
 constexpr float kShadowRayReach = 1.0f - 1e-4f;
@@ -29,24 +29,6 @@ Vec3 offset_origin(Vec3 p, Vec3 n) {
     return p + n * epsilon;
 }
 
-/// Shirley-Chiu concentric map of the unit square onto the unit disc.
-void concentric_disc(float u1, float u2, float &dx, float &dy) {
-    const float a = 2 * u1 - 1, b = 2 * u2 - 1;
-    if (a == 0 && b == 0) {
-        dx = dy = 0;
-        return;
-    }
-    float r, phi;
-    if (std::fabs(a) > std::fabs(b)) {
-        r = a;
-        phi = (kPi / 4) * (b / a);
-    } else {
-        r = b;
-        phi = (kPi / 2) - (kPi / 4) * (a / b);
-    }
-    dx = r * std::cos(phi);
-    dy = r * std::sin(phi);
-}
 
 Vec3 times(Vec3 a, Vec3 b) {
     return {a.x * b.x, a.y * b.y, a.z * b.z};

@@ -123,8 +123,8 @@ class RatioGroup final : public AovAccumulator {
 };
 
 /// The two estimators the ratio estimator is compared with, from the same
-/// samples as the ratio group: full-stochastic S_N (Eq. 10) and
-/// control-variate U - U_N + S_N (Eq. 11, may be negative), summed over the lights.
+/// samples as the ratio group: full-stochastic S_N (ratio estimator Eq. 10) and
+/// control-variate U - U_N + S_N (ratio estimator Eq. 11, may be negative), summed over the lights.
 class RatioEstimatorsGroup final : public AovAccumulator {
   public:
     AovGroupInfo info() const override {
@@ -144,8 +144,8 @@ class RatioEstimatorsGroup final : public AovAccumulator {
             for (std::size_t l = 0; l < lights; ++l) {
                 const RatioLayers &light = layers[pixel * lights + l];
                 for (int c = 0; c < 3; ++c) {
-                    sto[c] += double(light.shadowed[c]);  // Ratio estimator Eq. 10
-                    // Ratio estimator Eq. 11: U minus the estimated shadowed-away part.
+                    sto[c] += double(light.shadowed[c]);  // ratio estimator Eq. 10
+                    // ratio estimator Eq. 11: U minus the estimated shadowed-away part.
                     cv[c] += double(light.analytic[c]) - double(light.unshadowed[c]) + double(light.shadowed[c]);
                 }
             }

@@ -65,7 +65,7 @@ std::vector<std::vector<float>> RatioComposition::sources() const {
             }
             break;
         case RatioEstimator::Stochastic:
-            for (int c = 0; c < 3; ++c) planes.push_back(plane_of(layers_.shadowed[c]));  // Eq. 10
+            for (int c = 0; c < 3; ++c) planes.push_back(plane_of(layers_.shadowed[c]));  // ratio estimator Eq. 10
             break;
         case RatioEstimator::ControlVariate:
             for (int c = 0; c < 3; ++c) {
@@ -73,7 +73,7 @@ std::vector<std::vector<float>> RatioComposition::sources() const {
                                      s_n = layers_.shadowed[c];
                 std::vector<float> plane(std::size_t(u.width) * std::size_t(u.height));
                 parallel_for_rows(u.height, [&](int y) {
-                    for (int x = 0; x < u.width; ++x)  // Eq. 11 with c = 1: U - (U_N - S_N)
+                    for (int x = 0; x < u.width; ++x)  // ratio estimator Eq. 11 with c = 1: U - (U_N - S_N)
                         plane[std::size_t(y) * std::size_t(u.width) + std::size_t(x)] =
                             finite_or_zero(u(x, y)) - finite_or_zero(u_n(x, y)) + finite_or_zero(s_n(x, y));
                 });

@@ -28,8 +28,8 @@ std::vector<ParameterInfo> ratio_parameters() {
     return {
         ParameterInfo::choice(
             "estimator", "ratio", {"ratio", "stochastic", "control-variate"},
-            "What is denoised: ratio, U x den(S_N) / den(U_N) (Eq. 25); stochastic, den(S_N) "
-            "(Eq. 10); control-variate, den(U - U_N + S_N) (Eq. 11); same denoiser and widths"),
+            "What is denoised: ratio, U x den(S_N) / den(U_N) (ratio estimator Eq. 25); stochastic, den(S_N) "
+            "(ratio estimator Eq. 10); control-variate, den(U - U_N + S_N) (ratio estimator Eq. 11); same denoiser and widths"),
         ParameterInfo::choice(
             "denoiser", "bilateral", {"bilateral", "gaussian", "aaf"},
             "bilateral: the joint bilateral with sigma from the noise estimate (Sec. 4); "
@@ -41,10 +41,10 @@ std::vector<ParameterInfo> ratio_parameters() {
         ParameterInfo::flag("summed",
                             "Denoise the summed layers only, ignoring the per-light ratio.L<i>.* layers"),
         ParameterInfo::integer("noise_radius", "6", "pixels",
-                               "Half length of the 4 lines of the noise estimate E (Eq. 29)", 1, 64),
+                               "Half length of the 4 lines of the noise estimate E (ratio estimator Eq. 29)", 1, 64),
         ParameterInfo::real(
             "sigma_per_noise", "3", "pixels",
-            "Bilateral sigma = this x E (E: mean absolute second difference of W_N per pixel, Eq. 29)", 0,
+            "Bilateral sigma = this x E (E: mean absolute second difference of W_N per pixel, ratio estimator Eq. 29)", 0,
             kInf),
         ParameterInfo::real("max_sigma", "8", "pixels", "Cap on the bilateral sigma", 0, 64),
         ParameterInfo::real("plane_sigma", "1", "pixel footprints",
@@ -170,7 +170,7 @@ std::vector<float> luminance(const std::array<ConstPlaneView, 3> &rgb) {
     return y_plane;
 }
 
-/// Sec. 4.1 passes 1-2: W_N's noise estimate E (Eq. 29, 3x3 box), as the
+/// Sec. 4.1 passes 1-2: W_N's noise estimate E (ratio estimator Eq. 29, 3x3 box), as the
 /// bilateral's sigma = sigma_per_noise x E, capped.
 std::vector<float> bilateral_sigma_px(const RatioLayers &layers, bool grey, const RatioSettings &s, int width,
                                       int height) {
@@ -191,7 +191,7 @@ std::vector<float> bilateral_sigma_px(const RatioLayers &layers, bool grey, cons
     return e;
 }
 
-/// AAF's frequency-derived per-pixel widths (Mehta et al. 2012, Eq. 13) as gather guides.
+/// AAF's frequency-derived per-pixel widths (AAF Eq. 13, Mehta et al. 2012) as gather guides.
 GatherGuides aaf_guides(const MethodImages &images, const std::vector<float> &any_plane) {
     for (Role role : {Role::D1, Role::D2Min, Role::D2Max, Role::ObjectId, Role::PixelSize})
         if (!images.has(role))

@@ -1,5 +1,5 @@
 // The total-variation noise estimate of the ratio estimator (Heitz, Hill,
-// McGuire 2018, Sec. 4.2, Eq. 29).
+// McGuire 2018, Sec. 4.2, ratio estimator Eq. 29).
 #include "aaf/core/ratio_noise_estimate.h"
 
 #include <algorithm>
@@ -75,7 +75,7 @@ void weighted_shadow(ConstPlaneView s_n, ConstPlaneView u_n, PlaneView w) {
         for (int x = 0; x < w.width; ++x) {
             const float s = std::isfinite(s_n(x, y)) ? s_n(x, y) : 0.0f;
             const float u = std::isfinite(u_n(x, y)) ? u_n(x, y) : 0.0f;
-            // Ratio estimator Eq. 23; W_N = 1 where both are ~0 (Sec. 4.2).
+            // ratio estimator Eq. 23; W_N = 1 where both are ~0 (Sec. 4.2).
             w(x, y) = u > 0 ? std::clamp(s / u, 0.0f, 1.0f) : 1.0f;
         }
     });
@@ -109,7 +109,7 @@ void ratio_noise_estimate(ConstPlaneView w, int line_radius_px, std::uint32_t se
                     const float v = w(sx, sy);
                     line[std::size_t(t + line_radius_px)] = std::isfinite(v) ? v : 1.0f;
                 }
-                // Ratio estimator Eq. 29: the integral of |d^2 W_N / dt^2| along the line.
+                // ratio estimator Eq. 29: the integral of |d^2 W_N / dt^2| along the line.
                 float variation = 0.0f;
                 for (int t = 1; t + 1 < taps; ++t)
                     variation += std::fabs(line[std::size_t(t - 1)] - 2.0f * line[std::size_t(t)] +

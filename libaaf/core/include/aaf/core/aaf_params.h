@@ -106,7 +106,7 @@ struct AafParams {
     bool symmetric_borders = true;
     AafLightDistance light_distance = AafLightDistance::Guarded;
     /// The pixel band-limit Omega_pix = 1/d of AAF Sec. 4.1 (Eq. 6, 15) with d
-    /// measured in the light plane's units, like the tap distances of Eq. 12
+    /// measured in the light plane's units, like the tap distances of AAF Eq. 12
     /// (projected_pixel_size_m()); false: the receiver's own footprint (the
     /// paper's reading, exact for a receiver parallel to the light).
     bool projected_pixel = true;

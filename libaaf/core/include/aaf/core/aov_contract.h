@@ -46,9 +46,9 @@ enum class Role {
     PinholeBeauty,       ///< ISG: the in-focus image a pinhole camera sees
     GlossyReflection,    ///< output of isg-glossy: the filtered reflection
     Defocused,           ///< output of isg-dof: the defocused image
-    RatioAnalytic,       ///< ratio estimator: analytic unshadowed direct light U (Eq. 20)
-    RatioShadowed,       ///< ratio estimator: stochastic shadowed direct light S_N (Eq. 21)
-    RatioUnshadowed,     ///< ratio estimator: stochastic unshadowed direct light U_N (Eq. 22)
+    RatioAnalytic,       ///< ratio estimator: analytic unshadowed direct light U (ratio estimator Eq. 20)
+    RatioShadowed,       ///< ratio estimator: stochastic shadowed direct light S_N (ratio estimator Eq. 21)
+    RatioUnshadowed,     ///< ratio estimator: stochastic unshadowed direct light U_N (ratio estimator Eq. 22)
     RatioShadowedLuminance,    ///< ratio estimator: luminance of S_N (grey approximation, Sec. 3.4)
     RatioUnshadowedLuminance,  ///< ratio estimator: luminance of U_N (grey approximation, Sec. 3.4)
     Maaf6Direct,               ///< MAAF 6D: noisy direct radiance (soft shadows through the lens)

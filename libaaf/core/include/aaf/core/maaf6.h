@@ -56,7 +56,7 @@ struct Maaf6Component {
 /// component's x range [a, b] is mapped through the u-wedge to the u range
 /// {s a .. s b : s in [u_min, u_max]}, clipped to +-Omega_u^max, whose centre
 /// and half-width are C_u^p and sigma_u^p. This is Fig. 11(c) as the text
-/// describes it; Eq. 24 as printed mixes u-slope ratios with Omega_y^max and
+/// describes it; MAAF Eq. 24 as printed mixes u-slope ratios with Omega_y^max and
 /// is not dimensionally consistent, so it is not used literally.
 ///
 /// Without a y-wedge the u-wedge is partitioned instead (C_y = 0): with
@@ -97,7 +97,7 @@ class Maaf6SampleSide {
 };
 
 /// The x-side kernel of one subspace at displacement dx_m = x - x' (MAAF
-/// Eq. 21-22): into kernel[0 .. 2N-2], function 0: g(dx; k/sigma_x^0);
+/// MAAF Eq. 21-22): into kernel[0 .. 2N-2], function 0: g(dx; k/sigma_x^0);
 /// 2p - 1: 2 mu_p cos(C_x^p dx) g(dx; k/sigma_x^p); 2p: -2 mu_p sin(C_x^p dx)
 /// g(...), so that sum_a kernel[a] phi_a = MAAF Eq. 22's primal filter per
 /// subspace (cos(A + B) = cos A cos B - sin A sin B, MAAF Eq. 13).

@@ -25,7 +25,7 @@ LocalPolygon clip_to_upper_hemisphere(const LocalPolygon &polygon);
 
 /// Signed edge integral (1 / 2 pi) sum_k theta_k n_k.z over the polygon's
 /// edges, theta_k the angle between consecutive vertex directions and n_k
-/// their unit cross product (Lambert's formula; Ratio estimator Eq. 20 for a
+/// their unit cross product (Lambert's formula; ratio estimator Eq. 20 for a
 /// Lambertian BRDF): the cosine-weighted solid angle over pi, its sign set by
 /// the winding seen from the point. No clipping is done here.
 /// Each edge term is computed as atan2(|a x b|, a . b) times (a x b).z / |a x b|

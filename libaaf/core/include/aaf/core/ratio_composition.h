@@ -9,24 +9,24 @@ namespace aaf {
 
 /// Which estimate of the shadowed direct light is denoised (ratio estimator Sec. 3).
 enum class RatioEstimator {
-    Ratio,           ///< U x den(S_N) / den(U_N) (Eq. 25 applied to Eq. 15)
-    Stochastic,      ///< den(S_N), the full-stochastic estimate (Eq. 10)
-    ControlVariate,  ///< den(U - U_N + S_N), the control variate with c = 1 (Eq. 11)
+    Ratio,           ///< U x den(S_N) / den(U_N) (ratio estimator Eq. 25 applied to Eq. 15)
+    Stochastic,      ///< den(S_N), the full-stochastic estimate (ratio estimator Eq. 10)
+    ControlVariate,  ///< den(U - U_N + S_N), the control variate with c = 1 (ratio estimator Eq. 11)
 };
 
 /// One light's (or the summed) layers of the ratio contract, views of one
 /// size. The luminance views are read only by the grey ratio estimator.
 struct RatioLayers {
-    std::array<ConstPlaneView, 3> analytic;    ///< U (Eq. 20), RGB
-    std::array<ConstPlaneView, 3> shadowed;    ///< S_N (Eq. 21, as a mean), RGB
-    std::array<ConstPlaneView, 3> unshadowed;  ///< U_N (Eq. 22, as a mean), RGB
+    std::array<ConstPlaneView, 3> analytic;    ///< U (ratio estimator Eq. 20), RGB
+    std::array<ConstPlaneView, 3> shadowed;    ///< S_N (ratio estimator Eq. 21, as a mean), RGB
+    std::array<ConstPlaneView, 3> unshadowed;  ///< U_N (ratio estimator Eq. 22, as a mean), RGB
     ConstPlaneView shadowed_y, unshadowed_y;   ///< luminance of S_N and U_N (Sec. 3.4)
 };
 
 /// W = den(S_N) / den(U_N) clamped to [0, 1] (the denoised ratio of the same
-/// weights stays a weighted mean of visibilities, Eq. 14); 1 where den(U_N)
+/// weights stays a weighted mean of visibilities, ratio estimator Eq. 14); 1 where den(U_N)
 /// is not above 0: no sample of any tap saw light, and the pixel is then
-/// shown unshadowed, as Eq. 29's convention W_N = 1 for S_N = U_N = 0 (a
+/// shown unshadowed, as ratio estimator Eq. 29's convention W_N = 1 for S_N = U_N = 0 (a
 /// pixel whose U is ~0 stays ~0). Never NaN for finite inputs.
 inline float ratio_weight(float denoised_s, float denoised_u) {
     if (!(denoised_u > 0)) return 1.0f;

@@ -6,10 +6,10 @@
 
 namespace aaf {
 
-/// The stochastic illumination-weighted shadow W_N = S_N / U_N (ratio
-/// estimator Eq. 23) of one channel (or of the luminance), written to `w`:
+/// The stochastic illumination-weighted shadow W_N = S_N / U_N
+/// (ratio estimator Eq. 23) of one channel (or of the luminance), written to `w`:
 /// in [0, 1]; 1 where U_N is not above 0 (both ~0, ratio estimator Sec. 4.2's
-/// convention for Eq. 29); non-finite inputs read as 0. All views one size.
+/// convention for ratio estimator Eq. 29); non-finite inputs read as 0. All views one size.
 void weighted_shadow(ConstPlaneView s_n, ConstPlaneView u_n, PlaneView w);
 
 /// The noise estimate E of ratio estimator Eq. 29 at every pixel of `w` (a

@@ -22,7 +22,7 @@ struct RectLight {
     Vec3 radiance;
 };
 
-/// The unshadowed direct light U (Ratio estimator Eq. 20) reflected towards
+/// The unshadowed direct light U (ratio estimator Eq. 20) reflected towards
 /// the viewer, split by lobe: per channel, W / (m^2 sr).
 struct UnshadowedLight {
     Vec3 diffuse;   ///< albedo * radiance * form factor: exact (horizon-clipped edge integral)
