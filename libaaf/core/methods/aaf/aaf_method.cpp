@@ -5,6 +5,7 @@
 #include <vector>
 
 #include "../builtin_methods.h"
+#include "aaf_method_inputs.h"
 #include "aaf/core/aaf_filter.h"
 #include "aaf/core/error.h"
 #include "aaf/core/filter_aovs.h"
@@ -111,17 +112,8 @@ class AafMethod final : public Method {
 
     void run(const MethodImages &images, const ParameterSet &parameters, Progress &progress) const override {
         const AafParams params = params_from(parameters);
-        AafInputs in;
+        AafInputs in = aaf_geometry_inputs(images);
         in.visibility = images.input(Role::Visibility);
-        in.d1 = images.input(Role::D1);
-        in.d2_min = images.input(Role::D2Min);
-        in.d2_max = images.input(Role::D2Max);
-        for (std::size_t c = 0; c < 3; ++c) {
-            in.position[c] = images.input(Role::Position, c);
-            in.normal[c] = images.input(Role::Normal, c);
-        }
-        in.object_id = images.input(Role::ObjectId);
-        in.pixel_size = images.input(Role::PixelSize);
         if (params.mu_from_spp && !images.has(Role::SamplesPerPixel))
             throw InputError("mu from spp needs the 'spp' input (channel " +
                              images.channel_names(Role::SamplesPerPixel) + ")");

@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "../builtin_methods.h"
+#include "../aaf/aaf_method_inputs.h"
 #include "aaf/core/aaf_filter.h"
 #include "aaf/core/error.h"
 #include "aaf/core/fixed_gaussian.h"
@@ -201,17 +202,8 @@ GatherGuides aaf_guides(const MethodImages &images, const std::vector<float> &an
     for (const std::string &name : light_attribute_names())
         if (!images.attributes().count(name))
             throw InputError("--denoiser aaf needs the key light's header attribute '" + name + "'");
-    AafInputs in;
+    AafInputs in = aaf_geometry_inputs(images);
     in.visibility = plane_view(any_plane.data(), images.width(), images.height());
-    in.d1 = images.input(Role::D1);
-    in.d2_min = images.input(Role::D2Min);
-    in.d2_max = images.input(Role::D2Max);
-    for (std::size_t c = 0; c < 3; ++c) {
-        in.position[c] = images.input(Role::Position, c);
-        in.normal[c] = images.input(Role::Normal, c);
-    }
-    in.object_id = images.input(Role::ObjectId);
-    in.pixel_size = images.input(Role::PixelSize);
     // AAF's consistency rule (AAF Sec. 5.2): the widths follow the samples taken when they are known.
     if (images.has(Role::SamplesPerPixel)) in.spp = images.input(Role::SamplesPerPixel);
     return aaf_gather_guides(in, read_light_attributes(images.attributes()), AafParams{});
