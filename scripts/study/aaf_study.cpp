@@ -49,9 +49,9 @@ std::pair<double, float> best_fixed_filter(const AovSet &noisy, const AovSet &re
 }
 
 /// The paper's reading where this implementation departs from it (README,
-/// "AAF in this implementation"): one mu everywhere, Omega_L = 1/sigma,
-/// one-sided windows at the image edge (AAF Eq. 12's orthogonal projection is
-/// the default too).
+/// "AAF in this implementation"): one mu everywhere, AAF Eq. 12's orthogonal
+/// projection, one-sided windows at the image edge (Omega_L = 1/sigma and the
+/// receiver's pixel footprint are the defaults too).
 AafParams paper_params(float mu) {
     AafParams p;
     p.mu = mu;
@@ -178,14 +178,14 @@ int main(int argc, char **argv) {
             // Each departure from the paper switched back alone, and the alternatives not taken.
             const std::pair<const char *, std::function<void(AafParams &)>> ablations[] = {
                 {"AF_fixed_mu_default", [](AafParams &p) { p.fixed_mu = true; }},
-                {"AF_bandlimit_sigma", [](AafParams &p) { p.light_bandlimit = LightBandlimit::Sigma; }},
+                {"AF_bandlimit_equivalent_width",
+                 [](AafParams &p) { p.light_bandlimit = LightBandlimit::EquivalentWidth; }},
                 {"AF_bandlimit_spectrum", [](AafParams &p) { p.light_bandlimit = LightBandlimit::Spectrum; }},
                 {"AF_light_axes_shortest", [](AafParams &p) { p.light_axes = AafLightAxes::Shortest; }},
-                {"AF_distance_ray",
-                 [](AafParams &p) { p.light_distance = AafLightDistance::AlongLightDirection; }},
+                {"AF_distance_guarded", [](AafParams &p) { p.light_distance = AafLightDistance::Guarded; }},
                 {"AF_distance_plane",
                  [](AafParams &p) { p.light_distance = AafLightDistance::OrthogonalProjection; }},
-                {"AF_pixel_receiver", [](AafParams &p) { p.projected_pixel = false; }},
+                {"AF_pixel_projected", [](AafParams &p) { p.projected_pixel = true; }},
                 {"AF_borders_clip", [](AafParams &p) { p.symmetric_borders = false; }},
             };
             for (const auto &ablation : ablations) {
@@ -200,7 +200,8 @@ int main(int argc, char **argv) {
             settings.skip_self_occluded = false;
             study.add_unfiltered("AS_skip_self_occluded", default_mu, skipped);
             study.add("AS_skip_self_occluded", "AF", default_mu, skipped, AafParams{});
-            // The paper's pipeline: its plan (Omega_L = 1/sigma) and its filter settings.
+            // The paper's pipeline: its plan (Omega_L = 1/sigma, the receiver's footprint:
+            // the defaults' plan too) and its filter settings.
             settings.light_bandlimit = LightBandlimit::Sigma;
             settings.projected_pixel = false;
             const AovSet paper = trace::render_scene(scene, settings);

@@ -281,7 +281,8 @@ TEST_CASE("Guarded distances: AAF Eq. 12 where the projection holds, along the r
     pair.px = {1.0f, 1.0f};
     pair.py = {0.0f, 0.5f};
     pair.pz = {0.0f, 0.0f};
-    AafParams params;  // guarded is the default
+    AafParams params;
+    params.light_distance = AafLightDistance::Guarded;
     auto tap_du = [&](const GatherGuides &g) {
         return g.coord_u_m[1] - g.coord_u_m[0] - g.shear_u[0] * (g.coord_n_m[1] - g.coord_n_m[0]);
     };

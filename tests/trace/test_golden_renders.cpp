@@ -167,13 +167,18 @@ TEST_CASE("An adaptive render gives the golden bytes", "[trace][golden]") {
     settings.spp = 9;
     settings.adaptive = true;
     settings.max_spp = 40;
-    // Changed on purpose twice: when the second pass began tracing visibility
-    // only (occluder distances from the first pass, AAF Sec. 6: only
-    // shadow.d2min/d2max differed), then when the plan began measuring the
-    // pixel footprint in the light plane's units (AafParams::projected_pixel:
-    // the boxes' sides, perpendicular to the light, plan more samples).
+    // Changed on purpose three times: when the second pass began tracing
+    // visibility only (occluder distances from the first pass, AAF Sec. 6:
+    // only shadow.d2min/d2max differed), when the plan began measuring the
+    // pixel footprint in the light plane's units, and when the plan's
+    // defaults went back to the paper's band-limit 1/sigma and the receiver's
+    // footprint (README, "AAF in this implementation": fewer samples).
+    check_golden(trace::render_scene("grids", settings), 0xfe80afc209682863);
+    // The former defaults still give their bytes: the truncated profile's
+    // equivalent-width band-limit with the projected footprint, then with the receiver's.
+    settings.light_bandlimit = LightBandlimit::EquivalentWidth;
+    settings.projected_pixel = true;
     check_golden(trace::render_scene("grids", settings), 0x3cc564471d824c29);
-    // The receiver's footprint (the paper's reading) still gives the previous bytes.
     settings.projected_pixel = false;
     check_golden(trace::render_scene("grids", settings), 0x2abb606c2b16197a);
 }

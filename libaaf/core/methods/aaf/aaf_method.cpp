@@ -29,11 +29,11 @@ std::vector<ParameterInfo> aaf_parameters() {
         ParameterInfo::flag(
             "fixed_mu", "One mu everywhere, ignoring the spp input (AAF Eq. 13 as printed; not consistent)"),
         ParameterInfo::choice(
-            "light_bandlimit", "equivalent_width", {"equivalent_width", "spectrum", "sigma"},
-            "Light band-limit 1/sigma_b of AAF Sec. 4.1 for the Gaussian truncated at the "
-            "light's edges: equivalent_width (the spectrum's area), spectrum (falls to "
-            "exp(-1/2) where the truncated profile's does) or sigma (the paper's untruncated "
-            "reading); the plan (aaf plan, render --adaptive) must use the same"),
+            "light_bandlimit", "sigma", {"sigma", "equivalent_width", "spectrum"},
+            "Light band-limit 1/sigma_b of AAF Sec. 4.1: sigma (the paper's, the profile's sigma) or, "
+            "for the Gaussian truncated at the light's edges, equivalent_width (the spectrum's area) "
+            "or spectrum (falls to exp(-1/2) where the truncated profile's does); the plan (aaf "
+            "plan, render --adaptive) must use the same"),
         ParameterInfo::choice("light_axes", "per_axis", {"per_axis", "shortest"},
                               "per_axis: each light axis its own band-limit, an anisotropic Gaussian in the "
                               "light's plane; shortest: the sharper axis's for both (isotropic); the plan "
@@ -56,14 +56,15 @@ std::vector<ParameterInfo> aaf_parameters() {
                               "symmetric: near the image edge the window shrinks on both sides and stays "
                               "centred; clip: cut on the edge side only (one-sided, biased on gradients)"),
         ParameterInfo::choice(
-            "light_distance", "guarded", {"guarded", "plane", "ray"},
-            "Tap distance in the light's plane: plane (AAF Eq. 12's orthogonal projection), "
-            "ray (slid along the direction to the light first) or guarded (plane, and ray "
-            "where a receiver is within 6 degrees of perpendicular to the light's plane)"),
-        ParameterInfo::choice("pixel_footprint", "projected", {"projected", "receiver"},
-                              "Pixel size d of the pixel band-limit 1/d (AAF Eq. 6, 15): projected onto the "
-                              "light's plane like the tap distances, or the receiver's own (the paper); the "
-                              "plan must use the same"),
+            "light_distance", "ray", {"ray", "plane", "guarded"},
+            "Tap distance in the light's plane: ray (slid along the direction to the light onto "
+            "the light-parallel plane first), plane (AAF Eq. 12's orthogonal projection) or guarded "
+            "(plane, and ray where a receiver is within 6 degrees of perpendicular to the light's "
+            "plane)"),
+        ParameterInfo::choice("pixel_footprint", "receiver", {"receiver", "projected"},
+                              "Pixel size d of the pixel band-limit 1/d (AAF Eq. 6, 15): the receiver's own "
+                              "(the paper's) or projected orthogonally onto the light's plane like the plane "
+                              "distances; the plan must use the same"),
     };
 }
 

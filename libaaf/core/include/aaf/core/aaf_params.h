@@ -19,7 +19,10 @@ enum class AafLightDistance {
     /// The tap is slid along the direction from the centre pixel to the
     /// light's centre onto the plane through the centre parallel to the light,
     /// then measured there: equal to AAF Eq. 12 for a receiver facing the light,
-    /// but a tilted light no longer shrinks displacements towards it.
+    /// but a tilted light no longer shrinks displacements towards it. The
+    /// default: to first order, a receiver moved along the ray to the light
+    /// keeps its shadow, and one moved along the light's normal shifts it by
+    /// the ray's slope (README, "AAF in this implementation").
     AlongLightDirection,
     /// AAF Eq. 12 as printed: the orthogonal projection onto the light's plane.
     OrthogonalProjection,
@@ -27,8 +30,7 @@ enum class AafLightDistance {
     /// perpendicular to the light's plane (|n . n_L| < kDegenerateProjectionCos),
     /// where it collapses their displacements to nothing (every tap of such a
     /// face would weigh 1, whatever beta) and the distance is measured along
-    /// the direction to the light instead (the default: README, "AAF in this
-    /// implementation").
+    /// the direction to the light instead.
     Guarded,
 };
 
@@ -78,9 +80,11 @@ struct AafParams {
     bool fixed_mu = false;
     /// Which sigma gives the light's band-limit Omega_L = 1/sigma and width
     /// 2 sigma in AAF Eq. 8, 13 and 15 (light_bandlimit.h); the sampling plan
-    /// uses the same. Sigma is the paper's reading; the default accounts for
-    /// the truncation of the Gaussian at the light's edges.
-    LightBandlimit light_bandlimit = LightBandlimit::EquivalentWidth;
+    /// uses the same. The default is the paper's reading: with tap distances
+    /// measured along the ray (light_distance), the truncated profile's wider
+    /// spectrum (EquivalentWidth, Spectrum) makes the filter too narrow on the
+    /// study scenes (README, "AAF in this implementation").
+    LightBandlimit light_bandlimit = LightBandlimit::Sigma;
     AafLightAxes light_axes = AafLightAxes::PerAxis;
     /// Baseline "non-adaptive filter" of AAF Fig. 6 (NAF): when > 0, every pixel
     /// AAF would filter uses this beta (world metres) instead of AAF Eq. 13, with
@@ -104,12 +108,12 @@ struct AafParams {
     /// unbiased on gradients); false: cut on the edge side only, the kernel
     /// one-sided (the plain reading of Sec. 6).
     bool symmetric_borders = true;
-    AafLightDistance light_distance = AafLightDistance::Guarded;
+    AafLightDistance light_distance = AafLightDistance::AlongLightDirection;
     /// The pixel band-limit Omega_pix = 1/d of AAF Sec. 4.1 (Eq. 6, 15) with d
     /// measured in the light plane's units, like the tap distances of AAF Eq. 12
-    /// (projected_pixel_size_m()); false: the receiver's own footprint (the
-    /// paper's reading, exact for a receiver parallel to the light).
-    bool projected_pixel = true;
+    /// (projected_pixel_size_m()); false (the default): the receiver's own
+    /// footprint (the paper's reading, exact for a receiver parallel to the light).
+    bool projected_pixel = false;
 
     /// Throws aaf::Error naming the first parameter out of range.
     void validate() const;
