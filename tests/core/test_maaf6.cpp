@@ -1,6 +1,7 @@
 // MAAF for combined effects (Wu et al. 2017, Sec. 6.2): the 3D partition,
 // the 6D accumulation layout and the filter's normalisation, against values
 // computed by hand.
+#include <algorithm>
 #include <catch2/catch.hpp>
 #include <cmath>
 #include <random>
