@@ -1,6 +1,7 @@
 // MAAF for combined effects (Wu et al. 2017, Sec. 6.2): the 3D partition,
 // the 6D accumulation layout and the filter's normalisation, against values
 // computed by hand.
+#include <algorithm>
 #include <catch2/catch.hpp>
 #include <cmath>
 #include <random>
@@ -122,14 +123,20 @@ TEST_CASE("MAAF 6D accumulation: one sample's 25 channels by hand, radiance time
     CHECK(std::fabs(rgb[27] - std::cos(4 * y2 + 3.25 * u2) * std::sin(8 * y1 + 5.75 * u1)) > 1e-3);
 }
 
-TEST_CASE("MAAF 6D x kernel is MAAF Eq. 13's cos/-sin pair with k-scaled envelopes", "[maaf6]") {
+TEST_CASE("MAAF 6D x kernel is MAAF Eq. 13's cos/-sin pair with k-scaled envelopes, the cos part less its DC",
+          "[maaf6]") {
     const std::vector<Maaf6Component> c = maaf6_pair_components(example_wedge(0.5, 1.0), 3);
     double kernel[5];
     const double dx = 0.3, k = 3;
     maaf6_x_kernel(c, k, dx, kernel);
     auto g = [&](double sigma) { return std::exp(-0.5 * (dx * sigma / k) * (dx * sigma / k)); };
     CHECK(kernel[0] == Approx(g(c[0].sigma_x)));
-    CHECK(kernel[1] == Approx(2 * c[1].weight * std::cos(c[1].centre_x * dx) * g(c[1].sigma_x)));
+    auto dc = [&](const Maaf6Component &p) {
+        const double ratio = p.centre_x * k / p.sigma_x;
+        return std::exp(-0.5 * ratio * ratio);
+    };
+    CHECK(kernel[1] == Approx(2 * c[1].weight * (std::cos(c[1].centre_x * dx) - dc(c[1])) * g(c[1].sigma_x)));
+    CHECK(kernel[3] == Approx(2 * c[2].weight * (std::cos(c[2].centre_x * dx) - dc(c[2])) * g(c[2].sigma_x)));
     CHECK(kernel[2] == Approx(-2 * c[1].weight * std::sin(c[1].centre_x * dx) * g(c[1].sigma_x)));
     CHECK(kernel[4] == Approx(-2 * c[2].weight * std::sin(c[2].centre_x * dx) * g(c[2].sigma_x)));
 }
@@ -223,5 +230,210 @@ TEST_CASE("MAAF 6D filter: a fully lit region keeps each pixel's own mean exactl
                 REQUIRE(out[c][std::size_t(i)] == Approx(own[c][std::size_t(i)]).epsilon(1e-4));
                 if (unit_weights) REQUIRE(out[c][std::size_t(i)] == Approx(value[c]).epsilon(1e-4));
             }
+    }
+}
+
+namespace {
+
+/// A flat floor of pixels of 1 cm whose radiance is a soft edge
+/// g(x_a + s v) along the tangent axis t_a of one subspace a (1 or 2), v the
+/// sample's coordinate in that subspace (y_a for a y-wedge, u_a for a
+/// u-wedge), drawn at the midpoints of 256 strata of [-half, half];
+/// accumulated through Maaf6SampleSide (as the tracer does) and filtered by
+/// maaf6_filter_layer(). Returns the largest |filtered - exact integral over v|
+/// over the pixels whose window lies inside the image.
+struct EdgeCase {
+    bool y_wedge = true;         ///< the slope on y (has_y) or on u (no y-wedge, lens only)
+    double slope = 1;            ///< s of the signal
+    double wedge_lo = 1, wedge_hi = 1;  ///< the stored wedge (y or u slopes)
+    double half = 0.05;          ///< v uniform on [-half, half]
+    double omega_v = 40;         ///< Omega^max of v
+    double edge_m = 0.02;        ///< the edge's own width
+    int axis = 1;                ///< the subspace a
+};
+
+double edge_error(const EdgeCase &e, int pairs_used) {
+    // 41 pixels along the edge's axis, 25 (one window) across it.
+    const int width = e.axis == 1 ? 41 : 25, height = e.axis == 1 ? 25 : 41, n = width * height, strata = 256;
+    const double pixel_m = 0.01;
+    auto g = [&](double t) { return 0.5 + 0.5 * std::tanh((t - 0.2) / e.edge_m); };
+    std::vector<std::vector<float>> sums(75, std::vector<float>(n)), weights(25, std::vector<float>(n));
+    std::vector<float> ymin(n, e.y_wedge ? float(e.wedge_lo) : -1.0f), ymax(n, e.y_wedge ? float(e.wedge_hi) : -1.0f),
+        umin(n, e.y_wedge ? 0.0f : float(e.wedge_lo)), umax(n, e.y_wedge ? 0.0f : float(e.wedge_hi)),
+        omegax(n, float(2 / pixel_m)), id(n, 1.0f), size(n, float(pixel_m)), spp(n, float(strata)), exact(n);
+    std::vector<float> pos[3], nrm[3];
+    for (int c = 0; c < 3; ++c) {
+        pos[c].assign(n, 0.0f);
+        nrm[c].assign(n, c == 1 ? 1.0f : 0.0f);
+    }
+    Maaf6Wedge w;
+    w.has_y = e.y_wedge;
+    w.y_min = e.y_wedge ? e.wedge_lo : 0;
+    w.y_max = e.y_wedge ? e.wedge_hi : 0;
+    w.omega_y_max = e.omega_v;
+    w.has_u = !e.y_wedge;
+    w.u_min = e.y_wedge ? 0 : e.wedge_lo;
+    w.u_max = e.y_wedge ? 0 : e.wedge_hi;
+    w.omega_u_max = e.omega_v;
+    w.omega_x_max = 2 / pixel_m;
+    const Maaf6SampleSide side(maaf6_pair_components(w, 3));
+    for (int i = 0; i < n; ++i) {
+        // On this floor (normal +y) t1 = the light's axis_u = +x and t2 = n x t1 = -z.
+        pos[0][std::size_t(i)] = float(pixel_m * (i % width));
+        pos[2][std::size_t(i)] = float(pixel_m * (i / width));
+        const double x_a = e.axis == 1 ? double(pos[0][std::size_t(i)]) : -double(pos[2][std::size_t(i)]) + 0.4;
+        std::vector<double> rgb(75, 0.0), weight(25, 0.0);
+        double mean = 0;
+        for (int k = 0; k < strata; ++k) {
+            const double v = e.half * (2.0 * (k + 0.5) / strata - 1.0);
+            const double f = g(x_a + e.slope * v);
+            mean += f / strata;
+            const float value[3] = {float(f), float(f), float(f)};
+            const double y = e.y_wedge ? v : 0.0, u = e.y_wedge ? 0.0 : v;
+            side.accumulate(e.axis == 1 ? y : 0.0, e.axis == 1 ? u : 0.0, e.axis == 2 ? y : 0.0, e.axis == 2 ? u : 0.0,
+                            value, 1.0, rgb.data(), weight.data());
+        }
+        exact[std::size_t(i)] = float(mean);
+        for (int c = 0; c < 75; ++c) sums[std::size_t(c)][std::size_t(i)] = float(rgb[std::size_t(c)]);
+        for (int c = 0; c < 25; ++c) weights[std::size_t(c)][std::size_t(i)] = float(weight[std::size_t(c)]);
+    }
+    Maaf6LayerInputs layer;
+    for (auto &p : sums) layer.sums.push_back(plane_view<const float>(p.data(), width, height));
+    for (auto &p : weights) layer.weights.push_back(plane_view<const float>(p.data(), width, height));
+    layer.y_min = plane_view<const float>(ymin.data(), width, height);
+    layer.y_max = plane_view<const float>(ymax.data(), width, height);
+    layer.omega_y_max = e.omega_v;
+    Maaf6SharedInputs shared;
+    shared.u_min = plane_view<const float>(umin.data(), width, height);
+    shared.u_max = plane_view<const float>(umax.data(), width, height);
+    shared.omega_x = plane_view<const float>(omegax.data(), width, height);
+    for (int c = 0; c < 3; ++c) {
+        shared.position[std::size_t(c)] = plane_view<const float>(pos[c].data(), width, height);
+        shared.normal[std::size_t(c)] = plane_view<const float>(nrm[c].data(), width, height);
+    }
+    shared.object_id = plane_view<const float>(id.data(), width, height);
+    shared.pixel_size = plane_view<const float>(size.data(), width, height);
+    shared.samples = plane_view<const float>(spp.data(), width, height);
+    shared.omega_u_max = e.y_wedge ? 0.0 : e.omega_v;
+    LightPlane light;
+    light.axis_u = {1, 0, 0};
+    light.axis_v = {0, 0, 1};
+    std::vector<float> out[3];
+    for (auto &o : out) o.assign(n, -1.0f);
+    const std::array<PlaneView, 3> views = {plane_view(out[0].data(), width, height),
+                                            plane_view(out[1].data(), width, height),
+                                            plane_view(out[2].data(), width, height)};
+    Maaf6FilterParams params;
+    params.pairs_used = pairs_used;
+    maaf6_filter_layer(layer, shared, light, params, views);
+    double worst = 0;
+    for (int y = params.max_radius_px; y < height - params.max_radius_px; ++y)
+        for (int x = params.max_radius_px; x < width - params.max_radius_px; ++x) {
+            const std::size_t i = std::size_t(y * width + x);
+            worst = std::max(worst, std::fabs(double(out[0][i]) - double(exact[i])));
+        }
+    return worst;
+}
+
+}  // namespace
+
+TEST_CASE("MAAF 6D synthetic edge: no bias from pairs the window cannot resolve, in either subspace", "[maaf6]") {
+    // Indirect light's numbers (s = z = 2 m, Omega_y^max = 2.8 per unit tan): the Omega_x extent is
+    // 1.4 rad/m, the central component's 3 std 11 m against a 12 cm window. Inside it cos(C_x dx) ~ 1,
+    // so the pairs would weight each pixel's samples by 1 + 2 mu_p cos(C_y^p y): 7e-3 off before.
+    // The edge is linear over the window, so the axis-aligned filter is exact there.
+    for (int axis : {1, 2}) {
+        EdgeCase e;
+        e.axis = axis;
+        e.slope = e.wedge_lo = 2.0;
+        e.wedge_hi = 2.5;
+        e.half = 1.0;
+        e.omega_v = 2.8;
+        e.edge_m = 0.3;
+        const double aaf = edge_error(e, 1), maaf = edge_error(e, 3);
+        INFO("axis " << axis << ": AAF " << aaf << ", MAAF " << maaf);
+        CHECK(aaf < 1e-4);
+        CHECK(maaf < 1e-4);
+    }
+}
+
+TEST_CASE("MAAF 6D synthetic edge: the tap - centre displacement matches the wedge's sign, per subspace",
+          "[maaf6]") {
+    // g(x_a + s v) has its spectrum on Omega_v = s Omega_x; the partition is active (Omega_x extent
+    // 160-178 rad/m < the pixel band 200, central 3 std 8-9 cm < the 12 cm window). The filter is
+    // closer to the exact integral when the stored wedge has the signal's sign than the opposite one.
+    for (int axis : {1, 2}) {
+        {  // y (light), s > 0: the signal mirrored in y is the wrong orientation
+            EdgeCase e;
+            e.axis = axis;
+            e.slope = 0.3;
+            e.wedge_lo = 0.25;
+            e.wedge_hi = 0.35;
+            const double right = edge_error(e, 3);
+            e.slope = -0.3;
+            const double wrong = edge_error(e, 3);
+            INFO("axis " << axis << ": right " << right << ", mirrored " << wrong);
+            CHECK(right < wrong);
+        }
+        for (double sign : {1.0, -1.0}) {
+            EdgeCase e;
+            e.axis = axis;
+            e.y_wedge = false;
+            e.slope = 0.5 * sign;
+            e.wedge_lo = sign > 0 ? 0.45 : -0.55;
+            e.wedge_hi = sign > 0 ? 0.55 : -0.45;
+            e.omega_v = 80;
+            const double right = edge_error(e, 3);
+            e.slope = -e.slope;
+            const double wrong = edge_error(e, 3);
+            INFO("axis " << axis << ", u, sign " << sign << ": right " << right << ", opposite " << wrong);
+            CHECK(right < wrong);
+        }
+    }
+}
+
+TEST_CASE("MAAF 6D filter components: the axis-aligned filter where the window or the x band cannot hold the "
+          "partition, by hand",
+          "[maaf6]") {
+    // example_wedge: Omega_y^max / y_min = 10 rad/m, x band min(1e6, 100 / 0.5) = 200: the y band
+    // limits the wedge; sigma_x^0 = 10 / 5 = 2 rad/m, so the central reach 3 k / sigma_x^0 is 1.5 m.
+    Maaf6Wedge w = example_wedge(0.5, 1.0);
+    const std::vector<Maaf6Component> all = maaf6_pair_components(w, 3), one = maaf6_pair_components(w, 1);
+    auto same = [](const Maaf6Component &a, const Maaf6Component &b) {
+        return a.centre_x == b.centre_x && a.sigma_x == b.sigma_x && a.centre_y == b.centre_y &&
+               a.centre_u == b.centre_u && a.weight == b.weight;
+    };
+    const std::vector<Maaf6Component> wide = maaf6_filter_components(w, 3, 1.0, 1.6);
+    for (std::size_t p = 0; p < 3; ++p) CHECK(same(wide[p], all[p]));
+    auto check_central_only = [&](const std::vector<Maaf6Component> &c, const Maaf6Component &central) {
+        REQUIRE(c.size() == 3);
+        CHECK(same(c[0], central));
+        CHECK(c[1].weight == 0);
+        CHECK(c[2].weight == 0);
+    };
+    check_central_only(maaf6_filter_components(w, 3, 1.0, 1.4), one[0]);  // the window: 1.5 m > 1.4 m
+    check_central_only(maaf6_filter_components(w, 3, 2.0, 1.6), one[0]);  // k = 2: 3 m > 1.6 m
+    w.omega_x_max = 5;  // Omega_y^max / y_min = 10 >= the pixel band 5: the band clips the wedge
+    check_central_only(maaf6_filter_components(w, 3, 1.0, 1e3), maaf6_pair_components(w, 1)[0]);
+    CHECK(maaf6_filter_components(w, 1, 1.0, 1e3).size() == 1);
+}
+
+TEST_CASE("MAAF 6D x kernel: each pair's cos part integrates to 0 (nothing passes at Omega_x = 0)", "[maaf6]") {
+    const std::vector<Maaf6Component> c = maaf6_pair_components(example_wedge(0.5, 1.0), 3);
+    for (double k : {1.0, 3.0}) {
+        double integral[5] = {0, 0, 0, 0, 0}, first_moment_sin = 0;
+        const double step = 1e-3;
+        for (double dx = -20; dx <= 20; dx += step) {
+            double kernel[5];
+            maaf6_x_kernel(c, k, dx, kernel);
+            for (int a = 0; a < 5; ++a) integral[a] += kernel[a] * step;
+            first_moment_sin += kernel[2] * dx * step;
+        }
+        INFO("k " << k);
+        CHECK(integral[0] == Approx(std::sqrt(2 * 3.14159265358979) * k / c[0].sigma_x).epsilon(1e-6));
+        CHECK(std::fabs(integral[1]) < 1e-6 * integral[0]);
+        CHECK(std::fabs(integral[3]) < 1e-6 * integral[0]);
+        CHECK(std::fabs(integral[2]) < 1e-9);  // odd
+        CHECK(std::fabs(first_moment_sin) > 1e-3);  // but not zero
     }
 }

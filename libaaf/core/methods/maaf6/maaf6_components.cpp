@@ -85,6 +85,23 @@ std::vector<Maaf6Component> maaf6_pair_components(const Maaf6Wedge &w, int pairs
     return out;
 }
 
+std::vector<Maaf6Component> maaf6_filter_components(const Maaf6Wedge &w, int pairs, double k, double window_m) {
+    std::vector<Maaf6Component> out = maaf6_pair_components(w, pairs);
+    if (pairs == 1) return out;
+    // The x band the partition was cut to, as maaf6_pair_components() computes it.
+    const double u_abs_min = std::min(std::fabs(w.u_min), std::fabs(w.u_max));
+    double band_x = w.omega_x_max;
+    if (w.has_y && one_signed(w)) band_x = std::min(band_x, w.omega_u_max / u_abs_min);
+    const bool band_clipped = w.has_y ? w.omega_y_max >= w.y_min * band_x
+                                      : !one_signed(w) || w.omega_u_max >= u_abs_min * w.omega_x_max;
+    const bool beyond_window = !(3.0 * k < out[0].sigma_x * window_m);  // 3 k / sigma_x^0 > window
+    if (!band_clipped && !beyond_window) return out;
+    const Maaf6Component central = maaf6_pair_components(w, 1)[0];  // MYRD14's axis-aligned filter
+    for (Maaf6Component &c : out) c.weight = 0;
+    out[0] = central;
+    return out;
+}
+
 int maaf6_channel_count(int pairs) {
     return (2 * pairs - 1) * (2 * pairs - 1);
 }
@@ -134,7 +151,10 @@ void maaf6_x_kernel(const std::vector<Maaf6Component> &pairs, double k, double d
             continue;
         }
         const double phase = c.centre_x * dx_m;
-        kernel[2 * p - 1] = 2.0 * c.weight * std::cos(phase) * envelope;   // MAAF Eq. 13, cos x cos
+        // The DC of cos(C_x dx) g(dx; k / sigma_x): the pair's kernel is made zero-mean (see maaf6.h).
+        const double dc_ratio = c.sigma_x > 0 ? c.centre_x * k / c.sigma_x : 0.0;
+        const double dc = c.sigma_x > 0 ? std::exp(-0.5 * dc_ratio * dc_ratio) : 0.0;
+        kernel[2 * p - 1] = 2.0 * c.weight * (std::cos(phase) - dc) * envelope;  // MAAF Eq. 13, cos x cos
         kernel[2 * p] = -2.0 * c.weight * std::sin(phase) * envelope;      // MAAF Eq. 13, - sin x sin
     }
 }

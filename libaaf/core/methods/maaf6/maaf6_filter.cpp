@@ -81,7 +81,9 @@ void maaf6_filter_layer(const Maaf6LayerInputs &layer, const Maaf6SharedInputs &
                 for (int c = 0; c < 3; ++c) out[std::size_t(c)](x, y) = own_mean(c);
                 continue;
             }
-            const std::vector<Maaf6Component> pairs = maaf6_pair_components(wedge, params.pairs_used);
+            const double window_m = double(params.max_radius_px) * double(shared.pixel_size(x, y));
+            const std::vector<Maaf6Component> pairs =
+                maaf6_filter_components(wedge, params.pairs_used, params.k, window_m);
             const Vec3 p = read3(shared.position, x, y), n = normalize(read3(shared.normal, x, y));
             Vec3 t1, t2;
             maaf6_tangent_frame(n, light.axis_u, light.axis_v, t1, t2);

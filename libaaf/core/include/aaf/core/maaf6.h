@@ -65,6 +65,26 @@ struct Maaf6Component {
 /// pixel band remains (the others get weight 0). Always finite.
 std::vector<Maaf6Component> maaf6_pair_components(const Maaf6Wedge &wedge, int pairs);
 
+/// The components the 6D filter uses at one pixel: maaf6_pair_components(wedge,
+/// pairs) where the 3D partition can be realised there, otherwise the central
+/// axis-aligned filter at N = 1 (maaf6_pair_components(wedge, 1) as component
+/// 0, the N - 1 offset pairs kept with weight 0, so the stored layout stays).
+/// The partition cannot be realised, and its offset pairs would only bias:
+///  - when the central component's primal reach 3 k / sigma_x^0 exceeds the
+///    filter window `window_m` (max_radius pixels times the pixel size): inside
+///    the window cos(C_x^p dx) is about 1 and sin about 0, so each pair stops
+///    being a sheared filter and becomes a reweighting of the pixel's own samples by
+///    1 + 2 mu_p cos(C_y^p y), which favours y near 0 (for indirect light the
+///    directions about the normal: floors came out too dark, ceilings too bright);
+///  - when the wedge's x extent is the x band itself, not its y (or u, without
+///    a y-wedge) band: Omega^max / s_min >= the x band (MAAF Sec. 6.2's "simple
+///    optimization" clips the wedge). The central component is then 2N - 1 times
+///    narrower than the pixel band and the Gaussian pairs tile the rest
+///    unevenly: in-focus and hard-shadow edges, whose slopes lie below the
+///    5x5-averaged s_min, leak and ring over the whole window.
+/// k: the filter's width scale (Maaf6FilterParams::k). Throws as maaf6_pair_components().
+std::vector<Maaf6Component> maaf6_filter_components(const Maaf6Wedge &wedge, int pairs, double k, double window_m);
+
 /// Channels per layer and per colour: (2N - 1)^2, channel a (2N - 1) + b
 /// being function a of subspace 1 times function b of subspace 2; function
 /// 0 is 1, 2p - 1 is cos(C_y^p y + C_u^p u), 2p is sin(...) (MAAF Eq. 23).
@@ -98,9 +118,15 @@ class Maaf6SampleSide {
 
 /// The x-side kernel of one subspace at displacement dx_m = x - x' (MAAF
 /// MAAF Eq. 21-22): into kernel[0 .. 2N-2], function 0: g(dx; k/sigma_x^0);
-/// 2p - 1: 2 mu_p cos(C_x^p dx) g(dx; k/sigma_x^p); 2p: -2 mu_p sin(C_x^p dx)
+/// 2p - 1: 2 mu_p (cos(C_x^p dx) - e_p) g(dx; k/sigma_x^p); 2p: -2 mu_p sin(C_x^p dx)
 /// g(...), so that sum_a kernel[a] phi_a = MAAF Eq. 22's primal filter per
-/// subspace (cos(A + B) = cos A cos B - sin A sin B, MAAF Eq. 13).
+/// subspace (cos(A + B) = cos A cos B - sin A sin B, MAAF Eq. 13), less
+/// e_p = exp(-(k C_x^p / sigma_x^p)^2 / 2), the DC of cos(C_x^p dx) g: each pair's
+/// x kernel integrates to 0 (as a Morlet wavelet's correction), so it passes
+/// nothing at Omega_x = 0. Without it the Gaussian's tail at Omega_x = 0 (e_p is
+/// 0.6 for C_x = sigma_x) weights a pixel's own y integral by cos(C_y^p y), a
+/// bias no sample count removes; with it the mean over the window is the
+/// central filter's, an unweighted integral over y and u.
 /// g(t; s) = exp(-t^2 / (2 s^2)); k scales every Fourier std (as `aaf filter maaf --k`).
 void maaf6_x_kernel(const std::vector<Maaf6Component> &pairs, double k, double dx_m, double *kernel);
 

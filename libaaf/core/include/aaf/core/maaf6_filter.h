@@ -37,7 +37,8 @@ struct Maaf6FilterParams {
 
 /// Filters one layer (MAAF Eq. 21-22 with the 6D product of MAAF Sec. 6.2):
 /// for every pixel i, with t1, t2 its maaf6_tangent_frame() and components
-/// maaf6_pair_components() of its wedge, out = sum_j g_j sum_ab K_a(d1) K_b(d2)
+/// maaf6_filter_components() of its wedge (window: max_radius times its pixel
+/// size; the axis-aligned filter where the partition cannot be realised), out = sum_j g_j sum_ab K_a(d1) K_b(d2)
 /// sums_j[ab] / (the same with weights_j[ab]), d_k = (P_j - P_i) . t_k (the
 /// tap minus the centre: see the README for the orientation),
 /// g_j = exp(-d_n^2 / (2 s^2)) / samples_j with d_n = (P_i - P_j) . n
