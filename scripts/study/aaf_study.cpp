@@ -21,6 +21,7 @@
 #include "aaf/core/error_metrics.h"
 #include "aaf/core/sample_statistics.h"
 #include "aaf/io/atomic_file.h"
+#include "aaf/io/exr_io.h"
 #include "aaf/trace/render.h"
 
 namespace {
@@ -61,6 +62,25 @@ AafParams paper_params(float mu) {
     p.projected_pixel = false;
     p.symmetric_borders = false;
     return p;
+}
+
+/// The reference render of `scene` under `settings`, from `cache_dir` when
+/// it holds one of that size, spp and seed (a file `aaf render SCENE --spp N
+/// --seed 1000` writes too), else rendered, and written there when
+/// `cache_dir` is set.
+AovSet cached_reference(const std::string &cache_dir, const std::string &scene,
+                        const trace::RenderSettings &settings) {
+    if (cache_dir.empty()) return trace::render_scene(scene, settings);
+    const std::string path = cache_dir + "/" + scene + "_" + std::to_string(settings.width) + "x" +
+                             std::to_string(settings.height) + "_" + std::to_string(settings.spp) + "spp_seed" +
+                             std::to_string(settings.seed) + ".exr";
+    if (std::ifstream(path).good()) {
+        AovSet cached = io::read_aovs(path);
+        if (cached.width() == settings.width && cached.height() == settings.height) return cached;
+    }
+    AovSet reference = trace::render_scene(scene, settings);
+    io::write_aovs(reference, path);
+    return reference;
 }
 
 struct Row {
@@ -134,6 +154,10 @@ int main(int argc, char **argv) {
     app.add_option("--mu", mu_values, "Fixed-mu sweep of the filter on the adaptive render")
         ->delimiter(',')
         ->capture_default_str();
+    std::string reference_cache;
+    app.add_option("--reference-cache", reference_cache,
+                   "Folder of the converged references, <scene>_<W>x<H>_<spp>spp_seed1000.exr: read when "
+                   "there, else rendered and written there (empty it after changing the tracer)");
     bool plain_naf = true;
     app.add_flag("!--no-plain-naf", plain_naf,
                  "Skip the oracle fixed-width filter on the plain renders (faster)");
@@ -148,7 +172,7 @@ int main(int argc, char **argv) {
             settings.height = height;
             settings.spp = reference_spp;
             settings.seed = 1000;  // independent of the test renders
-            const AovSet reference = trace::render_scene(scene, settings);
+            const AovSet reference = cached_reference(reference_cache, scene, settings);
             study.reference = &reference;
             settings.seed = 1;
             for (int spp : spp_values) {
