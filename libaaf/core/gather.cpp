@@ -4,8 +4,8 @@
 #include <cmath>
 #include <functional>
 #include <memory>
-#include <utility>
 #include <string>
+#include <utility>
 
 #include "aaf/core/error.h"
 #include "aaf/core/fast_exp.h"
@@ -167,7 +167,7 @@ void gather_sweep(const GatherGuides &g, float cos_threshold, bool symmetric_bor
 /// others go through uninitialised scratch planes (copied in, or out by
 /// finish()).
 class SweepPlanes {
-public:
+  public:
     std::vector<const float *> source;
     std::vector<float *> output;
 
@@ -183,7 +183,8 @@ public:
             }
             float *copy = scratch(view.width, view.height);
             for (int y = 0; y < view.height; ++y)
-                for (int x = 0; x < view.width; ++x) copy[std::size_t(y) * std::size_t(view.width) + x] = view(x, y);
+                for (int x = 0; x < view.width; ++x)
+                    copy[std::size_t(y) * std::size_t(view.width) + x] = view(x, y);
             source.push_back(copy);
         }
         for (const PlaneView &view : outputs) {
@@ -204,11 +205,12 @@ public:
             if (output[k] == outputs[k].data) continue;
             for (int y = 0; y < outputs[k].height; ++y)
                 for (int x = 0; x < outputs[k].width; ++x)
-                    outputs[k](x, y) = output[k][std::size_t(y) * std::size_t(outputs[k].width) + std::size_t(x)];
+                    outputs[k](x, y) =
+                        output[k][std::size_t(y) * std::size_t(outputs[k].width) + std::size_t(x)];
         }
     }
 
-private:
+  private:
     template <typename T>
     static bool contiguous(const BasicPlaneView<T> &view) {
         return view.pixel_stride == 1 && view.row_stride == view.width;
@@ -231,8 +233,8 @@ private:
 template <bool Modulated>
 void sweep_all(const GatherGuides &g, float cos_threshold, bool symmetric_borders,
                const std::vector<const float *> &sources, const std::vector<float *> &outputs, bool along_x,
-               bool along_y,
-               const AxisModulation &mod_u = {}, const AxisModulation &mod_v = {}, bool normalise = true) {
+               bool along_y, const AxisModulation &mod_u = {}, const AxisModulation &mod_v = {},
+               bool normalise = true) {
     for (std::size_t first = 0; first < sources.size(); first += kMaxChannelsPerSweep) {
         const std::size_t count = std::min<std::size_t>(kMaxChannelsPerSweep, sources.size() - first);
         if (!Modulated) {
@@ -343,14 +345,17 @@ void gather(const GatherGuides &guides, const GatherSettings &settings,
         SweepPlanes planes(sources, outputs, true);
         std::vector<float *> vertical(sources.size());
         for (float *&plane : vertical) plane = planes.scratch(guides.width, guides.height);
-        sweep_all<false>(guides, cos_threshold, settings.symmetric_borders, planes.source, vertical, false, true);
+        sweep_all<false>(guides, cos_threshold, settings.symmetric_borders, planes.source, vertical, false,
+                         true);
         sweep_all<false>(guides, cos_threshold, settings.symmetric_borders,
-                         std::vector<const float *>(vertical.begin(), vertical.end()), planes.output, true, false);
+                         std::vector<const float *>(vertical.begin(), vertical.end()), planes.output, true,
+                         false);
         planes.finish(outputs);
     } else {
         SweepPlanes planes(sources, outputs, false);
-        sweep_all<false>(guides, cos_threshold, settings.symmetric_borders, planes.source, planes.output, true,
-                         true);  // AAF Eq. 10 directly
+        // AAF Eq. 10 directly
+        sweep_all<false>(guides, cos_threshold, settings.symmetric_borders, planes.source, planes.output,
+                         true, true);
         planes.finish(outputs);
     }
 }
@@ -372,8 +377,9 @@ void gather_modulated(const GatherGuides &guides, const GatherSettings &settings
             !(m->inv_two_sigma_sq.width == guides.width && m->inv_two_sigma_sq.height == guides.height))
             throw Error("modulated gather: a per-axis width plane has another size");
     SweepPlanes planes(sources, outputs, false);
-    sweep_all<true>(guides, cos_threshold_of(settings), settings.symmetric_borders, planes.source, planes.output,
-                    true, true, along_u, along_v, normalisation == GatherNormalisation::WeightSum);
+    sweep_all<true>(guides, cos_threshold_of(settings), settings.symmetric_borders, planes.source,
+                    planes.output, true, true, along_u, along_v,
+                    normalisation == GatherNormalisation::WeightSum);
     planes.finish(outputs);
 }
 

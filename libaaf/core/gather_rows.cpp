@@ -272,7 +272,8 @@ void gather_row_along(const GatherSweep &s, int y) {
                 auto inside = hn::Gt(reach_v, hn::Set(di, (o < 0 ? -o : o) - 1));
                 if (!AlongY) {
                     const auto x_tap = hn::Add(x_v, hn::Set(di, o));
-                    inside = hn::And(inside, hn::And(hn::Gt(x_tap, hn::Set(di, -1)), hn::Lt(x_tap, hn::Set(di, g.width))));
+                    inside = hn::And(
+                        inside, hn::And(hn::Gt(x_tap, hn::Set(di, -1)), hn::Lt(x_tap, hn::Set(di, g.width))));
                 }
                 const auto active = hn::RebindMask(d, inside);
                 const std::ptrdiff_t t = c0 + std::ptrdiff_t(o) * step;
@@ -281,14 +282,16 @@ void gather_row_along(const GatherSweep &s, int y) {
                                              hn::Mul(nz, load_guarded(normal_z, t, size)));
                 const auto accepted =
                     hn::And(hn::Eq(load_guarded(id, t, size), centre_id), hn::Ge(cos_angle, cos_threshold));
-                VW du = hn::Sub(load_guarded(coord_u, t, size), u), dv = hn::Sub(load_guarded(coord_v, t, size), v);
+                VW du = hn::Sub(load_guarded(coord_u, t, size), u),
+                   dv = hn::Sub(load_guarded(coord_v, t, size), v);
                 if (Sheared) {
                     const VW dn = hn::Sub(load_guarded(coord_n, t, size), n);
                     du = hn::Sub(du, hn::Mul(shear_u, dn));
                     dv = hn::Sub(dv, hn::Mul(shear_v, dn));
                 }
                 // AAF Eq. 11
-                const VW exponent = gaussian_exponent(du, dv, inv_two_sigma_sq, inv_two_sigma_sq_v, anisotropic);
+                const VW exponent =
+                    gaussian_exponent(du, dv, inv_two_sigma_sq, inv_two_sigma_sq_v, anisotropic);
                 const VW weight = hn::IfThenElseZero(accepted, fast_exp_nonpositive(d, exponent));
                 weight_sum = hn::IfThenElse(active, hn::Add(weight_sum, weight), weight_sum);
                 for (int k = 0; k < K; ++k)

@@ -174,19 +174,21 @@ namespace {
 /// the centre added back with weight 1 when its own test fails. The SIMD
 /// kernels must give exactly these bits (multiplies and adds kept apart:
 /// x86-64's baseline has no fused multiply-add to contract them into).
-float reference_pass(const GatherGuides &g, const float *source, int x, int y, bool along_y, float cos_threshold,
-                     bool symmetric_borders) {
+float reference_pass(const GatherGuides &g, const float *source, int x, int y, bool along_y,
+                     float cos_threshold, bool symmetric_borders) {
     const std::size_t c = g.index(x, y);
     const int radius = g.radius_px[c];
     if (radius == 0) return source[c];
     int reach = radius;
-    if (symmetric_borders) reach = along_y ? std::min({radius, y, g.height - 1 - y}) : std::min({radius, x, g.width - 1 - x});
+    if (symmetric_borders)
+        reach = along_y ? std::min({radius, y, g.height - 1 - y}) : std::min({radius, x, g.width - 1 - x});
     float sum = 0.0f, weight_sum = 0.0f;
     for (int o = -reach; o <= reach; ++o) {
         const int tx = along_y ? x : x + o, ty = along_y ? y + o : y;
         if (tx < 0 || tx >= g.width || ty < 0 || ty >= g.height) continue;
         const std::size_t t = g.index(tx, ty);
-        const float cos_angle = g.normal_x[c] * g.normal_x[t] + g.normal_y[c] * g.normal_y[t] + g.normal_z[c] * g.normal_z[t];
+        const float cos_angle =
+            g.normal_x[c] * g.normal_x[t] + g.normal_y[c] * g.normal_y[t] + g.normal_z[c] * g.normal_z[t];
         const bool accepted = g.object_id[t] == g.object_id[c] && cos_angle >= cos_threshold;
         float du = g.coord_u_m[t] - g.coord_u_m[c], dv = g.coord_v_m[t] - g.coord_v_m[c];
         if (g.sheared()) {
@@ -231,8 +233,8 @@ TEST_CASE("Gather SIMD: the vertical pass and the separable gather give the scal
                             reference_pass(g, source.data(), x, y, true, cos_threshold, symmetric);
                 for (int y = 0; y < g.height; ++y)
                     for (int x = 0; x < g.width; ++x)
-                        expected[g.index(x, y)] =
-                            reference_pass(g, expected_vertical.data(), x, y, false, cos_threshold, symmetric);
+                        expected[g.index(x, y)] = reference_pass(g, expected_vertical.data(), x, y, false,
+                                                                 cos_threshold, symmetric);
                 detail::GatherSweep sweep;
                 sweep.guides = &g;
                 sweep.cos_threshold = cos_threshold;
@@ -246,8 +248,8 @@ TEST_CASE("Gather SIMD: the vertical pass and the separable gather give the scal
                 settings.symmetric_borders = symmetric;
                 for (const std::int64_t target : hwy::SupportedAndGeneratedTargets()) {
                     hwy::SetSupportedTargetsForTest(target);
-                    INFO("target " << hwy::TargetName(target) << ", anisotropic " << anisotropic << ", sheared "
-                                   << sheared << ", symmetric borders " << symmetric);
+                    INFO("target " << hwy::TargetName(target) << ", anisotropic " << anisotropic
+                                   << ", sheared " << sheared << ", symmetric borders " << symmetric);
                     std::fill(vertical.begin(), vertical.end(), std::nanf(""));
                     for (int y = 0; y < g.height; ++y) detail::gather_row(sweep, y);
                     CHECK(std::memcmp(vertical.data(), expected_vertical.data(), n * sizeof(float)) == 0);

@@ -3,8 +3,8 @@
 #include <hwy/targets.h>
 
 #include <catch2/catch.hpp>
-#include <cstdint>
 #include <cmath>
+#include <cstdint>
 #include <cstring>
 #include <limits>
 #include <random>
@@ -63,7 +63,7 @@ TEST_CASE("Occluder fill: the disc's mean of same-object occluded neighbours, bi
         for (int x = 0; x < width; ++x) {
             float *p = &pixels[(std::size_t(y) * width + x) * 3];
             const float roll = unit(rng);
-            const float d2_max = roll < 0.45f ? 0.0f                                      // unoccluded
+            const float d2_max = roll < 0.45f  ? 0.0f                                    // unoccluded
                                  : roll < 0.5f ? std::numeric_limits<float>::infinity()  // no hit
                                                : std::pow(10.0f, 6.0f * unit(rng) - 3.0f);
             p[0] = d2_max * unit(rng);
@@ -71,7 +71,9 @@ TEST_CASE("Occluder fill: the disc's mean of same-object occluded neighbours, bi
             p[2] = x < 2 * y ? 1.0f : 2.0f;
             if (roll > 0.98f) p[2] = std::nanf("");
         }
-    auto channel = [&](int c) { return ConstPlaneView(pixels.data() + c, width, height, 3, std::ptrdiff_t(width) * 3); };
+    auto channel = [&](int c) {
+        return ConstPlaneView(pixels.data() + c, width, height, 3, std::ptrdiff_t(width) * 3);
+    };
     int filled_somewhere = 0;
     for (const int radius : {0, 1, 3, 5, 8}) {
         const FilledOccluders want = reference_fill(channel(0), channel(1), channel(2), radius);
@@ -81,8 +83,10 @@ TEST_CASE("Occluder fill: the disc's mean of same-object occluded neighbours, bi
             const FilledOccluders got = fill_occluder_distances(channel(0), channel(1), channel(2), radius);
             INFO("radius " << radius << ", target " << hwy::TargetName(target));
             REQUIRE(got.d2_max_m.size() == want.d2_max_m.size());
-            CHECK(std::memcmp(got.d2_min_m.data(), want.d2_min_m.data(), want.d2_min_m.size() * sizeof(float)) == 0);
-            CHECK(std::memcmp(got.d2_max_m.data(), want.d2_max_m.data(), want.d2_max_m.size() * sizeof(float)) == 0);
+            CHECK(std::memcmp(got.d2_min_m.data(), want.d2_min_m.data(),
+                              want.d2_min_m.size() * sizeof(float)) == 0);
+            CHECK(std::memcmp(got.d2_max_m.data(), want.d2_max_m.data(),
+                              want.d2_max_m.size() * sizeof(float)) == 0);
         }
         hwy::SetSupportedTargetsForTest(0);
         for (std::size_t i = 0; i < want.d2_max_m.size(); ++i)

@@ -43,10 +43,10 @@ void SearchOccluderRow(const OccluderSearch &s, int y, const float *centre_id, f
                 const std::size_t t = row + std::size_t(std::ptrdiff_t(dx));
                 // Exact in double: the float comparison's result, NaN included.
                 const auto lends = hn::Eq(hn::PromoteTo(dd, hn::LoadU(df, s.lender_id + t)), centre);
-                sum_min = hn::IfThenElse(lends, hn::Add(sum_min, hn::PromoteTo(dd, hn::LoadU(df, s.d2_min_m + t))),
-                                         sum_min);
-                sum_max = hn::IfThenElse(lends, hn::Add(sum_max, hn::PromoteTo(dd, hn::LoadU(df, s.d2_max_m + t))),
-                                         sum_max);
+                sum_min = hn::IfThenElse(
+                    lends, hn::Add(sum_min, hn::PromoteTo(dd, hn::LoadU(df, s.d2_min_m + t))), sum_min);
+                sum_max = hn::IfThenElse(
+                    lends, hn::Add(sum_max, hn::PromoteTo(dd, hn::LoadU(df, s.d2_max_m + t))), sum_max);
                 lenders = hn::IfThenElse(lends, hn::Add(lenders, one), lenders);
             }
         }
