@@ -2,7 +2,10 @@
 
 #include <algorithm>
 #include <cmath>
+#include <functional>
+#include <memory>
 #include <string>
+#include <utility>
 
 #include "aaf/core/error.h"
 #include "aaf/core/fast_exp.h"
@@ -159,50 +162,79 @@ void gather_sweep(const GatherGuides &g, float cos_threshold, bool symmetric_bor
     });
 }
 
-/// Packed planes: the gather works on contiguous row-major planes of the guides' size.
-using PackedPlanes = std::vector<std::vector<float>>;
+/// The planes one gather reads and writes: contiguous, row-major, the
+/// guides' size. Views that already are such planes are used in place; the
+/// others go through uninitialised scratch planes (copied in, or out by
+/// finish()).
+class SweepPlanes {
+  public:
+    std::vector<const float *> source;
+    std::vector<float *> output;
 
-PackedPlanes pack(const std::vector<ConstPlaneView> &views) {
-    PackedPlanes planes(views.size());
-    for (std::size_t k = 0; k < views.size(); ++k) {
-        const ConstPlaneView &view = views[k];
-        planes[k].resize(std::size_t(view.width) * std::size_t(view.height));
-        for (int y = 0; y < view.height; ++y)
-            for (int x = 0; x < view.width; ++x)
-                planes[k][std::size_t(y) * std::size_t(view.width) + x] = view(x, y);
-    }
-    return planes;
-}
-
-/// Writes the transpose of a row-major width x height plane into `out`
-/// (height x width) in 32 x 32 blocks, so that both sides stay in cache;
-/// block rows in parallel (each element is written once: no ordering issue).
-template <typename T>
-void transpose_into(const T *plane, int width, int height, T *out) {
-    constexpr int kBlock = 32;
-    parallel_for_rows((height + kBlock - 1) / kBlock, [&](int block_row) {
-        const int y0 = block_row * kBlock, y1 = std::min(height, y0 + kBlock);
-        for (int x0 = 0; x0 < width; x0 += kBlock) {
-            const int x1 = std::min(width, x0 + kBlock);
-            for (int y = y0; y < y1; ++y)
-                for (int x = x0; x < x1; ++x)
-                    out[std::size_t(x) * std::size_t(height) + std::size_t(y)] =
-                        plane[std::size_t(y) * std::size_t(width) + std::size_t(x)];
+    /// `outputs_may_alias`: the caller reads every source before it writes
+    /// any output (the separable gather's first pass), so an output may
+    /// share memory with a source.
+    SweepPlanes(const std::vector<ConstPlaneView> &sources, const std::vector<PlaneView> &outputs,
+                bool outputs_may_alias) {
+        for (const ConstPlaneView &view : sources) {
+            if (contiguous(view)) {
+                source.push_back(view.data);
+                continue;
+            }
+            float *copy = scratch(view.width, view.height);
+            for (int y = 0; y < view.height; ++y)
+                for (int x = 0; x < view.width; ++x)
+                    copy[std::size_t(y) * std::size_t(view.width) + x] = view(x, y);
+            source.push_back(copy);
         }
-    });
-}
+        for (const PlaneView &view : outputs) {
+            bool in_place = contiguous(view);
+            for (std::size_t k = 0; in_place && !outputs_may_alias && k < sources.size(); ++k)
+                in_place = !overlap(view, sources[k]);
+            output.push_back(in_place ? view.data : scratch(view.width, view.height));
+        }
+    }
+    /// A guide-sized plane of scratch, not initialised.
+    float *scratch(int width, int height) {
+        storage_.emplace_back(new float[std::size_t(width) * std::size_t(height)]);
+        return storage_.back().get();
+    }
+    /// Copies the outputs that went through scratch into their views.
+    void finish(const std::vector<PlaneView> &outputs) const {
+        for (std::size_t k = 0; k < outputs.size(); ++k) {
+            if (output[k] == outputs[k].data) continue;
+            for (int y = 0; y < outputs[k].height; ++y)
+                for (int x = 0; x < outputs[k].width; ++x)
+                    outputs[k](x, y) =
+                        output[k][std::size_t(y) * std::size_t(outputs[k].width) + std::size_t(x)];
+        }
+    }
 
-std::vector<float> transposed(const std::vector<float> &plane, int width, int height) {
-    std::vector<float> out(plane.size());
-    transpose_into(plane.data(), width, height, out.data());
-    return out;
-}
+  private:
+    template <typename T>
+    static bool contiguous(const BasicPlaneView<T> &view) {
+        return view.pixel_stride == 1 && view.row_stride == view.width;
+    }
+    /// Whether the memory spans of two views meet (conservatively, from the first to the last element).
+    static bool overlap(const PlaneView &a, const ConstPlaneView &b) {
+        auto span = [](const float *data, int width, int height, std::ptrdiff_t pixel, std::ptrdiff_t row) {
+            const std::ptrdiff_t last = std::ptrdiff_t(height - 1) * row + std::ptrdiff_t(width - 1) * pixel;
+            const float *end = data + last;
+            return std::make_pair(std::min(data, end, std::less<>()), std::max(data, end, std::less<>()));
+        };
+        const auto sa = span(a.data, a.width, a.height, a.pixel_stride, a.row_stride);
+        const auto sb = span(b.data, b.width, b.height, b.pixel_stride, b.row_stride);
+        return !(std::less<>()(sa.second, sb.first) || std::less<>()(sb.second, sa.first));
+    }
+    std::vector<std::unique_ptr<float[]>> storage_;
+};
 
 /// Runs gather_sweep over all channels, kMaxChannelsPerSweep at a time.
 template <bool Modulated>
 void sweep_all(const GatherGuides &g, float cos_threshold, bool symmetric_borders,
-               const PackedPlanes &sources, PackedPlanes &outputs, bool along_x, bool along_y,
-               const AxisModulation &mod_u = {}, const AxisModulation &mod_v = {}, bool normalise = true) {
+               const std::vector<const float *> &sources, const std::vector<float *> &outputs, bool along_x,
+               bool along_y, const AxisModulation &mod_u = {}, const AxisModulation &mod_v = {},
+               bool normalise = true) {
     for (std::size_t first = 0; first < sources.size(); first += kMaxChannelsPerSweep) {
         const std::size_t count = std::min<std::size_t>(kMaxChannelsPerSweep, sources.size() - first);
         if (!Modulated) {
@@ -215,8 +247,8 @@ void sweep_all(const GatherGuides &g, float cos_threshold, bool symmetric_border
             sweep.along_y = along_y;
             sweep.channels = int(count);
             for (std::size_t k = 0; k < count; ++k) {
-                sweep.source[k] = sources[first + k].data();
-                sweep.output[k] = outputs[first + k].data();
+                sweep.source[k] = sources[first + k];
+                sweep.output[k] = outputs[first + k];
             }
             parallel_for_rows(g.height, [&](int y) { detail::gather_row(sweep, y); });
             continue;
@@ -225,8 +257,8 @@ void sweep_all(const GatherGuides &g, float cos_threshold, bool symmetric_border
             constexpr int K = decltype(channels)::value;
             Planes<K> planes;
             for (int k = 0; k < K; ++k) {
-                planes.source[k] = sources[first + k].data();
-                planes.output[k] = outputs[first + k].data();
+                planes.source[k] = sources[first + k];
+                planes.output[k] = outputs[first + k];
             }
             gather_sweep<K, Modulated>(g, cos_threshold, symmetric_borders, planes, along_x, along_y, mod_u,
                                        mod_v, normalise);
@@ -276,13 +308,6 @@ void check_views(const GatherGuides &g, const std::vector<ConstPlaneView> &sourc
             throw Error("gather: an output is missing or has another size");
 }
 
-void unpack(const PackedPlanes &planes, const std::vector<PlaneView> &outputs) {
-    for (std::size_t k = 0; k < outputs.size(); ++k)
-        for (int y = 0; y < outputs[k].height; ++y)
-            for (int x = 0; x < outputs[k].width; ++x)
-                outputs[k](x, y) = planes[k][std::size_t(y) * std::size_t(outputs[k].width) + std::size_t(x)];
-}
-
 float cos_threshold_of(const GatherSettings &settings) {
     // Normals are unit, so their dot product is the cosine; no acos is needed.
     return std::cos(settings.normal_threshold_deg * kPi / 180.0f);
@@ -300,30 +325,6 @@ void GatherGuides::resize(int new_width, int new_height) {
     radius_px.assign(count, 0);
 }
 
-GatherGuides GatherGuides::transposed() const {
-    GatherGuides t;
-    t.width = height;
-    t.height = width;
-    auto swap_axes = [&](const auto &plane, auto &out) {
-        out.resize(plane.size());
-        if (plane.empty()) return;  // an optional plane left out
-        transpose_into(plane.data(), width, height, out.data());
-    };
-    swap_axes(coord_u_m, t.coord_u_m);
-    swap_axes(coord_v_m, t.coord_v_m);
-    swap_axes(normal_x, t.normal_x);
-    swap_axes(normal_y, t.normal_y);
-    swap_axes(normal_z, t.normal_z);
-    swap_axes(object_id, t.object_id);
-    swap_axes(inv_two_sigma_sq, t.inv_two_sigma_sq);
-    swap_axes(inv_two_sigma_sq_v, t.inv_two_sigma_sq_v);
-    swap_axes(coord_n_m, t.coord_n_m);
-    swap_axes(shear_u, t.shear_u);
-    swap_axes(shear_v, t.shear_v);
-    swap_axes(radius_px, t.radius_px);
-    return t;
-}
-
 void GatherSettings::validate() const {
     if (!(normal_threshold_deg >= 0 && normal_threshold_deg <= 180))
         throw Error("normal threshold must lie in [0, 180] degrees");
@@ -335,29 +336,28 @@ void gather(const GatherGuides &guides, const GatherSettings &settings,
     check_guides(guides);
     check_views(guides, sources, outputs);
     const float cos_threshold = cos_threshold_of(settings);
-    const int width = guides.width, height = guides.height;
-    const PackedPlanes packed = pack(sources);
-    PackedPlanes result(packed.size(), std::vector<float>(packed.empty() ? 0 : packed[0].size()));
     if (settings.mode == GatherMode::Separable) {
         // w(x_ij - x_kl) = w(x_ij - x_kj) w(x_kj - x_kl) (AAF Sec. 6): gather
         // along columns into (k, j), then along the row into (i, j). The
-        // vertical pass runs on the transposed image, over contiguous taps.
-        const GatherGuides guides_t = guides.transposed();
-        PackedPlanes sources_t(packed.size()), vertical_t(packed.size());
-        for (std::size_t k = 0; k < packed.size(); ++k) {
-            sources_t[k] = transposed(packed[k], width, height);
-            vertical_t[k].resize(packed[k].size());
-        }
-        sweep_all<false>(guides_t, cos_threshold, settings.symmetric_borders, sources_t, vertical_t, true,
+        // vertical pass keeps neighbouring pixels of a row in the SIMD lanes
+        // and loads the taps' rows contiguously, so no transpose is needed.
+        // It reads every source before the second pass writes an output.
+        SweepPlanes planes(sources, outputs, true);
+        std::vector<float *> vertical(sources.size());
+        for (float *&plane : vertical) plane = planes.scratch(guides.width, guides.height);
+        sweep_all<false>(guides, cos_threshold, settings.symmetric_borders, planes.source, vertical, false,
+                         true);
+        sweep_all<false>(guides, cos_threshold, settings.symmetric_borders,
+                         std::vector<const float *>(vertical.begin(), vertical.end()), planes.output, true,
                          false);
-        for (std::size_t k = 0; k < packed.size(); ++k)
-            sources_t[k] = transposed(vertical_t[k], height, width);
-        sweep_all<false>(guides, cos_threshold, settings.symmetric_borders, sources_t, result, true, false);
+        planes.finish(outputs);
     } else {
-        sweep_all<false>(guides, cos_threshold, settings.symmetric_borders, packed, result, true,
-                         true);  // AAF Eq. 10 directly
+        SweepPlanes planes(sources, outputs, false);
+        // AAF Eq. 10 directly
+        sweep_all<false>(guides, cos_threshold, settings.symmetric_borders, planes.source, planes.output,
+                         true, true);
+        planes.finish(outputs);
     }
-    unpack(result, outputs);
 }
 
 void gather_modulated(const GatherGuides &guides, const GatherSettings &settings,
@@ -376,11 +376,11 @@ void gather_modulated(const GatherGuides &guides, const GatherSettings &settings
         if (m->inv_two_sigma_sq.valid() &&
             !(m->inv_two_sigma_sq.width == guides.width && m->inv_two_sigma_sq.height == guides.height))
             throw Error("modulated gather: a per-axis width plane has another size");
-    const PackedPlanes packed = pack(sources);
-    PackedPlanes result(packed.size(), std::vector<float>(packed.empty() ? 0 : packed[0].size()));
-    sweep_all<true>(guides, cos_threshold_of(settings), settings.symmetric_borders, packed, result, true,
-                    true, along_u, along_v, normalisation == GatherNormalisation::WeightSum);
-    unpack(result, outputs);
+    SweepPlanes planes(sources, outputs, false);
+    sweep_all<true>(guides, cos_threshold_of(settings), settings.symmetric_borders, planes.source,
+                    planes.output, true, true, along_u, along_v,
+                    normalisation == GatherNormalisation::WeightSum);
+    planes.finish(outputs);
 }
 
 }  // namespace aaf

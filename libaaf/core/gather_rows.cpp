@@ -30,26 +30,27 @@ constexpr int kLanes = HWY_MIN(kSums, int(HWY_LANES(float)));
 constexpr int kBlocks = kSums / kLanes;  ///< vectors per run of kSums taps
 
 /// fast_exp_nonpositive (fast_exp.h) lane by lane, operation for operation,
-/// so every lane gives the scalar function's bits.
-HWY_INLINE V fast_exp_nonpositive(V x) {
-    const D d;
-    const DI di;
-    const V above_floor = hn::IfThenElse(hn::Gt(x, hn::Set(d, -87.0f)), x, hn::Set(d, -87.0f));
-    const V clamped = hn::IfThenElse(hn::Lt(above_floor, hn::Zero(d)), above_floor, hn::Zero(d));
+/// so every lane gives the scalar function's bits, for any lane count.
+template <class DF>
+HWY_INLINE hn::Vec<DF> fast_exp_nonpositive(DF d, hn::Vec<DF> x) {
+    using VF = hn::Vec<DF>;
+    const hn::RebindToSigned<DF> di;
+    const VF above_floor = hn::IfThenElse(hn::Gt(x, hn::Set(d, -87.0f)), x, hn::Set(d, -87.0f));
+    const VF clamped = hn::IfThenElse(hn::Lt(above_floor, hn::Zero(d)), above_floor, hn::Zero(d));
     // Truncation towards zero, as static_cast<int>.
     const auto k_int = hn::ConvertTo(di, hn::Sub(hn::Mul(clamped, hn::Set(d, 1.44269504088896341f)),
                                                  hn::Set(d, 0.5f)));
-    const V k = hn::ConvertTo(d, k_int);
-    const V r = hn::Sub(hn::Sub(clamped, hn::Mul(k, hn::Set(d, 0.693145751953125f))),
-                        hn::Mul(k, hn::Set(d, 1.428606765330187045e-06f)));
-    V p = hn::Set(d, 1.0f / 720.0f);
+    const VF k = hn::ConvertTo(d, k_int);
+    const VF r = hn::Sub(hn::Sub(clamped, hn::Mul(k, hn::Set(d, 0.693145751953125f))),
+                         hn::Mul(k, hn::Set(d, 1.428606765330187045e-06f)));
+    VF p = hn::Set(d, 1.0f / 720.0f);
     p = hn::Add(hn::Mul(p, r), hn::Set(d, 1.0f / 120.0f));
     p = hn::Add(hn::Mul(p, r), hn::Set(d, 1.0f / 24.0f));
     p = hn::Add(hn::Mul(p, r), hn::Set(d, 1.0f / 6.0f));
     p = hn::Add(hn::Mul(p, r), hn::Set(d, 0.5f));
     p = hn::Add(hn::Mul(p, r), hn::Set(d, 1.0f));
     p = hn::Add(hn::Mul(p, r), hn::Set(d, 1.0f));
-    const V scale = hn::BitCast(d, hn::ShiftLeft<23>(hn::Add(k_int, hn::Set(di, 127))));
+    const VF scale = hn::BitCast(d, hn::ShiftLeft<23>(hn::Add(k_int, hn::Set(di, 127))));
     return hn::Mul(p, scale);
 }
 
@@ -67,7 +68,8 @@ struct Centre {
 
 /// The Gaussian's exponent: -(du^2 + dv^2) / (2 sigma^2) (AAF Eq. 11), or
 /// with the guides' per-axis widths -du^2 a_u - dv^2 a_v.
-HWY_INLINE V gaussian_exponent(V du, V dv, V inv_two_sigma_sq, V inv_two_sigma_sq_v, bool anisotropic) {
+template <class VF>
+HWY_INLINE VF gaussian_exponent(VF du, VF dv, VF inv_two_sigma_sq, VF inv_two_sigma_sq_v, bool anisotropic) {
     if (anisotropic)
         return hn::Neg(hn::Add(hn::Mul(hn::Mul(du, du), inv_two_sigma_sq), hn::Mul(hn::Mul(dv, dv), inv_two_sigma_sq_v)));
     return hn::Mul(hn::Neg(hn::Add(hn::Mul(du, du), hn::Mul(dv, dv))), inv_two_sigma_sq);
@@ -91,7 +93,7 @@ HWY_INLINE void accumulate(const TapPlanes &g, const float *const *source, std::
     }
     // AAF Eq. 11; the scalar loop's accepted (0 or 1) times the weight.
     const V exponent = gaussian_exponent(du, dv, c.inv_two_sigma_sq, c.inv_two_sigma_sq_v, c.anisotropic);
-    const V weight = hn::IfThenElseZero(accepted, fast_exp_nonpositive(exponent));
+    const V weight = hn::IfThenElseZero(accepted, fast_exp_nonpositive(d, exponent));
     if (Tail) {
         weight_sum[b] = hn::IfThenElse(active, hn::Add(weight_sum[b], weight), weight_sum[b]);
         for (int k = 0; k < K; ++k)
@@ -192,94 +194,115 @@ void gather_pixel(const GatherSweep &s, int x, int y, int reach_x, int reach_y) 
     for (int k = 0; k < K; ++k) s.output[k][c] = total[k] / total_weight;
 }
 
+/// The 1D sweeps' vectors: the full native width. Each lane is its own
+/// pixel, so the lane count changes no bit (unlike the 2D gather's kSums).
+using DW = hn::ScalableTag<float>;
+using DWI = hn::RebindToSigned<DW>;
+using VW = hn::Vec<DW>;
+constexpr int kWideLanes = int(HWY_LANES(float));
+
 /// Lanes' worth of floats from `plane` at element `index` (may be negative
 /// or run past `size`): a plain load inside the plane, else through a
 /// zero-padded copy (the plane's first and last pixels).
-HWY_INLINE V load_guarded(const float *plane, std::ptrdiff_t index, std::ptrdiff_t size) {
-    const D d;
-    if (index >= 0 && index + kLanes <= size) return hn::LoadU(d, plane + index);
-    alignas(64) float padded[kLanes];
-    for (int i = 0; i < kLanes; ++i) padded[i] = index + i >= 0 && index + i < size ? plane[index + i] : 0.0f;
+HWY_INLINE VW load_guarded(const float *plane, std::ptrdiff_t index, std::ptrdiff_t size) {
+    const DW d;
+    if (HWY_LIKELY(index >= 0 && index + kWideLanes <= size)) return hn::LoadU(d, plane + index);
+    alignas(64) float padded[kWideLanes];
+    for (int i = 0; i < kWideLanes; ++i)
+        padded[i] = index + i >= 0 && index + i < size ? plane[index + i] : 0.0f;
     return hn::Load(d, padded);
 }
 
-/// One row of a sweep along x only (both passes of the separable gather):
-/// kLanes neighbouring centre pixels per vector, one lane each, all walking
-/// the same tap offsets. Each pixel's sums run over its taps from left to
-/// right, one add at a time, so neither the lane count nor the threads
-/// change a bit.
-template <int K, bool Sheared>
-void gather_row_along_x(const GatherSweep &s, int y) {
-    const D d;
-    const DI di;
+/// One row of a 1D sweep (both passes of the separable gather), along x
+/// or, with `AlongY`, along y: kWideLanes neighbouring centre pixels of row
+/// `y` per vector, one lane each, all walking the same tap offsets (along y:
+/// rows y + o, loaded contiguously, so no transpose is needed). Each pixel's
+/// sums run over its taps from left to right (top to bottom), one add at a
+/// time, so neither the lane count nor the threads change a bit, and along y
+/// the bits are those of the along-x sweep over the transposed image.
+template <int K, bool Sheared, bool AlongY>
+void gather_row_along(const GatherSweep &s, int y) {
+    const DW d;
+    const DWI di;
     const GatherGuides &g = *s.guides;
     const std::ptrdiff_t size = std::ptrdiff_t(g.width) * g.height, row = std::ptrdiff_t(y) * g.width;
+    // Distance between neighbouring taps in the planes.
+    const std::ptrdiff_t step = AlongY ? std::ptrdiff_t(g.width) : 1;
     const float *const normal_x = g.normal_x.data(), *const normal_y = g.normal_y.data(),
                        *const normal_z = g.normal_z.data(), *const id = g.object_id.data(),
                        *const coord_u = g.coord_u_m.data(), *const coord_v = g.coord_v_m.data(),
                        *const coord_n = Sheared ? g.coord_n_m.data() : nullptr;
-    const V cos_threshold = hn::Set(d, s.cos_threshold);
-    for (int x0 = 0; x0 < g.width; x0 += kLanes) {
+    const VW cos_threshold = hn::Set(d, s.cos_threshold);
+    const bool anisotropic = g.anisotropic();
+    for (int x0 = 0; x0 < g.width; x0 += kWideLanes) {
         const std::ptrdiff_t c0 = row + x0;
         // Each lane's reach: its radius, cut at the image's edges as gather_row_k cuts it.
-        alignas(64) std::int32_t reach[kLanes];
+        alignas(64) std::int32_t reach[kWideLanes];
         int widest = -1;
-        for (int i = 0; i < kLanes; ++i) {
+        for (int i = 0; i < kWideLanes; ++i) {
             const int x = x0 + i;
             reach[i] = -1;  // past the row's end: no taps
             if (x >= g.width) continue;
-            int r = g.radius_px[std::size_t(c0 + i)];
-            if (s.symmetric_borders) r = std::min({r, x, g.width - 1 - x});
-            reach[i] = g.radius_px[std::size_t(c0 + i)] == 0 ? -1 : r;
+            const int radius = g.radius_px[std::size_t(c0 + i)];
+            int r = radius;
+            if (s.symmetric_borders)
+                r = AlongY ? std::min({r, y, g.height - 1 - y}) : std::min({r, x, g.width - 1 - x});
+            reach[i] = radius == 0 ? -1 : r;
             widest = std::max(widest, reach[i]);
         }
-        V sum[K], weight_sum = hn::Zero(d);
+        VW sum[K], weight_sum = hn::Zero(d);
         for (int k = 0; k < K; ++k) sum[k] = hn::Zero(d);
         if (widest >= 0) {
-            const V u = load_guarded(coord_u, c0, size), v = load_guarded(coord_v, c0, size);
-            const V n = Sheared ? load_guarded(coord_n, c0, size) : hn::Zero(d);
-            const V shear_u = Sheared ? load_guarded(g.shear_u.data(), c0, size) : hn::Zero(d);
-            const V shear_v = Sheared ? load_guarded(g.shear_v.data(), c0, size) : hn::Zero(d);
-            const V nx = load_guarded(normal_x, c0, size), ny = load_guarded(normal_y, c0, size),
-                    nz = load_guarded(normal_z, c0, size), centre_id = load_guarded(id, c0, size);
-            const V inv_two_sigma_sq = load_guarded(g.inv_two_sigma_sq.data(), c0, size);
-            const bool anisotropic = g.anisotropic();
-            const V inv_two_sigma_sq_v =
+            const VW u = load_guarded(coord_u, c0, size), v = load_guarded(coord_v, c0, size);
+            const VW n = Sheared ? load_guarded(coord_n, c0, size) : hn::Zero(d);
+            const VW shear_u = Sheared ? load_guarded(g.shear_u.data(), c0, size) : hn::Zero(d);
+            const VW shear_v = Sheared ? load_guarded(g.shear_v.data(), c0, size) : hn::Zero(d);
+            const VW nx = load_guarded(normal_x, c0, size), ny = load_guarded(normal_y, c0, size),
+                     nz = load_guarded(normal_z, c0, size), centre_id = load_guarded(id, c0, size);
+            const VW inv_two_sigma_sq = load_guarded(g.inv_two_sigma_sq.data(), c0, size);
+            const VW inv_two_sigma_sq_v =
                 anisotropic ? load_guarded(g.inv_two_sigma_sq_v.data(), c0, size) : hn::Zero(d);
             const auto reach_v = hn::Load(di, reach);
             const auto x_v = hn::Iota(di, x0);
-            for (int o = -widest; o <= widest; ++o) {
-                // |o| <= reach and 0 <= x + o < width, lane by lane.
-                const auto x_tap = hn::Add(x_v, hn::Set(di, o));
-                const auto inside = hn::And(hn::And(hn::Gt(reach_v, hn::Set(di, (o < 0 ? -o : o) - 1)),
-                                                    hn::Gt(x_tap, hn::Set(di, -1))),
-                                            hn::Lt(x_tap, hn::Set(di, g.width)));
+            // Along y the taps' rows are shared by all lanes: 0 <= y + o < height.
+            const int o_begin = AlongY ? std::max(-widest, -y) : -widest;
+            const int o_end = AlongY ? std::min(widest, g.height - 1 - y) : widest;
+            for (int o = o_begin; o <= o_end; ++o) {
+                // |o| <= reach (and along x 0 <= x + o < width), lane by lane.
+                auto inside = hn::Gt(reach_v, hn::Set(di, (o < 0 ? -o : o) - 1));
+                if (!AlongY) {
+                    const auto x_tap = hn::Add(x_v, hn::Set(di, o));
+                    inside = hn::And(
+                        inside, hn::And(hn::Gt(x_tap, hn::Set(di, -1)), hn::Lt(x_tap, hn::Set(di, g.width))));
+                }
                 const auto active = hn::RebindMask(d, inside);
-                const std::ptrdiff_t t = c0 + o;
-                const V cos_angle = hn::Add(hn::Add(hn::Mul(nx, load_guarded(normal_x, t, size)),
-                                                    hn::Mul(ny, load_guarded(normal_y, t, size))),
-                                            hn::Mul(nz, load_guarded(normal_z, t, size)));
+                const std::ptrdiff_t t = c0 + std::ptrdiff_t(o) * step;
+                const VW cos_angle = hn::Add(hn::Add(hn::Mul(nx, load_guarded(normal_x, t, size)),
+                                                     hn::Mul(ny, load_guarded(normal_y, t, size))),
+                                             hn::Mul(nz, load_guarded(normal_z, t, size)));
                 const auto accepted =
                     hn::And(hn::Eq(load_guarded(id, t, size), centre_id), hn::Ge(cos_angle, cos_threshold));
-                V du = hn::Sub(load_guarded(coord_u, t, size), u), dv = hn::Sub(load_guarded(coord_v, t, size), v);
+                VW du = hn::Sub(load_guarded(coord_u, t, size), u),
+                   dv = hn::Sub(load_guarded(coord_v, t, size), v);
                 if (Sheared) {
-                    const V dn = hn::Sub(load_guarded(coord_n, t, size), n);
+                    const VW dn = hn::Sub(load_guarded(coord_n, t, size), n);
                     du = hn::Sub(du, hn::Mul(shear_u, dn));
                     dv = hn::Sub(dv, hn::Mul(shear_v, dn));
                 }
                 // AAF Eq. 11
-                const V exponent = gaussian_exponent(du, dv, inv_two_sigma_sq, inv_two_sigma_sq_v, anisotropic);
-                const V weight = hn::IfThenElseZero(accepted, fast_exp_nonpositive(exponent));
+                const VW exponent =
+                    gaussian_exponent(du, dv, inv_two_sigma_sq, inv_two_sigma_sq_v, anisotropic);
+                const VW weight = hn::IfThenElseZero(accepted, fast_exp_nonpositive(d, exponent));
                 weight_sum = hn::IfThenElse(active, hn::Add(weight_sum, weight), weight_sum);
                 for (int k = 0; k < K; ++k)
                     sum[k] = hn::IfThenElse(
                         active, hn::Add(sum[k], hn::Mul(weight, load_guarded(s.source[k], t, size))), sum[k]);
             }
         }
-        alignas(64) float lanes[K + 1][kLanes];
+        alignas(64) float lanes[K + 1][kWideLanes];
         hn::Store(weight_sum, d, lanes[K]);
         for (int k = 0; k < K; ++k) hn::Store(sum[k], d, lanes[k]);
-        for (int i = 0; i < kLanes && x0 + i < g.width; ++i) {
+        for (int i = 0; i < kWideLanes && x0 + i < g.width; ++i) {
             const std::size_t c = std::size_t(c0 + i);
             if (reach[i] < 0) {  // radius 0: the pixel keeps its value
                 for (int k = 0; k < K; ++k) s.output[k][c] = s.source[k][c];
@@ -300,7 +323,8 @@ void gather_row_along_x(const GatherSweep &s, int y) {
 
 template <int K, bool Sheared>
 void gather_row_k(const GatherSweep &s, int y) {
-    if (s.along_x && !s.along_y) return gather_row_along_x<K, Sheared>(s, y);
+    if (s.along_x && !s.along_y) return gather_row_along<K, Sheared, false>(s, y);
+    if (s.along_y && !s.along_x) return gather_row_along<K, Sheared, true>(s, y);
     const GatherGuides &g = *s.guides;
     for (int x = 0; x < g.width; ++x) {
         const std::size_t c = g.index(x, y);

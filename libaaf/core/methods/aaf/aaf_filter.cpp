@@ -189,16 +189,18 @@ void aaf_filter(const AafInputs &in, const LightPlane &light, const AafParams &p
 
     // Non-finite visibility (a renderer's NaN) is read as 0, so it cannot spread through the filter.
     std::vector<float> visibility(std::size_t(width) * std::size_t(height));
-    for (int y = 0; y < height; ++y)
+    parallel_for_rows(height, [&](int y) {
         for (int x = 0; x < width; ++x) {
             const float v = in.visibility(x, y);
             visibility[guides.index(x, y)] = std::isfinite(v) ? v : 0.0f;
         }
+    });
     gather(guides, aaf_gather_settings(params), {plane_view(visibility.data(), width, height)},
            {out.filtered_visibility});
     if (out.beta_m.valid())
-        for (int y = 0; y < height; ++y)
+        parallel_for_rows(height, [&](int y) {
             for (int x = 0; x < width; ++x) out.beta_m(x, y) = beta_m[guides.index(x, y)];
+        });
 }
 
 }  // namespace aaf

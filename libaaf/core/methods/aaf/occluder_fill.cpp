@@ -1,8 +1,11 @@
 #include "aaf/core/occluder_fill.h"
 
 #include <algorithm>
+#include <cmath>
+#include <limits>
 #include <vector>
 
+#include "aaf/core/occluder_fill_rows.h"
 #include "aaf/core/parallel.h"
 
 namespace aaf {
@@ -10,10 +13,25 @@ namespace aaf {
 FilledOccluders fill_occluder_distances(ConstPlaneView d2_min, ConstPlaneView d2_max,
                                         ConstPlaneView object_id, int radius_px) {
     const int width = d2_max.width, height = d2_max.height;
+    const std::size_t count = std::size_t(width) * std::size_t(height);
     FilledOccluders filled;
-    filled.d2_min_m.assign(std::size_t(width) * height, 0.0f);
-    filled.d2_max_m.assign(std::size_t(width) * height, 0.0f);
+    filled.d2_min_m.assign(count, 0.0f);
+    filled.d2_max_m.assign(count, 0.0f);
     const int r = radius_px;
+    // Padded contiguous planes for the search (occluder_fill_rows.h), which
+    // reads each pixel up to (2r+1)^2 times: the distances and the lenders' ids.
+    const std::size_t padded_width = std::size_t(width) + 2 * std::size_t(r) + detail::kOccluderSearchPadding;
+    std::vector<float> lender_id(padded_width * height, std::numeric_limits<float>::quiet_NaN()),
+        min_m(padded_width * height, 0.0f), max_m(padded_width * height, 0.0f);
+    auto padded = [&](int x, int y) { return std::size_t(y) * padded_width + std::size_t(x + r); };
+    parallel_for_rows(height, [&](int y) {
+        for (int x = 0; x < width; ++x) {
+            const std::size_t i = padded(x, y);
+            min_m[i] = d2_min(x, y);
+            max_m[i] = d2_max(x, y);
+            if (has_occluder(max_m[i])) lender_id[i] = object_id(x, y);
+        }
+    });
     // Summed-area table of occluded pixels: most unoccluded pixels have none in
     // their window, and skip the search.
     std::vector<int> occluded_before((std::size_t(width) + 1) * (height + 1), 0);
@@ -21,40 +39,49 @@ FilledOccluders fill_occluder_distances(ConstPlaneView d2_min, ConstPlaneView d2
     for (int y = 0; y < height; ++y)
         for (int x = 0; x < width; ++x)
             occluded_before[(y + 1) * sat_width + x + 1] =
-                int(has_occluder(d2_max(x, y))) + occluded_before[y * sat_width + x + 1] +
+                int(has_occluder(max_m[padded(x, y)])) + occluded_before[y * sat_width + x + 1] +
                 occluded_before[(y + 1) * sat_width + x] - occluded_before[y * sat_width + x];
     auto occluded_in_window = [&](int x0, int y0, int x1, int y1) {  // inclusive bounds
         return occluded_before[(y1 + 1) * sat_width + x1 + 1] - occluded_before[y0 * sat_width + x1 + 1] -
                occluded_before[(y1 + 1) * sat_width + x0] + occluded_before[y0 * sat_width + x0];
     };
+    // The disc's half-width on each row: dx^2 + dy^2 <= r^2.
+    std::vector<int> half_width(std::size_t(r) + 1);
+    for (int dy = 0; dy <= r; ++dy) {
+        int w = 0;
+        while ((w + 1) * (w + 1) + dy * dy <= r * r) ++w;
+        half_width[std::size_t(dy)] = w;
+    }
+
+    detail::OccluderSearch search;
+    search.lender_id = lender_id.data();
+    search.d2_min_m = min_m.data();
+    search.d2_max_m = max_m.data();
+    search.padded_width = padded_width;
+    search.pad = r;
+    search.width = width;
+    search.height = height;
+    search.half_width = half_width.data();
 
     parallel_for_rows(height, [&](int y) {
+        // The id each centre searches for; NaN: no search (occluded itself,
+        // or no occluded pixel in its window).
+        std::vector<float> centre_id(std::size_t(width) + detail::kOccluderSearchPadding,
+                                     std::numeric_limits<float>::quiet_NaN());
+        const std::size_t row = std::size_t(y) * width;
         for (int x = 0; x < width; ++x) {
-            const std::size_t i = std::size_t(y) * width + x;
-            if (has_occluder(d2_max(x, y))) {
-                filled.d2_min_m[i] = d2_min(x, y);
-                filled.d2_max_m[i] = d2_max(x, y);
+            const std::size_t p = padded(x, y);
+            if (has_occluder(max_m[p])) {
+                filled.d2_min_m[row + x] = min_m[p];
+                filled.d2_max_m[row + x] = max_m[p];
                 continue;
             }
-            const int x0 = std::max(0, x - r), x1 = std::min(width - 1, x + r);
-            const int y0 = std::max(0, y - r), y1 = std::min(height - 1, y + r);
-            if (occluded_in_window(x0, y0, x1, y1) == 0) continue;
-            const float id = object_id(x, y);
-            double sum_min = 0, sum_max = 0;
-            int count = 0;
-            for (int ny = y0; ny <= y1; ++ny)
-                for (int nx = x0; nx <= x1; ++nx) {
-                    if ((nx - x) * (nx - x) + (ny - y) * (ny - y) > r * r) continue;
-                    if (object_id(nx, ny) != id || !has_occluder(d2_max(nx, ny))) continue;
-                    sum_min += d2_min(nx, ny);
-                    sum_max += d2_max(nx, ny);
-                    ++count;
-                }
-            if (count > 0) {
-                filled.d2_min_m[i] = float(sum_min / count);
-                filled.d2_max_m[i] = float(sum_max / count);
-            }
+            if (occluded_in_window(std::max(0, x - r), std::max(0, y - r), std::min(width - 1, x + r),
+                                   std::min(height - 1, y + r)) > 0)
+                centre_id[std::size_t(x)] = object_id(x, y);
         }
+        detail::search_occluder_row(search, y, centre_id.data(), filled.d2_min_m.data() + row,
+                                    filled.d2_max_m.data() + row);
     });
     return filled;
 }

@@ -41,8 +41,6 @@ struct GatherGuides {
 
     void resize(int width, int height);
     std::size_t index(int x, int y) const { return std::size_t(y) * std::size_t(width) + std::size_t(x); }
-    /// The same guides with rows and columns swapped.
-    GatherGuides transposed() const;
 };
 
 /// How the 2D Gaussian is evaluated.
