@@ -75,6 +75,7 @@ void gather_pixel(const GatherGuides &g, float cos_threshold, const Planes<K> &p
     // along the centre's own direction onto the centre's plane.
     const float n = Sheared ? g.coord_n_m[c] : 0.0f;
     const float shear_u = Sheared ? g.shear_u[c] : 0.0f, shear_v = Sheared ? g.shear_v[c] : 0.0f;
+    const float inv_two_sigma_sq_n = Sheared ? g.inv_two_sigma_sq_n[c] : 0.0f;
     const int x_begin = std::max(0, x - reach_x), x_end = std::min(g.width, x + reach_x + 1);
     const int y_begin = std::max(0, y - reach_y), y_end = std::min(g.height, y + reach_y + 1);
 
@@ -82,15 +83,16 @@ void gather_pixel(const GatherGuides &g, float cos_threshold, const Planes<K> &p
     auto accumulate = [&](std::size_t t, int lane) {
         const float cos_angle = nx * g.normal_x[t] + ny * g.normal_y[t] + nz * g.normal_z[t];
         const float accepted = float(g.object_id[t] == id) * float(cos_angle >= cos_threshold);
-        float du = g.coord_u_m[t] - u, dv = g.coord_v_m[t] - v;
+        float du = g.coord_u_m[t] - u, dv = g.coord_v_m[t] - v, normal_term = 0.0f;
         if (Sheared) {
             const float dn = g.coord_n_m[t] - n;
             du -= shear_u * dn;
             dv -= shear_v * dn;
+            normal_term = dn * dn * inv_two_sigma_sq_n;
         }
-        const float weight =
-            anisotropic ? accepted * fast_exp_nonpositive(-(du * du * inv_u + dv * dv * inv_v))
-                      : accepted * fast_exp_nonpositive(-(du * du + dv * dv) * inv_two_sigma_sq);  // AAF Eq. 11
+        const float exponent = anisotropic ? -(du * du * inv_u + dv * dv * inv_v)
+                                           : -(du * du + dv * dv) * inv_two_sigma_sq;  // AAF Eq. 11
+        const float weight = accepted * fast_exp_nonpositive(exponent - normal_term);
         weight_sum[lane] += weight;
         const float modulated = Modulated ? weight * modulation(du, dv) : weight;
         for (int k = 0; k < K; ++k) sum[k][lane] += modulated * planes.source[k][t];
@@ -287,7 +289,7 @@ void check_guides(const GatherGuides &g) {
         if (plane->size() != count) throw Error("gather guides: a plane does not match the guides' size");
     if (!g.inv_two_sigma_sq_v.empty() && g.inv_two_sigma_sq_v.size() != count)
         throw Error("gather guides: the v width plane must match the guides' size or be empty");
-    for (const std::vector<float> *plane : {&g.coord_n_m, &g.shear_u, &g.shear_v})
+    for (const std::vector<float> *plane : {&g.coord_n_m, &g.shear_u, &g.shear_v, &g.inv_two_sigma_sq_n})
         if (plane->size() != (g.sheared() ? count : 0))
             throw Error("gather guides: the shear planes must all match the guides' size or all be empty");
     if (g.radius_px.size() != count)

@@ -61,7 +61,7 @@ struct TapPlanes {
 
 /// What a centre pixel compares its taps with.
 struct Centre {
-    V u, v, n, shear_u, shear_v, normal_x, normal_y, normal_z, id, inv_two_sigma_sq, cos_threshold;
+    V u, v, n, shear_u, shear_v, inv_two_sigma_sq_n, normal_x, normal_y, normal_z, id, inv_two_sigma_sq, cos_threshold;
     V inv_two_sigma_sq_v;  ///< along v, when the guides are anisotropic
     bool anisotropic = false;
 };
@@ -86,13 +86,16 @@ HWY_INLINE void accumulate(const TapPlanes &g, const float *const *source, std::
                                 hn::Mul(c.normal_z, hn::LoadU(d, g.normal_z + t)));
     const auto accepted = hn::And(hn::Eq(hn::LoadU(d, g.id + t), c.id), hn::Ge(cos_angle, c.cos_threshold));
     V du = hn::Sub(hn::LoadU(d, g.u + t), c.u), dv = hn::Sub(hn::LoadU(d, g.v + t), c.v);
+    V normal_term = hn::Zero(d);
     if (Sheared) {
         const V dn = hn::Sub(hn::LoadU(d, g.n + t), c.n);
         du = hn::Sub(du, hn::Mul(c.shear_u, dn));
         dv = hn::Sub(dv, hn::Mul(c.shear_v, dn));
+        normal_term = hn::Mul(hn::Mul(dn, dn), c.inv_two_sigma_sq_n);
     }
     // AAF Eq. 11; the scalar loop's accepted (0 or 1) times the weight.
-    const V exponent = gaussian_exponent(du, dv, c.inv_two_sigma_sq, c.inv_two_sigma_sq_v, c.anisotropic);
+    const V exponent = hn::Sub(
+        gaussian_exponent(du, dv, c.inv_two_sigma_sq, c.inv_two_sigma_sq_v, c.anisotropic), normal_term);
     const V weight = hn::IfThenElseZero(accepted, fast_exp_nonpositive(d, exponent));
     if (Tail) {
         weight_sum[b] = hn::IfThenElse(active, hn::Add(weight_sum[b], weight), weight_sum[b]);
@@ -119,6 +122,7 @@ void gather_pixel(const GatherSweep &s, int x, int y, int reach_x, int reach_y) 
     centre.n = hn::Set(d, Sheared ? g.coord_n_m[c] : 0.0f);
     centre.shear_u = hn::Set(d, Sheared ? g.shear_u[c] : 0.0f);
     centre.shear_v = hn::Set(d, Sheared ? g.shear_v[c] : 0.0f);
+    centre.inv_two_sigma_sq_n = hn::Set(d, Sheared ? g.inv_two_sigma_sq_n[c] : 0.0f);
     centre.normal_x = hn::Set(d, normal_x);
     centre.normal_y = hn::Set(d, normal_y);
     centre.normal_z = hn::Set(d, normal_z);
@@ -257,6 +261,8 @@ void gather_row_along(const GatherSweep &s, int y) {
             const VW n = Sheared ? load_guarded(coord_n, c0, size) : hn::Zero(d);
             const VW shear_u = Sheared ? load_guarded(g.shear_u.data(), c0, size) : hn::Zero(d);
             const VW shear_v = Sheared ? load_guarded(g.shear_v.data(), c0, size) : hn::Zero(d);
+            const VW inv_two_sigma_sq_n =
+                Sheared ? load_guarded(g.inv_two_sigma_sq_n.data(), c0, size) : hn::Zero(d);
             const VW nx = load_guarded(normal_x, c0, size), ny = load_guarded(normal_y, c0, size),
                      nz = load_guarded(normal_z, c0, size), centre_id = load_guarded(id, c0, size);
             const VW inv_two_sigma_sq = load_guarded(g.inv_two_sigma_sq.data(), c0, size);
@@ -284,14 +290,16 @@ void gather_row_along(const GatherSweep &s, int y) {
                     hn::And(hn::Eq(load_guarded(id, t, size), centre_id), hn::Ge(cos_angle, cos_threshold));
                 VW du = hn::Sub(load_guarded(coord_u, t, size), u),
                    dv = hn::Sub(load_guarded(coord_v, t, size), v);
+                VW normal_term = hn::Zero(d);
                 if (Sheared) {
                     const VW dn = hn::Sub(load_guarded(coord_n, t, size), n);
                     du = hn::Sub(du, hn::Mul(shear_u, dn));
                     dv = hn::Sub(dv, hn::Mul(shear_v, dn));
+                    normal_term = hn::Mul(hn::Mul(dn, dn), inv_two_sigma_sq_n);
                 }
                 // AAF Eq. 11
-                const VW exponent =
-                    gaussian_exponent(du, dv, inv_two_sigma_sq, inv_two_sigma_sq_v, anisotropic);
+                const VW exponent = hn::Sub(
+                    gaussian_exponent(du, dv, inv_two_sigma_sq, inv_two_sigma_sq_v, anisotropic), normal_term);
                 const VW weight = hn::IfThenElseZero(accepted, fast_exp_nonpositive(d, exponent));
                 weight_sum = hn::IfThenElse(active, hn::Add(weight_sum, weight), weight_sum);
                 for (int k = 0; k < K; ++k)

@@ -74,4 +74,25 @@ void LightPlane::validate(const LightFieldNames &names) const {
             throw InputError(*size.second + " must be positive and finite (is " + describe(size.first) + ")");
 }
 
+namespace {
+
+/// The profile's variance along one axis of half-extent `half_extent_m` (light_plane.h).
+float axis_variance_m2(const LightPlane &light, float half_extent_m) {
+    const double h = half_extent_m;
+    if (light.profile == LightProfile::Uniform) return float(h * h / 3);
+    const double sigma = light.sigma_m, t = h / sigma;
+    const double phi = std::exp(-0.5 * t * t) / std::sqrt(2 * 3.14159265358979323846);
+    return float(sigma * sigma * (1 - 2 * t * phi / std::erf(t / std::sqrt(2.0))));
+}
+
+}  // namespace
+
+float LightPlane::variance_u_m2() const {
+    return axis_variance_m2(*this, 0.5f * width_m);
+}
+
+float LightPlane::variance_v_m2() const {
+    return axis_variance_m2(*this, 0.5f * height_m);
+}
+
 }  // namespace aaf

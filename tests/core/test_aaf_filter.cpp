@@ -222,6 +222,41 @@ TEST_CASE("Distances along the ray equal AAF Eq. 12 on a receiver parallel to th
     CHECK(!aaf_gather_guides(pair.inputs(), pair.light, params).sheared());
 }
 
+// The slide is along the ray to the light's centre; towards another light
+// point y it differs by (y - c) / d1 per metre along the light's normal, so
+// over the light the squared offset grows by dn^2 var(y) / d1^2 per axis.
+TEST_CASE("Distances along the ray add the light's spread of directions", "[aaf][filter]") {
+    // Hand values: a square of side 1, sigma 0.5, truncated at t = h / sigma = 1:
+    // var = sigma^2 (1 - 2 phi(1) / erf(1 / sqrt 2)) = 0.25 (1 - 2 x 0.2419707 / 0.6826895) = 0.0727813.
+    const LightPlane square = LightPlane::square({0, 2, 0}, {0, -1, 0}, 1.0f);
+    CHECK(square.variance_u_m2() == Approx(0.0727813).epsilon(1e-5));
+    CHECK(square.variance_v_m2() == Approx(0.0727813).epsilon(1e-5));
+    LightPlane uniform = square;
+    uniform.profile = LightProfile::Uniform;
+    uniform.height_m = 0.6f;
+    CHECK(uniform.variance_u_m2() == Approx(0.25 / 3));
+    CHECK(uniform.variance_v_m2() == Approx(0.09 / 3));
+    LightPlane wide = square;  // untruncated in float: the Gaussian's own variance
+    wide.width_m = 20.0f;
+    CHECK(wide.variance_u_m2() == Approx(0.25).epsilon(1e-5));
+
+    // Centre pixel at (1, 0, 0), d1 = 2 m below the light: 1 / (2 sigma_n^2) =
+    // (var_u + var_v) / d1^2 times the isotropic 1 / (2 beta^2).
+    FlatScene pair(2, 1, 1.0f);
+    pair.px = {1.0f, 1.0f};
+    pair.py = {0.0f, 0.5f};
+    pair.pz = {0.0f, 0.0f};
+    AafParams params;
+    params.light_distance = AafLightDistance::AlongLightDirection;
+    const GatherGuides guides = aaf_gather_guides(pair.inputs(), pair.light, params);
+    REQUIRE(guides.sheared());
+    REQUIRE(guides.inv_two_sigma_sq[0] > 0);
+    CHECK(guides.inv_two_sigma_sq_n[0] == Approx(2 * 0.0727813 / 4 * guides.inv_two_sigma_sq[0]).epsilon(1e-5));
+    // Where the projection holds (guarded, a floor under the light) nothing slides and nothing spreads.
+    params.light_distance = AafLightDistance::Guarded;
+    CHECK(aaf_gather_guides(pair.inputs(), pair.light, params).inv_two_sigma_sq_n[0] == 0.0f);
+}
+
 TEST_CASE("Taps of other objects and turned normals are rejected", "[aaf][filter]") {
     FlatScene scene(20, 20, 1.0f);
     for (int y = 0; y < scene.height; ++y)

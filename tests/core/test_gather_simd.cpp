@@ -50,10 +50,12 @@ GatherGuides varied_guides(int width, int height, bool sheared, bool anisotropic
         g.coord_n_m.resize(g.coord_u_m.size());
         g.shear_u.resize(g.coord_u_m.size());
         g.shear_v.resize(g.coord_u_m.size());
+        g.inv_two_sigma_sq_n.resize(g.coord_u_m.size());
         for (std::size_t i = 0; i < g.coord_n_m.size(); ++i) {
             g.coord_n_m[i] = 0.05f * unit(rng);
             g.shear_u[i] = unit(rng) - 0.5f;
             g.shear_v[i] = unit(rng) - 0.5f;
+            g.inv_two_sigma_sq_n[i] = unit(rng) < 0.3f ? 0.0f : 0.5f * g.inv_two_sigma_sq[i] * unit(rng);
         }
     }
     return g;
@@ -190,16 +192,17 @@ float reference_pass(const GatherGuides &g, const float *source, int x, int y, b
         const float cos_angle =
             g.normal_x[c] * g.normal_x[t] + g.normal_y[c] * g.normal_y[t] + g.normal_z[c] * g.normal_z[t];
         const bool accepted = g.object_id[t] == g.object_id[c] && cos_angle >= cos_threshold;
-        float du = g.coord_u_m[t] - g.coord_u_m[c], dv = g.coord_v_m[t] - g.coord_v_m[c];
+        float du = g.coord_u_m[t] - g.coord_u_m[c], dv = g.coord_v_m[t] - g.coord_v_m[c], normal_term = 0.0f;
         if (g.sheared()) {
             const float dn = g.coord_n_m[t] - g.coord_n_m[c];
             du = du - g.shear_u[c] * dn;
             dv = dv - g.shear_v[c] * dn;
+            normal_term = dn * dn * g.inv_two_sigma_sq_n[c];
         }
         const float exponent = g.anisotropic()
                                    ? -(du * du * g.inv_two_sigma_sq[c] + dv * dv * g.inv_two_sigma_sq_v[c])
                                    : -(du * du + dv * dv) * g.inv_two_sigma_sq[c];
-        const float weight = accepted ? fast_exp_nonpositive(exponent) : 0.0f;
+        const float weight = accepted ? fast_exp_nonpositive(exponent - normal_term) : 0.0f;
         weight_sum += weight;
         sum += weight * source[t];
     }

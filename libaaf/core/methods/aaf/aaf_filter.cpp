@@ -94,7 +94,9 @@ GatherGuides aaf_gather_guides(const AafInputs &in, const LightPlane &light, con
         guides.coord_n_m.assign(count, 0.0f);
         guides.shear_u.assign(count, 0.0f);
         guides.shear_v.assign(count, 0.0f);
+        guides.inv_two_sigma_sq_n.assign(count, 0.0f);
     }
+    const float variance_u_m2 = light.variance_u_m2(), variance_v_m2 = light.variance_v_m2();
 
     parallel_for_rows(guides.height, [&](int y) {
         for (int x = 0; x < guides.width; ++x) {
@@ -110,6 +112,8 @@ GatherGuides aaf_gather_guides(const AafInputs &in, const LightPlane &light, con
             }
             guides.coord_u_m[i] = u;
             guides.coord_v_m[i] = v;
+            // The spread of the slide's direction over the light, per unit dn (below).
+            float spread_u_sq = 0, spread_v_sq = 0;
             if (along_light) {
                 // Delta_eff = Delta - l (n . Delta) / (n . l), l the unit direction to the
                 // light's centre: the tap slid along l onto the centre's plane parallel to
@@ -132,6 +136,12 @@ GatherGuides aaf_gather_guides(const AafInputs &in, const LightPlane &light, con
                         std::fabs(cos_light) < kMinCos ? std::copysign(kMinCos, cos_light) : cos_light;
                     guides.shear_u[i] = dot(l, light.axis_u) / denominator;
                     guides.shear_v[i] = dot(l, light.axis_v) / denominator;
+                    // The slide is along the ray to the light's centre; towards a light
+                    // point y it differs by (y - c) / d1 per unit dn, so over the light's
+                    // profile the squared offset grows by dn^2 var(y) / d1^2 per axis.
+                    const float d1 = std::fabs(dot(light.normal, p - light.center));
+                    spread_u_sq = variance_u_m2 / (d1 * d1);
+                    spread_v_sq = variance_v_m2 / (d1 * d1);
                 }
                 guides.coord_n_m[i] = dot(light.normal, p - light.center);
             }
@@ -160,6 +170,13 @@ GatherGuides aaf_gather_guides(const AafInputs &in, const LightPlane &light, con
             };
             guides.inv_two_sigma_sq[i] = inv_two_sigma_sq(beta.u_m);
             if (anisotropic) guides.inv_two_sigma_sq_v[i] = inv_two_sigma_sq(beta.v_m);
+            if (along_light) {
+                // Finite, so that the centre tap's dn = 0 gives 0, never 0 x inf.
+                const float weight_n = spread_u_sq * guides.inv_two_sigma_sq[i] +
+                                       spread_v_sq * inv_two_sigma_sq(anisotropic ? beta.v_m : beta.u_m);
+                guides.inv_two_sigma_sq_n[i] =
+                    std::isfinite(weight_n) ? weight_n : std::numeric_limits<float>::max();
+            }
             guides.radius_px[i] = int(radius);
         }
     });

@@ -36,7 +36,10 @@ struct GatherGuides {
     /// du - a_u dn, dv - a_v dn, i.e. the tap is slid along a direction of the
     /// centre's choosing onto the centre's plane n = const (AAF: along the
     /// direction to the light, instead of AAF Eq. 12's orthogonal projection).
-    std::vector<float> coord_n_m, shear_u, shear_v;
+    /// With them, per centre, the weight 1 / (2 sigma_n^2) (metres^-2) of the
+    /// offset dn itself: a tap weighs exp(... - dn^2 inv_two_sigma_sq_n) (AAF:
+    /// the spread of the slide's direction over the light, 0 = none).
+    std::vector<float> coord_n_m, shear_u, shear_v, inv_two_sigma_sq_n;
     bool sheared() const { return !shear_u.empty(); }
 
     void resize(int width, int height);

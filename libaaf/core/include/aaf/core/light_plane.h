@@ -64,6 +64,12 @@ struct LightPlane {
         return dot(delta, delta) - along_normal * along_normal;
     }
 
+    /// Variance (metres^2) of the emission profile's coordinate along axis_u
+    /// (half-extent width/2) or axis_v (height/2): sigma^2 (1 - 2 t phi(t) /
+    /// erf(t / sqrt 2)) at t = h / sigma for the truncated Gaussian, h^2 / 3
+    /// for the uniform profile.
+    float variance_u_m2() const;
+    float variance_v_m2() const;
     /// World point at offsets (u_m, v_m) from the centre along the tangent axes.
     Vec3 point_at(float u_m, float v_m) const { return center + axis_u * u_m + axis_v * v_m; }
 };
