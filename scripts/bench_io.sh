@@ -5,13 +5,20 @@
 # scene once (9 spp, the CLI's default AOVs) and then times, alternately in
 # the same loop so that load on a shared machine hits all alike:
 #   oiiotool      oiiotool in.exr -o out.exr   (read and write the same file:
-#                 the floor any filter that reads and writes it pays)
+#                 the floor any filter that reads and writes it pays; it keeps
+#                 the input's compression name, "zip", which OpenEXR writes at
+#                 its default deflate level 4)
+#   oiiotool_zip1 oiiotool in.exr --compression zip:1 -o out.exr (the same
+#                 compression as aaf filter's default, zip:1: like for like)
 #   aaf_filter    aaf filter aaf in.exr -o out.exr   (CLI defaults)
 #   each method   aaf filter METHOD (maaf needs the maaf AOVs: left out here)
 # and, at 640x480 only, the adaptive frame (aaf render grids --adaptive, then
-# aaf filter aaf, written). Peak memory of one aaf filter run comes from
-# /usr/bin/time -v; the frame's AOV bytes are width x height x the bytes of
-# its channels as stored. Prints a Markdown table of medians (REPS, default 5).
+# aaf filter aaf, written). Peak memory (maximum RSS, /usr/bin/time -v) of one
+# aaf filter run, of `aaf --version` (the mapped libraries alone: the
+# baseline) and of the oiiotool copy; the frame's AOV bytes are width x height
+# x the bytes of its channels as stored, and the peak is given over them both
+# including and excluding the baseline. Prints a Markdown table of medians
+# (REPS, default 5).
 # Usage: scripts/bench_io.sh [WIDTHxHEIGHT ...]
 set -euo pipefail
 root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
@@ -27,8 +34,13 @@ median() { sort -g | awk '{a[NR]=$1} END {print (NR % 2) ? a[(NR + 1) / 2] : (a[
 
 echo "Machine: $(nproc) CPUs, load average $(cut -d' ' -f1-3 /proc/loadavg) at the start, $(date -u +%FT%TZ); REPS=$reps; aaf $("$aaf" --version 2>/dev/null | head -n1)"
 echo
-echo "| size | oiiotool copy ms | aaf filter aaf ms | aaf / oiiotool | gaussian ms | isg-shadow ms | ms per Mpixel (aaf) | peak RSS MiB | AOV bytes MiB | RSS / AOV bytes |"
-echo "| --- | --- | --- | --- | --- | --- | --- | --- | --- | --- |"
+# Maximum resident set size of a command, KiB.
+peak_rss_kb() {
+    /usr/bin/time -v "$@" 2>&1 >/dev/null | awk -F: '/Maximum resident set size/ {gsub(/ /, "", $2); print $2}'
+}
+
+echo "| size | oiiotool copy ms | oiiotool zip:1 copy ms | aaf filter aaf ms | aaf / oiiotool | aaf / oiiotool zip:1 | gaussian ms | isg-shadow ms | ms per Mpixel (aaf) | peak RSS MiB | aaf --version RSS MiB | oiiotool copy RSS MiB | AOV bytes MiB | RSS / AOV bytes | (RSS - baseline) / AOV bytes |"
+echo "| --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- |"
 for size in "${sizes[@]}"; do
     w="${size%x*}"
     h="${size#*x}"
@@ -36,21 +48,23 @@ for size in "${sizes[@]}"; do
     [ -f "$in" ] || "$aaf" render grids --width "$w" --height "$h" --aovs aaf,isg,depth -o "$in" --progress none >/dev/null
     declare -A times=()
     for ((r = 0; r < reps; ++r)); do
-        for what in oiiotool aaf gaussian isg-shadow; do
+        for what in oiiotool oiiotool_zip1 aaf gaussian isg-shadow; do
             t=$(now)
             case "$what" in
                 oiiotool) oiiotool "$in" -o "$dir/copy.exr" ;;
+                oiiotool_zip1) oiiotool "$in" --compression zip:1 -o "$dir/copy.exr" ;;
                 *) "$aaf" filter "$what" "$in" -o "$dir/out.exr" >/dev/null ;;
             esac
             times[$what]+="$(echo "($(now) - $t) * 1000" | bc -l) "
         done
     done
     declare -A med=()
-    for what in oiiotool aaf gaussian isg-shadow; do
+    for what in oiiotool oiiotool_zip1 aaf gaussian isg-shadow; do
         med[$what]=$(echo "${times[$what]}" | tr ' ' '\n' | grep . | median)
     done
-    rss_kb=$(/usr/bin/time -v "$aaf" filter aaf "$in" -o "$dir/out.exr" 2>&1 >/dev/null |
-        awk -F: '/Maximum resident set size/ {gsub(/ /, "", $2); print $2}')
+    rss_kb=$(peak_rss_kb "$aaf" filter aaf "$in" -o "$dir/out.exr")
+    base_kb=$(peak_rss_kb "$aaf" --version)
+    copy_kb=$(peak_rss_kb oiiotool "$in" -o "$dir/copy.exr")
     # Bytes of the input's channels as stored (half 2, float 4) times the pixels.
     aov_bytes=$(oiiotool --info -v "$in" | awk -v px=$((w * h)) '
         /channel list:/ {
@@ -58,10 +72,12 @@ for size in "${sizes[@]}"; do
             for (i = 1; i <= n; ++i) bytes += (parts[i] ~ /\(half\)/) ? 2 : 4
         }
         END { print bytes * px }')
-    awk -v s="$size" -v o="${med[oiiotool]}" -v a="${med[aaf]}" -v g="${med[gaussian]}" -v i="${med[isg-shadow]}" \
-        -v mp="$(echo "$w * $h / 1000000" | bc -l)" -v rss="$rss_kb" -v bytes="$aov_bytes" 'BEGIN {
-        printf "| %s | %.0f | %.0f | %.2f | %.0f | %.0f | %.0f | %.0f | %.1f | %.2f |\n",
-            s, o, a, a / o, g, i, a / mp, rss / 1024, bytes / 1048576, rss * 1024 / bytes }'
+    awk -v s="$size" -v o="${med[oiiotool]}" -v z="${med[oiiotool_zip1]}" -v a="${med[aaf]}" \
+        -v g="${med[gaussian]}" -v i="${med[isg-shadow]}" -v mp="$(echo "$w * $h / 1000000" | bc -l)" \
+        -v rss="$rss_kb" -v base="$base_kb" -v copy="$copy_kb" -v bytes="$aov_bytes" 'BEGIN {
+        printf "| %s | %.0f | %.0f | %.0f | %.2f | %.2f | %.0f | %.0f | %.0f | %.0f | %.0f | %.0f | %.1f | %.2f | %.2f |\n",
+            s, o, z, a, a / o, a / z, g, i, a / mp, rss / 1024, base / 1024, copy / 1024, bytes / 1048576,
+            rss * 1024 / bytes, (rss - base) * 1024 / bytes }'
     unset times med
 done
 

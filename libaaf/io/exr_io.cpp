@@ -215,14 +215,102 @@ OIIO::ImageSpec data_part_spec(const AovSet &aovs, const std::vector<std::size_t
     return spec;
 }
 
-/// Interleaves channels `in_part` of `aovs` as float pixels.
-std::vector<float> interleave(const AovSet &aovs, const std::vector<std::size_t> &in_part) {
-    std::vector<float> pixels(aovs.pixel_count() * in_part.size());
-    for (std::size_t k = 0; k < in_part.size(); ++k) {
-        const std::vector<float> &plane = aovs.plane(in_part[k]);
-        for (std::size_t i = 0; i < aovs.pixel_count(); ++i) pixels[i * in_part.size() + k] = plane[i];
+/// Rows per strip when pixels go through an interleaved buffer: about 4 MiB
+/// of float pixels, a multiple of 32 rows (whole ZIP, PIZ and DWAA chunks,
+/// enough for OpenEXR to (de)compress several chunks in parallel), so the
+/// buffer stays small and in cache instead of holding the whole image.
+int strip_rows(int width, std::size_t channels, int height) {
+    constexpr std::size_t kStripBytes = std::size_t(4) << 20, kRowMultiple = 32;
+    const std::size_t row_bytes = std::max<std::size_t>(1, std::size_t(std::max(width, 1)) * channels * 4);
+    const std::size_t rows = std::max(kRowMultiple, kStripBytes / row_bytes / kRowMultiple * kRowMultiple);
+    return int(std::min<std::size_t>(rows, std::size_t(std::max(height, 1))));
+}
+
+/// Block of pixels (de)interleaved at a time: its interleaved floats (up to a
+/// few dozen channels) stay in the L1 cache while each channel is copied.
+constexpr std::size_t kBlockPixels = 256;
+
+/// planes[c][i] = pixels[i * planes.size() + c] for i in [0, count).
+void deinterleave(const float *pixels, std::size_t count, const std::vector<float *> &planes) {
+    const std::size_t channels = planes.size();
+    for (std::size_t begin = 0; begin < count; begin += kBlockPixels) {
+        const std::size_t end = std::min(count, begin + kBlockPixels);
+        for (std::size_t c = 0; c < channels; ++c) {
+            float *plane = planes[c];
+            const float *source = pixels + c;
+            for (std::size_t i = begin; i < end; ++i) plane[i] = source[i * channels];
+        }
     }
-    return pixels;
+}
+
+/// pixels[i * planes.size() + c] = planes[c][i] for i in [0, count).
+void interleave(const std::vector<const float *> &planes, std::size_t count, float *pixels) {
+    const std::size_t channels = planes.size();
+    for (std::size_t begin = 0; begin < count; begin += kBlockPixels) {
+        const std::size_t end = std::min(count, begin + kBlockPixels);
+        for (std::size_t c = 0; c < channels; ++c) {
+            const float *plane = planes[c];
+            float *target = pixels + c;
+            for (std::size_t i = begin; i < end; ++i) target[i * channels] = plane[i];
+        }
+    }
+}
+
+/// Reads every channel of the current part of `input` as float into
+/// `planes` (one width x height plane per channel), a strip of scanlines at
+/// a time: no interleaved copy of the whole image is held.
+void read_into_planes(OIIO::ImageInput &input, const OIIO::ImageSpec &spec, const std::vector<float *> &planes,
+                      const std::string &path) {
+    const std::size_t channels = planes.size(), width = std::size_t(spec.width);
+    if (spec.tile_width > 0) {  // tiled: OpenImageIO assembles the tiles
+        std::vector<float> pixels(width * std::size_t(spec.height) * channels);
+        if (!input.read_image(0, 0, 0, int(channels), TypeDesc::FLOAT, pixels.data()))
+            throw InputError(path + ": cannot read pixels: " + pending_error(&input));
+        deinterleave(pixels.data(), width * std::size_t(spec.height), planes);
+        return;
+    }
+    const int rows = strip_rows(spec.width, channels, spec.height);
+    std::vector<float> strip(width * std::size_t(rows) * channels);
+    for (int row = 0; row < spec.height; row += rows) {
+        const int count = std::min(rows, spec.height - row);
+        if (!input.read_scanlines(0, 0, spec.y + row, spec.y + row + count, spec.z, 0, int(channels),
+                                  TypeDesc::FLOAT, strip.data()))
+            throw InputError(path + ": cannot read pixels: " + pending_error(&input));
+        std::vector<float *> rows_of_planes;
+        for (float *plane : planes) rows_of_planes.push_back(plane + std::size_t(row) * width);
+        deinterleave(strip.data(), std::size_t(count) * width, rows_of_planes);
+    }
+}
+
+/// Interleaves rows [row, row + count) of channels `in_part` of `aovs` as
+/// float pixels into `pixels`.
+void interleave_rows(const AovSet &aovs, const std::vector<std::size_t> &in_part, int row, int count,
+                     std::vector<float> &pixels) {
+    const std::size_t first = std::size_t(row) * std::size_t(aovs.width()),
+                      n = std::size_t(count) * std::size_t(aovs.width());
+    pixels.resize(n * in_part.size());
+    std::vector<const float *> planes;
+    for (std::size_t c : in_part) planes.push_back(aovs.plane(c).data() + first);
+    interleave(planes, n, pixels.data());
+}
+
+/// Writes channels `in_part` of `aovs` as the pixels of the output's
+/// current part (opened with `spec`), a strip of scanlines at a time.
+void write_pixels(const AovSet &aovs, const std::vector<std::size_t> &in_part, const OIIO::ImageSpec &spec,
+                  OIIO::ImageOutput &output) {
+    std::vector<float> pixels;
+    if (spec.tile_width > 0) {  // tiled (carried from a tiled input): OpenImageIO cuts the tiles
+        interleave_rows(aovs, in_part, 0, aovs.height(), pixels);
+        if (!output.write_image(TypeDesc::FLOAT, pixels.data())) throw InputError(one_line(output.geterror()));
+        return;
+    }
+    const int rows = strip_rows(aovs.width(), in_part.size(), aovs.height());
+    for (int row = 0; row < aovs.height(); row += rows) {
+        const int count = std::min(rows, aovs.height() - row);
+        interleave_rows(aovs, in_part, row, count, pixels);
+        if (!output.write_scanlines(spec.y + row, spec.y + row + count, spec.z, TypeDesc::FLOAT, pixels.data()))
+            throw InputError(one_line(output.geterror()));
+    }
 }
 
 /// Copies part `part` of `source` (native pixel types) into the open output.
@@ -275,23 +363,20 @@ AovSet read_aovs(const std::string &path, ImageLayout *layout) {
         throw InputError(path + ": " + e.what());
     }
 
-    std::vector<float> pixels(aovs.pixel_count() * std::size_t(channels));
+    std::vector<float *> planes;
+    for (int c = 0; c < channels; ++c) {
+        const std::string &name = spec.channelnames[c];
+        if (aovs.has_channel(name)) throw InputError(path + ": duplicate channel " + quoted(name));
+        planes.push_back(aovs.add_channel(name).data);
+        // Half channels stay half when written back.
+        if (spec.channelformat(c) == TypeDesc::HALF) aovs.set_precision(name, Precision::Half);
+    }
     try {
-        if (!input->read_image(0, 0, 0, channels, TypeDesc::FLOAT, pixels.data()))
-            throw InputError(path + ": cannot read pixels: " + pending_error(input.get()));
+        read_into_planes(*input, spec, planes, path);
     } catch (const std::bad_alloc &) {
         // OpenImageIO's scanline reader may reserve far more than the image
         // (2.5 GB for a fuzzed 1.4 KB file of 131332x4 pixels): still this file's problem.
         throw InputError(path + ": cannot read pixels: the reader ran out of memory on a corrupt file");
-    }
-
-    for (int c = 0; c < channels; ++c) {
-        const std::string &name = spec.channelnames[c];
-        if (aovs.has_channel(name)) throw InputError(path + ": duplicate channel " + quoted(name));
-        PlaneView plane = aovs.add_channel(name);
-        for (std::size_t i = 0; i < aovs.pixel_count(); ++i) plane.data[i] = pixels[i * channels + c];
-        // Half channels stay half when written back.
-        if (spec.channelformat(c) == TypeDesc::HALF) aovs.set_precision(name, Precision::Half);
     }
     read_attributes(spec, aovs);
     if (layout) {
@@ -411,7 +496,6 @@ void write_aovs(const AovSet &aovs, const std::string &path, const WriteOptions 
                          " is lossy and only for colour layers, and there is no colour to write "
                          "(use a lossless compression)");
     const OIIO::ImageSpec spec = first_part_spec(aovs, first_channels, colour, path, options);
-    const std::vector<float> pixels = interleave(aovs, first_channels);
 
     // The other parts of a carried source, copied one at a time.
     std::unique_ptr<OIIO::ImageInput> source;
@@ -437,14 +521,13 @@ void write_aovs(const AovSet &aovs, const std::string &path, const WriteOptions 
     try {
         const bool opened = specs.size() == 1 ? output->open(temporary, spec)
                                               : output->open(temporary, int(specs.size()), specs.data());
-        if (!opened || !output->write_image(TypeDesc::FLOAT, pixels.data()))
-            throw InputError(one_line(output->geterror()));
+        if (!opened) throw InputError(one_line(output->geterror()));
+        write_pixels(aovs, first_channels, spec, *output);
         for (int part = 1; part < int(data_part); ++part) copy_part(*source, part, *output, temporary);
         if (!data_channels.empty()) {
-            const std::vector<float> data = interleave(aovs, data_channels);
-            if (!output->open(temporary, specs[data_part], OIIO::ImageOutput::AppendSubimage) ||
-                !output->write_image(TypeDesc::FLOAT, data.data()))
+            if (!output->open(temporary, specs[data_part], OIIO::ImageOutput::AppendSubimage))
                 throw InputError(one_line(output->geterror()));
+            write_pixels(aovs, data_channels, specs[data_part], *output);
         }
         if (!output->close()) throw InputError(one_line(output->geterror()));
     } catch (const InputError &e) {

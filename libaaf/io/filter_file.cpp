@@ -137,7 +137,9 @@ FilterFileReport filter_file(const std::string &input_path, const std::string &o
     AovSet output;
     run_with_threads(options.threads,
                      [&] { output = with_context(input_path, [&] { return filter.run(input); }); });
-    if (options.keep_beauty) output = keep_beauty(output, options.channels.resolved(input));
+    const ChannelMap resolved = options.channels.resolved(input);
+    input = AovSet();  // freed before the output is assembled and written: a lower peak of memory
+    if (options.keep_beauty) output = keep_beauty(output, resolved);
     if (!report.borrowed.empty()) output = without_channels(output, report.borrowed);
     WriteOptions write = options.write;
     write.layout = &layout;
