@@ -19,6 +19,12 @@
 // no rejection: it is a lower bound on what any filter of that width costs.
 // Rows run with the machine's default threads and with one, the same count
 // for oneTBB and OpenCV (counters tbb_threads, opencv_threads).
+//
+// BM_AafGuides times aaf_gather_guides() alone (guides_ms) and the whole
+// aaf_filter (aaf_ms) on an adaptive render of `grids` (9 spp first pass,
+// AAF Eq. 21 at mu 2, at most 100 spp), with and without its pixel.spp input:
+// with it, every filtered pixel bisects its mu (AAF Sec. 5.2), as a real
+// render's filter does.
 #include <benchmark/benchmark.h>
 
 #include <chrono>
@@ -233,6 +239,70 @@ void BM_AafVsBaselines(benchmark::State &state) {
     state.counters["opencv_threads"] = opencv_threads;
 }
 
+struct AdaptiveFixture {
+    aaf::AovSet aovs;
+    aaf::AafInputs inputs;  ///< with the spp input
+    aaf::LightPlane light;
+};
+
+const AdaptiveFixture &adaptive_fixture(int width, int height) {
+    static std::map<int, AdaptiveFixture> cache;
+    auto [it, inserted] = cache.try_emplace(width);
+    AdaptiveFixture &f = it->second;
+    if (!inserted) return f;
+    aaf::trace::RenderSettings render_settings;
+    render_settings.width = width;
+    render_settings.height = height;
+    render_settings.adaptive = true;
+    f.aovs = aaf::trace::render_scene("grids", render_settings);
+    const aaf::AovSet &a = f.aovs;
+    f.inputs.visibility = a.channel("shadow.V");
+    f.inputs.d1 = a.channel("shadow.d1");
+    f.inputs.d2_min = a.channel("shadow.d2min");
+    f.inputs.d2_max = a.channel("shadow.d2max");
+    f.inputs.position = {a.channel("P.X"), a.channel("P.Y"), a.channel("P.Z")};
+    f.inputs.normal = {a.channel("N.X"), a.channel("N.Y"), a.channel("N.Z")};
+    f.inputs.object_id = a.channel("id.object");
+    f.inputs.pixel_size = a.channel("pixel.size");
+    f.inputs.spp = a.channel("pixel.spp");
+    f.light = aaf::read_light_attributes(a);
+    return f;
+}
+
+void BM_AafGuides(benchmark::State &state) {
+    const int width = int(state.range(0)), height = int(state.range(1));
+    const bool with_spp = state.range(2) != 0;
+    const AdaptiveFixture &f = adaptive_fixture(width, height);
+    aaf::AafInputs inputs = f.inputs;
+    if (!with_spp) inputs.spp = {};
+    const std::size_t n = f.aovs.pixel_count();
+    std::vector<float> out(n), beta(n);
+    const aaf::AafOutputs outputs{aaf::plane_view(out.data(), width, height),
+                                  aaf::plane_view(beta.data(), width, height)};
+    const aaf::AafParams params;
+    double guides_ms = 0, aaf_ms = 0;
+    aaf::run_with_threads(1, [&] {
+        benchmark::DoNotOptimize(aaf::aaf_gather_guides(inputs, f.light, params));  // warm-up, untimed
+        for (auto _ : state) {
+            auto t = std::chrono::steady_clock::now();
+            const aaf::GatherGuides guides = aaf::aaf_gather_guides(inputs, f.light, params);
+            guides_ms += ms_since(t);
+            benchmark::DoNotOptimize(guides.radius_px.data());
+            benchmark::ClobberMemory();
+
+            t = std::chrono::steady_clock::now();
+            aaf::aaf_filter(inputs, f.light, params, outputs);
+            aaf_ms += ms_since(t);
+            benchmark::DoNotOptimize(out.data());
+            benchmark::ClobberMemory();
+        }
+    });
+    const double iters = double(state.iterations());
+    state.counters["guides_ms"] = guides_ms / iters;
+    state.counters["aaf_ms"] = aaf_ms / iters;
+    state.counters["guides_over_aaf"] = guides_ms / aaf_ms;
+}
+
 }  // namespace
 
 // Third argument: threads for oneTBB and OpenCV, 0 = the machine default. The
@@ -245,6 +315,13 @@ BENCHMARK(BM_AafVsBaselines)
     ->Args({3840, 2160, 0})
     ->Args({640, 480, 1})
     ->Args({1920, 1080, 1})
+    ->Unit(benchmark::kMillisecond)
+    ->UseRealTime();
+// One thread: the guides' own cost, without the machine's other load spread over threads.
+BENCHMARK(BM_AafGuides)
+    ->ArgNames({"width", "height", "spp"})
+    ->Args({640, 480, 0})
+    ->Args({640, 480, 1})
     ->Unit(benchmark::kMillisecond)
     ->UseRealTime();
 BENCHMARK_MAIN();

@@ -1,5 +1,9 @@
 #include <catch2/catch.hpp>
+#include <algorithm>
 #include <cmath>
+#include <cstring>
+#include <limits>
+#include <random>
 
 #include "aaf/core/aaf_bandlimits.h"
 
@@ -105,4 +109,91 @@ TEST_CASE(
     at_mu.mu = mu;
     CHECK(aaf_bandlimits_axes(d1, d2_min, d2_max, pixel, {0.6f, 0.3f}, at_mu).samples_per_pixel ==
           Approx(samples).epsilon(1e-3));
+}
+
+namespace {
+
+// AAF Eq. 4-8, 13 and 15 written out in one piece, as aaf_bandlimits() had
+// them before its mu-free terms were split off for mu_for_samples().
+AafBandlimits one_piece_bandlimits(float d1, float d2_min, float d2_max, float pixel, float sigma,
+                                   const AafParams &params) {
+    AafBandlimits b;
+    b.s1 = std::max(0.0f, d1 / d2_min - 1.0f);
+    b.s2 = std::max(0.0f, d1 / d2_max - 1.0f);
+    b.omega_light = 1.0f / sigma;
+    const float omega_pixel = 1.0f / pixel;
+    b.omega_x_max = params.alpha / (1.0f + b.s2) * omega_pixel;
+    b.omega_y_max = params.alpha * std::max(0.0f, 1.0f - d2_min / d1) * omega_pixel;
+    const float light_induced = b.s2 > 0 ? b.omega_light / b.s2 : std::numeric_limits<float>::infinity();
+    b.omega_x_f0 = std::min(light_induced, b.omega_x_max);
+    b.omega_x_f = params.mu * b.omega_x_f0;
+    b.beta_m = 1.0f / (params.k * b.omega_x_f);
+    const float omega_x_star = b.omega_x_f + b.omega_x_max;
+    const float omega_y_star = b.omega_light + std::min(b.s1 * b.omega_x_f, b.omega_y_max);
+    const float pixel_term = omega_x_star * pixel;
+    const float light_term = omega_y_star * 2.0f * sigma;
+    b.samples_per_pixel = pixel_term * pixel_term * light_term * light_term;
+    return b;
+}
+
+// mu_for_samples() as its contract defines it: the bisection evaluating the
+// whole per-axis analysis at every step.
+float bisected_mu(float samples, float d1, float d2_min, float d2_max, float pixel, LightBandlimitAxes sigma,
+                  const AafParams &params) {
+    AafParams trial = params;
+    auto rate = [&](float mu) {
+        trial.mu = mu;
+        const AafBandlimits u = one_piece_bandlimits(d1, d2_min, d2_max, pixel, sigma.u_m, trial);
+        if (sigma.v_m == sigma.u_m) return u.samples_per_pixel;
+        const AafBandlimits v = one_piece_bandlimits(d1, d2_min, d2_max, pixel, sigma.v_m, trial);
+        return std::sqrt(u.samples_per_pixel) * std::sqrt(v.samples_per_pixel);
+    };
+    if (!(rate(params.mu) < samples)) return params.mu;
+    if (rate(1e4f) <= samples) return 1e4f;
+    float low = params.mu, high = 1e4f;
+    while (high - low > 1e-4f * low) {
+        const float mid = std::sqrt(low * high);
+        (rate(mid) < samples ? low : high) = mid;
+    }
+    return low;
+}
+
+bool same_bits(float a, float b) { return std::memcmp(&a, &b, sizeof a) == 0; }
+
+}  // namespace
+
+TEST_CASE("bandlimits and mu from spp give the one-piece evaluation's bits", "[aaf][bandlimits][mu]") {
+    std::mt19937 rng(18);
+    auto log_uniform = [&](float lo, float hi) {
+        return lo * std::pow(hi / lo, std::uniform_real_distribution<float>(0.0f, 1.0f)(rng));
+    };
+    int bisected = 0;
+    for (int trial = 0; trial < 20000; ++trial) {
+        const float d1 = log_uniform(0.01f, 20.0f);
+        // Occluders from grazing contact to near the light, some measured beyond the receiver.
+        const float d2_max = d1 * log_uniform(0.01f, 1.2f);
+        const float d2_min = trial % 7 == 0 ? d2_max : d2_max * log_uniform(0.05f, 1.0f);
+        const float pixel = log_uniform(1e-5f, 0.1f);
+        const float sigma_u = log_uniform(0.01f, 2.0f);
+        const float sigma_v = trial % 3 == 0 ? sigma_u : log_uniform(0.01f, 2.0f);
+        AafParams params;
+        params.mu = log_uniform(0.5f, 4.0f);
+        params.k = log_uniform(1.0f, 5.0f);
+        params.alpha = log_uniform(0.3f, 1.0f);
+        const float samples = log_uniform(0.5f, 2000.0f);
+
+        const AafBandlimits b = aaf_bandlimits(d1, d2_min, d2_max, pixel, sigma_u, params);
+        const AafBandlimits ref = one_piece_bandlimits(d1, d2_min, d2_max, pixel, sigma_u, params);
+        CHECK(same_bits(b.omega_x_f, ref.omega_x_f));
+        CHECK(same_bits(b.beta_m, ref.beta_m));
+        CHECK(same_bits(b.samples_per_pixel, ref.samples_per_pixel));
+
+        const LightBandlimitAxes sigma{sigma_u, sigma_v};
+        const float mu = mu_for_samples(samples, d1, d2_min, d2_max, pixel, sigma, params);
+        const float expected = bisected_mu(samples, d1, d2_min, d2_max, pixel, sigma, params);
+        if (!same_bits(mu, expected)) FAIL_CHECK("trial " << trial << ": mu " << mu << " vs " << expected);
+        if (expected != params.mu && expected != 1e4f) ++bisected;
+    }
+    // Most draws must reach the bisection itself, not only its two early exits.
+    CHECK(bisected > 10000);
 }

@@ -39,8 +39,12 @@ void AafParams::validate() const {
     if (mu_from_spp && fixed_mu) throw Error("AAF mu from spp and fixed mu exclude each other");
 }
 
-AafBandlimits aaf_bandlimits(float d1_m, float d2_min_m, float d2_max_m, float pixel_size_m, float sigma_m,
-                             const AafParams &params) {
+namespace {
+
+/// The part of aaf_bandlimits() that does not depend on mu: AAF Eq. 4, 6, 7, 8
+/// (omega_x_f, beta_m and samples_per_pixel left 0).
+AafBandlimits mu_free_bandlimits(float d1_m, float d2_min_m, float d2_max_m, float pixel_size_m, float sigma_m,
+                                 const AafParams &params) {
     AafBandlimits b;
     b.s1 = std::max(0.0f, d1_m / d2_min_m - 1.0f);               // AAF Eq. 4
     b.s2 = std::max(0.0f, d1_m / d2_max_m - 1.0f);               // AAF Eq. 4
@@ -52,16 +56,31 @@ AafBandlimits aaf_bandlimits(float d1_m, float d2_min_m, float d2_max_m, float p
     // AAF Eq. 8: Omega_L / s2 is unbounded as s2 -> 0; the clip to Omega_x^max takes over.
     const float light_induced = b.s2 > 0 ? b.omega_light / b.s2 : std::numeric_limits<float>::infinity();
     b.omega_x_f0 = std::min(light_induced, b.omega_x_max);
+    return b;
+}
+
+/// AAF Eq. 15 at `mu` from mu_free_bandlimits(): a few multiplies, no divide,
+/// so mu_for_samples' bisection can call it at every step. aaf_bandlimits()
+/// takes its rate from here too, so both give the same bits.
+float samples_per_pixel_at(const AafBandlimits &mu_free, float mu, float pixel_size_m, float sigma_m) {
+    const float omega_x_f = mu * mu_free.omega_x_f0;  // Sec. 5.2
+    // AAF Eq. 15 with packing (a) of Fig. 4: A_p = d^2 and A_l = (2 sigma)^2.
+    const float omega_x_star = omega_x_f + mu_free.omega_x_max;
+    const float omega_y_star = mu_free.omega_light + std::min(mu_free.s1 * omega_x_f, mu_free.omega_y_max);
+    const float pixel_term = omega_x_star * pixel_size_m;
+    const float light_term = omega_y_star * 2.0f * sigma_m;
+    return pixel_term * pixel_term * light_term * light_term;
+}
+
+}  // namespace
+
+AafBandlimits aaf_bandlimits(float d1_m, float d2_min_m, float d2_max_m, float pixel_size_m, float sigma_m,
+                             const AafParams &params) {
+    AafBandlimits b = mu_free_bandlimits(d1_m, d2_min_m, d2_max_m, pixel_size_m, sigma_m, params);
     b.omega_x_f = params.mu * b.omega_x_f0;  // Sec. 5.2
     // AAF Eq. 13: beta = 1/(k mu) max(sigma s2, 1/Omega_x^max) = 1 / (k Omega_x^f).
     b.beta_m = 1.0f / (params.k * b.omega_x_f);
-
-    // AAF Eq. 15 with packing (a) of Fig. 4: A_p = d^2 and A_l = (2 sigma)^2.
-    const float omega_x_star = b.omega_x_f + b.omega_x_max;
-    const float omega_y_star = b.omega_light + std::min(b.s1 * b.omega_x_f, b.omega_y_max);
-    const float pixel_term = omega_x_star * pixel_size_m;
-    const float light_term = omega_y_star * 2.0f * sigma_m;
-    b.samples_per_pixel = pixel_term * pixel_term * light_term * light_term;
+    b.samples_per_pixel = samples_per_pixel_at(b, params.mu, pixel_size_m, sigma_m);
     return b;
 }
 
@@ -95,10 +114,17 @@ float mu_for_samples(float samples, float d1_m, float d2_min_m, float d2_max_m, 
 float mu_for_samples(float samples, float d1_m, float d2_min_m, float d2_max_m, float pixel_size_m,
                      LightBandlimitAxes sigma, const AafParams &params) {
     constexpr float kMaxMu = 1e4f;
-    AafParams trial = params;
+    // The rate of aaf_bandlimits_axes() at mu, bit for bit, with the mu-free
+    // terms (all of the divides) computed once instead of at every step.
+    const bool square = sigma.v_m == sigma.u_m;
+    const AafBandlimits u = mu_free_bandlimits(d1_m, d2_min_m, d2_max_m, pixel_size_m, sigma.u_m, params);
+    const AafBandlimits v =
+        square ? u : mu_free_bandlimits(d1_m, d2_min_m, d2_max_m, pixel_size_m, sigma.v_m, params);
     auto rate = [&](float mu) {
-        trial.mu = mu;
-        return aaf_bandlimits_axes(d1_m, d2_min_m, d2_max_m, pixel_size_m, sigma, trial).samples_per_pixel;
+        const float rate_u = samples_per_pixel_at(u, mu, pixel_size_m, sigma.u_m);
+        if (square) return rate_u;
+        // AAF Eq. 15 per axis, as in aaf_bandlimits_axes().
+        return std::sqrt(rate_u) * std::sqrt(samples_per_pixel_at(v, mu, pixel_size_m, sigma.v_m));
     };
     if (!(rate(params.mu) < samples)) return params.mu;
     if (rate(kMaxMu) <= samples) return kMaxMu;
