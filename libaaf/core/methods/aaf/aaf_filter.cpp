@@ -172,8 +172,9 @@ GatherGuides aaf_gather_guides(const AafInputs &in, const LightPlane &light, con
             if (anisotropic) guides.inv_two_sigma_sq_v[i] = inv_two_sigma_sq(beta.v_m);
             if (along_light) {
                 // Finite, so that the centre tap's dn = 0 gives 0, never 0 x inf.
-                const float weight_n = spread_u_sq * guides.inv_two_sigma_sq[i] +
-                                       spread_v_sq * inv_two_sigma_sq(anisotropic ? beta.v_m : beta.u_m);
+                const float weight_n =
+                    spread_u_sq * guides.inv_two_sigma_sq[i] +
+                    spread_v_sq * (anisotropic ? guides.inv_two_sigma_sq_v[i] : guides.inv_two_sigma_sq[i]);
                 guides.inv_two_sigma_sq_n[i] =
                     std::isfinite(weight_n) ? weight_n : std::numeric_limits<float>::max();
             }
