@@ -156,16 +156,11 @@ void add_method_command(CLI::App &filter, const Method &method) {
         };
         const Provenance *current = nullptr;  // the frame being filtered
         // Every missing input is named at once, with its recipe, before the method runs.
-        filter.run = [&method, &current, light, channels, run = filter.run](const AovSet &input) {
-            AovSet lit;
-            if (light) {
-                lit = input;
-                apply_light_option(light, lit);
-            }
-            const AovSet &complete = light ? lit : input;
-            const std::vector<std::string> recipes = missing_input_recipes(method, complete, channels);
+        filter.run = [&method, &current, light, channels, run = filter.run](AovSet input) {
+            if (light) apply_light_option(light, input);
+            const std::vector<std::string> recipes = missing_input_recipes(method, input, channels);
             if (!recipes.empty()) throw InputError(missing_inputs_message(method, recipes));
-            AovSet output = run(complete);
+            AovSet output = run(std::move(input));
             stamp(*current, output);
             return output;
         };

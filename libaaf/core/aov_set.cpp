@@ -29,6 +29,25 @@ PlaneView AovSet::add_channel(const std::string &name, float fill) {
     return plane_view(planes_.back().data(), width_, height_);
 }
 
+PlaneView AovSet::add_channel(const std::string &name, std::vector<float> plane) {
+    if (has_channel(name)) throw Error("channel " + quoted(name) + " already exists");
+    if (plane.size() != pixel_count()) throw Error("channel " + quoted(name) + " has another size");
+    names_.push_back(name);
+    planes_.push_back(std::move(plane));
+    precisions_.push_back(Precision::Float);
+    return plane_view(planes_.back().data(), width_, height_);
+}
+
+std::vector<float> AovSet::take_channel(const std::string &name) {
+    const std::size_t i = index_of(name);
+    if (i == std::string::npos) throw Error("missing channel " + quoted(name));
+    std::vector<float> plane = std::move(planes_[i]);
+    names_.erase(names_.begin() + std::ptrdiff_t(i));
+    planes_.erase(planes_.begin() + std::ptrdiff_t(i));
+    precisions_.erase(precisions_.begin() + std::ptrdiff_t(i));
+    return plane;
+}
+
 PlaneView AovSet::channel(const std::string &name) {
     std::size_t i = index_of(name);
     if (i == std::string::npos) throw InputError("missing channel " + quoted(name));

@@ -24,18 +24,29 @@ std::string joined(const std::vector<std::string> &names) {
     return text;
 }
 
-/// Copies every channel and attribute of `input`, leaving out `skip`.
-AovSet copy_except(const AovSet &input, const std::vector<std::string> &skip) {
+/// Moves every channel of `input` but `skip` into a new set with its
+/// attributes, in their order; `input` keeps the skipped ones.
+AovSet move_except(AovSet &input, const std::vector<std::string> &skip) {
     AovSet out(input.width(), input.height());
     out.attributes = input.attributes;
-    for (std::size_t c = 0; c < input.channel_names().size(); ++c) {
-        const std::string &name = input.channel_names()[c];
-        if (contains(skip, name)) continue;
-        PlaneView dst = out.add_channel(name);
-        std::copy(input.plane(c).begin(), input.plane(c).end(), dst.data);
-    }
+    const std::vector<std::string> names = input.channel_names();
+    for (const std::string &name : names)
+        if (!contains(skip, name)) out.add_channel(name, input.take_channel(name));
     return out;
 }
+
+/// A channel of the input, split between the output's moved planes and the rest.
+struct SplitInput {
+    const AovSet &moved, &rest;
+    bool has_all(const std::vector<std::string> &names) const {
+        for (const std::string &name : names)
+            if (!moved.has_channel(name) && !rest.has_channel(name)) return false;
+        return true;
+    }
+    ConstPlaneView channel(const std::string &name) const {
+        return moved.has_channel(name) ? moved.channel(name) : rest.channel(name);
+    }
+};
 
 void check_inputs(const Method &method, const AovSet &input, const ChannelMap &channels) {
     const MissingInputs missing = missing_inputs(method, input, channels);
@@ -49,20 +60,21 @@ void check_inputs(const Method &method, const AovSet &input, const ChannelMap &c
 }
 
 /// The read-only views of every declared input role present in `input`.
-void bind_inputs(const Method &method, const AovSet &input, const ChannelMap &found, MethodImages &images) {
+void bind_inputs(const Method &method, const SplitInput &input, const ChannelMap &found,
+                 MethodImages &images) {
     std::vector<Role> roles = method.info().roles.required;
     const std::vector<Role> &optional = method.info().roles.optional;
     roles.insert(roles.end(), optional.begin(), optional.end());
     for (Role role : roles) {
         const std::vector<std::string> &names = found.channels(role);
         images.set_channel_names(role, joined(names));
-        if (!has_all(input, names)) continue;
+        if (!input.has_all(names)) continue;
         std::vector<ConstPlaneView> views;
         for (const std::string &name : names) views.push_back(input.channel(name));
         images.set_input(role, views);
     }
     // The ratio roles' per-light layers, named after the summed layer's channels.
-    const int lights = ratio_light_count(input.attributes);
+    const int lights = ratio_light_count(input.rest.attributes);
     images.set_light_count(lights);
     for (Role role : roles) {
         if (!is_per_light_role(role)) continue;
@@ -71,7 +83,7 @@ void bind_inputs(const Method &method, const AovSet &input, const ChannelMap &fo
             for (const std::string &name : found.channels(role))
                 names.push_back(per_light_channel(name, light));
             images.set_light_channel_names(role, light, joined(names));
-            if (!has_all(input, names)) continue;
+            if (!input.has_all(names)) continue;
             std::vector<ConstPlaneView> views;
             for (const std::string &name : names) views.push_back(input.channel(name));
             images.set_light_input(role, light, views);
@@ -105,6 +117,11 @@ std::vector<std::string> method_input_channels(const Method &method, const Chann
 
 AovSet filter_aovs(const Method &method, const AovSet &input, const ChannelMap &channels,
                    const ParameterSet &parameters, const ProgressMonitor &monitor, const AovSet *history) {
+    return filter_aovs(method, AovSet(input), channels, parameters, monitor, history);
+}
+
+AovSet filter_aovs(const Method &method, AovSet &&input, const ChannelMap &channels,
+                   const ParameterSet &parameters, const ProgressMonitor &monitor, const AovSet *history) {
     // Other renderers' names are found through the synonym table.
     const ChannelMap found = channels.resolved(input);
     check_inputs(method, input, found);
@@ -117,10 +134,11 @@ AovSet filter_aovs(const Method &method, const AovSet &input, const ChannelMap &
         for (const std::string &name : found.channels(role)) replaced.push_back(name);
     if (composes_beauty)
         for (const std::string &name : found.channels(Role::NoisyBeauty)) replaced.push_back(name);
-    AovSet out = copy_except(input, replaced);
+    // The kept channels move to the output, the method reads them there: no copy of the frame.
+    AovSet out = move_except(input, replaced);
 
     MethodImages images(input.width(), input.height(), input.attributes);
-    bind_inputs(method, input, found, images);
+    bind_inputs(method, SplitInput{out, input}, found, images);
     if (history && (history->width() != input.width() || history->height() != input.height()))
         throw InputError("the previous frame is " + std::to_string(history->width()) + "x" +
                          std::to_string(history->height()) + ", this one " + std::to_string(input.width()) +

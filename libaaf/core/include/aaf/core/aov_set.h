@@ -34,6 +34,12 @@ class AovSet {
 
     /// Adds a channel filled with `fill`; throws aaf::Error if the name exists.
     PlaneView add_channel(const std::string &name, float fill = 0.0f);
+    /// Adds a channel holding `plane` (moved in, width * height floats);
+    /// throws aaf::Error if the name exists or the size differs.
+    PlaneView add_channel(const std::string &name, std::vector<float> plane);
+    /// Removes channel `name` and returns its plane (moved out, no copy);
+    /// throws aaf::Error naming the channel when it is missing.
+    std::vector<float> take_channel(const std::string &name);
 
     bool has_channel(const std::string &name) const;
     /// Throws aaf::Error naming the channel when it is missing.

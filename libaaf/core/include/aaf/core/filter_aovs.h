@@ -38,5 +38,11 @@ std::vector<std::string> method_input_channels(const Method &method, const Chann
 AovSet filter_aovs(const Method &method, const AovSet &input, const ChannelMap &channels,
                    const ParameterSet &parameters, const ProgressMonitor &monitor = {},
                    const AovSet *history = nullptr);
+/// The same, taking the input's planes into the output instead of copying
+/// them (a frame less of peak memory); `input` is left holding only the
+/// channels the output replaces.
+AovSet filter_aovs(const Method &method, AovSet &&input, const ChannelMap &channels,
+                   const ParameterSet &parameters, const ProgressMonitor &monitor = {},
+                   const AovSet *history = nullptr);
 
 }  // namespace aaf

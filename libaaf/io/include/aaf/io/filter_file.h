@@ -22,8 +22,10 @@ struct FrameFilter {
     /// borrowed channel may complete a renderer's synonym.
     std::function<std::vector<std::string>(const AovSet &input)> input_channels;
     /// Runs the filter: returns the full output set (the input channels kept,
-    /// the beauty roles as aov_contract.h names them, plus the outputs).
-    std::function<AovSet(const AovSet &input)> run;
+    /// the beauty roles as aov_contract.h names them, plus the outputs). The
+    /// input is its own (filter_file moves the frame in), so it may take the
+    /// input's planes into the output instead of copying them.
+    std::function<AovSet(AovSet input)> run;
     /// The method's name when it composes a new beauty from the in-focus
     /// shadow (a defocused input's beauty then loses its defocus, which the
     /// pipeline warns about); empty when it leaves the beauty alone.
