@@ -59,6 +59,20 @@ struct Fixture {
     bool gather_matches_aaf = false;
 };
 
+/// AAF's inputs as the tracer names them in `a` (the spp AOV left out).
+aaf::AafInputs aaf_inputs_of(const aaf::AovSet &a) {
+    aaf::AafInputs inputs;
+    inputs.visibility = a.channel("shadow.V");
+    inputs.d1 = a.channel("shadow.d1");
+    inputs.d2_min = a.channel("shadow.d2min");
+    inputs.d2_max = a.channel("shadow.d2max");
+    inputs.position = {a.channel("P.X"), a.channel("P.Y"), a.channel("P.Z")};
+    inputs.normal = {a.channel("N.X"), a.channel("N.Y"), a.channel("N.Z")};
+    inputs.object_id = a.channel("id.object");
+    inputs.pixel_size = a.channel("pixel.size");
+    return inputs;
+}
+
 const Fixture &fixture(int width, int height) {
     static std::map<int, Fixture> cache;
     auto [it, inserted] = cache.try_emplace(width);
@@ -70,14 +84,7 @@ const Fixture &fixture(int width, int height) {
     render_settings.spp = 9;
     f.aovs = aaf::trace::render_scene("grids", render_settings);
     const aaf::AovSet &a = f.aovs;
-    f.inputs.visibility = a.channel("shadow.V");
-    f.inputs.d1 = a.channel("shadow.d1");
-    f.inputs.d2_min = a.channel("shadow.d2min");
-    f.inputs.d2_max = a.channel("shadow.d2max");
-    f.inputs.position = {a.channel("P.X"), a.channel("P.Y"), a.channel("P.Z")};
-    f.inputs.normal = {a.channel("N.X"), a.channel("N.Y"), a.channel("N.Z")};
-    f.inputs.object_id = a.channel("id.object");
-    f.inputs.pixel_size = a.channel("pixel.size");
+    f.inputs = aaf_inputs_of(a);
     f.light = aaf::read_light_attributes(a);
 
     const aaf::AafParams params;
@@ -256,14 +263,7 @@ const AdaptiveFixture &adaptive_fixture(int width, int height) {
     render_settings.adaptive = true;
     f.aovs = aaf::trace::render_scene("grids", render_settings);
     const aaf::AovSet &a = f.aovs;
-    f.inputs.visibility = a.channel("shadow.V");
-    f.inputs.d1 = a.channel("shadow.d1");
-    f.inputs.d2_min = a.channel("shadow.d2min");
-    f.inputs.d2_max = a.channel("shadow.d2max");
-    f.inputs.position = {a.channel("P.X"), a.channel("P.Y"), a.channel("P.Z")};
-    f.inputs.normal = {a.channel("N.X"), a.channel("N.Y"), a.channel("N.Z")};
-    f.inputs.object_id = a.channel("id.object");
-    f.inputs.pixel_size = a.channel("pixel.size");
+    f.inputs = aaf_inputs_of(a);
     f.inputs.spp = a.channel("pixel.spp");
     f.light = aaf::read_light_attributes(a);
     return f;

@@ -74,6 +74,16 @@ struct FlatScene {
     }
 };
 
+/// Two pixels under the light at (0, 2, 0) facing down: the centre at (1, 0,
+/// 0) and a tap 0.5 m above it.
+FlatScene centre_and_tap_above() {
+    FlatScene pair(2, 1, 1.0f);
+    pair.px = {1.0f, 1.0f};
+    pair.py = {0.0f, 0.5f};
+    pair.pz = {0.0f, 0.0f};
+    return pair;
+}
+
 }  // namespace
 
 TEST_CASE("Separable AAF equals the brute-force 2D Gaussian when beta is constant", "[aaf][filter]") {
@@ -205,10 +215,7 @@ TEST_CASE("Distances along the ray equal AAF Eq. 12 on a receiver parallel to th
     // Hand value: light centre (0, 2, 0) facing down, centre pixel at (1, 0, 0), tap 0.5 m above
     // it. AAF Eq. 12 drops the vertical offset (distance 0); sliding the tap along l = (-1, 2, 0) / sqrt 5
     // onto the centre's plane y = 0 moves it to (1.25, 0, 0): du = 0.25 m.
-    FlatScene pair(2, 1, 1.0f);
-    pair.px = {1.0f, 1.0f};
-    pair.py = {0.0f, 0.5f};
-    pair.pz = {0.0f, 0.0f};
+    FlatScene pair = centre_and_tap_above();
     params.light_distance = AafLightDistance::AlongLightDirection;
     const GatherGuides guides = aaf_gather_guides(pair.inputs(), pair.light, params);
     REQUIRE(guides.sheared());
@@ -242,16 +249,14 @@ TEST_CASE("Distances along the ray add the light's spread of directions", "[aaf]
 
     // Centre pixel at (1, 0, 0), d1 = 2 m below the light: 1 / (2 sigma_n^2) =
     // (var_u + var_v) / d1^2 times the isotropic 1 / (2 beta^2).
-    FlatScene pair(2, 1, 1.0f);
-    pair.px = {1.0f, 1.0f};
-    pair.py = {0.0f, 0.5f};
-    pair.pz = {0.0f, 0.0f};
+    FlatScene pair = centre_and_tap_above();
     AafParams params;
     params.light_distance = AafLightDistance::AlongLightDirection;
     const GatherGuides guides = aaf_gather_guides(pair.inputs(), pair.light, params);
     REQUIRE(guides.sheared());
     REQUIRE(guides.inv_two_sigma_sq[0] > 0);
-    CHECK(guides.inv_two_sigma_sq_n[0] == Approx(2 * 0.0727813 / 4 * guides.inv_two_sigma_sq[0]).epsilon(1e-5));
+    CHECK(guides.inv_two_sigma_sq_n[0] ==
+          Approx(2 * 0.0727813 / 4 * guides.inv_two_sigma_sq[0]).epsilon(1e-5));
     // Where the projection holds (guarded, a floor under the light) nothing slides and nothing spreads.
     params.light_distance = AafLightDistance::Guarded;
     CHECK(aaf_gather_guides(pair.inputs(), pair.light, params).inv_two_sigma_sq_n[0] == 0.0f);
@@ -312,10 +317,7 @@ TEST_CASE("AAF rejects mismatched inputs and bad parameters", "[aaf][filter]") {
 TEST_CASE("Guarded distances: AAF Eq. 12 where the projection holds, along the ray where it collapses a wall",
           "[aaf][filter]") {
     // The pair of the test above: centre at (1, 0, 0), tap 0.5 m above it, light facing down.
-    FlatScene pair(2, 1, 1.0f);
-    pair.px = {1.0f, 1.0f};
-    pair.py = {0.0f, 0.5f};
-    pair.pz = {0.0f, 0.0f};
+    FlatScene pair = centre_and_tap_above();
     AafParams params;
     params.light_distance = AafLightDistance::Guarded;
     auto tap_du = [&](const GatherGuides &g) {
