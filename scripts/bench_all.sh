@@ -3,7 +3,10 @@
 # that produced them, to scripts/bench/results/suite_<UTC date>.md:
 #   bench_aaf_filter  AAF and its gather against OpenCV GaussianBlur (same mean
 #                     width) and bilateralFilter at 640x480, 1920x1080, 3840x2160
-#   bench_maaf_filter MAAF against AAF on the same render (640x480)
+#   bench_maaf_filter MAAF against AAF and OpenCV GaussianBlur (MAAF's mean
+#                     central width) on the same render (640x480)
+#   bench_ratio_filter the ratio estimator's denoise against OpenCV GaussianBlur
+#                     (same mean width) at 640x480, 1920x1080 and 3840x2160
 #   bench_trace       the tracer against raw Embree loops on the same rays
 #   bench_io.sh       aaf filter end to end against an oiiotool copy, peak memory,
 #                     the adaptive frame
@@ -30,6 +33,7 @@ run() {
     run "$bench/bench_aaf_filter" --benchmark_repetitions="$reps" --benchmark_report_aggregates_only=true
     run "$bench/bench_maaf_filter" --benchmark_filter='640' --benchmark_repetitions="$reps" \
         --benchmark_report_aggregates_only=true
+    run "$bench/bench_ratio_filter" --benchmark_repetitions="$reps" --benchmark_report_aggregates_only=true
     run "$bench/bench_trace" --benchmark_filter='BM_Throughput|BM_Packets' --benchmark_repetitions="$reps" \
         --benchmark_report_aggregates_only=true
     echo
