@@ -72,17 +72,20 @@ PixelBeta pixel_beta_m(const AafInputs &in, const LightPlane &light, LightBandli
 }  // namespace
 
 GatherGuides aaf_gather_guides(const AafInputs &in, const LightPlane &light, const AafParams &params,
-                               std::vector<float> *beta_out_m) {
+                               PlaneView beta_m) {
     check_inputs(in, light, params);
-    std::vector<float> local_beta;
-    std::vector<float> &beta_m = beta_out_m ? *beta_out_m : local_beta;
-    GatherGuides guides;
-    guides.resize(in.visibility.width, in.visibility.height);
-    beta_m.assign(std::size_t(guides.width) * std::size_t(guides.height), 0.0f);
-
+    if (beta_m.valid() && (beta_m.width != in.visibility.width || beta_m.height != in.visibility.height))
+        throw Error("AAF output 'beta' has another size");
     // AAF Sec. 6: unoccluded pixels take the occluder distances of their neighbours.
+    // Filled before the guides exist, so the search's scratch planes never coexist with them.
     const FilledOccluders occluders =
         fill_occluder_distances(in.d2_min, in.d2_max, in.object_id, params.fill_radius_px);
+    GatherGuides guides;
+    guides.resize(in.visibility.width, in.visibility.height);
+    if (beta_m.valid())
+        parallel_for_rows(guides.height, [&](int y) {
+            for (int x = 0; x < guides.width; ++x) beta_m(x, y) = 0.0f;
+        });
     const LightBandlimitAxes bandlimit_sigma_m = aaf_light_sigmas_m(light, params);
     // One band-limit per light axis: the Gaussian is anisotropic in the light's plane.
     const bool anisotropic = bandlimit_sigma_m.u_m != bandlimit_sigma_m.v_m;
@@ -161,7 +164,7 @@ GatherGuides aaf_gather_guides(const AafInputs &in, const LightPlane &light, con
             const float radius = std::min(std::ceil(kCutoffSigmas * widest / in.pixel_size(x, y)),
                                           float(params.max_radius_px));
             // The beta output: the isotropic width of the same area, sqrt(beta_u beta_v).
-            beta_m[i] = anisotropic ? std::sqrt(beta.u_m * beta.v_m) : beta.u_m;
+            if (beta_m.valid()) beta_m(x, y) = anisotropic ? std::sqrt(beta.u_m * beta.v_m) : beta.u_m;
             // A beta below ~1e-19 m (pixel.size near 0) squares to 0 or a
             // denormal: the largest float instead of inf keeps the centre tap's
             // exponent 0 * that = 0 (weight 1), where inf would give 0 * inf = NaN.
@@ -199,26 +202,19 @@ void aaf_filter(const AafInputs &in, const LightPlane &light, const AafParams &p
     if (!out.filtered_visibility.valid() || out.filtered_visibility.width != width ||
         out.filtered_visibility.height != height)
         throw Error("AAF output 'filtered visibility' is missing or has another size");
-    if (out.beta_m.valid() && (out.beta_m.width != width || out.beta_m.height != height))
-        throw Error("AAF output 'beta' has another size");
 
-    std::vector<float> beta_m;
-    const GatherGuides guides = aaf_gather_guides(in, light, params, &beta_m);
+    // beta goes straight to its output, and the visibility is filtered in its
+    // output's plane: no frame-sized copy beside the guides (peak memory).
+    const GatherGuides guides = aaf_gather_guides(in, light, params, out.beta_m);
 
     // Non-finite visibility (a renderer's NaN) is read as 0, so it cannot spread through the filter.
-    std::vector<float> visibility(std::size_t(width) * std::size_t(height));
     parallel_for_rows(height, [&](int y) {
         for (int x = 0; x < width; ++x) {
             const float v = in.visibility(x, y);
-            visibility[guides.index(x, y)] = std::isfinite(v) ? v : 0.0f;
+            out.filtered_visibility(x, y) = std::isfinite(v) ? v : 0.0f;
         }
     });
-    gather(guides, aaf_gather_settings(params), {plane_view(visibility.data(), width, height)},
-           {out.filtered_visibility});
-    if (out.beta_m.valid())
-        parallel_for_rows(height, [&](int y) {
-            for (int x = 0; x < width; ++x) out.beta_m(x, y) = beta_m[guides.index(x, y)];
-        });
+    gather(guides, aaf_gather_settings(params), {out.filtered_visibility}, {out.filtered_visibility});
 }
 
 }  // namespace aaf
