@@ -3,6 +3,8 @@
 # that produced them, to scripts/bench/results/suite_<UTC date>.md:
 #   bench_aaf_filter  AAF and its gather against OpenCV GaussianBlur (same mean
 #                     width) and bilateralFilter at 640x480, 1920x1080, 3840x2160
+#   bench_aaf_scaling AAF against OpenCV GaussianBlur at a fixed filter width,
+#                     the 640x480 render tiled up to 3840x2880 (linearity in pixels)
 #   bench_maaf_filter MAAF against AAF and OpenCV GaussianBlur (MAAF's mean
 #                     central width) on the same render (640x480)
 #   bench_ratio_filter the ratio estimator's denoise against OpenCV GaussianBlur
@@ -31,6 +33,7 @@ run() {
     echo "$(nproc) CPUs ($(grep -m1 'model name' /proc/cpuinfo | cut -d: -f2 | xargs)), load average $(cut -d' ' -f1-3 /proc/loadavg) at the start."
     echo "Produced by: REPS=$reps scripts/bench_all.sh"
     run "$bench/bench_aaf_filter" --benchmark_repetitions="$reps" --benchmark_report_aggregates_only=true
+    run "$bench/bench_aaf_scaling" --benchmark_repetitions="$reps" --benchmark_report_aggregates_only=true
     run "$bench/bench_maaf_filter" --benchmark_filter='640' --benchmark_repetitions="$reps" \
         --benchmark_report_aggregates_only=true
     run "$bench/bench_ratio_filter" --benchmark_repetitions="$reps" --benchmark_report_aggregates_only=true
