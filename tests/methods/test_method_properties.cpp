@@ -163,8 +163,7 @@ TEST_CASE("Every method that composes a beauty keeps the input's as the noisy be
         AovSet input = realistic_input();
         std::vector<const float *> storage;
         for (const std::string &name : beauty) storage.push_back(plane(input, name).data());
-        const AovSet out =
-            filter_aovs(*method, std::move(input), ChannelMap{}, method->default_parameters());
+        const AovSet out = filter_aovs(*method, std::move(input), ChannelMap{}, method->default_parameters());
         for (std::size_t c = 0; c < beauty.size(); ++c) {
             INFO(noisy[c]);
             CHECK(same_bytes(plane(out, noisy[c]), plane(realistic_input(), beauty[c])));
