@@ -9,6 +9,9 @@
 #                     central width) on the same render (640x480)
 #   bench_ratio_filter the ratio estimator's denoise against OpenCV GaussianBlur
 #                     (same mean width) at 640x480, 1920x1080 and 3840x2160
+#   bench_methods_bandwidth every registered method against the machine's copy
+#                     bandwidth: the bytes it must move (one run: maaf6 alone
+#                     takes a minute at 640x480)
 #   bench_trace       the tracer against raw Embree loops on the same rays
 #   bench_io.sh       aaf filter end to end against an oiiotool copy, peak memory,
 #                     the adaptive frame
@@ -37,6 +40,7 @@ run() {
     run "$bench/bench_maaf_filter" --benchmark_filter='640' --benchmark_repetitions="$reps" \
         --benchmark_report_aggregates_only=true
     run "$bench/bench_ratio_filter" --benchmark_repetitions="$reps" --benchmark_report_aggregates_only=true
+    run "$bench/bench_methods_bandwidth"
     run "$bench/bench_trace" --benchmark_filter='BM_Throughput|BM_Packets' --benchmark_repetitions="$reps" \
         --benchmark_report_aggregates_only=true
     echo
