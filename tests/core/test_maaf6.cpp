@@ -437,3 +437,27 @@ TEST_CASE("MAAF 6D x kernel: each pair's cos part integrates to 0 (nothing passe
         CHECK(std::fabs(first_moment_sin) > 1e-3);  // but not zero
     }
 }
+
+TEST_CASE("MAAF 6D filter components: the focal-plane box (u slopes of both signs) keeps the central filter",
+          "[maaf6]") {
+    // The y-wedge [1, 2] at Omega_y^max 10 is not clipped by the x band (1e6) and sigma_x^0 = 2 rad/m reaches
+    // 1.5 m, inside a 1e3 m window: only the u-wedge decides.
+    auto same = [](const Maaf6Component &a, const Maaf6Component &b) {
+        return a.centre_x == b.centre_x && a.sigma_x == b.sigma_x && a.centre_y == b.centre_y &&
+               a.centre_u == b.centre_u && a.weight == b.weight;
+    };
+    const Maaf6Wedge one_signed = example_wedge(0.01, 0.02);  // near focus, but on one side of it
+    const std::vector<Maaf6Component> kept = maaf6_filter_components(one_signed, 3, 1.0, 1e3);
+    const std::vector<Maaf6Component> partition = maaf6_pair_components(one_signed, 3);
+    for (std::size_t p = 0; p < 3; ++p) CHECK(same(kept[p], partition[p]));
+    CHECK(kept[2].weight > 0);
+    for (const auto &[u_min, u_max] : {std::pair{-0.01, 0.02}, std::pair{-0.5, 1.0}, std::pair{-1.0, 0.001}}) {
+        const Maaf6Wedge box = example_wedge(u_min, u_max);
+        const std::vector<Maaf6Component> c = maaf6_filter_components(box, 3, 1.0, 1e3);
+        REQUIRE(c.size() == 3);
+        CHECK(same(c[0], maaf6_pair_components(box, 1)[0]));
+        CHECK(c[0].sigma_x == Approx(10.0));  // N = 1: Omega_y^max / y_min, the axis-aligned filter
+        CHECK(c[1].weight == 0);
+        CHECK(c[2].weight == 0);
+    }
+}
