@@ -106,6 +106,12 @@ std::vector<Maaf6Component> maaf6_filter_components(const Maaf6Wedge &w, int pai
     return out;
 }
 
+double maaf6_light_attenuation(double centre_y, double omega_y_max) {
+    if (!(omega_y_max > 0) || !std::isfinite(omega_y_max)) throw Error("MAAF 6D: the y band must be positive and finite");
+    const double t = centre_y / (0.5 * omega_y_max);  // sigma C_y with Omega_y^max = 2 / sigma (MAAF Sec. 3)
+    return std::exp(-0.5 * t * t);
+}
+
 int maaf6_channel_count(int pairs) {
     return (2 * pairs - 1) * (2 * pairs - 1);
 }

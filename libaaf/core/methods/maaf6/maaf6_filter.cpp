@@ -88,6 +88,8 @@ void maaf6_filter_layer(const Maaf6LayerInputs &layer, const Maaf6SharedInputs &
             const bool offsets_used =
                 std::any_of(pairs.begin() + 1, pairs.end(), [](const Maaf6Component &c) { return c.weight != 0; });
             if (!offsets_used) pairs.resize(1);
+            if (params.light_weights && offsets_used)
+                for (Maaf6Component &c : pairs) c.weight *= maaf6_light_attenuation(c.centre_y, wedge.omega_y_max);
             const int pixel_n = offsets_used ? used_n : 1;
             const Vec3 p = read3(shared.position, x, y), n = normalize(read3(shared.normal, x, y));
             Vec3 t1, t2;

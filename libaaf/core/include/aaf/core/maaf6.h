@@ -92,6 +92,17 @@ std::vector<Maaf6Component> maaf6_pair_components(const Maaf6Wedge &wedge, int p
 /// k: the filter's width scale (Maaf6FilterParams::k). Throws as maaf6_pair_components().
 std::vector<Maaf6Component> maaf6_filter_components(const Maaf6Wedge &wedge, int pairs, double k, double window_m);
 
+/// The y band's attenuation at a pair's y centre, G(C_y^p; Omega_y^max / 2) =
+/// exp(-(sigma C_y^p)^2 / 2) for Omega_y^max = 2 / sigma: the spectrum of the
+/// Gaussian light (or lobe) model whose band-limit MAAF Sec. 3 takes as
+/// Omega_y^max. A pair whose y-envelope is the sampling density itself passes
+/// the wedge near (C_x^p, C_y^p) with gain mu_p, while the y integral attenuates
+/// it by the light's spectrum there; Eq. 10's G(C_y^p; Omega_y^max) is twice as
+/// wide (0.73 instead of 0.28 at C_y = 0.8 Omega_y^max, N = 3), so the outer pairs
+/// over-sharpen. Optional (Maaf6FilterParams::light_weights): not in the paper.
+/// 1 for C_y = 0. Throws aaf::Error unless omega_y_max > 0.
+double maaf6_light_attenuation(double centre_y, double omega_y_max);
+
 /// Channels per layer and per colour: (2N - 1)^2, channel a (2N - 1) + b
 /// being function a of subspace 1 times function b of subspace 2; function
 /// 0 is 1, 2p - 1 is cos(C_y^p y + C_u^p u), 2p is sin(...) (MAAF Eq. 23).
