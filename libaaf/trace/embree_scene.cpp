@@ -127,4 +127,33 @@ bool EmbreeScene::occluded(Vec3 origin, Vec3 direction, float t_near, float t_fa
     return ray.tfar < 0;  // Embree sets tfar to -inf on a hit
 }
 
+void EmbreeScene::occluded_packet(Vec3 origin, const Vec3 *directions, int count, float t_near, float t_far,
+                                  bool *blocked) const {
+    RTCIntersectContext context;
+    rtcInitIntersectContext(&context);
+    // One pixel's shadow rays share their origin and aim at one light.
+    context.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;
+    alignas(64) int valid[kPacketSize];
+    alignas(64) RTCRay16 packet;
+    for (int k = 0; k < kPacketSize; ++k) {
+        const bool active = k < count;
+        const Vec3 direction = directions[active ? k : 0];
+        valid[k] = active ? -1 : 0;
+        packet.org_x[k] = origin.x;
+        packet.org_y[k] = origin.y;
+        packet.org_z[k] = origin.z;
+        packet.dir_x[k] = direction.x;
+        packet.dir_y[k] = direction.y;
+        packet.dir_z[k] = direction.z;
+        packet.tnear[k] = t_near;
+        packet.tfar[k] = t_far;
+        packet.time[k] = 0;
+        packet.mask[k] = std::numeric_limits<unsigned>::max();
+        packet.id[k] = 0;
+        packet.flags[k] = 0;
+    }
+    rtcOccluded16(valid, scene_, &context, &packet);
+    for (int k = 0; k < count; ++k) blocked[k] = packet.tfar[k] < 0;  // -inf on a hit
+}
+
 }  // namespace aaf::trace

@@ -33,6 +33,14 @@ class EmbreeScene {
     /// (rtcOccluded1: stops at the first hit found).
     bool occluded(Vec3 origin, Vec3 direction, float t_near, float t_far) const;
 
+    /// Packet size of occluded_packet().
+    static constexpr int kPacketSize = 16;
+    /// occluded() of `count` <= kPacketSize rays from one origin, origin +
+    /// t directions[k] for t in [t_near, t_far], as one rtcOccluded16 packet:
+    /// blocked[k] for k < count.
+    void occluded_packet(Vec3 origin, const Vec3 *directions, int count, float t_near, float t_far,
+                         bool *blocked) const;
+
     RTCScene handle() const { return scene_; }
 
   private:

@@ -132,13 +132,22 @@ class Renderer {
     /// r(x) times the visibility of one shadow ray towards the light's point
     /// for the unit-square sample `u`.
     Vec3 shade(const Mesh &mesh, Vec3 p, Vec3 n, Vec3 eye, UnitPoint u, std::size_t first_light) const;
-    /// Fills `sample`'s light point (from its y_unit), weight, visibility and
+    /// Fills `sample`'s weight, visibility and
     /// occluder distance for the key light seen from the primary hit, whose
     /// offset ray origin is `origin`, plane distance `d1` and falloff
     /// towards the light's centre `centre_falloff` (0 without the falloff);
-    /// the occluder distance only with `occluder_distances` (else 0).
+    /// the occluder distance only with `occluder_distances` (else 0). The
+    /// light point is `sample`'s (y_u_m, y_v_m), already warped;
+    /// `traced_visibility`, when not null, is that visibility-only ray's
+    /// answer, already traced in a packet (trace_visibility_packets).
     void trace_key_light(const PrimaryHit &primary, Vec3 origin, float d1, float centre_falloff,
-                         bool occluder_distances, LightSample &sample) const;
+                         bool occluder_distances, const bool *traced_visibility, LightSample &sample) const;
+    /// Visibility-only shadow rays of `count` light points (y_u_m[k],
+    /// y_v_m[k]) from the primary hit's offset `origin`, in packets:
+    /// visible[k] for each point in front of the hit's tangent plane (the
+    /// rays trace_key_light traces), the others untouched.
+    void trace_visibility_packets(const PrimaryHit &primary, Vec3 origin, std::uint32_t count,
+                                  const float *y_u_m, const float *y_v_m, bool *visible) const;
     /// The radiance `sample` traces apart from r(x) V(x): the other lights'
     /// shading at the primary hit, or with a thin lens that of every light
     /// seen through a lens ray aimed at `focus` (filling the sample's lens
@@ -153,6 +162,7 @@ class Renderer {
     const RenderSettings &settings_;
     EmbreeScene bvh_;
     std::vector<LightSampler> light_samplers_;
+    bool packets_ = false;  ///< visibility-only key light rays in packets (trace_visibility_packets)
 };
 
 }  // namespace aaf::trace

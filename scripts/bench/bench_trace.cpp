@@ -79,6 +79,9 @@ struct Fixture {
     std::vector<PrimaryHit> primaries;
     std::vector<Ray> rays;
     std::size_t triangles = 0;
+    /// Built once, as the Renderer builds its own: the timed sampling loop
+    /// pays per ray, not the inverse-CDF table's construction.
+    std::unique_ptr<LightSampler> sampler;
 };
 
 /// Offsets along the normal exactly as renderer.cpp does.
@@ -91,7 +94,7 @@ Vec3 offset_origin(Vec3 p, Vec3 n) {
 /// Renderer::trace_shadows (pass 0) traces, in the same order.
 template <typename Emit>
 void for_each_shadow_ray(const Fixture &f, const Emit &emit) {
-    const LightSampler sampler(f.scene.key_light());
+    const LightSampler &sampler = *f.sampler;
     for (int y = 0; y < kHeight; ++y)
         for (int x = 0; x < kWidth; ++x) {
             const PrimaryHit &primary = f.primaries[std::size_t(y) * kWidth + x];
@@ -124,6 +127,7 @@ Fixture &fixture(const std::string &scene_name) {
     f.settings.height = kHeight;
     f.settings.spp = kSpp;
     f.renderer = std::make_unique<Renderer>(f.scene, f.settings);
+    f.sampler = std::make_unique<LightSampler>(f.scene.key_light());
     for (int y = 0; y < kHeight; ++y)
         for (int x = 0; x < kWidth; ++x) f.primaries.push_back(f.renderer->trace_primary(x, y));
     for_each_shadow_ray(f, [&](const Ray &ray) { f.rays.push_back(ray); });
