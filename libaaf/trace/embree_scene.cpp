@@ -107,26 +107,6 @@ Hit EmbreeScene::intersect(Vec3 origin, Vec3 direction, float t_near, float t_fa
     return hit;
 }
 
-bool EmbreeScene::occluded(Vec3 origin, Vec3 direction, float t_near, float t_far) const {
-    RTCIntersectContext context;
-    rtcInitIntersectContext(&context);
-    RTCRay ray;
-    ray.org_x = origin.x;
-    ray.org_y = origin.y;
-    ray.org_z = origin.z;
-    ray.dir_x = direction.x;
-    ray.dir_y = direction.y;
-    ray.dir_z = direction.z;
-    ray.tnear = t_near;
-    ray.tfar = t_far;
-    ray.time = 0;
-    ray.mask = std::numeric_limits<unsigned>::max();
-    ray.id = 0;
-    ray.flags = 0;
-    rtcOccluded1(scene_, &context, &ray);
-    return ray.tfar < 0;  // Embree sets tfar to -inf on a hit
-}
-
 void EmbreeScene::occluded_packet(Vec3 origin, const Vec3 *directions, int count, float t_near, float t_far,
                                   bool *blocked) const {
     RTCIntersectContext context;

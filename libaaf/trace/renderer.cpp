@@ -148,12 +148,20 @@ void Renderer::trace_key_light(const PrimaryHit &primary, Vec3 origin, float d1,
     }
 }
 
-void Renderer::trace_visibility_packets(const PrimaryHit &primary, Vec3 origin, std::uint32_t count,
-                                        const float *y_u_m, const float *y_v_m, bool *visible) const {
+void Renderer::trace_visibility_batch(const PrimaryHit &primary, Vec3 origin, std::uint32_t count,
+                                      const float *y_u_m, const float *y_v_m, bool *visible) const {
     const LightPlane &light = scene_.key_light();
+    if (!packets_) {
+        for (std::uint32_t k = 0; k < count; ++k) {
+            const Vec3 target = light.point_at(y_u_m[k], y_v_m[k]);  // as trace_key_light
+            visible[k] = dot(primary.normal, target - primary.position) > 0 &&
+                         !bvh_.occluded(origin, target - origin, 0.0f, kShadowRayReach);
+        }
+        return;
+    }
     constexpr int kPacket = EmbreeScene::kPacketSize;
     // The rays trace_key_light would trace (light points in front of the
-    // tangent plane), kPacket at a time; the others are left as they are.
+    // tangent plane), kPacket at a time.
     std::array<Vec3, kPacket> directions;
     std::array<std::uint32_t, kPacket> sample_of;
     std::array<bool, kPacket> blocked;
@@ -165,6 +173,7 @@ void Renderer::trace_visibility_packets(const PrimaryHit &primary, Vec3 origin, 
     };
     for (std::uint32_t k = 0; k < count; ++k) {
         const Vec3 target = light.point_at(y_u_m[k], y_v_m[k]);
+        visible[k] = false;  // behind the tangent plane, unless traced below
         if (dot(primary.normal, target - primary.position) <= 0) continue;
         directions[std::size_t(filled)] = target - origin;
         sample_of[std::size_t(filled)] = k;
@@ -212,7 +221,14 @@ void Renderer::trace_shadows(const PrimaryHit &primary, int x, int y, std::uint6
         settings_.cosine_falloff && primary.found ? falloff(light, p, primary.normal, light.center) : 0.0f;
     const bool separate = has_separate_radiance();
     // Thin lens: the pixel centre's point on the plane in focus, where every lens ray aims.
-    const Vec3 focus = camera.eye + camera.ray_direction(x + 0.5f, y + 0.5f) * camera.focus_distance_m;
+    const Vec3 focus = camera.is_thin_lens()
+                           ? camera.eye + camera.ray_direction(x + 0.5f, y + 0.5f) * camera.focus_distance_m
+                           : Vec3{};
+    // Visibility only, every weight 1 and nothing else traced or listened
+    // to: a sample adds 1 to the weight sums (ShadowStats::add) and nothing
+    // else, so the batch is counted without building its LightSamples.
+    const bool visibility_counts = primary.found && !occluder_distances && !settings_.cosine_falloff &&
+                                   !separate && listeners.empty();
     // The light points of a batch of samples first (random numbers, strata,
     // the warp: one tight loop each), then their rays; the same numbers in
     // the same order as one sample at a time.
@@ -229,8 +245,13 @@ void Renderer::trace_shadows(const PrimaryHit &primary, int x, int y, std::uint6
         }
         if (primary.found)
             light_samplers_[0].warp(unit_s.data(), unit_t.data(), batch, y_u_m.data(), y_v_m.data());
-        const bool packets = primary.found && !occluder_distances && packets_;
-        if (packets) trace_visibility_packets(primary, origin, batch, y_u_m.data(), y_v_m.data(), visible.data());
+        // Visibility only: the batch's rays in one loop, before the samples.
+        const bool batch_traced = primary.found && !occluder_distances;
+        if (batch_traced) trace_visibility_batch(primary, origin, batch, y_u_m.data(), y_v_m.data(), visible.data());
+        if (visibility_counts) {
+            for (std::uint32_t k = 0; k < batch; ++k) stats.add_unit_weight(visible[k]);
+            continue;
+        }
         for (std::uint32_t k = 0; k < batch; ++k) {
             LightSample sample;
             sample.y_unit = {unit_s[k], unit_t[k]};
@@ -241,7 +262,7 @@ void Renderer::trace_shadows(const PrimaryHit &primary, int x, int y, std::uint6
                 sample.y_u_m = y_u_m[k];
                 sample.y_v_m = y_v_m[k];
                 trace_key_light(primary, origin, d1, centre_falloff, occluder_distances,
-                                packets ? &visible[k] : nullptr, sample);
+                                batch_traced ? &visible[k] : nullptr, sample);
             }
             if (separate) sample.radiance = separate_radiance(primary, focus, secondary_rng, sample);
             stats.add(sample);

@@ -57,6 +57,13 @@ struct ShadowStats {
         radiance_sum[1] += sample.radiance.y;
         radiance_sum[2] += sample.radiance.z;
     }
+    /// add() of a sample with a receiver, weight 1, no occluder distance
+    /// and no radiance: the same sums.
+    void add_unit_weight(bool visible) {
+        ++taken;
+        weight_sum += 1.0;
+        if (visible) unoccluded_weight_sum += 1.0;
+    }
     bool occluded_any() const { return d2_max_m > 0; }
     /// Light-weighted visibility in [0, 1]; exactly 1 when no sample was occluded.
     float visibility() const { return weight_sum > 0 ? float(unoccluded_weight_sum / weight_sum) : 1.0f; }
@@ -139,14 +146,14 @@ class Renderer {
     /// the occluder distance only with `occluder_distances` (else 0). The
     /// light point is `sample`'s (y_u_m, y_v_m), already warped;
     /// `traced_visibility`, when not null, is that visibility-only ray's
-    /// answer, already traced in a packet (trace_visibility_packets).
+    /// answer, already traced (trace_visibility_batch).
     void trace_key_light(const PrimaryHit &primary, Vec3 origin, float d1, float centre_falloff,
                          bool occluder_distances, const bool *traced_visibility, LightSample &sample) const;
     /// Visibility-only shadow rays of `count` light points (y_u_m[k],
-    /// y_v_m[k]) from the primary hit's offset `origin`, in packets:
-    /// visible[k] for each point in front of the hit's tangent plane (the
-    /// rays trace_key_light traces), the others untouched.
-    void trace_visibility_packets(const PrimaryHit &primary, Vec3 origin, std::uint32_t count,
+    /// y_v_m[k]) from the primary hit's offset `origin`, one at a time or in
+    /// packets (packets_): visible[k], false for a point behind the hit's
+    /// tangent plane (no ray, as in trace_key_light).
+    void trace_visibility_batch(const PrimaryHit &primary, Vec3 origin, std::uint32_t count,
                                   const float *y_u_m, const float *y_v_m, bool *visible) const;
     /// The radiance `sample` traces apart from r(x) V(x): the other lights'
     /// shading at the primary hit, or with a thin lens that of every light
@@ -162,7 +169,7 @@ class Renderer {
     const RenderSettings &settings_;
     EmbreeScene bvh_;
     std::vector<LightSampler> light_samplers_;
-    bool packets_ = false;  ///< visibility-only key light rays in packets (trace_visibility_packets)
+    bool packets_ = false;  ///< visibility-only key light rays in packets (trace_visibility_batch)
 };
 
 }  // namespace aaf::trace
