@@ -81,10 +81,18 @@ struct ShadowStats {
     }
 };
 
+/// How visibility-only key-light shadow rays go to Embree: one at a time
+/// (rtcOccluded1), in packets of up to 16 of a pixel's rays (rtcOccluded16),
+/// or Automatic: packets for renders of a round or more (a reference's
+/// high-quality BVH, where they measured faster). Every choice gives the same
+/// answers; only the speed differs.
+enum class ShadowRayGrouping { Automatic, Single, Packets };
+
 /// Traces primary and shadow rays of one scene (thread-safe, const).
 class Renderer {
   public:
-    Renderer(const SceneDescription &scene, const RenderSettings &settings);
+    Renderer(const SceneDescription &scene, const RenderSettings &settings,
+             ShadowRayGrouping grouping = ShadowRayGrouping::Automatic);
 
     PrimaryHit trace_primary(int x, int y) const;
 

@@ -11,6 +11,8 @@
 //               the occluder distance d2, statistics)
 //   tracer_visibility  the same with visibility only (any hit), what later
 //               rounds and the adaptive second pass run
+//   tracer_packets  the same in rtcOccluded16 packets of a pixel's rays
+//               (what references, 1024 spp or more, run)
 //   occluded1   rtcOccluded1 on the stored rays (the fastest possible answer
 //               to "is it blocked")
 //   intersect1  rtcIntersect1 on the stored rays (what d2 needs)
@@ -78,6 +80,7 @@ struct Fixture {
     SceneDescription scene;
     RenderSettings settings;
     std::unique_ptr<Renderer> renderer;
+    std::unique_ptr<Renderer> packet_renderer;  ///< the same, visibility rays always in packets
     std::vector<PrimaryHit> primaries;
     std::vector<Ray> rays;
     std::size_t triangles = 0;
@@ -129,6 +132,7 @@ Fixture &fixture(const std::string &scene_name) {
     f.settings.height = kHeight;
     f.settings.spp = kSpp;
     f.renderer = std::make_unique<Renderer>(f.scene, f.settings);
+    f.packet_renderer = std::make_unique<Renderer>(f.scene, f.settings, ShadowRayGrouping::Packets);
     f.sampler = std::make_unique<LightSampler>(f.scene.key_light());
     for (int y = 0; y < kHeight; ++y)
         for (int x = 0; x < kWidth; ++x) f.primaries.push_back(f.renderer->trace_primary(x, y));
@@ -160,14 +164,15 @@ double seconds(const ThreadCpuClock::time_point &start) {
     return std::chrono::duration<double>(ThreadCpuClock::now() - start).count();
 }
 
-std::size_t run_tracer(const Fixture &f, bool occluder_distances) {
+std::size_t run_tracer(const Fixture &f, bool occluder_distances, bool packets = false) {
+    const Renderer &renderer = packets ? *f.packet_renderer : *f.renderer;
     std::size_t traced = 0;
     for (int y = 0; y < kHeight; ++y)
         for (int x = 0; x < kWidth; ++x) {
             const std::size_t i = std::size_t(y) * kWidth + x;
             if (!f.primaries[i].found) continue;
             ShadowStats stats;
-            f.renderer->trace_shadows(f.primaries[i], x, y, i, 0, kSpp, occluder_distances, stats, {});
+            renderer.trace_shadows(f.primaries[i], x, y, i, 0, kSpp, occluder_distances, stats, {});
             traced += stats.taken;
             benchmark::DoNotOptimize(stats);
         }
@@ -283,7 +288,7 @@ void BM_Throughput(benchmark::State &state, const std::string &scene_name) {
     Fixture &f = fixture(scene_name);
     set_flush_to_zero(true);
     const RTCScene scene = f.renderer->bvh().handle();
-    double tracer_s = 0, tracer_visibility_s = 0, occluded_s = 0, intersect_s = 0, sampling_s = 0;
+    double tracer_s = 0, tracer_visibility_s = 0, tracer_packets_s = 0, occluded_s = 0, intersect_s = 0, sampling_s = 0;
     std::size_t tracer_rays = 0;
     for (auto _ : state) {
         auto sampling_start = ThreadCpuClock::now();
@@ -297,6 +302,9 @@ void BM_Throughput(benchmark::State &state, const std::string &scene_name) {
         start = ThreadCpuClock::now();
         benchmark::DoNotOptimize(run_tracer(f, false));
         tracer_visibility_s += seconds(start);
+        start = ThreadCpuClock::now();
+        benchmark::DoNotOptimize(run_tracer(f, false, true));
+        tracer_packets_s += seconds(start);
         start = ThreadCpuClock::now();
         benchmark::DoNotOptimize(run_occluded1(scene, f.rays));
         occluded_s += seconds(start);
@@ -320,6 +328,9 @@ void BM_Throughput(benchmark::State &state, const std::string &scene_name) {
     // Visibility-only passes (later rounds, the adaptive second pass) against the same floor.
     state.counters["tracer_visibility_Mrays_s"] = rays * n / tracer_visibility_s / 1e6;
     state.counters["tracer_visibility_over_occluded1"] = occluded_s / tracer_visibility_s;
+    // The same rays in packets of a pixel's 16 (ShadowRayGrouping::Packets;
+    // renders of fewer than 1024 spp, like this one, trace them one at a time).
+    state.counters["tracer_packets_over_occluded1"] = occluded_s / tracer_packets_s;
 }
 
 void BM_Packets(benchmark::State &state, const std::string &scene_name) {
