@@ -46,6 +46,9 @@ Renderer::Renderer(const SceneDescription &scene, const RenderSettings &settings
     // BVH, every shipped scene (1.04-1.4x end to end at 2048 spp) and the
     // 129k-triangle mesh (even); with the medium BVH of shorter renders they
     // lost on the mesh (0.83x, bench_trace). The answers are the same.
+    // Closest hits (occluder distances) stay one ray at a time:
+    // rtcIntersect16 changed d2min/d2max of 3 of 1200 grids pixels against
+    // rtcIntersect1 (tried and measured, not adopted).
     packets_ = grouping == ShadowRayGrouping::Packets ||
                (grouping == ShadowRayGrouping::Automatic && settings.spp >= kSamplesPerRound);
 }

@@ -9,7 +9,7 @@
 using namespace aaf;
 using namespace aaf::trace;
 
-TEST_CASE("Visibility rays in packets give the same samples as one at a time", "[trace][render]") {
+TEST_CASE("Shadow rays in packets give the same samples as one at a time", "[trace][render]") {
     for (const bool falloff : {false, true}) {
         RenderSettings settings;
         settings.width = 40;
@@ -28,14 +28,18 @@ TEST_CASE("Visibility rays in packets give the same samples as one at a time", "
                 if (!primary.found) continue;
                 const std::uint64_t pixel = std::uint64_t(y) * settings.width + x;
                 // Full batches of 64 (four packets) and a batch that ends in a partial packet.
-                for (const std::uint32_t count : {64u, 37u}) {
-                    ShadowStats one, grouped;
-                    single.trace_shadows(primary, x, y, pixel, 1, count, false, one, {});
-                    packets.trace_shadows(primary, x, y, pixel, 1, count, false, grouped, {});
-                    differing += one.taken != grouped.taken || one.weight_sum != grouped.weight_sum ||
-                                 one.unoccluded_weight_sum != grouped.unoccluded_weight_sum;
-                    penumbra_pixels += one.unoccluded_weight_sum > 0 && one.unoccluded_weight_sum < one.weight_sum;
-                }
+                // Visibility only, and the closest hits' distances (d2 extremes).
+                for (const std::uint32_t count : {64u, 37u})
+                    for (const bool distances : {false, true}) {
+                        ShadowStats one, grouped;
+                        single.trace_shadows(primary, x, y, pixel, 1, count, distances, one, {});
+                        packets.trace_shadows(primary, x, y, pixel, 1, count, distances, grouped, {});
+                        differing += one.taken != grouped.taken || one.weight_sum != grouped.weight_sum ||
+                                     one.unoccluded_weight_sum != grouped.unoccluded_weight_sum ||
+                                     one.d2_min_m != grouped.d2_min_m || one.d2_max_m != grouped.d2_max_m;
+                        penumbra_pixels +=
+                            one.unoccluded_weight_sum > 0 && one.unoccluded_weight_sum < one.weight_sum;
+                    }
             }
         INFO("falloff " << falloff);
         CHECK(differing == 0);
