@@ -258,7 +258,7 @@ void Renderer::trace_shadows(const PrimaryHit &primary, int x, int y, std::uint6
         const bool batch_traced = primary.found && !occluder_distances;
         if (batch_traced) trace_visibility_batch(primary, origin, batch, y_u_m.data(), y_v_m.data(), visible.data());
         if (visibility_counts) {
-            for (std::uint32_t k = 0; k < batch; ++k) stats.add_unit_weight(visible[k]);
+            stats.add_unit_weights(visible.data(), batch);
             continue;
         }
         for (std::uint32_t k = 0; k < batch; ++k) {

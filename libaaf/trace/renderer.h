@@ -57,12 +57,23 @@ struct ShadowStats {
         radiance_sum[1] += sample.radiance.y;
         radiance_sum[2] += sample.radiance.z;
     }
-    /// add() of a sample with a receiver, weight 1, no occluder distance
-    /// and no radiance: the same sums.
-    void add_unit_weight(bool visible) {
-        ++taken;
-        weight_sum += 1.0;
-        if (visible) unoccluded_weight_sum += 1.0;
+    /// add() of `count` samples with a receiver, weight 1, no occluder
+    /// distance and no radiance, visible[k] each: the same sums. Whole sums
+    /// below 2^52 take the counts at once (adding 1 n times is exact there).
+    void add_unit_weights(const bool *visible, std::uint32_t count) {
+        std::uint32_t unoccluded = 0;
+        for (std::uint32_t k = 0; k < count; ++k) unoccluded += visible[k] ? 1u : 0u;
+        taken += count;
+        auto whole = [](double sum) { return sum < 0x1p52 && sum == double(std::uint64_t(sum)); };
+        if (whole(weight_sum) && whole(unoccluded_weight_sum)) {
+            weight_sum += double(count);
+            unoccluded_weight_sum += double(unoccluded);
+            return;
+        }
+        for (std::uint32_t k = 0; k < count; ++k) {
+            weight_sum += 1.0;
+            if (visible[k]) unoccluded_weight_sum += 1.0;
+        }
     }
     bool occluded_any() const { return d2_max_m > 0; }
     /// Light-weighted visibility in [0, 1]; exactly 1 when no sample was occluded.

@@ -46,3 +46,25 @@ TEST_CASE("Shadow rays in packets give the same samples as one at a time", "[tra
         CHECK(penumbra_pixels > 20);  // rays both blocked and not, within a packet
     }
 }
+
+TEST_CASE("ShadowStats::add_unit_weights gives add()'s sums", "[trace][render]") {
+    const bool visible[] = {true, false, true, true, false, true, true};
+    // Whole sums (counts at once), a sum past float's integers (after a
+    // round_to_float) and sums that are not whole (the loop).
+    for (const double start : {0.0, 37.0, 16777217.0, 0.5, 1e17 + 0.0}) {
+        ShadowStats batched, one_by_one;
+        batched.weight_sum = one_by_one.weight_sum = start;
+        batched.unoccluded_weight_sum = one_by_one.unoccluded_weight_sum = start / 2;
+        batched.add_unit_weights(visible, 7);
+        for (const bool v : visible) {
+            LightSample sample;
+            sample.visible = v;
+            one_by_one.add(sample);
+        }
+        INFO("start " << start);
+        CHECK(batched.taken == one_by_one.taken);
+        CHECK(batched.weight_sum == one_by_one.weight_sum);
+        CHECK(batched.unoccluded_weight_sum == one_by_one.unoccluded_weight_sum);
+        CHECK(batched.visibility() == one_by_one.visibility());
+    }
+}
