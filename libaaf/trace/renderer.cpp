@@ -43,7 +43,7 @@ Renderer::Renderer(const SceneDescription &scene, const RenderSettings &settings
     : scene_(scene), settings_(settings), bvh_(scene, settings.spp >= kSamplesPerRound) {
     for (const SceneLight &light : scene.lights) light_samplers_.emplace_back(light.plane);
     // Packets where they measured faster: with a reference's high-quality
-    // BVH, every shipped scene (1.04-1.4x end to end at 2048 spp) and the
+    // BVH, every shipped scene (1.02-1.43x end to end at 2048 spp) and the
     // 129k-triangle mesh (even); with the medium BVH of shorter renders they
     // lost on the mesh (0.83x, bench_trace). The answers are the same.
     // Closest hits (occluder distances) stay one ray at a time:
