@@ -107,24 +107,33 @@ Hit EmbreeScene::intersect(Vec3 origin, Vec3 direction, float t_near, float t_fa
     return hit;
 }
 
-bool EmbreeScene::occluded(Vec3 origin, Vec3 direction, float t_near, float t_far) const {
+void EmbreeScene::occluded_packet(Vec3 origin, const Vec3 *directions, int count, float t_near, float t_far,
+                                  bool *blocked) const {
     RTCIntersectContext context;
     rtcInitIntersectContext(&context);
-    RTCRay ray;
-    ray.org_x = origin.x;
-    ray.org_y = origin.y;
-    ray.org_z = origin.z;
-    ray.dir_x = direction.x;
-    ray.dir_y = direction.y;
-    ray.dir_z = direction.z;
-    ray.tnear = t_near;
-    ray.tfar = t_far;
-    ray.time = 0;
-    ray.mask = std::numeric_limits<unsigned>::max();
-    ray.id = 0;
-    ray.flags = 0;
-    rtcOccluded1(scene_, &context, &ray);
-    return ray.tfar < 0;  // Embree sets tfar to -inf on a hit
+    // One pixel's shadow rays share their origin and aim at one light.
+    context.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;
+    alignas(64) int valid[kPacketSize];
+    alignas(64) RTCRay16 packet;
+    for (int k = 0; k < kPacketSize; ++k) {
+        const bool active = k < count;
+        const Vec3 direction = directions[active ? k : 0];
+        valid[k] = active ? -1 : 0;
+        packet.org_x[k] = origin.x;
+        packet.org_y[k] = origin.y;
+        packet.org_z[k] = origin.z;
+        packet.dir_x[k] = direction.x;
+        packet.dir_y[k] = direction.y;
+        packet.dir_z[k] = direction.z;
+        packet.tnear[k] = t_near;
+        packet.tfar[k] = t_far;
+        packet.time[k] = 0;
+        packet.mask[k] = std::numeric_limits<unsigned>::max();
+        packet.id[k] = 0;
+        packet.flags[k] = 0;
+    }
+    rtcOccluded16(valid, scene_, &context, &packet);
+    for (int k = 0; k < count; ++k) blocked[k] = packet.tfar[k] < 0;  // -inf on a hit
 }
 
 }  // namespace aaf::trace

@@ -2,6 +2,8 @@
 
 #include <embree3/rtcore.h>
 
+#include <limits>
+
 #include "scene_description.h"
 
 namespace aaf::trace {
@@ -33,11 +35,40 @@ class EmbreeScene {
     /// (rtcOccluded1: stops at the first hit found).
     bool occluded(Vec3 origin, Vec3 direction, float t_near, float t_far) const;
 
+    /// Packet size of occluded_packet().
+    static constexpr int kPacketSize = 16;
+    /// occluded() of `count` <= kPacketSize rays from one origin, origin +
+    /// t directions[k] for t in [t_near, t_far], as one rtcOccluded16 packet:
+    /// blocked[k] for k < count.
+    void occluded_packet(Vec3 origin, const Vec3 *directions, int count, float t_near, float t_far,
+                         bool *blocked) const;
+
     RTCScene handle() const { return scene_; }
 
   private:
     RTCDevice device_ = nullptr;
     RTCScene scene_ = nullptr;
 };
+
+// Inline: it runs once per shadow ray.
+inline bool EmbreeScene::occluded(Vec3 origin, Vec3 direction, float t_near, float t_far) const {
+    RTCIntersectContext context;
+    rtcInitIntersectContext(&context);
+    RTCRay ray;
+    ray.org_x = origin.x;
+    ray.org_y = origin.y;
+    ray.org_z = origin.z;
+    ray.dir_x = direction.x;
+    ray.dir_y = direction.y;
+    ray.dir_z = direction.z;
+    ray.tnear = t_near;
+    ray.tfar = t_far;
+    ray.time = 0;
+    ray.mask = std::numeric_limits<unsigned>::max();
+    ray.id = 0;
+    ray.flags = 0;
+    rtcOccluded1(scene_, &context, &ray);
+    return ray.tfar < 0;  // Embree sets tfar to -inf on a hit
+}
 
 }  // namespace aaf::trace

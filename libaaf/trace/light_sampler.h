@@ -1,5 +1,7 @@
 #pragma once
 
+#include <cstddef>
+
 #include "aaf/core/light_plane.h"
 #include "stratified_grid.h"
 #include "truncated_normal.h"
@@ -29,6 +31,18 @@ class LightSampler {
     float warp_v(float t) const {
         return gaussian_ ? light_.sigma_m * (square_ ? normal_u_ : normal_v_).sample(t)
                          : (t - 0.5f) * light_.height_m;
+    }
+
+    /// u_m[k] = warp_u(s[k]) and v_m[k] = warp_v(t[k]) for k < count: the
+    /// same operations and bits, one tight loop per axis (a pixel's batch).
+    void warp(const float *s, const float *t, std::size_t count, float *u_m, float *v_m) const {
+        if (!gaussian_) {
+            for (std::size_t k = 0; k < count; ++k) u_m[k] = (s[k] - 0.5f) * light_.width_m;
+            for (std::size_t k = 0; k < count; ++k) v_m[k] = (t[k] - 0.5f) * light_.height_m;
+            return;
+        }
+        normal_u_.sample_scaled(s, count, light_.sigma_m, u_m);
+        (square_ ? normal_u_ : normal_v_).sample_scaled(t, count, light_.sigma_m, v_m);
     }
 
   private:

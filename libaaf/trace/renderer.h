@@ -57,6 +57,24 @@ struct ShadowStats {
         radiance_sum[1] += sample.radiance.y;
         radiance_sum[2] += sample.radiance.z;
     }
+    /// add() of `count` samples with a receiver, weight 1, no occluder
+    /// distance and no radiance, visible[k] each: the same sums. Whole sums
+    /// below 2^52 take the counts at once (adding 1 n times is exact there).
+    void add_unit_weights(const bool *visible, std::uint32_t count) {
+        std::uint32_t unoccluded = 0;
+        for (std::uint32_t k = 0; k < count; ++k) unoccluded += visible[k] ? 1u : 0u;
+        taken += count;
+        auto whole = [](double sum) { return sum < 0x1p52 && sum == double(std::uint64_t(sum)); };
+        if (whole(weight_sum) && whole(unoccluded_weight_sum)) {
+            weight_sum += double(count);
+            unoccluded_weight_sum += double(unoccluded);
+            return;
+        }
+        for (std::uint32_t k = 0; k < count; ++k) {
+            weight_sum += 1.0;
+            if (visible[k]) unoccluded_weight_sum += 1.0;
+        }
+    }
     bool occluded_any() const { return d2_max_m > 0; }
     /// Light-weighted visibility in [0, 1]; exactly 1 when no sample was occluded.
     float visibility() const { return weight_sum > 0 ? float(unoccluded_weight_sum / weight_sum) : 1.0f; }
@@ -74,10 +92,18 @@ struct ShadowStats {
     }
 };
 
+/// How visibility-only key-light shadow rays go to Embree: one at a time
+/// (rtcOccluded1), in packets of up to 16 of a pixel's rays (rtcOccluded16),
+/// or Automatic: packets for renders of a round or more (a reference's
+/// high-quality BVH, where they measured faster). Every choice gives the same
+/// answers; only the speed differs.
+enum class ShadowRayGrouping { Automatic, Single, Packets };
+
 /// Traces primary and shadow rays of one scene (thread-safe, const).
 class Renderer {
   public:
-    Renderer(const SceneDescription &scene, const RenderSettings &settings);
+    Renderer(const SceneDescription &scene, const RenderSettings &settings,
+             ShadowRayGrouping grouping = ShadowRayGrouping::Automatic);
 
     PrimaryHit trace_primary(int x, int y) const;
 
@@ -132,13 +158,22 @@ class Renderer {
     /// r(x) times the visibility of one shadow ray towards the light's point
     /// for the unit-square sample `u`.
     Vec3 shade(const Mesh &mesh, Vec3 p, Vec3 n, Vec3 eye, UnitPoint u, std::size_t first_light) const;
-    /// Fills `sample`'s light point (from its y_unit), weight, visibility and
+    /// Fills `sample`'s weight, visibility and
     /// occluder distance for the key light seen from the primary hit, whose
     /// offset ray origin is `origin`, plane distance `d1` and falloff
     /// towards the light's centre `centre_falloff` (0 without the falloff);
-    /// the occluder distance only with `occluder_distances` (else 0).
+    /// the occluder distance only with `occluder_distances` (else 0). The
+    /// light point is `sample`'s (y_u_m, y_v_m), already warped;
+    /// `traced_visibility`, when not null, is that visibility-only ray's
+    /// answer, already traced (trace_visibility_batch).
     void trace_key_light(const PrimaryHit &primary, Vec3 origin, float d1, float centre_falloff,
-                         bool occluder_distances, LightSample &sample) const;
+                         bool occluder_distances, const bool *traced_visibility, LightSample &sample) const;
+    /// Visibility-only shadow rays of `count` light points (y_u_m[k],
+    /// y_v_m[k]) from the primary hit's offset `origin`, one at a time or in
+    /// packets (packets_): visible[k], false for a point behind the hit's
+    /// tangent plane (no ray, as in trace_key_light).
+    void trace_visibility_batch(const PrimaryHit &primary, Vec3 origin, std::uint32_t count,
+                                  const float *y_u_m, const float *y_v_m, bool *visible) const;
     /// The radiance `sample` traces apart from r(x) V(x): the other lights'
     /// shading at the primary hit, or with a thin lens that of every light
     /// seen through a lens ray aimed at `focus` (filling the sample's lens
@@ -153,6 +188,7 @@ class Renderer {
     const RenderSettings &settings_;
     EmbreeScene bvh_;
     std::vector<LightSampler> light_samplers_;
+    bool packets_ = false;  ///< visibility-only key light rays in packets (trace_visibility_batch)
 };
 
 }  // namespace aaf::trace

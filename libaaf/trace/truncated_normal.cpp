@@ -5,6 +5,7 @@
 #include <string>
 
 #include "aaf/core/error.h"
+#include "truncated_normal_batch.h"
 
 namespace aaf::trace {
 
@@ -62,6 +63,15 @@ TruncatedNormal::TruncatedNormal(double limit_sigmas) : limit_(limit_sigmas) {
         }
     }
     cubics_.back() = {float(limit_), 0, 0, 0};
+    any_exact_ = std::find(exact_.begin(), exact_.end(), 1) != exact_.end();
+}
+
+void TruncatedNormal::sample_scaled(const float *u, std::size_t count, float scale, float *out) const {
+    if (any_exact_) {
+        for (std::size_t k = 0; k < count; ++k) out[k] = scale * sample(u[k]);
+        return;
+    }
+    detail::sample_cubic_batch(&cubics_.front().x0, kIntervals, float(limit_), u, count, scale, out);
 }
 
 double TruncatedNormal::cdf(double x) const {

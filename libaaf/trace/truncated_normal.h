@@ -1,6 +1,7 @@
 #pragma once
 
 #include <algorithm>
+#include <cstddef>
 #include <vector>
 
 namespace aaf::trace {
@@ -42,6 +43,11 @@ class TruncatedNormal {
         return std::clamp(x, c.x0, next_x0);  // keeps the map monotone across intervals
     }
 
+    /// out[k] = scale * sample(u[k]) for k < count: the same bits as
+    /// sample(), vectorised (truncated_normal_batch.h) unless some interval
+    /// uses the exact inverse.
+    void sample_scaled(const float *u, std::size_t count, float scale, float *out) const;
+
     static constexpr int kIntervals = 4096;  ///< of the inverse-CDF table in u
 
   private:
@@ -55,12 +61,14 @@ class TruncatedNormal {
     struct Cubic {
         float x0, slope0, c2, c3;
     };
+    static_assert(sizeof(Cubic) == 4 * sizeof(float), "the batch reads the table as floats");
 
     double limit_;
     double cdf_low_;                    ///< standard normal CDF at -limit
     double mass_;                       ///< standard normal probability of [-limit, limit]
     std::vector<Cubic> cubics_;         ///< one per interval, plus a sentinel holding x0 = limit
     std::vector<unsigned char> exact_;  ///< 1 where an interval uses the exact inverse
+    bool any_exact_ = false;            ///< whether any interval does
 };
 
 }  // namespace aaf::trace

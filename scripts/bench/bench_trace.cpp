@@ -11,6 +11,8 @@
 //               the occluder distance d2, statistics)
 //   tracer_visibility  the same with visibility only (any hit), what later
 //               rounds and the adaptive second pass run
+//   tracer_packets  the same in rtcOccluded16 packets of a pixel's rays
+//               (what references, 1024 spp or more, run)
 //   occluded1   rtcOccluded1 on the stored rays (the fastest possible answer
 //               to "is it blocked")
 //   intersect1  rtcIntersect1 on the stored rays (what d2 needs)
@@ -29,6 +31,8 @@
 #include <embree3/rtcore.h>
 #include <pmmintrin.h>  // flush-to-zero and denormals-are-zero
 #include <tbb/info.h>
+
+#include <time.h>
 
 #include <chrono>
 #include <cmath>
@@ -76,9 +80,13 @@ struct Fixture {
     SceneDescription scene;
     RenderSettings settings;
     std::unique_ptr<Renderer> renderer;
+    std::unique_ptr<Renderer> packet_renderer;  ///< the same, visibility rays always in packets
     std::vector<PrimaryHit> primaries;
     std::vector<Ray> rays;
     std::size_t triangles = 0;
+    /// Built once, as the Renderer builds its own: the timed sampling loop
+    /// pays per ray, not the inverse-CDF table's construction.
+    std::unique_ptr<LightSampler> sampler;
 };
 
 /// Offsets along the normal exactly as renderer.cpp does.
@@ -91,7 +99,7 @@ Vec3 offset_origin(Vec3 p, Vec3 n) {
 /// Renderer::trace_shadows (pass 0) traces, in the same order.
 template <typename Emit>
 void for_each_shadow_ray(const Fixture &f, const Emit &emit) {
-    const LightSampler sampler(f.scene.key_light());
+    const LightSampler &sampler = *f.sampler;
     for (int y = 0; y < kHeight; ++y)
         for (int x = 0; x < kWidth; ++x) {
             const PrimaryHit &primary = f.primaries[std::size_t(y) * kWidth + x];
@@ -124,6 +132,8 @@ Fixture &fixture(const std::string &scene_name) {
     f.settings.height = kHeight;
     f.settings.spp = kSpp;
     f.renderer = std::make_unique<Renderer>(f.scene, f.settings);
+    f.packet_renderer = std::make_unique<Renderer>(f.scene, f.settings, ShadowRayGrouping::Packets);
+    f.sampler = std::make_unique<LightSampler>(f.scene.key_light());
     for (int y = 0; y < kHeight; ++y)
         for (int x = 0; x < kWidth; ++x) f.primaries.push_back(f.renderer->trace_primary(x, y));
     for_each_shadow_ray(f, [&](const Ray &ray) { f.rays.push_back(ray); });
@@ -134,14 +144,35 @@ double seconds(const std::chrono::steady_clock::time_point &start) {
     return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
 
-std::size_t run_tracer(const Fixture &f, bool occluder_distances) {
+/// The calling thread's CPU time. The single-threaded comparisons below time
+/// with it, so a thread that waits for a core (other processes on the
+/// machine) does not count the wait; BM_Threads times the wall clock.
+struct ThreadCpuClock {
+    using duration = std::chrono::nanoseconds;
+    using rep = duration::rep;
+    using period = duration::period;
+    using time_point = std::chrono::time_point<ThreadCpuClock>;
+    static constexpr bool is_steady = true;
+    static time_point now() {
+        timespec now;
+        clock_gettime(CLOCK_THREAD_CPUTIME_ID, &now);
+        return time_point(duration(rep(now.tv_sec) * 1000000000 + rep(now.tv_nsec)));
+    }
+};
+
+double seconds(const ThreadCpuClock::time_point &start) {
+    return std::chrono::duration<double>(ThreadCpuClock::now() - start).count();
+}
+
+std::size_t run_tracer(const Fixture &f, bool occluder_distances, bool packets = false) {
+    const Renderer &renderer = packets ? *f.packet_renderer : *f.renderer;
     std::size_t traced = 0;
     for (int y = 0; y < kHeight; ++y)
         for (int x = 0; x < kWidth; ++x) {
             const std::size_t i = std::size_t(y) * kWidth + x;
             if (!f.primaries[i].found) continue;
             ShadowStats stats;
-            f.renderer->trace_shadows(f.primaries[i], x, y, i, 0, kSpp, occluder_distances, stats, {});
+            renderer.trace_shadows(f.primaries[i], x, y, i, 0, kSpp, occluder_distances, stats, {});
             traced += stats.taken;
             benchmark::DoNotOptimize(stats);
         }
@@ -257,24 +288,27 @@ void BM_Throughput(benchmark::State &state, const std::string &scene_name) {
     Fixture &f = fixture(scene_name);
     set_flush_to_zero(true);
     const RTCScene scene = f.renderer->bvh().handle();
-    double tracer_s = 0, tracer_visibility_s = 0, occluded_s = 0, intersect_s = 0, sampling_s = 0;
+    double tracer_s = 0, tracer_visibility_s = 0, tracer_packets_s = 0, occluded_s = 0, intersect_s = 0, sampling_s = 0;
     std::size_t tracer_rays = 0;
     for (auto _ : state) {
-        auto sampling_start = std::chrono::steady_clock::now();
+        auto sampling_start = ThreadCpuClock::now();
         float sink = 0;
         for_each_shadow_ray(f, [&](const Ray &ray) { sink += ray.direction.x; });
         benchmark::DoNotOptimize(sink);
         sampling_s += seconds(sampling_start);
-        auto start = std::chrono::steady_clock::now();
+        auto start = ThreadCpuClock::now();
         tracer_rays += run_tracer(f, true);
         tracer_s += seconds(start);
-        start = std::chrono::steady_clock::now();
+        start = ThreadCpuClock::now();
         benchmark::DoNotOptimize(run_tracer(f, false));
         tracer_visibility_s += seconds(start);
-        start = std::chrono::steady_clock::now();
+        start = ThreadCpuClock::now();
+        benchmark::DoNotOptimize(run_tracer(f, false, true));
+        tracer_packets_s += seconds(start);
+        start = ThreadCpuClock::now();
         benchmark::DoNotOptimize(run_occluded1(scene, f.rays));
         occluded_s += seconds(start);
-        start = std::chrono::steady_clock::now();
+        start = ThreadCpuClock::now();
         benchmark::DoNotOptimize(run_intersect1(scene, f.rays));
         intersect_s += seconds(start);
     }
@@ -294,6 +328,9 @@ void BM_Throughput(benchmark::State &state, const std::string &scene_name) {
     // Visibility-only passes (later rounds, the adaptive second pass) against the same floor.
     state.counters["tracer_visibility_Mrays_s"] = rays * n / tracer_visibility_s / 1e6;
     state.counters["tracer_visibility_over_occluded1"] = occluded_s / tracer_visibility_s;
+    // The same rays in packets of a pixel's 16 (ShadowRayGrouping::Packets;
+    // renders of fewer than 1024 spp, like this one, trace them one at a time).
+    state.counters["tracer_packets_over_occluded1"] = occluded_s / tracer_packets_s;
 }
 
 void BM_Packets(benchmark::State &state, const std::string &scene_name) {
@@ -302,22 +339,22 @@ void BM_Packets(benchmark::State &state, const std::string &scene_name) {
     const RTCScene scene = f.renderer->bvh().handle();
     double single_s = 0, p4_s = 0, p8_s = 0, p16_s = 0, intersect1_s = 0, intersect16_s = 0;
     for (auto _ : state) {
-        auto start = std::chrono::steady_clock::now();
+        auto start = ThreadCpuClock::now();
         benchmark::DoNotOptimize(run_occluded1(scene, f.rays));
         single_s += seconds(start);
-        start = std::chrono::steady_clock::now();
+        start = ThreadCpuClock::now();
         benchmark::DoNotOptimize(run_packets<4, RTCRay4>(scene, f.rays, rtcOccluded4));
         p4_s += seconds(start);
-        start = std::chrono::steady_clock::now();
+        start = ThreadCpuClock::now();
         benchmark::DoNotOptimize(run_packets<8, RTCRay8>(scene, f.rays, rtcOccluded8));
         p8_s += seconds(start);
-        start = std::chrono::steady_clock::now();
+        start = ThreadCpuClock::now();
         benchmark::DoNotOptimize(run_packets<16, RTCRay16>(scene, f.rays, rtcOccluded16));
         p16_s += seconds(start);
-        start = std::chrono::steady_clock::now();
+        start = ThreadCpuClock::now();
         benchmark::DoNotOptimize(run_intersect1(scene, f.rays));
         intersect1_s += seconds(start);
-        start = std::chrono::steady_clock::now();
+        start = ThreadCpuClock::now();
         benchmark::DoNotOptimize(run_intersect16(scene, f.rays));
         intersect16_s += seconds(start);
     }
@@ -340,12 +377,12 @@ void BM_BuildQuality(benchmark::State &state, const std::string &scene_name) {
     const double high_build_s = seconds(start);
     double medium_s = 0, high_s = 0;
     for (auto _ : state) {
-        start = std::chrono::steady_clock::now();
+        auto run_start = ThreadCpuClock::now();
         benchmark::DoNotOptimize(run_occluded1(medium.handle(), f.rays));
-        medium_s += seconds(start);
-        start = std::chrono::steady_clock::now();
+        medium_s += seconds(run_start);
+        run_start = ThreadCpuClock::now();
         benchmark::DoNotOptimize(run_occluded1(high.handle(), f.rays));
-        high_s += seconds(start);
+        high_s += seconds(run_start);
     }
     state.counters["medium_build_ms"] = medium_build_s * 1e3;
     state.counters["high_build_ms"] = high_build_s * 1e3;
@@ -359,16 +396,16 @@ void BM_Robust(benchmark::State &state, const std::string &scene_name) {
     double robust_occluded_s = 0, plain_occluded_s = 0, robust_intersect_s = 0, plain_intersect_s = 0;
     std::size_t robust_blocked = 0, plain_blocked = 0;
     for (auto _ : state) {
-        auto start = std::chrono::steady_clock::now();
+        auto start = ThreadCpuClock::now();
         robust_blocked = run_occluded1(robust.handle(), f.rays);
         robust_occluded_s += seconds(start);
-        start = std::chrono::steady_clock::now();
+        start = ThreadCpuClock::now();
         plain_blocked = run_occluded1(plain.handle(), f.rays);
         plain_occluded_s += seconds(start);
-        start = std::chrono::steady_clock::now();
+        start = ThreadCpuClock::now();
         benchmark::DoNotOptimize(run_intersect1(robust.handle(), f.rays));
         robust_intersect_s += seconds(start);
-        start = std::chrono::steady_clock::now();
+        start = ThreadCpuClock::now();
         benchmark::DoNotOptimize(run_intersect1(plain.handle(), f.rays));
         plain_intersect_s += seconds(start);
     }
@@ -410,11 +447,11 @@ void BM_Denormals(benchmark::State &state, const std::string &scene_name) {
     double ftz_s = 0, plain_s = 0;
     for (auto _ : state) {
         set_flush_to_zero(true);
-        auto start = std::chrono::steady_clock::now();
+        auto start = ThreadCpuClock::now();
         benchmark::DoNotOptimize(run_tracer(f, true));
         ftz_s += seconds(start);
         set_flush_to_zero(false);
-        start = std::chrono::steady_clock::now();
+        start = ThreadCpuClock::now();
         benchmark::DoNotOptimize(run_tracer(f, true));
         plain_s += seconds(start);
     }

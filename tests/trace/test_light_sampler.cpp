@@ -1,7 +1,10 @@
 #include <catch2/catch.hpp>
+#include <hwy/targets.h>
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
+#include <cstring>
 #include <limits>
 #include <vector>
 
@@ -189,4 +192,54 @@ TEST_CASE("Stratified grid finds a stratum's row without integer division, exact
             wrong += grid.row_of(s) != s / grid.columns();
         CHECK(wrong == 0);
     }
+}
+
+TEST_CASE("The batched light warp gives warp_u and warp_v's bits", "[trace][light]") {
+    // Inputs over every interval of the inverse-CDF table, with the edges and
+    // invalid values sample() maps to the truncation limits.
+    std::vector<float> s, t;
+    for (int i = 0; i < 4 * TruncatedNormal::kIntervals; ++i) {
+        s.push_back((float(i) + 0.37f) / float(4 * TruncatedNormal::kIntervals));
+        t.push_back(1.0f - s.back());
+    }
+    for (float edge : {0.0f, -0.0f, 1.0f, 0x1.fffffep-1f, 1e-30f, 1e-7f, -1.0f, 2.0f,
+                       std::numeric_limits<float>::quiet_NaN()}) {
+        s.push_back(edge);
+        t.push_back(edge);
+    }
+    auto bits = [](float x) {
+        std::uint32_t b;
+        std::memcpy(&b, &x, sizeof b);
+        return b;
+    };
+    // Square and oblong Gaussians (the oblong one cut at 8 sigma along u,
+    // where the table's tails fall back to the exact inverse) and a uniform light.
+    LightPlane square = LightPlane::square({0, 2, 0}, {0, -1, 0}, 2.0f);
+    LightPlane oblong = square;
+    oblong.height_m = 0.5f;
+    oblong.sigma_m = 0.125f;
+    LightPlane uniform = square;
+    uniform.profile = LightProfile::Uniform;
+    // On every instruction set the vectorised warp is built for, and with a
+    // batch length that leaves a tail shorter than a vector.
+    for (const std::int64_t target : hwy::SupportedAndGeneratedTargets()) {
+        hwy::SetSupportedTargetsForTest(target);
+        for (const LightPlane &light : {square, oblong, uniform}) {
+            const LightSampler sampler(light);
+            for (const std::size_t count : {s.size(), std::size_t(13)}) {
+                std::vector<float> u_m(count), v_m(count);
+                sampler.warp(s.data() + s.size() - count, t.data() + s.size() - count, count, u_m.data(),
+                             v_m.data());
+                std::size_t differing = 0;
+                for (std::size_t k = 0; k < count; ++k) {
+                    const std::size_t i = s.size() - count + k;
+                    differing += bits(u_m[k]) != bits(sampler.warp_u(s[i])) ||
+                                 bits(v_m[k]) != bits(sampler.warp_v(t[i]));
+                }
+                INFO("target " << hwy::TargetName(target) << ", " << count << " points");
+                CHECK(differing == 0);
+            }
+        }
+    }
+    hwy::SetSupportedTargetsForTest(0);
 }
