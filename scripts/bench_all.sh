@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # Runs the benchmark suite once and writes its results, with the commands
-# that produced them, to scripts/bench/results/suite_<UTC date>.md:
+# that produced them, to scripts/bench/results/suite_<UTC date and time>.md:
 #   bench_aaf_filter  AAF and its gather against OpenCV GaussianBlur (same mean
 #                     width) and bilateralFilter at 640x480, 1920x1080, 3840x2160
 #   bench_aaf_scaling AAF against OpenCV GaussianBlur at a fixed filter width,
@@ -22,7 +22,7 @@ set -euo pipefail
 root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 reps="${REPS:-3}"
 bench="$root/build/scripts/bench"
-out="$root/scripts/bench/results/suite_$(date -u +%Y-%m-%d).md"
+out="$root/scripts/bench/results/suite_$(date -u +%Y-%m-%dT%H%MZ).md"
 run() {
     echo
     echo "\`\`\`"
