@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <limits>
 #include <vector>
 
@@ -24,27 +25,28 @@ FilledOccluders fill_occluder_distances(ConstPlaneView d2_min, ConstPlaneView d2
     std::vector<float> lender_id(padded_width * height, std::numeric_limits<float>::quiet_NaN()),
         min_m(padded_width * height, 0.0f), max_m(padded_width * height, 0.0f);
     auto padded = [&](int x, int y) { return std::size_t(y) * padded_width + std::size_t(x + r); };
+    // Per pixel, whether its row holds an occluded pixel within r columns
+    // (a running count along the row), so that a window's test below is an
+    // OR over its 2r + 1 rows: most unoccluded pixels have no occluded pixel
+    // in their window and skip the search. Rows are independent, so the
+    // whole image is one parallel pass.
+    std::vector<std::uint8_t> occluded_near_in_row(count);
     parallel_for_rows(height, [&](int y) {
+        std::vector<int> occluded_before(std::size_t(width) + 1, 0);
         for (int x = 0; x < width; ++x) {
             const std::size_t i = padded(x, y);
             min_m[i] = d2_min(x, y);
             max_m[i] = d2_max(x, y);
-            if (has_occluder(max_m[i])) lender_id[i] = object_id(x, y);
+            const bool occluded = has_occluder(max_m[i]);
+            if (occluded) lender_id[i] = object_id(x, y);
+            occluded_before[std::size_t(x) + 1] = occluded_before[std::size_t(x)] + int(occluded);
         }
-    });
-    // Summed-area table of occluded pixels: most unoccluded pixels have none in
-    // their window, and skip the search.
-    std::vector<int> occluded_before((std::size_t(width) + 1) * (height + 1), 0);
-    const std::size_t sat_width = std::size_t(width) + 1;
-    for (int y = 0; y < height; ++y)
+        const std::size_t row = std::size_t(y) * std::size_t(width);
         for (int x = 0; x < width; ++x)
-            occluded_before[(y + 1) * sat_width + x + 1] =
-                int(has_occluder(max_m[padded(x, y)])) + occluded_before[y * sat_width + x + 1] +
-                occluded_before[(y + 1) * sat_width + x] - occluded_before[y * sat_width + x];
-    auto occluded_in_window = [&](int x0, int y0, int x1, int y1) {  // inclusive bounds
-        return occluded_before[(y1 + 1) * sat_width + x1 + 1] - occluded_before[y0 * sat_width + x1 + 1] -
-               occluded_before[(y1 + 1) * sat_width + x0] + occluded_before[y0 * sat_width + x0];
-    };
+            occluded_near_in_row[row + std::size_t(x)] = std::uint8_t(
+                occluded_before[std::size_t(std::min(width, x + r + 1))] - occluded_before[std::size_t(std::max(0, x - r))] >
+                0);
+    });
     // The disc's half-width on each row: dx^2 + dy^2 <= r^2.
     std::vector<int> half_width(std::size_t(r) + 1);
     for (int dy = 0; dy <= r; ++dy) {
@@ -68,6 +70,12 @@ FilledOccluders fill_occluder_distances(ConstPlaneView d2_min, ConstPlaneView d2
         // or no occluded pixel in its window).
         std::vector<float> centre_id(std::size_t(width) + detail::kOccluderSearchPadding,
                                      std::numeric_limits<float>::quiet_NaN());
+        // Whether the window [x - r, x + r] x [y - r, y + r] holds an occluded pixel.
+        std::vector<std::uint8_t> occluded_in_window(std::size_t(width), 0);
+        for (int ny = std::max(0, y - r); ny <= std::min(height - 1, y + r); ++ny) {
+            const std::uint8_t *near = occluded_near_in_row.data() + std::size_t(ny) * std::size_t(width);
+            for (int x = 0; x < width; ++x) occluded_in_window[std::size_t(x)] |= near[x];
+        }
         const std::size_t row = std::size_t(y) * width;
         for (int x = 0; x < width; ++x) {
             const std::size_t p = padded(x, y);
@@ -76,9 +84,7 @@ FilledOccluders fill_occluder_distances(ConstPlaneView d2_min, ConstPlaneView d2
                 filled.d2_max_m[row + x] = max_m[p];
                 continue;
             }
-            if (occluded_in_window(std::max(0, x - r), std::max(0, y - r), std::min(width - 1, x + r),
-                                   std::min(height - 1, y + r)) > 0)
-                centre_id[std::size_t(x)] = object_id(x, y);
+            if (occluded_in_window[std::size_t(x)]) centre_id[std::size_t(x)] = object_id(x, y);
         }
         detail::search_occluder_row(search, y, centre_id.data(), filled.d2_min_m.data() + row,
                                     filled.d2_max_m.data() + row);
