@@ -57,11 +57,10 @@ const float *row_of(ConstPlaneView view, int y, std::vector<float> &buffer) {
 GatherGuides aaf_gather_guides(const AafInputs &in, const LightPlane &light, const AafParams &params,
                                std::vector<float> *beta_out_m) {
     check_inputs(in, light, params);
-    std::vector<float> local_beta;
-    std::vector<float> &beta_m = beta_out_m ? *beta_out_m : local_beta;
     GatherGuides guides;
     guides.resize(in.visibility.width, in.visibility.height);
-    beta_m.assign(std::size_t(guides.width) * std::size_t(guides.height), 0.0f);
+    // Every pixel's beta is written below (not stored without the output).
+    if (beta_out_m) beta_out_m->resize(std::size_t(guides.width) * std::size_t(guides.height));
 
     // AAF Sec. 6: unoccluded pixels take the occluder distances of their neighbours.
     const FilledOccluders occluders =
@@ -135,7 +134,7 @@ GatherGuides aaf_gather_guides(const AafInputs &in, const LightPlane &light, con
             row_out.shear_v = guides.shear_v.data() + row;
             row_out.inv_two_sigma_sq_n = guides.inv_two_sigma_sq_n.data() + row;
         }
-        row_out.beta_m = beta_m.data() + row;
+        row_out.beta_m = beta_out_m ? beta_out_m->data() + row : nullptr;
         row_out.radius_px = guides.radius_px.data() + row;
         detail::aaf_guide_row(constants, row_in, row_out, guides.width);
     });
@@ -161,7 +160,7 @@ void aaf_filter(const AafInputs &in, const LightPlane &light, const AafParams &p
         throw Error("AAF output 'beta' has another size");
 
     std::vector<float> beta_m;
-    const GatherGuides guides = aaf_gather_guides(in, light, params, &beta_m);
+    const GatherGuides guides = aaf_gather_guides(in, light, params, out.beta_m.valid() ? &beta_m : nullptr);
 
     // Non-finite visibility (a renderer's NaN) is read as 0, so it cannot spread through the filter.
     std::vector<float> visibility(std::size_t(width) * std::size_t(height));

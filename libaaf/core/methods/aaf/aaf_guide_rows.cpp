@@ -1,7 +1,8 @@
 // aaf_gather_guides()' per-pixel step (aaf_guide_rows.h) for every
 // instruction set Google Highway targets, chosen at run time. Each lane
-// repeats the scalar definitions (aaf_filter.cpp's former loop,
-// aaf_bandlimits.cpp) operation for operation: std::min/max/clamp as the
+// repeats the scalar definitions (aaf_bandlimits.cpp, and aaf_filter.cpp's
+// former per-pixel loop, kept as the reference in test_aaf_guide_rows.cpp)
+// operation for operation: std::min/max/clamp as the
 // comparisons they are defined by (NaN picks the same operand), IEEE
 // divides and square roots, and -ffp-contract=off (CMakeLists.txt) so no
 // multiply-add is fused.
@@ -153,7 +154,9 @@ void AafGuideRow(const AafGuideConstants &c, const AafGuideRowInputs &in, const 
 
         V spread_u_sq = zero, spread_v_sq = zero;
         if (c.along_light) {
-            // The tap slid along the direction l to the light's centre (aaf_filter.cpp).
+            // Delta_eff = Delta - l (n . Delta) / (n . l), l the unit direction to the light's
+            // centre: the tap slid along l onto the centre's plane parallel to the light
+            // (AAF Fig. 2's geometry), of which AAF Eq. 12 is the case l = n.
             const V to_x = hn::Sub(center_x, px), to_y = hn::Sub(center_y, py), to_z = hn::Sub(center_z, pz);
             const V distance = hn::Sqrt(dot3(to_x, to_y, to_z, to_x, to_y, to_z));
             M slides = hn::Gt(distance, zero);
@@ -189,7 +192,7 @@ void AafGuideRow(const AafGuideConstants &c, const AafGuideRowInputs &in, const 
         store_row(d, hn::IfThenElseZero(unit_normal, hn::Div(ny, normal_length)), out.normal[1], i, count);
         store_row(d, hn::IfThenElseZero(unit_normal, hn::Div(nz, normal_length)), out.normal[2], i, count);
 
-        // pixel_beta_m() of aaf_filter.cpp: beta of AAF Eq. 13 along the light's axes.
+        // beta of AAF Eq. 13 along the light's axes, 0 where AAF does not filter.
         const V d1 = load_row(in.d1_m, i, count);
         const V own_pixel_size = load_row(in.pixel_size_m, i, count);
         V pixel_size = own_pixel_size;
@@ -211,7 +214,7 @@ void AafGuideRow(const AafGuideConstants &c, const AafGuideRowInputs &in, const 
         filtered = hn::And(filtered, hn::And(hn::Gt(d1, zero), hn::Gt(pixel_size, zero)));
         filtered = hn::And(filtered, hn::And(hn::IsFinite(pixel_size), has_occluder));
         if (hn::AllFalse(d, filtered)) {
-            store_row(d, zero, out.beta_m, i, count);
+            if (out.beta_m) store_row(d, zero, out.beta_m, i, count);
             store_row(d, zero, out.inv_two_sigma_sq, i, count);
             if (c.anisotropic) store_row(d, zero, out.inv_two_sigma_sq_v, i, count);
             if (c.along_light) store_row(d, zero, out.inv_two_sigma_sq_n, i, count);
@@ -243,8 +246,9 @@ void AafGuideRow(const AafGuideConstants &c, const AafGuideRowInputs &in, const 
         store_row(di, hn::ConvertTo(di, hn::IfThenElseZero(kept, radius)), out.radius_px, i, count);
         // The beta output: the isotropic width of the same area, sqrt(beta_u beta_v).
         const V beta = c.anisotropic ? hn::Sqrt(hn::Mul(beta_u, beta_v)) : beta_u;
-        store_row(d, hn::IfThenElseZero(kept, beta), out.beta_m, i, count);
-        // 1 / (2 beta^2), at most the largest float (aaf_filter.cpp says why).
+        if (out.beta_m) store_row(d, hn::IfThenElseZero(kept, beta), out.beta_m, i, count);
+        // 1 / (2 beta^2): a beta below ~1e-19 m squares to 0 or a denormal; the
+        // largest float instead of inf keeps the centre tap's exponent 0 * that = 0.
         const V inv_u = min_of(hn::Div(one, hn::Mul(hn::Mul(hn::Set(d, 2.0f), beta_u), beta_u)), float_max);
         const V inv_v = c.anisotropic
                             ? min_of(hn::Div(one, hn::Mul(hn::Mul(hn::Set(d, 2.0f), beta_v), beta_v)), float_max)

@@ -31,7 +31,8 @@ struct AafGuideRowInputs {
 
 /// Where the row's guides (GatherGuides' planes) and beta go, `count`
 /// contiguous pixels each. inv_two_sigma_sq_v only when anisotropic, the
-/// four shear planes only when along_light; the others always.
+/// four shear planes only when along_light, beta_m where wanted (nullptr:
+/// not written); the others always.
 struct AafGuideRowOutputs {
     float *coord_u_m = nullptr, *coord_v_m = nullptr, *normal[3] = {}, *object_id = nullptr;
     float *inv_two_sigma_sq = nullptr, *inv_two_sigma_sq_v = nullptr;
