@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <memory>
 #include <vector>
 
 #include "aaf/core/aaf_bandlimits.h"
@@ -163,14 +164,15 @@ void aaf_filter(const AafInputs &in, const LightPlane &light, const AafParams &p
     const GatherGuides guides = aaf_gather_guides(in, light, params, out.beta_m.valid() ? &beta_m : nullptr);
 
     // Non-finite visibility (a renderer's NaN) is read as 0, so it cannot spread through the filter.
-    std::vector<float> visibility(std::size_t(width) * std::size_t(height));
+    // Not initialised here: the parallel pass writes every pixel.
+    const std::unique_ptr<float[]> visibility(new float[std::size_t(width) * std::size_t(height)]);
     parallel_for_rows(height, [&](int y) {
         for (int x = 0; x < width; ++x) {
             const float v = in.visibility(x, y);
             visibility[guides.index(x, y)] = std::isfinite(v) ? v : 0.0f;
         }
     });
-    gather(guides, aaf_gather_settings(params), {plane_view(visibility.data(), width, height)},
+    gather(guides, aaf_gather_settings(params), {plane_view(visibility.get(), width, height)},
            {out.filtered_visibility});
     if (out.beta_m.valid())
         parallel_for_rows(height, [&](int y) {

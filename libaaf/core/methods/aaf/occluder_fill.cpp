@@ -4,6 +4,7 @@
 #include <cmath>
 #include <cstdint>
 #include <limits>
+#include <memory>
 #include <vector>
 
 #include "aaf/core/occluder_fill_rows.h"
@@ -22,8 +23,9 @@ FilledOccluders fill_occluder_distances(ConstPlaneView d2_min, ConstPlaneView d2
     // Padded contiguous planes for the search (occluder_fill_rows.h), which
     // reads each pixel up to (2r+1)^2 times: the distances and the lenders' ids.
     const std::size_t padded_width = std::size_t(width) + 2 * std::size_t(r) + detail::kOccluderSearchPadding;
-    std::vector<float> lender_id(padded_width * height, std::numeric_limits<float>::quiet_NaN()),
-        min_m(padded_width * height, 0.0f), max_m(padded_width * height, 0.0f);
+    // Not initialised here: every row, padding included, is written in the parallel pass below.
+    const std::unique_ptr<float[]> lender_id(new float[padded_width * std::size_t(height)]),
+        min_m(new float[padded_width * std::size_t(height)]), max_m(new float[padded_width * std::size_t(height)]);
     auto padded = [&](int x, int y) { return std::size_t(y) * padded_width + std::size_t(x + r); };
     // Per pixel, whether its row holds an occluded pixel within r columns
     // (a running count along the row), so that a window's test below is an
@@ -32,13 +34,20 @@ FilledOccluders fill_occluder_distances(ConstPlaneView d2_min, ConstPlaneView d2
     // whole image is one parallel pass.
     std::vector<std::uint8_t> occluded_near_in_row(count);
     parallel_for_rows(height, [&](int y) {
+        const std::size_t first = std::size_t(y) * padded_width;
+        // Padding: matches no id, no distances.
+        for (std::size_t p = 0; p < padded_width; ++p)
+            if (p < std::size_t(r) || p >= std::size_t(r) + std::size_t(width)) {
+                lender_id[first + p] = std::numeric_limits<float>::quiet_NaN();
+                min_m[first + p] = max_m[first + p] = 0.0f;
+            }
         std::vector<int> occluded_before(std::size_t(width) + 1, 0);
         for (int x = 0; x < width; ++x) {
             const std::size_t i = padded(x, y);
             min_m[i] = d2_min(x, y);
             max_m[i] = d2_max(x, y);
             const bool occluded = has_occluder(max_m[i]);
-            if (occluded) lender_id[i] = object_id(x, y);
+            lender_id[i] = occluded ? object_id(x, y) : std::numeric_limits<float>::quiet_NaN();
             occluded_before[std::size_t(x) + 1] = occluded_before[std::size_t(x)] + int(occluded);
         }
         const std::size_t row = std::size_t(y) * std::size_t(width);
@@ -56,9 +65,9 @@ FilledOccluders fill_occluder_distances(ConstPlaneView d2_min, ConstPlaneView d2
     }
 
     detail::OccluderSearch search;
-    search.lender_id = lender_id.data();
-    search.d2_min_m = min_m.data();
-    search.d2_max_m = max_m.data();
+    search.lender_id = lender_id.get();
+    search.d2_min_m = min_m.get();
+    search.d2_max_m = max_m.get();
     search.padded_width = padded_width;
     search.pad = r;
     search.width = width;
