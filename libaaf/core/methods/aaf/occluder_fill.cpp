@@ -36,11 +36,13 @@ FilledOccluders fill_occluder_distances(ConstPlaneView d2_min, ConstPlaneView d2
     parallel_for_rows(height, [&](int y) {
         const std::size_t first = std::size_t(y) * padded_width;
         // Padding: matches no id, no distances.
-        for (std::size_t p = 0; p < padded_width; ++p)
-            if (p < std::size_t(r) || p >= std::size_t(r) + std::size_t(width)) {
-                lender_id[first + p] = std::numeric_limits<float>::quiet_NaN();
-                min_m[first + p] = max_m[first + p] = 0.0f;
-            }
+        for (const std::size_t begin : {std::size_t(0), std::size_t(r) + std::size_t(width)}) {
+            const std::size_t end = begin == 0 ? std::size_t(r) : padded_width;
+            std::fill(lender_id.get() + first + begin, lender_id.get() + first + end,
+                      std::numeric_limits<float>::quiet_NaN());
+            std::fill(min_m.get() + first + begin, min_m.get() + first + end, 0.0f);
+            std::fill(max_m.get() + first + begin, max_m.get() + first + end, 0.0f);
+        }
         std::vector<int> occluded_before(std::size_t(width) + 1, 0);
         for (int x = 0; x < width; ++x) {
             const std::size_t i = padded(x, y);
@@ -50,11 +52,13 @@ FilledOccluders fill_occluder_distances(ConstPlaneView d2_min, ConstPlaneView d2
             lender_id[i] = occluded ? object_id(x, y) : std::numeric_limits<float>::quiet_NaN();
             occluded_before[std::size_t(x) + 1] = occluded_before[std::size_t(x)] + int(occluded);
         }
-        const std::size_t row = std::size_t(y) * std::size_t(width);
-        for (int x = 0; x < width; ++x)
-            occluded_near_in_row[row + std::size_t(x)] = std::uint8_t(
-                occluded_before[std::size_t(std::min(width, x + r + 1))] - occluded_before[std::size_t(std::max(0, x - r))] >
-                0);
+        // Locals, not the captures: byte stores may alias anything, which would
+        // keep the compiler reloading the bounds and from vectorising.
+        const int w = width, reach = r;
+        const int *const before = occluded_before.data();
+        std::uint8_t *const near = occluded_near_in_row.data() + std::size_t(y) * std::size_t(w);
+        for (int x = 0; x < w; ++x)
+            near[x] = std::uint8_t(before[std::min(w, x + reach + 1)] - before[std::max(0, x - reach)] > 0);
     });
     // The disc's half-width on each row: dx^2 + dy^2 <= r^2.
     std::vector<int> half_width(std::size_t(r) + 1);
@@ -81,9 +85,13 @@ FilledOccluders fill_occluder_distances(ConstPlaneView d2_min, ConstPlaneView d2
                                      std::numeric_limits<float>::quiet_NaN());
         // Whether the window [x - r, x + r] x [y - r, y + r] holds an occluded pixel.
         std::vector<std::uint8_t> occluded_in_window(std::size_t(width), 0);
-        for (int ny = std::max(0, y - r); ny <= std::min(height - 1, y + r); ++ny) {
-            const std::uint8_t *near = occluded_near_in_row.data() + std::size_t(ny) * std::size_t(width);
-            for (int x = 0; x < width; ++x) occluded_in_window[std::size_t(x)] |= near[x];
+        {
+            const int w = width;  // a local: see above
+            std::uint8_t *const any = occluded_in_window.data();
+            for (int ny = std::max(0, y - r); ny <= std::min(height - 1, y + r); ++ny) {
+                const std::uint8_t *const near = occluded_near_in_row.data() + std::size_t(ny) * std::size_t(w);
+                for (int x = 0; x < w; ++x) any[x] = std::uint8_t(any[x] | near[x]);
+            }
         }
         const std::size_t row = std::size_t(y) * width;
         for (int x = 0; x < width; ++x) {
