@@ -37,10 +37,11 @@ struct Frame {
         std::mt19937 rng(11);
         std::uniform_real_distribution<float> unit(0.0f, 1.0f);
         const std::size_t n = std::size_t(width) * height;
-        for (std::vector<float> *p : {&visibility, &d1, &d2_min, &d2_max, &px, &py, &pz, &nx, &ny, &nz, &id,
-                                      &pixel_size, &spp})
+        for (std::vector<float> *p :
+             {&visibility, &d1, &d2_min, &d2_max, &px, &py, &pz, &nx, &ny, &nz, &id, &pixel_size, &spp})
             p->resize(n);
-        const float nan = std::numeric_limits<float>::quiet_NaN(), inf = std::numeric_limits<float>::infinity();
+        const float nan = std::numeric_limits<float>::quiet_NaN(),
+                    inf = std::numeric_limits<float>::infinity();
         for (std::size_t i = 0; i < n; ++i) {
             visibility[i] = unit(rng);
             px[i] = -1.0f + 2.0f * unit(rng);
@@ -58,19 +59,46 @@ struct Frame {
             pixel_size[i] = 0.002f + 0.01f * unit(rng);
             spp[i] = std::pow(10.0f, 4.0f * unit(rng));
             switch (int(unit(rng) * 40.0f)) {
-                case 0: px[i] = nan; break;
-                case 1: pz[i] = inf; break;
-                case 2: nx[i] = ny[i] = nz[i] = 0.0f; break;
-                case 3: ny[i] = nan; break;
-                case 4: d1[i] = -0.5f; break;
-                case 5: pixel_size[i] = 0.0f; break;
-                case 6: pixel_size[i] = 1e-30f; break;
-                case 7: pixel_size[i] = inf; break;
-                case 8: d2_max[i] = inf; break;
-                case 9: spp[i] = 1e9f; break;
-                case 10: d2_min[i] = 0.0f; break;
-                case 11: nx[i] = 0.0f; ny[i] = 0.01f; nz[i] = 1.0f; break;  // edge-on to the light
-                default: break;
+                case 0:
+                    px[i] = nan;
+                    break;
+                case 1:
+                    pz[i] = inf;
+                    break;
+                case 2:
+                    nx[i] = ny[i] = nz[i] = 0.0f;
+                    break;
+                case 3:
+                    ny[i] = nan;
+                    break;
+                case 4:
+                    d1[i] = -0.5f;
+                    break;
+                case 5:
+                    pixel_size[i] = 0.0f;
+                    break;
+                case 6:
+                    pixel_size[i] = 1e-30f;
+                    break;
+                case 7:
+                    pixel_size[i] = inf;
+                    break;
+                case 8:
+                    d2_max[i] = inf;
+                    break;
+                case 9:
+                    spp[i] = 1e9f;
+                    break;
+                case 10:
+                    d2_min[i] = 0.0f;
+                    break;
+                case 11:
+                    nx[i] = 0.0f;
+                    ny[i] = 0.01f;
+                    nz[i] = 1.0f;
+                    break;  // edge-on to the light
+                default:
+                    break;
             }
         }
     }
@@ -128,11 +156,11 @@ PixelBeta reference_beta_m(const AafInputs &in, const LightPlane &light, LightBa
         return {};
     if (params.fixed_beta_m > 0) return {params.fixed_beta_m, params.fixed_beta_m};
     AafParams pixel_params = params;
-    if (!params.fixed_mu && in.spp.valid())
-    {
+    if (!params.fixed_mu && in.spp.valid()) {
         pixel_params.mu = mu_for_samples(in.spp(x, y), d1, d2_min, d2_max, pixel_size, sigma, params);
         ++(pixel_params.mu == params.mu ? outcomes.at_floor
-                                        : pixel_params.mu == 1e4f ? outcomes.at_max : outcomes.bisected);
+           : pixel_params.mu == 1e4f    ? outcomes.at_max
+                                        : outcomes.bisected);
     }
     const AafAxisBandlimits b = aaf_bandlimits_axes(d1, d2_min, d2_max, pixel_size, sigma, pixel_params);
     return {b.u.beta_m, b.v.beta_m};
@@ -151,7 +179,8 @@ GatherGuides reference_guides(const AafInputs &in, const LightPlane &light, cons
     if (anisotropic) guides.inv_two_sigma_sq_v.assign(count, 0.0f);
     const bool along_light = params.light_distance != AafLightDistance::OrthogonalProjection;
     if (along_light)
-        for (std::vector<float> *p : {&guides.coord_n_m, &guides.shear_u, &guides.shear_v, &guides.inv_two_sigma_sq_n})
+        for (std::vector<float> *p :
+             {&guides.coord_n_m, &guides.shear_u, &guides.shear_v, &guides.inv_two_sigma_sq_n})
             p->assign(count, 0.0f);
     const float variance_u_m2 = light.variance_u_m2(), variance_v_m2 = light.variance_v_m2();
     for (int y = 0; y < guides.height; ++y)
@@ -171,13 +200,14 @@ GatherGuides reference_guides(const AafInputs &in, const LightPlane &light, cons
                 const Vec3 to_light = light.center - p;
                 const float distance = length(to_light);
                 const float receiver_length = length(n);
-                const bool projection_holds = params.light_distance == AafLightDistance::Guarded &&
-                                              receiver_length > 0 &&
-                                              std::fabs(dot(n, light.normal)) >= kDegenerateProjectionCos * receiver_length;
+                const bool projection_holds =
+                    params.light_distance == AafLightDistance::Guarded && receiver_length > 0 &&
+                    std::fabs(dot(n, light.normal)) >= kDegenerateProjectionCos * receiver_length;
                 if (distance > 0 && !projection_holds) {
                     const Vec3 l = to_light / distance;
                     const float cos_light = dot(l, light.normal);
-                    const float denominator = std::fabs(cos_light) < 0.05f ? std::copysign(0.05f, cos_light) : cos_light;
+                    const float denominator =
+                        std::fabs(cos_light) < 0.05f ? std::copysign(0.05f, cos_light) : cos_light;
                     guides.shear_u[i] = dot(l, light.axis_u) / denominator;
                     guides.shear_v[i] = dot(l, light.axis_v) / denominator;
                     const float d1 = std::fabs(dot(light.normal, p - light.center));
@@ -208,7 +238,8 @@ GatherGuides reference_guides(const AafInputs &in, const LightPlane &light, cons
                 const float weight_n =
                     spread_u_sq * guides.inv_two_sigma_sq[i] +
                     spread_v_sq * (anisotropic ? guides.inv_two_sigma_sq_v[i] : guides.inv_two_sigma_sq[i]);
-                guides.inv_two_sigma_sq_n[i] = std::isfinite(weight_n) ? weight_n : std::numeric_limits<float>::max();
+                guides.inv_two_sigma_sq_n[i] =
+                    std::isfinite(weight_n) ? weight_n : std::numeric_limits<float>::max();
             }
             guides.radius_px[i] = int(radius);
         }
@@ -227,7 +258,8 @@ TEST_CASE("AAF guides: every instruction set gives the scalar definition's bits"
     const std::vector<std::int64_t> targets = hwy::SupportedAndGeneratedTargets();
     REQUIRE(!targets.empty());
     for (const AafLightDistance distance :
-         {AafLightDistance::AlongLightDirection, AafLightDistance::OrthogonalProjection, AafLightDistance::Guarded})
+         {AafLightDistance::AlongLightDirection, AafLightDistance::OrthogonalProjection,
+          AafLightDistance::Guarded})
         for (const AafLightAxes axes : {AafLightAxes::PerAxis, AafLightAxes::Shortest})
             for (const bool projected : {false, true})
                 for (const bool with_spp : {false, true})
@@ -267,7 +299,8 @@ TEST_CASE("AAF guides: every instruction set gives the scalar definition's bits"
                             CHECK(same_bits(g.inv_two_sigma_sq_n, expected.inv_two_sigma_sq_n));
                             CHECK(g.radius_px == expected.radius_px);
                             CHECK(same_bits(beta, expected_beta));
-                            filtered = int(std::count_if(beta.begin(), beta.end(), [](float b) { return b > 0; }));
+                            filtered =
+                                int(std::count_if(beta.begin(), beta.end(), [](float b) { return b > 0; }));
                         }
                         hwy::SetSupportedTargetsForTest(0);
                         // The frame exercises the filter: a good share of its pixels get a beta.

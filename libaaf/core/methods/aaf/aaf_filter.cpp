@@ -49,7 +49,8 @@ const float *row_of(ConstPlaneView view, int y, std::vector<float> &buffer) {
     const float *first = view.data + std::ptrdiff_t(y) * view.row_stride;
     if (view.pixel_stride == 1) return first;
     buffer.resize(std::size_t(view.width));
-    for (int x = 0; x < view.width; ++x) buffer[std::size_t(x)] = first[std::ptrdiff_t(x) * view.pixel_stride];
+    for (int x = 0; x < view.width; ++x)
+        buffer[std::size_t(x)] = first[std::ptrdiff_t(x) * view.pixel_stride];
     return buffer.data();
 }
 

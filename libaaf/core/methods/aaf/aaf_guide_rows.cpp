@@ -69,10 +69,10 @@ HWY_INLINE MuFree mu_free(V d1, V d2_min, V d2_max, V pixel_size, float sigma_m,
     const D d;
     const V zero = hn::Zero(d), one = hn::Set(d, 1.0f), alpha_v = hn::Set(d, alpha);
     MuFree b;
-    b.s1 = max_of(zero, hn::Sub(hn::Div(d1, d2_min), one));  // AAF Eq. 4
+    b.s1 = max_of(zero, hn::Sub(hn::Div(d1, d2_min), one));        // AAF Eq. 4
     const V s2 = max_of(zero, hn::Sub(hn::Div(d1, d2_max), one));  // AAF Eq. 4
-    b.omega_light = hn::Div(one, hn::Set(d, sigma_m));  // Sec. 4.1: Omega_L^max = 1/sigma
-    const V omega_pixel = hn::Div(one, pixel_size);    // Sec. 4.1: Omega_pix^max = 1/d
+    b.omega_light = hn::Div(one, hn::Set(d, sigma_m));             // Sec. 4.1: Omega_L^max = 1/sigma
+    const V omega_pixel = hn::Div(one, pixel_size);                // Sec. 4.1: Omega_pix^max = 1/d
     b.omega_x_max = hn::Mul(hn::Div(alpha_v, hn::Add(one, s2)), omega_pixel);  // AAF Eq. 6
     b.omega_y_max =
         hn::Mul(hn::Mul(alpha_v, max_of(zero, hn::Sub(one, hn::Div(d2_min, d1)))), omega_pixel);  // AAF Eq. 7
@@ -130,8 +130,10 @@ void AafGuideRow(const AafGuideConstants &c, const AafGuideRowInputs &in, const 
     const V zero = hn::Zero(d), one = hn::Set(d, 1.0f);
     const V center_x = hn::Set(d, c.center[0]), center_y = hn::Set(d, c.center[1]),
             center_z = hn::Set(d, c.center[2]);
-    const V axis_ux = hn::Set(d, c.axis_u[0]), axis_uy = hn::Set(d, c.axis_u[1]), axis_uz = hn::Set(d, c.axis_u[2]);
-    const V axis_vx = hn::Set(d, c.axis_v[0]), axis_vy = hn::Set(d, c.axis_v[1]), axis_vz = hn::Set(d, c.axis_v[2]);
+    const V axis_ux = hn::Set(d, c.axis_u[0]), axis_uy = hn::Set(d, c.axis_u[1]),
+            axis_uz = hn::Set(d, c.axis_u[2]);
+    const V axis_vx = hn::Set(d, c.axis_v[0]), axis_vy = hn::Set(d, c.axis_v[1]),
+            axis_vz = hn::Set(d, c.axis_v[2]);
     const V light_nx = hn::Set(d, c.light_normal[0]), light_ny = hn::Set(d, c.light_normal[1]),
             light_nz = hn::Set(d, c.light_normal[2]);
     const V float_max = hn::Set(d, std::numeric_limits<float>::max());
@@ -162,18 +164,18 @@ void AafGuideRow(const AafGuideConstants &c, const AafGuideRowInputs &in, const 
             M slides = hn::Gt(distance, zero);
             if (c.guarded) {
                 const V receiver_length = hn::Sqrt(dot3(nx, ny, nz, nx, ny, nz));
-                const M projection_holds = hn::And(
-                    hn::Gt(receiver_length, zero),
-                    hn::Ge(hn::Abs(dot3(nx, ny, nz, light_nx, light_ny, light_nz)),
-                           hn::Mul(hn::Set(d, kDegenerateProjectionCos), receiver_length)));
+                const M projection_holds =
+                    hn::And(hn::Gt(receiver_length, zero),
+                            hn::Ge(hn::Abs(dot3(nx, ny, nz, light_nx, light_ny, light_nz)),
+                                   hn::Mul(hn::Set(d, kDegenerateProjectionCos), receiver_length)));
                 slides = hn::AndNot(projection_holds, slides);
             }
             const V lx = hn::Div(to_x, distance), ly = hn::Div(to_y, distance), lz = hn::Div(to_z, distance);
             const V cos_light = dot3(lx, ly, lz, light_nx, light_ny, light_nz);
             // Nearly edge-on (|n . l| < 0.05, 87 degrees) the shear is held at 20.
             const V min_cos = hn::Set(d, 0.05f);
-            const V denominator =
-                hn::IfThenElse(hn::Lt(hn::Abs(cos_light), min_cos), hn::CopySign(min_cos, cos_light), cos_light);
+            const V denominator = hn::IfThenElse(hn::Lt(hn::Abs(cos_light), min_cos),
+                                                 hn::CopySign(min_cos, cos_light), cos_light);
             const V shear_u = hn::Div(dot3(lx, ly, lz, axis_ux, axis_uy, axis_uz), denominator);
             const V shear_v = hn::Div(dot3(lx, ly, lz, axis_vx, axis_vy, axis_vz), denominator);
             const V coord_n = dot3(light_nx, light_ny, light_nz, rel_x, rel_y, rel_z);
@@ -187,7 +189,8 @@ void AafGuideRow(const AafGuideConstants &c, const AafGuideRowInputs &in, const 
             store_row(d, hn::IfThenElseZero(usable, coord_n), out.coord_n_m, i, count);
         }
         const V normal_length = hn::Sqrt(dot3(nx, ny, nz, nx, ny, nz));
-        const M unit_normal = hn::And(usable, hn::And(hn::Gt(normal_length, zero), hn::IsFinite(normal_length)));
+        const M unit_normal =
+            hn::And(usable, hn::And(hn::Gt(normal_length, zero), hn::IsFinite(normal_length)));
         store_row(d, hn::IfThenElseZero(unit_normal, hn::Div(nx, normal_length)), out.normal[0], i, count);
         store_row(d, hn::IfThenElseZero(unit_normal, hn::Div(ny, normal_length)), out.normal[1], i, count);
         store_row(d, hn::IfThenElseZero(unit_normal, hn::Div(nz, normal_length)), out.normal[2], i, count);
@@ -199,8 +202,8 @@ void AafGuideRow(const AafGuideConstants &c, const AafGuideRowInputs &in, const 
         if (c.projected_pixel) {
             // projected_pixel_size_m() of aaf_bandlimits.cpp, where the footprint is finite.
             const V length_n = normal_length;
-            const M tilts = hn::And(hn::IsFinite(pixel_size),
-                                    hn::And(hn::Gt(length_n, zero), hn::IsFinite(length_n)));
+            const M tilts =
+                hn::And(hn::IsFinite(pixel_size), hn::And(hn::Gt(length_n, zero), hn::IsFinite(length_n)));
             const V cos_planes = hn::Div(hn::Abs(dot3(nx, ny, nz, light_nx, light_ny, light_nz)), length_n);
             // std::clamp(cos, lo, 1): (cos < lo) ? lo : (1 < cos) ? 1 : cos.
             const V lo = hn::Set(d, kDegenerateProjectionCos);
@@ -226,7 +229,8 @@ void AafGuideRow(const AafGuideConstants &c, const AafGuideRowInputs &in, const 
             beta_u = beta_v = hn::Set(d, c.fixed_beta_m);
         } else {
             const MuFree bu = mu_free(d1, d2_min, d2_max, pixel_size, c.sigma_u_m, c.alpha);
-            const MuFree bv = c.anisotropic ? mu_free(d1, d2_min, d2_max, pixel_size, c.sigma_v_m, c.alpha) : bu;
+            const MuFree bv =
+                c.anisotropic ? mu_free(d1, d2_min, d2_max, pixel_size, c.sigma_v_m, c.alpha) : bu;
             V mu = hn::Set(d, c.mu);
             // AAF Sec. 5.2: the filter follows the samples actually taken.
             if (c.per_pixel_mu)
@@ -236,13 +240,13 @@ void AafGuideRow(const AafGuideConstants &c, const AafGuideRowInputs &in, const 
             beta_u = hn::Div(one, hn::Mul(k, hn::Mul(mu, bu.omega_x_f0)));
             beta_v = c.anisotropic ? hn::Div(one, hn::Mul(k, hn::Mul(mu, bv.omega_x_f0))) : beta_u;
         }
-        const M kept = hn::And(
-            filtered, hn::And(hn::And(hn::Gt(beta_u, zero), hn::Gt(beta_v, zero)),
-                              hn::And(hn::IsFinite(beta_u), hn::IsFinite(beta_v))));
+        const M kept = hn::And(filtered, hn::And(hn::And(hn::Gt(beta_u, zero), hn::Gt(beta_v, zero)),
+                                                 hn::And(hn::IsFinite(beta_u), hn::IsFinite(beta_v))));
         // beta is in world metres; the reach in pixels follows from the pixel's own footprint.
         const V widest = max_of(beta_u, beta_v);
-        const V radius = min_of(hn::Ceil(hn::Div(hn::Mul(hn::Set(d, c.cutoff_sigmas), widest), own_pixel_size)),
-                                hn::Set(d, c.max_radius_px));
+        const V radius =
+            min_of(hn::Ceil(hn::Div(hn::Mul(hn::Set(d, c.cutoff_sigmas), widest), own_pixel_size)),
+                   hn::Set(d, c.max_radius_px));
         store_row(di, hn::ConvertTo(di, hn::IfThenElseZero(kept, radius)), out.radius_px, i, count);
         // The beta output: the isotropic width of the same area, sqrt(beta_u beta_v).
         const V beta = c.anisotropic ? hn::Sqrt(hn::Mul(beta_u, beta_v)) : beta_u;
@@ -250,9 +254,10 @@ void AafGuideRow(const AafGuideConstants &c, const AafGuideRowInputs &in, const 
         // 1 / (2 beta^2): a beta below ~1e-19 m squares to 0 or a denormal; the
         // largest float instead of inf keeps the centre tap's exponent 0 * that = 0.
         const V inv_u = min_of(hn::Div(one, hn::Mul(hn::Mul(hn::Set(d, 2.0f), beta_u), beta_u)), float_max);
-        const V inv_v = c.anisotropic
-                            ? min_of(hn::Div(one, hn::Mul(hn::Mul(hn::Set(d, 2.0f), beta_v), beta_v)), float_max)
-                            : inv_u;
+        const V inv_v =
+            c.anisotropic
+                ? min_of(hn::Div(one, hn::Mul(hn::Mul(hn::Set(d, 2.0f), beta_v), beta_v)), float_max)
+                : inv_u;
         store_row(d, hn::IfThenElseZero(kept, inv_u), out.inv_two_sigma_sq, i, count);
         if (c.anisotropic) store_row(d, hn::IfThenElseZero(kept, inv_v), out.inv_two_sigma_sq_v, i, count);
         if (c.along_light) {

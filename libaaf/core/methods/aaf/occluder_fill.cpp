@@ -25,7 +25,8 @@ FilledOccluders fill_occluder_distances(ConstPlaneView d2_min, ConstPlaneView d2
     const std::size_t padded_width = std::size_t(width) + 2 * std::size_t(r) + detail::kOccluderSearchPadding;
     // Not initialised here: every row, padding included, is written in the parallel pass below.
     const std::unique_ptr<float[]> lender_id(new float[padded_width * std::size_t(height)]),
-        min_m(new float[padded_width * std::size_t(height)]), max_m(new float[padded_width * std::size_t(height)]);
+        min_m(new float[padded_width * std::size_t(height)]),
+        max_m(new float[padded_width * std::size_t(height)]);
     auto padded = [&](int x, int y) { return std::size_t(y) * padded_width + std::size_t(x + r); };
     // Per pixel, whether its row holds an occluded pixel within r columns
     // (a running count along the row), so that a window's test below is an
@@ -89,7 +90,8 @@ FilledOccluders fill_occluder_distances(ConstPlaneView d2_min, ConstPlaneView d2
             const int w = width;  // a local: see above
             std::uint8_t *const any = occluded_in_window.data();
             for (int ny = std::max(0, y - r); ny <= std::min(height - 1, y + r); ++ny) {
-                const std::uint8_t *const near = occluded_near_in_row.data() + std::size_t(ny) * std::size_t(w);
+                const std::uint8_t *const near =
+                    occluded_near_in_row.data() + std::size_t(ny) * std::size_t(w);
                 for (int x = 0; x < w; ++x) any[x] = std::uint8_t(any[x] | near[x]);
             }
         }

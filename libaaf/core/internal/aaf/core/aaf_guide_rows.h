@@ -13,7 +13,7 @@ struct AafGuideConstants {
     /// AafParams: mu (the floor where it is bisected per pixel), k, alpha,
     /// fixed_beta_m, max_radius_px.
     float mu = 2, k = 3, alpha = 1, fixed_beta_m = 0, max_radius_px = 64;
-    float cutoff_sigmas = 3;  ///< taps reach ceil(cutoff_sigmas beta / pixel size) pixels
+    float cutoff_sigmas = 3;       ///< taps reach ceil(cutoff_sigmas beta / pixel size) pixels
     bool projected_pixel = false;  ///< AafParams::projected_pixel
     bool along_light = false;      ///< light_distance is not OrthogonalProjection: the shear planes
     bool guarded = false;          ///< light_distance is Guarded
