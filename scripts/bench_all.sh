@@ -3,7 +3,15 @@
 # that produced them, to scripts/bench/results/suite_<UTC date>.md:
 #   bench_aaf_filter  AAF and its gather against OpenCV GaussianBlur (same mean
 #                     width) and bilateralFilter at 640x480, 1920x1080, 3840x2160
-#   bench_maaf_filter MAAF against AAF on the same render (640x480)
+#   bench_aaf_scaling AAF against OpenCV GaussianBlur at a fixed filter width,
+#                     the 640x480 render tiled up to 3840x2880 (linearity in pixels)
+#   bench_maaf_filter MAAF against AAF and OpenCV GaussianBlur (MAAF's mean
+#                     central width) on the same render (640x480)
+#   bench_ratio_filter the ratio estimator's denoise against OpenCV GaussianBlur
+#                     (same mean width) at 640x480, 1920x1080 and 3840x2160
+#   bench_methods_bandwidth every registered method against the machine's copy
+#                     bandwidth: the bytes it must move (one run: maaf6 alone
+#                     takes a minute at 640x480)
 #   bench_trace       the tracer against raw Embree loops on the same rays
 #   bench_io.sh       aaf filter end to end against an oiiotool copy, peak memory,
 #                     the adaptive frame
@@ -28,8 +36,11 @@ run() {
     echo "$(nproc) CPUs ($(grep -m1 'model name' /proc/cpuinfo | cut -d: -f2 | xargs)), load average $(cut -d' ' -f1-3 /proc/loadavg) at the start."
     echo "Produced by: REPS=$reps scripts/bench_all.sh"
     run "$bench/bench_aaf_filter" --benchmark_repetitions="$reps" --benchmark_report_aggregates_only=true
+    run "$bench/bench_aaf_scaling" --benchmark_repetitions="$reps" --benchmark_report_aggregates_only=true
     run "$bench/bench_maaf_filter" --benchmark_filter='640' --benchmark_repetitions="$reps" \
         --benchmark_report_aggregates_only=true
+    run "$bench/bench_ratio_filter" --benchmark_repetitions="$reps" --benchmark_report_aggregates_only=true
+    run "$bench/bench_methods_bandwidth"
     run "$bench/bench_trace" --benchmark_filter='BM_Throughput|BM_Packets' --benchmark_repetitions="$reps" \
         --benchmark_report_aggregates_only=true
     echo

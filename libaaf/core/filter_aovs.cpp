@@ -170,8 +170,9 @@ AovSet filter_aovs(const Method &method, AovSet &&input, const ChannelMap &chann
         for (std::size_t c = 0; c < beauty.size(); ++c) {
             views.push_back(out.add_channel(beauty[c]));
             if (!input.has_channel(beauty[c])) continue;
-            const std::vector<float> &source = input.plane(input.index_of(beauty[c]));
-            std::copy(source.begin(), source.end(), out.add_channel(noisy[c]).data);
+            // Moved, not copied: the plane keeps its storage, so views the method
+            // was given of the input's beauty stay valid.
+            out.add_channel(noisy[c], input.take_channel(beauty[c]));
         }
         images.set_output(Role::Beauty, views);
     }

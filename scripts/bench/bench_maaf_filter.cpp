@@ -1,16 +1,28 @@
 // Speed of the MAAF filter (N = 3, 25 filters in 4D) as a ratio to the AAF
-// filter, both on the same 9 spp render of `grids` with the maaf AOVs, at
-// 640x480 and 1920x1080. Each iteration times both filters once, alternately,
-// so the ratio comes from one run on one machine:
+// filter and to OpenCV's cv::GaussianBlur, all on the same 9 spp render of
+// `grids` with the maaf AOVs, at 640x480 and 1920x1080. Each iteration times
+// every filter once, alternately, so the ratios come from one run on one machine:
 //   aaf_ms        aaf_filter with default AafParams (separable)
 //   maaf_ms       maaf_filter with default MaafParams (separable, k = 3)
 //   maaf_k1_ms    the same with k = 1, the paper's widths (3 times wider kernels)
+//   opencv_ms     cv::GaussianBlur of one plane (the visibility) at MAAF's mean
+//                 central width: what the AAF benchmark compares AAF with
+//   opencv_sums_ms the same blur of every plane MAAF reads (2 x 25 sums), the
+//                 same bytes through a plain Gaussian of that width
+// MAAF's mean central width is the mean over the pixels it filters of the
+// p = 0 component's primal std, 1 / (k sigma_x^0) metres (MAAF Eq. 8, 12), in
+// pixels of each pixel's footprint, capped like the filter's radius.
 // (The full-window variant, --filter 2d, is about 20x slower again and is left
 // out: it would take minutes per iteration here.)
 // Run: ./build/scripts/bench/bench_maaf_filter (see README "Benchmarks").
 #include <benchmark/benchmark.h>
 
+#include <opencv2/core.hpp>
+#include <opencv2/imgproc.hpp>
+
+#include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <map>
 #include <string>
 #include <vector>
@@ -18,6 +30,7 @@
 #include "aaf/core/aaf_filter.h"
 #include "aaf/core/aov_contract.h"
 #include "aaf/core/maaf_accumulation.h"
+#include "aaf/core/maaf_components.h"
 #include "aaf/core/maaf_filter.h"
 #include "aaf/core/thread_count.h"
 #include "aaf/trace/render.h"
@@ -30,7 +43,40 @@ struct Fixture {
     aaf::MaafInputs maaf_inputs;
     aaf::LightPlane light;
     double omega_y_max = 0;
+    double mean_central_sigma_px = 0;  ///< at the default k (see the header comment)
+    cv::Mat visibility;                 ///< shadow.V, finite, for OpenCV
+    std::vector<cv::Mat> sum_planes;    ///< every plane MAAF reads, finite, for OpenCV
 };
+
+/// A tightly packed copy of a plane with non-finite values read as 0.
+cv::Mat finite_copy(aaf::ConstPlaneView plane) {
+    cv::Mat copy(plane.height, plane.width, CV_32F);
+    for (int y = 0; y < plane.height; ++y)
+        for (int x = 0; x < plane.width; ++x)
+            copy.at<float>(y, x) = std::isfinite(plane(x, y)) ? plane(x, y) : 0.0f;
+    return copy;
+}
+
+/// The mean over filtered pixels of the central component's primal std in
+/// pixels, as maaf_filter sizes it (the p = 0 component, k = MaafParams' default).
+double mean_central_sigma_px(const aaf::MaafInputs &m, double omega_y_max) {
+    const aaf::MaafParams params;
+    double sum = 0;
+    long count = 0;
+    for (int y = 0; y < m.pixel_size.height; ++y)
+        for (int x = 0; x < m.pixel_size.width; ++x) {
+            const float s_min = m.s_min(x, y), s_max = m.s_max(x, y), omega_x = m.omega_x_max(x, y);
+            const float pixel = m.pixel_size(x, y);
+            if (m.object_id(x, y) == 0 || !(omega_x > 0) || !(pixel > 0) || !std::isfinite(pixel) ||
+                !(s_min >= 0) || !(s_max >= s_min))
+                continue;
+            const auto components = aaf::maaf_pair_components(s_min, s_max, omega_x, omega_y_max, m.pairs);
+            const double sigma_m = 1.0 / (params.k * components.front().sigma_x);  // MAAF Eq. 12
+            sum += std::min(sigma_m / double(pixel), double(params.max_radius_px) / 3.0);
+            ++count;
+        }
+    return count > 0 ? sum / double(count) : 0.0;
+}
 
 const Fixture &fixture(int width, int height) {
     static std::map<int, Fixture> cache;
@@ -68,6 +114,10 @@ const Fixture &fixture(int width, int height) {
     m.normal = f.aaf_inputs.normal;
     m.object_id = f.aaf_inputs.object_id;
     m.pixel_size = f.aaf_inputs.pixel_size;
+    f.mean_central_sigma_px = mean_central_sigma_px(m, f.omega_y_max);
+    f.visibility = finite_copy(f.aaf_inputs.visibility);
+    for (const auto *sums : {&m.value_sums, &m.unoccluded_sums})
+        for (const aaf::ConstPlaneView &plane : *sums) f.sum_planes.push_back(finite_copy(plane));
     return f;
 }
 
@@ -85,7 +135,14 @@ void BM_MaafVsAaf(benchmark::State &state) {
     separable.omega_y_max_rad_per_m = f.omega_y_max;
     aaf::MaafParams paper_widths = separable;
     paper_widths.k = 1.0;
-    double aaf_ms = 0, maaf_ms = 0, maaf_k1_ms = 0;
+    const double sigma = f.mean_central_sigma_px;
+    cv::Mat cv_out(height, width, CV_32F);
+    // Size(0, 0): OpenCV picks the kernel size for sigma, as in bench_aaf_filter.
+    const auto opencv_blur = [&](const cv::Mat &src) {
+        cv::GaussianBlur(src, cv_out, cv::Size(0, 0), sigma, sigma);
+    };
+    opencv_blur(f.visibility);  // warm-up, untimed
+    double aaf_ms = 0, maaf_ms = 0, maaf_k1_ms = 0, opencv_ms = 0, opencv_sums_ms = 0;
     for (auto _ : state) {
         auto t = std::chrono::steady_clock::now();
         aaf::aaf_filter(f.aaf_inputs, f.light, aaf::AafParams{}, {view, aaf::PlaneView{}});
@@ -99,6 +156,14 @@ void BM_MaafVsAaf(benchmark::State &state) {
         aaf::maaf_filter(f.maaf_inputs, f.light, paper_widths, view);
         maaf_k1_ms += ms_since(t);
         benchmark::DoNotOptimize(out.data());
+        t = std::chrono::steady_clock::now();
+        opencv_blur(f.visibility);
+        opencv_ms += ms_since(t);
+        benchmark::DoNotOptimize(cv_out.data);
+        t = std::chrono::steady_clock::now();
+        for (const cv::Mat &plane : f.sum_planes) opencv_blur(plane);
+        opencv_sums_ms += ms_since(t);
+        benchmark::DoNotOptimize(cv_out.data);
         benchmark::ClobberMemory();
     }
     const double iters = double(state.iterations());
@@ -107,6 +172,13 @@ void BM_MaafVsAaf(benchmark::State &state) {
     state.counters["maaf_over_aaf"] = maaf_ms / aaf_ms;
     state.counters["maaf_k1_ms"] = maaf_k1_ms / iters;
     state.counters["maaf_k1_over_aaf"] = maaf_k1_ms / aaf_ms;
+    state.counters["opencv_ms"] = opencv_ms / iters;
+    state.counters["opencv_sums_ms"] = opencv_sums_ms / iters;
+    state.counters["maaf_over_opencv"] = maaf_ms / opencv_ms;
+    state.counters["maaf_over_opencv_sums"] = maaf_ms / opencv_sums_ms;
+    state.counters["aaf_over_opencv"] = aaf_ms / opencv_ms;
+    state.counters["mean_central_sigma_px"] = sigma;
+    state.counters["opencv_threads"] = cv::getNumThreads();
 }
 
 }  // namespace

@@ -1,6 +1,7 @@
 // Speed of the ratio estimator's denoise (libaaf core, `aaf filter ratio`)
 // against OpenCV's cv::GaussianBlur of the same mean width on the same image
-// in the same run, at 1920x1080 (the paper's GPU denoise: 3.5 ms, Table 1).
+// in the same run, at 640x480, 1920x1080 (also on one thread) and 3840x2160
+// (the paper's GPU denoise: 3.5 ms, Table 1).
 // Run: ./scripts/bench_ratio.sh
 //
 // Input: the bundled tracer's `grids` at 2 spp, its geometry (P, N,
@@ -205,8 +206,10 @@ void BM_RatioDenoiseVsOpenCv(benchmark::State &state) {
 
 BENCHMARK(BM_RatioDenoiseVsOpenCv)
     ->ArgNames({"width", "height", "threads"})
+    ->Args({640, 480, 0})
     ->Args({1920, 1080, 0})
     ->Args({1920, 1080, 1})
+    ->Args({3840, 2160, 0})
     ->Unit(benchmark::kMillisecond)
     ->UseRealTime();
 BENCHMARK_MAIN();

@@ -280,8 +280,10 @@ TEST_CASE("AAF guides: every instruction set gives the scalar definition's bits"
                         for (const std::int64_t target : targets) {
                             hwy::SetSupportedTargetsForTest(target);
                             names.insert(detail::aaf_guide_row_target());
-                            std::vector<float> beta;
-                            const GatherGuides g = aaf_gather_guides(in, light, params, &beta);
+                            // NaN beforehand: every pixel's beta must be written.
+                            std::vector<float> beta(frame.d1.size(), std::numeric_limits<float>::quiet_NaN());
+                            const GatherGuides g = aaf_gather_guides(
+                                in, light, params, plane_view(beta.data(), frame.width, frame.height));
                             INFO("target " << hwy::TargetName(target) << ", light distance " << int(distance)
                                            << ", axes " << to_string(axes) << ", projected " << projected
                                            << ", spp " << with_spp << ", fixed beta " << fixed_beta_m);
@@ -299,6 +301,15 @@ TEST_CASE("AAF guides: every instruction set gives the scalar definition's bits"
                             CHECK(same_bits(g.inv_two_sigma_sq_n, expected.inv_two_sigma_sq_n));
                             CHECK(g.radius_px == expected.radius_px);
                             CHECK(same_bits(beta, expected_beta));
+                            // The same into a view whose pixels are not adjacent (every other float).
+                            std::vector<float> interleaved(2 * beta.size(),
+                                                           std::numeric_limits<float>::quiet_NaN());
+                            aaf_gather_guides(in, light, params,
+                                              PlaneView(interleaved.data(), frame.width, frame.height, 2,
+                                                        2 * std::ptrdiff_t(frame.width)));
+                            std::vector<float> every_other(beta.size());
+                            for (std::size_t i = 0; i < beta.size(); ++i) every_other[i] = interleaved[2 * i];
+                            CHECK(same_bits(every_other, expected_beta));
                             filtered =
                                 int(std::count_if(beta.begin(), beta.end(), [](float b) { return b > 0; }));
                         }

@@ -250,6 +250,8 @@ struct EdgeCase {
     double omega_v = 40;         ///< Omega^max of v
     double edge_m = 0.02;        ///< the edge's own width
     int axis = 1;                ///< the subspace a
+    double k = 1;                ///< Maaf6FilterParams::k
+    bool light_weights = false;  ///< Maaf6FilterParams::light_weights
 };
 
 double edge_error(const EdgeCase &e, int pairs_used) {
@@ -325,6 +327,8 @@ double edge_error(const EdgeCase &e, int pairs_used) {
                                             plane_view(out[2].data(), width, height)};
     Maaf6FilterParams params;
     params.pairs_used = pairs_used;
+    params.k = e.k;
+    params.light_weights = e.light_weights;
     maaf6_filter_layer(layer, shared, light, params, views);
     double worst = 0;
     for (int y = params.max_radius_px; y < height - params.max_radius_px; ++y)
@@ -436,4 +440,59 @@ TEST_CASE("MAAF 6D x kernel: each pair's cos part integrates to 0 (nothing passe
         CHECK(std::fabs(integral[2]) < 1e-9);  // odd
         CHECK(std::fabs(first_moment_sin) > 1e-3);  // but not zero
     }
+}
+
+TEST_CASE("MAAF 6D filter components: the focal-plane box (u slopes of both signs) keeps the central filter",
+          "[maaf6]") {
+    // The y-wedge [1, 2] at Omega_y^max 10 is not clipped by the x band (1e6) and sigma_x^0 = 2 rad/m reaches
+    // 1.5 m, inside a 1e3 m window: only the u-wedge decides.
+    auto same = [](const Maaf6Component &a, const Maaf6Component &b) {
+        return a.centre_x == b.centre_x && a.sigma_x == b.sigma_x && a.centre_y == b.centre_y &&
+               a.centre_u == b.centre_u && a.weight == b.weight;
+    };
+    const Maaf6Wedge one_signed = example_wedge(0.01, 0.02);  // near focus, but on one side of it
+    const std::vector<Maaf6Component> kept = maaf6_filter_components(one_signed, 3, 1.0, 1e3);
+    const std::vector<Maaf6Component> partition = maaf6_pair_components(one_signed, 3);
+    for (std::size_t p = 0; p < 3; ++p) CHECK(same(kept[p], partition[p]));
+    CHECK(kept[2].weight > 0);
+    for (const auto &[u_min, u_max] : {std::pair{-0.01, 0.02}, std::pair{-0.5, 1.0}, std::pair{-1.0, 0.001}}) {
+        const Maaf6Wedge box = example_wedge(u_min, u_max);
+        const std::vector<Maaf6Component> c = maaf6_filter_components(box, 3, 1.0, 1e3);
+        REQUIRE(c.size() == 3);
+        CHECK(same(c[0], maaf6_pair_components(box, 1)[0]));
+        CHECK(c[0].sigma_x == Approx(10.0));  // N = 1: Omega_y^max / y_min, the axis-aligned filter
+        CHECK(c[1].weight == 0);
+        CHECK(c[2].weight == 0);
+    }
+}
+
+TEST_CASE("MAAF 6D light attenuation: the Gaussian light model's spectrum at the pair's y centre, by hand",
+          "[maaf6]") {
+    // Omega_y^max = 2 / sigma with sigma = 0.05 m: exp(-(sigma C_y)^2 / 2).
+    CHECK(maaf6_light_attenuation(0.0, 40.0) == 1.0);
+    CHECK(maaf6_light_attenuation(20.0, 40.0) == Approx(std::exp(-0.5)));  // sigma C_y = 1
+    CHECK(maaf6_light_attenuation(-32.0, 40.0) == Approx(std::exp(-0.5 * 1.6 * 1.6)));
+    // N = 3: C_y^2 = 0.8 Omega_y^max, where Eq. 10's own factor is exp(-0.32) = 0.73 and the light's 0.28.
+    CHECK(maaf6_light_attenuation(0.8 * 2.8, 2.8) == Approx(std::exp(-1.28)));
+    CHECK_THROWS(maaf6_light_attenuation(1.0, 0.0));
+}
+
+TEST_CASE("MAAF 6D synthetic soft edge at k = 0.5: the light-attenuated pair weights over-sharpen less than "
+          "Eq. 10's",
+          "[maaf6]") {
+    // A y-wedge the partition covers (as in the orientation test above), v uniform on [-5, 5] cm
+    // with Omega_y^max = 2 / 5 cm: the light of the toolkit's sigma = half its side. At k = 0.5 (wider
+    // Fourier Gaussians, which overlap along the wedge) Eq. 10's weights over-sharpen: 0.020 against
+    // 0.017 light-attenuated. At k = 1 the attenuation is too strong on this edge (0.044 against 0.017),
+    // which is why it is an option and not the default.
+    EdgeCase e;
+    e.slope = 0.3;
+    e.wedge_lo = 0.25;
+    e.wedge_hi = 0.35;
+    e.k = 0.5;
+    const double eq10 = edge_error(e, 3);
+    e.light_weights = true;
+    const double light = edge_error(e, 3);
+    INFO("Eq. 10 " << eq10 << ", light-attenuated " << light);
+    CHECK(light < eq10);
 }

@@ -151,6 +151,28 @@ TEST_CASE("Every method: nothing is written outside its output roles", "[methods
     }
 }
 
+TEST_CASE("Every method that composes a beauty keeps the input's as the noisy beauty, moved, not copied",
+          "[methods]") {
+    const std::vector<std::string> &beauty = role_info(Role::Beauty).channels;
+    const std::vector<std::string> &noisy = role_info(Role::NoisyBeauty).channels;
+    REQUIRE(beauty.size() == noisy.size());
+    for (const Method *method : methods()) {
+        const std::vector<Role> &outputs = method->info().roles.outputs;
+        if (std::find(outputs.begin(), outputs.end(), Role::Beauty) == outputs.end()) continue;
+        INFO(method->info().name);
+        AovSet input = realistic_input();
+        std::vector<const float *> storage;
+        for (const std::string &name : beauty) storage.push_back(plane(input, name).data());
+        const AovSet out = filter_aovs(*method, std::move(input), ChannelMap{}, method->default_parameters());
+        for (std::size_t c = 0; c < beauty.size(); ++c) {
+            INFO(noisy[c]);
+            CHECK(same_bytes(plane(out, noisy[c]), plane(realistic_input(), beauty[c])));
+            CHECK(plane(out, noisy[c]).data() == storage[c]);  // the input's plane itself: no copy
+            CHECK(plane(out, beauty[c]).data() != storage[c]);
+        }
+    }
+}
+
 TEST_CASE("Every method: a NaN or infinite input stays in its own pixel", "[methods]") {
     const AovSet &clean = realistic_input();
     const int bad_x = 20, bad_y = 22;  // on the ground, inside the grids' shadows

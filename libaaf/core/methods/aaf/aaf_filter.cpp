@@ -3,7 +3,6 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
-#include <memory>
 #include <vector>
 
 #include "aaf/core/aaf_bandlimits.h"
@@ -57,16 +56,16 @@ const float *row_of(ConstPlaneView view, int y, std::vector<float> &buffer) {
 }  // namespace
 
 GatherGuides aaf_gather_guides(const AafInputs &in, const LightPlane &light, const AafParams &params,
-                               std::vector<float> *beta_out_m) {
+                               PlaneView beta_m) {
     check_inputs(in, light, params);
-    GatherGuides guides;
-    guides.resize(in.visibility.width, in.visibility.height);
-    // Every pixel's beta is written below (not stored without the output).
-    if (beta_out_m) beta_out_m->resize(std::size_t(guides.width) * std::size_t(guides.height));
-
+    if (beta_m.valid() && (beta_m.width != in.visibility.width || beta_m.height != in.visibility.height))
+        throw Error("AAF output 'beta' has another size");
     // AAF Sec. 6: unoccluded pixels take the occluder distances of their neighbours.
+    // Filled before the guides exist, so the search's scratch planes never coexist with them.
     const FilledOccluders occluders =
         fill_occluder_distances(in.d2_min, in.d2_max, in.object_id, params.fill_radius_px);
+    GatherGuides guides;
+    guides.resize(in.visibility.width, in.visibility.height);
     const LightBandlimitAxes bandlimit_sigma_m = aaf_light_sigmas_m(light, params);
     // One band-limit per light axis: the Gaussian is anisotropic in the light's plane.
     const bool anisotropic = bandlimit_sigma_m.u_m != bandlimit_sigma_m.v_m;
@@ -108,7 +107,7 @@ GatherGuides aaf_gather_guides(const AafInputs &in, const LightPlane &light, con
     // lanes (aaf_guide_rows.h): coordinates, shear, normals, AAF Eq. 13's
     // beta (bisecting mu per pixel with the spp input) and the reach.
     parallel_for_rows(guides.height, [&](int y) {
-        std::vector<float> buffers[10];
+        std::vector<float> buffers[11];
         detail::AafGuideRowInputs row_in;
         for (int a = 0; a < 3; ++a) {
             row_in.position[a] = row_of(in.position[std::size_t(a)], y, buffers[a]);
@@ -136,9 +135,16 @@ GatherGuides aaf_gather_guides(const AafInputs &in, const LightPlane &light, con
             row_out.shear_v = guides.shear_v.data() + row;
             row_out.inv_two_sigma_sq_n = guides.inv_two_sigma_sq_n.data() + row;
         }
-        row_out.beta_m = beta_out_m ? beta_out_m->data() + row : nullptr;
+        // Every pixel's beta is written (straight into the output where its pixels are adjacent).
+        const bool beta_in_place = beta_m.valid() && beta_m.pixel_stride == 1;
+        if (beta_m.valid()) {
+            buffers[10].resize(beta_in_place ? 0 : std::size_t(guides.width));
+            row_out.beta_m = beta_in_place ? &beta_m(0, y) : buffers[10].data();
+        }
         row_out.radius_px = guides.radius_px.data() + row;
         detail::aaf_guide_row(constants, row_in, row_out, guides.width);
+        if (beta_m.valid() && !beta_in_place)
+            for (int x = 0; x < guides.width; ++x) beta_m(x, y) = buffers[10][std::size_t(x)];
     });
     return guides;
 }
@@ -158,27 +164,19 @@ void aaf_filter(const AafInputs &in, const LightPlane &light, const AafParams &p
     if (!out.filtered_visibility.valid() || out.filtered_visibility.width != width ||
         out.filtered_visibility.height != height)
         throw Error("AAF output 'filtered visibility' is missing or has another size");
-    if (out.beta_m.valid() && (out.beta_m.width != width || out.beta_m.height != height))
-        throw Error("AAF output 'beta' has another size");
 
-    std::vector<float> beta_m;
-    const GatherGuides guides = aaf_gather_guides(in, light, params, out.beta_m.valid() ? &beta_m : nullptr);
+    // beta goes straight to its output, and the visibility is filtered in its
+    // output's plane: no frame-sized copy beside the guides (peak memory).
+    const GatherGuides guides = aaf_gather_guides(in, light, params, out.beta_m);
 
     // Non-finite visibility (a renderer's NaN) is read as 0, so it cannot spread through the filter.
-    // Not initialised here: the parallel pass writes every pixel.
-    const std::unique_ptr<float[]> visibility(new float[std::size_t(width) * std::size_t(height)]);
     parallel_for_rows(height, [&](int y) {
         for (int x = 0; x < width; ++x) {
             const float v = in.visibility(x, y);
-            visibility[guides.index(x, y)] = std::isfinite(v) ? v : 0.0f;
+            out.filtered_visibility(x, y) = std::isfinite(v) ? v : 0.0f;
         }
     });
-    gather(guides, aaf_gather_settings(params), {plane_view(visibility.get(), width, height)},
-           {out.filtered_visibility});
-    if (out.beta_m.valid())
-        parallel_for_rows(height, [&](int y) {
-            for (int x = 0; x < width; ++x) out.beta_m(x, y) = beta_m[guides.index(x, y)];
-        });
+    gather(guides, aaf_gather_settings(params), {out.filtered_visibility}, {out.filtered_visibility});
 }
 
 }  // namespace aaf

@@ -95,11 +95,21 @@ std::vector<Maaf6Component> maaf6_filter_components(const Maaf6Wedge &w, int pai
     const bool band_clipped = w.has_y ? w.omega_y_max >= w.y_min * band_x
                                       : !one_signed(w) || w.omega_u_max >= u_abs_min * w.omega_x_max;
     const bool beyond_window = !(3.0 * k < out[0].sigma_x * window_m);  // 3 k / sigma_x^0 > window
-    if (!band_clipped && !beyond_window) return out;
+    // The focal-plane box (MAAF Sec. 6.2): the u-wedge straddles 0, so there is no
+    // one-signed wedge to pack; the pixel gets extra samples instead (measured on room:
+    // the partition there tripled the direct layer's error, see maaf6.h).
+    const bool focal_box = w.has_u && !one_signed(w);
+    if (!band_clipped && !beyond_window && !focal_box) return out;
     const Maaf6Component central = maaf6_pair_components(w, 1)[0];  // MYRD14's axis-aligned filter
     for (Maaf6Component &c : out) c.weight = 0;
     out[0] = central;
     return out;
+}
+
+double maaf6_light_attenuation(double centre_y, double omega_y_max) {
+    if (!(omega_y_max > 0) || !std::isfinite(omega_y_max)) throw Error("MAAF 6D: the y band must be positive and finite");
+    const double t = centre_y / (0.5 * omega_y_max);  // sigma C_y with Omega_y^max = 2 / sigma (MAAF Sec. 3)
+    return std::exp(-0.5 * t * t);
 }
 
 int maaf6_channel_count(int pairs) {

@@ -82,8 +82,15 @@ void maaf6_filter_layer(const Maaf6LayerInputs &layer, const Maaf6SharedInputs &
                 continue;
             }
             const double window_m = double(params.max_radius_px) * double(shared.pixel_size(x, y));
-            const std::vector<Maaf6Component> pairs =
-                maaf6_filter_components(wedge, params.pairs_used, params.k, window_m);
+            std::vector<Maaf6Component> pairs = maaf6_filter_components(wedge, params.pairs_used, params.k, window_m);
+            // Where the offset pairs have weight 0 (the axis-aligned fallback) their kernels are 0:
+            // only the central channel is gathered, with the same result.
+            const bool offsets_used =
+                std::any_of(pairs.begin() + 1, pairs.end(), [](const Maaf6Component &c) { return c.weight != 0; });
+            if (!offsets_used) pairs.resize(1);
+            if (params.light_weights && offsets_used)
+                for (Maaf6Component &c : pairs) c.weight *= maaf6_light_attenuation(c.centre_y, wedge.omega_y_max);
+            const int pixel_n = offsets_used ? used_n : 1;
             const Vec3 p = read3(shared.position, x, y), n = normalize(read3(shared.normal, x, y));
             Vec3 t1, t2;
             maaf6_tangent_frame(n, light.axis_u, light.axis_v, t1, t2);
@@ -112,9 +119,9 @@ void maaf6_filter_layer(const Maaf6LayerInputs &layer, const Maaf6SharedInputs &
                     const float count = shared.samples(tx, ty);
                     if (!(count > 0)) continue;
                     const double per_sample = depth_weight / double(count);
-                    for (double &value : k1) value *= per_sample;
-                    for (int a = 0; a < used_n; ++a)
-                        for (int b = 0; b < used_n; ++b) {
+                    for (int a = 0; a < pixel_n; ++a) k1[std::size_t(a)] *= per_sample;
+                    for (int a = 0; a < pixel_n; ++a)
+                        for (int b = 0; b < pixel_n; ++b) {
                             const int c = a * stored_n + b;  // the layout of the stored N
                             const double kernel = k1[std::size_t(a)] * k2[std::size_t(b)];
                             den += kernel * double(layer.weights[std::size_t(c)](tx, ty));

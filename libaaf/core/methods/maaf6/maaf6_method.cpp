@@ -44,6 +44,10 @@ class Maaf6Method final : public Method {
             ParameterInfo::choice("pairs", "all", {"all", "1"},
                                   "Filter pairs N per 3D subspace: all of the sums' (N = 3, 25 filters in 6D) or "
                                   "1, the central axis-aligned filter alone (AAF for combined effects, MYRD14)"),
+            ParameterInfo::choice("pair_weights", "eq10", {"eq10", "light"},
+                                  "mu_p of the offset pairs: MAAF Eq. 10 (the paper), or Eq. 10 times the Gaussian "
+                                  "light model's spectrum at the pair's y centre, exp(-(sigma C_y)^2 / 2) with "
+                                  "Omega_y^max = 2 / sigma (less over-sharpening; not in the paper, see the README)"),
             ParameterInfo::real("k", "1", "",
                                 "Width scale: each component's Fourier std is its half-width divided by k (as "
                                 "`aaf filter maaf --k`; 1 = the paper's reading, measured best on room for both "
@@ -83,6 +87,7 @@ class Maaf6Method final : public Method {
         params.stored_pairs = pairs;
         params.pairs_used = parameters.get_choice("pairs") == "1" ? 1 : pairs;
         params.k = double(parameters.get_float("k"));
+        params.light_weights = parameters.get_choice("pair_weights") == "light";
         params.normal_threshold_deg = parameters.get_float("normal_threshold");
         params.max_radius_px = parameters.get_int("max_radius");
         const LightPlane light = read_light_attributes(images.attributes());

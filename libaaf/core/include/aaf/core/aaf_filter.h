@@ -46,10 +46,10 @@ void aaf_filter(const AafInputs &inputs, const LightPlane &light, const AafParam
 /// AAF as inputs to the shared gather (gather.h): positions in the light's
 /// plane (AAF Eq. 12) and, per pixel, the Gaussian of AAF Eq. 11 with the
 /// beta of AAF Eq. 13 and a reach of ceil(3 beta / pixel size) pixels;
-/// `beta_m`, when given, receives beta (world metres, 0 = not filtered).
+/// `beta_m`, when valid, receives beta (world metres, 0 = not filtered).
 /// aaf_filter() is this, then gather() of the visibility. Throws as aaf_filter.
 GatherGuides aaf_gather_guides(const AafInputs &inputs, const LightPlane &light, const AafParams &params,
-                               std::vector<float> *beta_m = nullptr);
+                               PlaneView beta_m = {});
 /// The gather settings AafParams selects (normal threshold, separable or 2D).
 GatherSettings aaf_gather_settings(const AafParams &params);
 

@@ -33,6 +33,9 @@ struct Maaf6FilterParams {
     double k = 1;          ///< width scale, as `aaf filter maaf --k` (1: the paper's reading)
     float normal_threshold_deg = 20;  ///< MAAF Sec. 6.2: taps whose normal turns more are rejected
     int max_radius_px = 12;
+    /// Multiply each used pair's mu_p (MAAF Eq. 10) by maaf6_light_attenuation(C_y^p, the
+    /// layer's Omega_y^max): the light's spectrum at the pair's y centre (not in the paper).
+    bool light_weights = false;
 };
 
 /// Filters one layer (MAAF Eq. 21-22 with the 6D product of MAAF Sec. 6.2):
