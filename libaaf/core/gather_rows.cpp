@@ -274,9 +274,10 @@ void gather_row_along(const GatherSweep &s, int y) {
             const int o_begin = AlongY ? std::max(-widest, -y) : -widest;
             const int o_end = AlongY ? std::min(widest, g.height - 1 - y) : widest;
             for (int o = o_begin; o <= o_end; ++o) {
-                // |o| <= reach (and along x 0 <= x + o < width), lane by lane.
+                // |o| <= reach (and along x 0 <= x + o < width), lane by lane;
+                // with symmetric borders reach <= min(x, width - 1 - x) implies the latter.
                 auto inside = hn::Gt(reach_v, hn::Set(di, (o < 0 ? -o : o) - 1));
-                if (!AlongY) {
+                if (!AlongY && !s.symmetric_borders) {
                     const auto x_tap = hn::Add(x_v, hn::Set(di, o));
                     inside = hn::And(
                         inside, hn::And(hn::Gt(x_tap, hn::Set(di, -1)), hn::Lt(x_tap, hn::Set(di, g.width))));

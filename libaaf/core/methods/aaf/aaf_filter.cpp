@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "aaf/core/aaf_bandlimits.h"
+#include "aaf/core/aaf_guide_rows.h"
 #include "aaf/core/error.h"
 #include "aaf/core/gather.h"
 #include "aaf/core/light_bandlimit.h"
@@ -41,32 +42,15 @@ void check_inputs(const AafInputs &in, const LightPlane &light, const AafParams 
     if (params.mu_from_spp || (!params.fixed_mu && in.spp.valid())) check_size(in.spp, width, height, "spp");
 }
 
-/// beta of AAF Eq. 13 along the light's two axes at pixel (x, y), world
-/// metres, or 0 where AAF does not filter (background, no occluder nearby,
-/// unusable distances).
-struct PixelBeta {
-    float u_m = 0, v_m = 0;
-};
-PixelBeta pixel_beta_m(const AafInputs &in, const LightPlane &light, LightBandlimitAxes bandlimit_sigma_m,
-                       const AafParams &params, const FilledOccluders &occluders, int x, int y) {
-    const std::size_t i = std::size_t(y) * std::size_t(in.visibility.width) + std::size_t(x);
-    const float d1 = in.d1(x, y);
-    float pixel_size = in.pixel_size(x, y);
-    if (params.projected_pixel && std::isfinite(pixel_size))
-        pixel_size = projected_pixel_size_m(
-            pixel_size, Vec3{in.normal[0](x, y), in.normal[1](x, y), in.normal[2](x, y)}, light.normal);
-    const float d2_min = occluders.d2_min_m[i], d2_max = occluders.d2_max_m[i];
-    if (in.object_id(x, y) == 0 || !(d1 > 0) || !(pixel_size > 0) || !std::isfinite(pixel_size) ||
-        !has_occluder(d2_max))
-        return {};
-    if (params.fixed_beta_m > 0) return {params.fixed_beta_m, params.fixed_beta_m};
-    AafParams pixel_params = params;
-    if (!params.fixed_mu && in.spp.valid())  // AAF Sec. 5.2: the filter follows the samples actually taken
-        pixel_params.mu =
-            mu_for_samples(in.spp(x, y), d1, d2_min, d2_max, pixel_size, bandlimit_sigma_m, params);
-    const AafAxisBandlimits b =
-        aaf_bandlimits_axes(d1, d2_min, d2_max, pixel_size, bandlimit_sigma_m, pixel_params);
-    return {b.u.beta_m, b.v.beta_m};
+/// Row y of `view` as contiguous floats: the view's own memory where its
+/// pixels are adjacent, else a copy in `buffer`.
+const float *row_of(ConstPlaneView view, int y, std::vector<float> &buffer) {
+    const float *first = view.data + std::ptrdiff_t(y) * view.row_stride;
+    if (view.pixel_stride == 1) return first;
+    buffer.resize(std::size_t(view.width));
+    for (int x = 0; x < view.width; ++x)
+        buffer[std::size_t(x)] = first[std::ptrdiff_t(x) * view.pixel_stride];
+    return buffer.data();
 }
 
 }  // namespace
@@ -82,10 +66,6 @@ GatherGuides aaf_gather_guides(const AafInputs &in, const LightPlane &light, con
         fill_occluder_distances(in.d2_min, in.d2_max, in.object_id, params.fill_radius_px);
     GatherGuides guides;
     guides.resize(in.visibility.width, in.visibility.height);
-    if (beta_m.valid())
-        parallel_for_rows(guides.height, [&](int y) {
-            for (int x = 0; x < guides.width; ++x) beta_m(x, y) = 0.0f;
-        });
     const LightBandlimitAxes bandlimit_sigma_m = aaf_light_sigmas_m(light, params);
     // One band-limit per light axis: the Gaussian is anisotropic in the light's plane.
     const bool anisotropic = bandlimit_sigma_m.u_m != bandlimit_sigma_m.v_m;
@@ -99,90 +79,72 @@ GatherGuides aaf_gather_guides(const AafInputs &in, const LightPlane &light, con
         guides.shear_v.assign(count, 0.0f);
         guides.inv_two_sigma_sq_n.assign(count, 0.0f);
     }
-    const float variance_u_m2 = light.variance_u_m2(), variance_v_m2 = light.variance_v_m2();
+    detail::AafGuideConstants constants;
+    for (int a = 0; a < 3; ++a) {
+        constants.center[a] = light.center[a];
+        constants.axis_u[a] = light.axis_u[a];
+        constants.axis_v[a] = light.axis_v[a];
+        constants.light_normal[a] = light.normal[a];
+    }
+    constants.variance_u_m2 = light.variance_u_m2();
+    constants.variance_v_m2 = light.variance_v_m2();
+    constants.sigma_u_m = bandlimit_sigma_m.u_m;
+    constants.sigma_v_m = bandlimit_sigma_m.v_m;
+    constants.mu = params.mu;
+    constants.k = params.k;
+    constants.alpha = params.alpha;
+    constants.fixed_beta_m = params.fixed_beta_m;
+    constants.max_radius_px = float(params.max_radius_px);
+    constants.cutoff_sigmas = kCutoffSigmas;
+    constants.projected_pixel = params.projected_pixel;
+    constants.along_light = along_light;
+    constants.guarded = params.light_distance == AafLightDistance::Guarded;
+    constants.anisotropic = anisotropic;
+    // AAF Sec. 5.2: the filter follows the samples actually taken.
+    constants.per_pixel_mu = !params.fixed_mu && in.spp.valid();
 
+    // One pass over the inputs, row by row, neighbouring pixels in SIMD
+    // lanes (aaf_guide_rows.h): coordinates, shear, normals, AAF Eq. 13's
+    // beta (bisecting mu per pixel with the spp input) and the reach.
     parallel_for_rows(guides.height, [&](int y) {
-        for (int x = 0; x < guides.width; ++x) {
-            const std::size_t i = guides.index(x, y);
-            // Coordinates along the light's two tangent axes, so du^2 + dv^2 =
-            // |x - x'|^2 - [n . (x - x')]^2 (AAF Eq. 12) for the orthonormal frame.
-            const Vec3 p{in.position[0](x, y), in.position[1](x, y), in.position[2](x, y)};
-            const float u = dot(light.axis_u, p - light.center), v = dot(light.axis_v, p - light.center);
-            if (!std::isfinite(u + v)) {
-                // Unusable geometry: never a tap (NaN id), never filtered.
-                guides.object_id[i] = std::numeric_limits<float>::quiet_NaN();
-                continue;
-            }
-            guides.coord_u_m[i] = u;
-            guides.coord_v_m[i] = v;
-            // The spread of the slide's direction over the light, per unit dn (below).
-            float spread_u_sq = 0, spread_v_sq = 0;
-            if (along_light) {
-                // Delta_eff = Delta - l (n . Delta) / (n . l), l the unit direction to the
-                // light's centre: the tap slid along l onto the centre's plane parallel to
-                // the light (AAF Fig. 2's geometry), of which AAF Eq. 12 is the case l = n.
-                const Vec3 to_light = light.center - p;
-                const float distance = length(to_light);
-                const Vec3 receiver_normal{in.normal[0](x, y), in.normal[1](x, y), in.normal[2](x, y)};
-                const float receiver_length = length(receiver_normal);
-                // Guarded: AAF Eq. 12's projection (no shear) wherever it does not collapse the receiver.
-                const bool projection_holds = params.light_distance == AafLightDistance::Guarded &&
-                                              receiver_length > 0 &&
-                                              std::fabs(dot(receiver_normal, light.normal)) >=
-                                                  kDegenerateProjectionCos * receiver_length;
-                if (distance > 0 && !projection_holds) {
-                    const Vec3 l = to_light / distance;
-                    // Nearly edge-on (|n . l| < 0.05, 87 degrees) the shear is held at 20.
-                    constexpr float kMinCos = 0.05f;
-                    const float cos_light = dot(l, light.normal);
-                    const float denominator =
-                        std::fabs(cos_light) < kMinCos ? std::copysign(kMinCos, cos_light) : cos_light;
-                    guides.shear_u[i] = dot(l, light.axis_u) / denominator;
-                    guides.shear_v[i] = dot(l, light.axis_v) / denominator;
-                    // The slide is along the ray to the light's centre; towards a light
-                    // point y it differs by (y - c) / d1 per unit dn, so over the light's
-                    // profile the squared offset grows by dn^2 var(y) / d1^2 per axis.
-                    const float d1 = std::fabs(dot(light.normal, p - light.center));
-                    spread_u_sq = variance_u_m2 / (d1 * d1);
-                    spread_v_sq = variance_v_m2 / (d1 * d1);
-                }
-                guides.coord_n_m[i] = dot(light.normal, p - light.center);
-            }
-            const Vec3 n{in.normal[0](x, y), in.normal[1](x, y), in.normal[2](x, y)};
-            const float len = length(n);
-            const Vec3 unit = (len > 0 && std::isfinite(len)) ? n / len : Vec3{};
-            guides.normal_x[i] = unit.x;
-            guides.normal_y[i] = unit.y;
-            guides.normal_z[i] = unit.z;
-            guides.object_id[i] = in.object_id(x, y);
-
-            const PixelBeta beta = pixel_beta_m(in, light, bandlimit_sigma_m, params, occluders, x, y);
-            if (!(beta.u_m > 0) || !(beta.v_m > 0) || !std::isfinite(beta.u_m) || !std::isfinite(beta.v_m))
-                continue;
-            // beta is in world metres; the reach in pixels follows from the pixel's footprint.
-            const float widest = std::max(beta.u_m, beta.v_m);
-            const float radius = std::min(std::ceil(kCutoffSigmas * widest / in.pixel_size(x, y)),
-                                          float(params.max_radius_px));
-            // The beta output: the isotropic width of the same area, sqrt(beta_u beta_v).
-            if (beta_m.valid()) beta_m(x, y) = anisotropic ? std::sqrt(beta.u_m * beta.v_m) : beta.u_m;
-            // A beta below ~1e-19 m (pixel.size near 0) squares to 0 or a
-            // denormal: the largest float instead of inf keeps the centre tap's
-            // exponent 0 * that = 0 (weight 1), where inf would give 0 * inf = NaN.
-            auto inv_two_sigma_sq = [](float b) {
-                return std::min(1.0f / (2.0f * b * b), std::numeric_limits<float>::max());
-            };
-            guides.inv_two_sigma_sq[i] = inv_two_sigma_sq(beta.u_m);
-            if (anisotropic) guides.inv_two_sigma_sq_v[i] = inv_two_sigma_sq(beta.v_m);
-            if (along_light) {
-                // Finite, so that the centre tap's dn = 0 gives 0, never 0 x inf.
-                const float weight_n =
-                    spread_u_sq * guides.inv_two_sigma_sq[i] +
-                    spread_v_sq * (anisotropic ? guides.inv_two_sigma_sq_v[i] : guides.inv_two_sigma_sq[i]);
-                guides.inv_two_sigma_sq_n[i] =
-                    std::isfinite(weight_n) ? weight_n : std::numeric_limits<float>::max();
-            }
-            guides.radius_px[i] = int(radius);
+        std::vector<float> buffers[11];
+        detail::AafGuideRowInputs row_in;
+        for (int a = 0; a < 3; ++a) {
+            row_in.position[a] = row_of(in.position[std::size_t(a)], y, buffers[a]);
+            row_in.normal[a] = row_of(in.normal[std::size_t(a)], y, buffers[3 + a]);
         }
+        row_in.object_id = row_of(in.object_id, y, buffers[6]);
+        row_in.d1_m = row_of(in.d1, y, buffers[7]);
+        row_in.pixel_size_m = row_of(in.pixel_size, y, buffers[8]);
+        if (constants.per_pixel_mu) row_in.spp = row_of(in.spp, y, buffers[9]);
+        const std::size_t row = guides.index(0, y);
+        row_in.d2_min_m = occluders.d2_min_m.data() + row;
+        row_in.d2_max_m = occluders.d2_max_m.data() + row;
+        detail::AafGuideRowOutputs row_out;
+        row_out.coord_u_m = guides.coord_u_m.data() + row;
+        row_out.coord_v_m = guides.coord_v_m.data() + row;
+        row_out.normal[0] = guides.normal_x.data() + row;
+        row_out.normal[1] = guides.normal_y.data() + row;
+        row_out.normal[2] = guides.normal_z.data() + row;
+        row_out.object_id = guides.object_id.data() + row;
+        row_out.inv_two_sigma_sq = guides.inv_two_sigma_sq.data() + row;
+        if (anisotropic) row_out.inv_two_sigma_sq_v = guides.inv_two_sigma_sq_v.data() + row;
+        if (along_light) {
+            row_out.coord_n_m = guides.coord_n_m.data() + row;
+            row_out.shear_u = guides.shear_u.data() + row;
+            row_out.shear_v = guides.shear_v.data() + row;
+            row_out.inv_two_sigma_sq_n = guides.inv_two_sigma_sq_n.data() + row;
+        }
+        // Every pixel's beta is written (straight into the output where its pixels are adjacent).
+        const bool beta_in_place = beta_m.valid() && beta_m.pixel_stride == 1;
+        if (beta_m.valid()) {
+            buffers[10].resize(beta_in_place ? 0 : std::size_t(guides.width));
+            row_out.beta_m = beta_in_place ? &beta_m(0, y) : buffers[10].data();
+        }
+        row_out.radius_px = guides.radius_px.data() + row;
+        detail::aaf_guide_row(constants, row_in, row_out, guides.width);
+        if (beta_m.valid() && !beta_in_place)
+            for (int x = 0; x < guides.width; ++x) beta_m(x, y) = buffers[10][std::size_t(x)];
     });
     return guides;
 }

@@ -2,7 +2,9 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <limits>
+#include <memory>
 #include <vector>
 
 #include "aaf/core/occluder_fill_rows.h"
@@ -21,30 +23,44 @@ FilledOccluders fill_occluder_distances(ConstPlaneView d2_min, ConstPlaneView d2
     // Padded contiguous planes for the search (occluder_fill_rows.h), which
     // reads each pixel up to (2r+1)^2 times: the distances and the lenders' ids.
     const std::size_t padded_width = std::size_t(width) + 2 * std::size_t(r) + detail::kOccluderSearchPadding;
-    std::vector<float> lender_id(padded_width * height, std::numeric_limits<float>::quiet_NaN()),
-        min_m(padded_width * height, 0.0f), max_m(padded_width * height, 0.0f);
+    // Not initialised here: every row, padding included, is written in the parallel pass below.
+    const std::unique_ptr<float[]> lender_id(new float[padded_width * std::size_t(height)]),
+        min_m(new float[padded_width * std::size_t(height)]),
+        max_m(new float[padded_width * std::size_t(height)]);
     auto padded = [&](int x, int y) { return std::size_t(y) * padded_width + std::size_t(x + r); };
+    // Per pixel, whether its row holds an occluded pixel within r columns
+    // (a running count along the row), so that a window's test below is an
+    // OR over its 2r + 1 rows: most unoccluded pixels have no occluded pixel
+    // in their window and skip the search. Rows are independent, so the
+    // whole image is one parallel pass.
+    std::vector<std::uint8_t> occluded_near_in_row(count);
     parallel_for_rows(height, [&](int y) {
+        const std::size_t first = std::size_t(y) * padded_width;
+        // Padding: matches no id, no distances.
+        for (const std::size_t begin : {std::size_t(0), std::size_t(r) + std::size_t(width)}) {
+            const std::size_t end = begin == 0 ? std::size_t(r) : padded_width;
+            std::fill(lender_id.get() + first + begin, lender_id.get() + first + end,
+                      std::numeric_limits<float>::quiet_NaN());
+            std::fill(min_m.get() + first + begin, min_m.get() + first + end, 0.0f);
+            std::fill(max_m.get() + first + begin, max_m.get() + first + end, 0.0f);
+        }
+        std::vector<int> occluded_before(std::size_t(width) + 1, 0);
         for (int x = 0; x < width; ++x) {
             const std::size_t i = padded(x, y);
             min_m[i] = d2_min(x, y);
             max_m[i] = d2_max(x, y);
-            if (has_occluder(max_m[i])) lender_id[i] = object_id(x, y);
+            const bool occluded = has_occluder(max_m[i]);
+            lender_id[i] = occluded ? object_id(x, y) : std::numeric_limits<float>::quiet_NaN();
+            occluded_before[std::size_t(x) + 1] = occluded_before[std::size_t(x)] + int(occluded);
         }
+        // Locals, not the captures: byte stores may alias anything, which would
+        // keep the compiler reloading the bounds and from vectorising.
+        const int w = width, reach = r;
+        const int *const before = occluded_before.data();
+        std::uint8_t *const near = occluded_near_in_row.data() + std::size_t(y) * std::size_t(w);
+        for (int x = 0; x < w; ++x)
+            near[x] = std::uint8_t(before[std::min(w, x + reach + 1)] - before[std::max(0, x - reach)] > 0);
     });
-    // Summed-area table of occluded pixels: most unoccluded pixels have none in
-    // their window, and skip the search.
-    std::vector<int> occluded_before((std::size_t(width) + 1) * (height + 1), 0);
-    const std::size_t sat_width = std::size_t(width) + 1;
-    for (int y = 0; y < height; ++y)
-        for (int x = 0; x < width; ++x)
-            occluded_before[(y + 1) * sat_width + x + 1] =
-                int(has_occluder(max_m[padded(x, y)])) + occluded_before[y * sat_width + x + 1] +
-                occluded_before[(y + 1) * sat_width + x] - occluded_before[y * sat_width + x];
-    auto occluded_in_window = [&](int x0, int y0, int x1, int y1) {  // inclusive bounds
-        return occluded_before[(y1 + 1) * sat_width + x1 + 1] - occluded_before[y0 * sat_width + x1 + 1] -
-               occluded_before[(y1 + 1) * sat_width + x0] + occluded_before[y0 * sat_width + x0];
-    };
     // The disc's half-width on each row: dx^2 + dy^2 <= r^2.
     std::vector<int> half_width(std::size_t(r) + 1);
     for (int dy = 0; dy <= r; ++dy) {
@@ -54,9 +70,9 @@ FilledOccluders fill_occluder_distances(ConstPlaneView d2_min, ConstPlaneView d2
     }
 
     detail::OccluderSearch search;
-    search.lender_id = lender_id.data();
-    search.d2_min_m = min_m.data();
-    search.d2_max_m = max_m.data();
+    search.lender_id = lender_id.get();
+    search.d2_min_m = min_m.get();
+    search.d2_max_m = max_m.get();
     search.padded_width = padded_width;
     search.pad = r;
     search.width = width;
@@ -68,6 +84,17 @@ FilledOccluders fill_occluder_distances(ConstPlaneView d2_min, ConstPlaneView d2
         // or no occluded pixel in its window).
         std::vector<float> centre_id(std::size_t(width) + detail::kOccluderSearchPadding,
                                      std::numeric_limits<float>::quiet_NaN());
+        // Whether the window [x - r, x + r] x [y - r, y + r] holds an occluded pixel.
+        std::vector<std::uint8_t> occluded_in_window(std::size_t(width), 0);
+        {
+            const int w = width;  // a local: see above
+            std::uint8_t *const any = occluded_in_window.data();
+            for (int ny = std::max(0, y - r); ny <= std::min(height - 1, y + r); ++ny) {
+                const std::uint8_t *const near =
+                    occluded_near_in_row.data() + std::size_t(ny) * std::size_t(w);
+                for (int x = 0; x < w; ++x) any[x] = std::uint8_t(any[x] | near[x]);
+            }
+        }
         const std::size_t row = std::size_t(y) * width;
         for (int x = 0; x < width; ++x) {
             const std::size_t p = padded(x, y);
@@ -76,9 +103,7 @@ FilledOccluders fill_occluder_distances(ConstPlaneView d2_min, ConstPlaneView d2
                 filled.d2_max_m[row + x] = max_m[p];
                 continue;
             }
-            if (occluded_in_window(std::max(0, x - r), std::max(0, y - r), std::min(width - 1, x + r),
-                                   std::min(height - 1, y + r)) > 0)
-                centre_id[std::size_t(x)] = object_id(x, y);
+            if (occluded_in_window[std::size_t(x)]) centre_id[std::size_t(x)] = object_id(x, y);
         }
         detail::search_occluder_row(search, y, centre_id.data(), filled.d2_min_m.data() + row,
                                     filled.d2_max_m.data() + row);
