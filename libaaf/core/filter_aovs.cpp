@@ -163,22 +163,29 @@ AovSet filter_aovs(const Method &method, AovSet &&input, const ChannelMap &chann
         images.set_output(role, views);
     }
     if (composes_beauty) {
-        // Each new beauty channel is followed by the input's, kept as the noisy beauty.
-        const std::vector<std::string> &beauty = found.channels(Role::Beauty);
-        const std::vector<std::string> &noisy = found.channels(Role::NoisyBeauty);
-        std::vector<PlaneView> views;
-        for (std::size_t c = 0; c < beauty.size(); ++c) {
-            views.push_back(out.add_channel(beauty[c]));
-            if (!input.has_channel(beauty[c])) continue;
-            // Moved, not copied: the plane keeps its storage, so views the method
-            // was given of the input's beauty stay valid.
-            out.add_channel(noisy[c], input.take_channel(beauty[c]));
-        }
-        images.set_output(Role::Beauty, views);
+        // Made when the method asks for the beauty (compose_shadowed_beauty, at
+        // its end), not before: the planes are not held beside the method's own
+        // buffers. Each new beauty channel is followed by the input's, kept as
+        // the noisy beauty. Nothing else adds channels meanwhile, so the order
+        // is the same as if they were made here.
+        images.set_deferred_output(Role::Beauty, [&out, &input, &found] {
+            const std::vector<std::string> &beauty = found.channels(Role::Beauty);
+            const std::vector<std::string> &noisy = found.channels(Role::NoisyBeauty);
+            std::vector<PlaneView> views;
+            for (std::size_t c = 0; c < beauty.size(); ++c) {
+                views.push_back(out.add_channel(beauty[c]));
+                if (!input.has_channel(beauty[c])) continue;
+                // Moved, not copied: the plane keeps its storage, so views the method
+                // was given of the input's beauty stay valid.
+                out.add_channel(noisy[c], input.take_channel(beauty[c]));
+            }
+            return views;
+        });
     }
     Progress progress(monitor);
     progress.report(0.0);
     method.run(images, parameters, progress);
+    images.make_deferred_outputs();  // a method that never asked still gets its channels
     progress.report(1.0);
     return out;
 }

@@ -12,10 +12,30 @@ ConstPlaneView MethodImages::input(Role role, std::size_t channel) const {
 }
 
 PlaneView MethodImages::output(Role role, std::size_t channel) const {
-    auto it = outputs_.find(role);
-    if (it == outputs_.end() || channel >= it->second.size())
+    const std::vector<PlaneView> *views = nullptr;
+    if (auto it = outputs_.find(role); it != outputs_.end()) views = &it->second;
+    if (auto it = deferred_outputs_.find(role); it != deferred_outputs_.end())
+        views = &deferred_views(it->second);
+    if (!views || channel >= views->size())
         throw Error(std::string("internal: '") + role_info(role).key + "' is not an output of this method");
-    return it->second[channel];
+    return (*views)[channel];
+}
+
+void MethodImages::set_deferred_output(Role role, std::function<std::vector<PlaneView>()> make) {
+    DeferredOutput &deferred = deferred_outputs_[role];
+    deferred.make = std::move(make);
+    deferred_order_.push_back(role);
+}
+
+void MethodImages::make_deferred_outputs() const {
+    for (Role role : deferred_order_) deferred_views(deferred_outputs_.at(role));
+}
+
+const std::vector<PlaneView> &MethodImages::deferred_views(const DeferredOutput &deferred) const {
+    // The views are written once, under the flag; the map itself is never
+    // changed after the method starts, so concurrent calls are safe.
+    std::call_once(*deferred.made, [&] { deferred.views = deferred.make(); });
+    return deferred.views;
 }
 
 const std::string &MethodImages::channel_names(Role role) const {

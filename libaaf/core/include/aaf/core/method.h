@@ -1,7 +1,9 @@
 #pragma once
 
+#include <functional>
 #include <map>
 #include <memory>
+#include <mutex>
 #include <string>
 #include <utility>
 #include <vector>
@@ -67,6 +69,13 @@ class MethodImages {
     void set_input(Role role, std::vector<ConstPlaneView> views) { inputs_[role] = std::move(views); }
     void set_channel_names(Role role, std::string names) { names_[role] = std::move(names); }
     void set_output(Role role, std::vector<PlaneView> views) { outputs_[role] = std::move(views); }
+    /// An output whose planes `make` creates when output() first asks for
+    /// them (once, thread-safe), so that they take no memory while the method
+    /// works on other things first (a composed beauty, made at the end).
+    void set_deferred_output(Role role, std::function<std::vector<PlaneView>()> make);
+    /// Creates every deferred output not asked for yet, in the order they
+    /// were declared (filter_aovs, after the method ran).
+    void make_deferred_outputs() const;
 
     /// Per-light layers of the ratio roles (ratio_layers.h): how many lights
     /// the input declares (attr::kRatioLights, 0 = only the summed layers),
@@ -98,6 +107,15 @@ class MethodImages {
     const std::map<std::string, AttributeValue> *attributes_;
     std::map<Role, std::vector<ConstPlaneView>> inputs_;
     std::map<Role, std::vector<PlaneView>> outputs_;
+    /// A deferred output: its maker, and the views it made (set once under `made`).
+    struct DeferredOutput {
+        std::function<std::vector<PlaneView>()> make;
+        std::unique_ptr<std::once_flag> made = std::make_unique<std::once_flag>();
+        mutable std::vector<PlaneView> views;
+    };
+    const std::vector<PlaneView> &deferred_views(const DeferredOutput &deferred) const;
+    std::map<Role, DeferredOutput> deferred_outputs_;
+    std::vector<Role> deferred_order_;
     std::map<Role, std::string> names_;
     int light_count_ = 0;
     std::map<std::pair<Role, int>, std::vector<ConstPlaneView>> light_inputs_;
