@@ -97,7 +97,7 @@ std::vector<Maaf6Component> maaf6_filter_components(const Maaf6Wedge &wedge, int
 /// Gaussian light (or lobe) model whose band-limit MAAF Sec. 3 takes as
 /// Omega_y^max. A pair whose y-envelope is the sampling density itself passes
 /// the wedge near (C_x^p, C_y^p) with gain mu_p, while the y integral attenuates
-/// it by the light's spectrum there; Eq. 10's G(C_y^p; Omega_y^max) is twice as
+/// it by the light's spectrum there; MAAF Eq. 10's G(C_y^p; Omega_y^max) is twice as
 /// wide (0.73 instead of 0.28 at C_y = 0.8 Omega_y^max, N = 3), so the outer pairs
 /// over-sharpen. Optional (Maaf6FilterParams::light_weights): not in the paper.
 /// 1 for C_y = 0. Throws aaf::Error unless omega_y_max > 0.
