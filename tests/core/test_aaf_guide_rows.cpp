@@ -247,7 +247,9 @@ GatherGuides reference_guides(const AafInputs &in, const LightPlane &light, cons
 }
 
 bool same_bits(const std::vector<float> &a, const std::vector<float> &b) {
-    return a.size() == b.size() && std::memcmp(a.data(), b.data(), a.size() * sizeof(float)) == 0;
+    // memcmp may not be given the null data() of empty planes (not allocated for these parameters).
+    return a.size() == b.size() &&
+           (a.empty() || std::memcmp(a.data(), b.data(), a.size() * sizeof(float)) == 0);
 }
 
 }  // namespace
