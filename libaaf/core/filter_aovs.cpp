@@ -3,6 +3,7 @@
 #include <algorithm>
 
 #include "aaf/core/error.h"
+#include "aaf/core/frame_allocator.h"
 #include "aaf/core/quoted.h"
 #include "aaf/core/ratio_layers.h"
 
@@ -169,6 +170,9 @@ AovSet filter_aovs(const Method &method, AovSet &&input, const ChannelMap &chann
         // the noisy beauty. Nothing else adds channels meanwhile, so the order
         // is the same as if they were made here.
         images.set_deferred_output(Role::Beauty, [&out, &input, &found] {
+            // The method's freed scratch planes (frame_allocator.h) go back
+            // to the system before the beauty's are made, not beside them.
+            release_frame_memory();
             const std::vector<std::string> &beauty = found.channels(Role::Beauty);
             const std::vector<std::string> &noisy = found.channels(Role::NoisyBeauty);
             std::vector<PlaneView> views;
@@ -186,6 +190,9 @@ AovSet filter_aovs(const Method &method, AovSet &&input, const ChannelMap &chann
     progress.report(0.0);
     method.run(images, parameters, progress);
     images.make_deferred_outputs();  // a method that never asked still gets its channels
+    // Kept for reuse, the freed scratch would add to the caller's next
+    // allocations (the output file's buffers): a frame's filter returns it.
+    release_frame_memory();
     progress.report(1.0);
     return out;
 }

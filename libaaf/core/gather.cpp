@@ -198,7 +198,7 @@ class SweepPlanes {
     }
     /// A guide-sized plane of scratch, not initialised.
     float *scratch(int width, int height) {
-        storage_.emplace_back(new float[std::size_t(width) * std::size_t(height)]);
+        storage_.push_back(make_frame_scratch(std::size_t(width) * std::size_t(height)));
         return storage_.back().get();
     }
     /// Copies the outputs that went through scratch into their views.
@@ -228,7 +228,7 @@ class SweepPlanes {
         const auto sb = span(b.data, b.width, b.height, b.pixel_stride, b.row_stride);
         return !(std::less<>()(sa.second, sb.first) || std::less<>()(sb.second, sa.first));
     }
-    std::vector<std::unique_ptr<float[]>> storage_;
+    std::vector<FrameScratch> storage_;
 };
 
 /// Runs gather_sweep over all channels, kMaxChannelsPerSweep at a time.
@@ -284,12 +284,12 @@ void sweep_all(const GatherGuides &g, float cos_threshold, bool symmetric_border
 
 void check_guides(const GatherGuides &g) {
     const std::size_t count = std::size_t(g.width) * std::size_t(g.height);
-    for (const std::vector<float> *plane : {&g.coord_u_m, &g.coord_v_m, &g.normal_x, &g.normal_y, &g.normal_z,
+    for (const FrameVector<float> *plane : {&g.coord_u_m, &g.coord_v_m, &g.normal_x, &g.normal_y, &g.normal_z,
                                             &g.object_id, &g.inv_two_sigma_sq})
         if (plane->size() != count) throw Error("gather guides: a plane does not match the guides' size");
     if (!g.inv_two_sigma_sq_v.empty() && g.inv_two_sigma_sq_v.size() != count)
         throw Error("gather guides: the v width plane must match the guides' size or be empty");
-    for (const std::vector<float> *plane : {&g.coord_n_m, &g.shear_u, &g.shear_v, &g.inv_two_sigma_sq_n})
+    for (const FrameVector<float> *plane : {&g.coord_n_m, &g.shear_u, &g.shear_v, &g.inv_two_sigma_sq_n})
         if (plane->size() != (g.sheared() ? count : 0))
             throw Error("gather guides: the shear planes must all match the guides' size or all be empty");
     if (g.radius_px.size() != count)
@@ -321,7 +321,7 @@ void GatherGuides::resize(int new_width, int new_height) {
     width = new_width;
     height = new_height;
     const std::size_t count = std::size_t(width) * std::size_t(height);
-    for (std::vector<float> *plane :
+    for (FrameVector<float> *plane :
          {&coord_u_m, &coord_v_m, &normal_x, &normal_y, &normal_z, &object_id, &inv_two_sigma_sq})
         plane->assign(count, 0.0f);
     radius_px.assign(count, 0);

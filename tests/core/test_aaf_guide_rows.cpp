@@ -179,7 +179,7 @@ GatherGuides reference_guides(const AafInputs &in, const LightPlane &light, cons
     if (anisotropic) guides.inv_two_sigma_sq_v.assign(count, 0.0f);
     const bool along_light = params.light_distance != AafLightDistance::OrthogonalProjection;
     if (along_light)
-        for (std::vector<float> *p :
+        for (FrameVector<float> *p :
              {&guides.coord_n_m, &guides.shear_u, &guides.shear_v, &guides.inv_two_sigma_sq_n})
             p->assign(count, 0.0f);
     const float variance_u_m2 = light.variance_u_m2(), variance_v_m2 = light.variance_v_m2();
@@ -246,7 +246,8 @@ GatherGuides reference_guides(const AafInputs &in, const LightPlane &light, cons
     return guides;
 }
 
-bool same_bits(const std::vector<float> &a, const std::vector<float> &b) {
+template <typename A, typename B>
+bool same_bits(const A &a, const B &b) {
     // memcmp may not be given the null data() of empty planes (not allocated for these parameters).
     return a.size() == b.size() &&
            (a.empty() || std::memcmp(a.data(), b.data(), a.size() * sizeof(float)) == 0);

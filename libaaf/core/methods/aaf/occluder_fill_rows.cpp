@@ -38,7 +38,7 @@ void SearchOccluderRow(const OccluderSearch &s, int y, const float *centre_id, f
         const auto one = hn::Set(dd, 1.0);
         for (int ny = y_begin; ny <= y_end; ++ny) {
             const int w = s.half_width[std::abs(ny - y)];
-            const std::size_t row = std::size_t(ny) * s.padded_width + std::size_t(r + x0);
+            const std::size_t row = std::size_t(ny - s.first_row) * s.padded_width + std::size_t(r + x0);
             for (int dx = -w; dx <= w; ++dx) {
                 const std::size_t t = row + std::size_t(std::ptrdiff_t(dx));
                 // Exact in double: the float comparison's result, NaN included.

@@ -3,6 +3,7 @@
 #include <cstddef>
 #include <vector>
 
+#include "aaf/core/frame_allocator.h"
 #include "aaf/core/plane_view.h"
 
 namespace aaf {
@@ -16,21 +17,21 @@ struct GatherGuides {
     int width = 0, height = 0;
     /// Coordinates in the plane tap distances are measured in, world metres
     /// (AAF: the light's plane, so du^2 + dv^2 is the distance of AAF Eq. 12).
-    std::vector<float> coord_u_m, coord_v_m;
+    FrameVector<float> coord_u_m, coord_v_m;
     /// Unit normal; zero where unknown (then only the centre itself counts).
-    std::vector<float> normal_x, normal_y, normal_z;
+    FrameVector<float> normal_x, normal_y, normal_z;
     /// Taps on another object are rejected; NaN matches nothing, not even itself,
     /// so a pixel with unusable geometry (non-finite position) is never a tap.
-    std::vector<float> object_id;
+    FrameVector<float> object_id;
     /// 1 / (2 sigma^2) of the pixel's Gaussian, metres^-2.
-    std::vector<float> inv_two_sigma_sq;
+    FrameVector<float> inv_two_sigma_sq;
     /// Optional (empty, or guide-sized): the Gaussian's 1 / (2 sigma^2) along
     /// v, so a tap weighs exp(-du^2 inv_two_sigma_sq - dv^2 this); empty =
     /// isotropic (AAF: one band-limit per light axis, aaf_bandlimits_axes()).
-    std::vector<float> inv_two_sigma_sq_v;
+    FrameVector<float> inv_two_sigma_sq_v;
     bool anisotropic() const { return !inv_two_sigma_sq_v.empty(); }
     /// Taps reach this many pixels along each filtered axis; 0 = the pixel keeps its value.
-    std::vector<int> radius_px;
+    FrameVector<int> radius_px;
     /// Optional (all empty, or all guide-sized): a third coordinate n (metres)
     /// and, per centre pixel, shears a_u, a_v: a tap's offsets become
     /// du - a_u dn, dv - a_v dn, i.e. the tap is slid along a direction of the
@@ -39,7 +40,7 @@ struct GatherGuides {
     /// With them, per centre, the weight 1 / (2 sigma_n^2) (metres^-2) of the
     /// offset dn itself: a tap weighs exp(... - dn^2 inv_two_sigma_sq_n) (AAF:
     /// the spread of the slide's direction over the light, 0 = none).
-    std::vector<float> coord_n_m, shear_u, shear_v, inv_two_sigma_sq_n;
+    FrameVector<float> coord_n_m, shear_u, shear_v, inv_two_sigma_sq_n;
     bool sheared() const { return !shear_u.empty(); }
 
     void resize(int width, int height);

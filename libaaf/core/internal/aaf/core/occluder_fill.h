@@ -2,6 +2,7 @@
 
 #include <vector>
 
+#include "aaf/core/frame_allocator.h"
 #include "aaf/core/plane_view.h"
 
 namespace aaf {
@@ -11,8 +12,8 @@ namespace aaf {
 /// pixels of the same object within `radius_px` (a disc); 0 where there is none.
 /// d1 is known at every pixel and is not borrowed. Row-major, width x height.
 struct FilledOccluders {
-    std::vector<float> d2_min_m;
-    std::vector<float> d2_max_m;
+    FrameVector<float> d2_min_m;
+    FrameVector<float> d2_max_m;
 };
 
 /// Computes the fill on the current oneTBB arena (thread-count independent).

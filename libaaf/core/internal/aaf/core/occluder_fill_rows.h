@@ -5,8 +5,9 @@
 namespace aaf::detail {
 
 /// The search of AAF Sec. 6's occluder fill (occluder_fill.h) over one row:
-/// padded row-major planes, `pad` columns of padding left of each row and at
-/// least pad + kOccluderSearchPadding right of it.
+/// padded row-major planes of image rows first_row, first_row + 1, ..., `pad`
+/// columns of padding left of each row and at least pad +
+/// kOccluderSearchPadding right of it.
 struct OccluderSearch {
     /// Per pixel, the id a neighbour must match to lend its distances: the
     /// object's id where occluded, NaN (matching nothing) elsewhere and in the padding.
@@ -14,6 +15,8 @@ struct OccluderSearch {
     const float *d2_min_m = nullptr, *d2_max_m = nullptr;
     std::size_t padded_width = 0;
     int pad = 0, width = 0, height = 0;
+    /// The image row the planes' first row holds; rows within `pad` of a searched row must be there.
+    int first_row = 0;
     /// The disc: row dy (|dy| <= pad) spans dx in [-half_width[|dy|], half_width[|dy|]].
     const int *half_width = nullptr;
 };
