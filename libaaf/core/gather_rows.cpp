@@ -38,8 +38,8 @@ HWY_INLINE hn::Vec<DF> fast_exp_nonpositive(DF d, hn::Vec<DF> x) {
     const VF above_floor = hn::IfThenElse(hn::Gt(x, hn::Set(d, -87.0f)), x, hn::Set(d, -87.0f));
     const VF clamped = hn::IfThenElse(hn::Lt(above_floor, hn::Zero(d)), above_floor, hn::Zero(d));
     // Truncation towards zero, as static_cast<int>.
-    const auto k_int = hn::ConvertTo(di, hn::Sub(hn::Mul(clamped, hn::Set(d, 1.44269504088896341f)),
-                                                 hn::Set(d, 0.5f)));
+    const auto k_int =
+        hn::ConvertTo(di, hn::Sub(hn::Mul(clamped, hn::Set(d, 1.44269504088896341f)), hn::Set(d, 0.5f)));
     const VF k = hn::ConvertTo(d, k_int);
     const VF r = hn::Sub(hn::Sub(clamped, hn::Mul(k, hn::Set(d, 0.693145751953125f))),
                          hn::Mul(k, hn::Set(d, 1.428606765330187045e-06f)));
@@ -61,7 +61,8 @@ struct TapPlanes {
 
 /// What a centre pixel compares its taps with.
 struct Centre {
-    V u, v, n, shear_u, shear_v, inv_two_sigma_sq_n, normal_x, normal_y, normal_z, id, inv_two_sigma_sq, cos_threshold;
+    V u, v, n, shear_u, shear_v, inv_two_sigma_sq_n, normal_x, normal_y, normal_z, id, inv_two_sigma_sq,
+        cos_threshold;
     V inv_two_sigma_sq_v;  ///< along v, when the guides are anisotropic
     bool anisotropic = false;
 };
@@ -71,7 +72,8 @@ struct Centre {
 template <class VF>
 HWY_INLINE VF gaussian_exponent(VF du, VF dv, VF inv_two_sigma_sq, VF inv_two_sigma_sq_v, bool anisotropic) {
     if (anisotropic)
-        return hn::Neg(hn::Add(hn::Mul(hn::Mul(du, du), inv_two_sigma_sq), hn::Mul(hn::Mul(dv, dv), inv_two_sigma_sq_v)));
+        return hn::Neg(hn::Add(hn::Mul(hn::Mul(du, du), inv_two_sigma_sq),
+                               hn::Mul(hn::Mul(dv, dv), inv_two_sigma_sq_v)));
     return hn::Mul(hn::Neg(hn::Add(hn::Mul(du, du), hn::Mul(dv, dv))), inv_two_sigma_sq);
 }
 
@@ -100,11 +102,12 @@ HWY_INLINE void accumulate(const TapPlanes &g, const float *const *source, std::
     if (Tail) {
         weight_sum[b] = hn::IfThenElse(active, hn::Add(weight_sum[b], weight), weight_sum[b]);
         for (int k = 0; k < K; ++k)
-            sum[k][b] = hn::IfThenElse(active, hn::Add(sum[k][b], hn::Mul(weight, hn::LoadU(d, source[k] + t))),
-                                       sum[k][b]);
+            sum[k][b] = hn::IfThenElse(
+                active, hn::Add(sum[k][b], hn::Mul(weight, hn::LoadU(d, source[k] + t))), sum[k][b]);
     } else {
         weight_sum[b] = hn::Add(weight_sum[b], weight);
-        for (int k = 0; k < K; ++k) sum[k][b] = hn::Add(sum[k][b], hn::Mul(weight, hn::LoadU(d, source[k] + t)));
+        for (int k = 0; k < K; ++k)
+            sum[k][b] = hn::Add(sum[k][b], hn::Mul(weight, hn::LoadU(d, source[k] + t)));
     }
 }
 
@@ -115,7 +118,8 @@ void gather_pixel(const GatherSweep &s, int x, int y, int reach_x, int reach_y) 
     const D d;
     const GatherGuides &g = *s.guides;
     const std::size_t c = g.index(x, y);
-    const float normal_x = g.normal_x[c], normal_y = g.normal_y[c], normal_z = g.normal_z[c], id = g.object_id[c];
+    const float normal_x = g.normal_x[c], normal_y = g.normal_y[c], normal_z = g.normal_z[c],
+                id = g.object_id[c];
     Centre centre;
     centre.u = hn::Set(d, g.coord_u_m[c]);
     centre.v = hn::Set(d, g.coord_v_m[c]);
@@ -155,8 +159,8 @@ void gather_pixel(const GatherSweep &s, int x, int y, int reach_x, int reach_y) 
         int tx = x_begin;
         for (; tx + kSums <= x_end; tx += kSums)
             for (int b = 0; b < kBlocks; ++b)
-                accumulate<K, Sheared, false>(planes, s.source, row + std::size_t(tx + b * kLanes), centre, all, sum,
-                                              weight_sum, b);
+                accumulate<K, Sheared, false>(planes, s.source, row + std::size_t(tx + b * kLanes), centre,
+                                              all, sum, weight_sum, b);
         const int rest = x_end - tx;
         if (rest == 0) continue;
         const std::size_t first = row + std::size_t(tx);
@@ -164,11 +168,12 @@ void gather_pixel(const GatherSweep &s, int x, int y, int reach_x, int reach_y) 
             // Loads past the row's end stay inside the planes; those lanes are masked out.
             for (int b = 0; b * kLanes < rest; ++b)
                 accumulate<K, Sheared, true>(planes, s.source, first + std::size_t(b * kLanes), centre,
-                                             hn::FirstN(d, std::size_t(rest - b * kLanes)), sum, weight_sum, b);
+                                             hn::FirstN(d, std::size_t(rest - b * kLanes)), sum, weight_sum,
+                                             b);
             continue;
         }
-        const float *from[7] = {planes.u, planes.v, planes.n, planes.normal_x, planes.normal_y, planes.normal_z,
-                                planes.id};
+        const float *from[7] = {planes.u,        planes.v,        planes.n, planes.normal_x,
+                                planes.normal_y, planes.normal_z, planes.id};
         for (int p = 0; p < 7; ++p)
             for (int i = 0; i < kSums; ++i) tail[p][i] = from[p] && i < rest ? from[p][first + i] : 0.0f;
         for (int k = 0; k < K; ++k)
@@ -217,6 +222,67 @@ HWY_INLINE VW load_guarded(const float *plane, std::ptrdiff_t index, std::ptrdif
     return hn::Load(d, padded);
 }
 
+/// What the kWideLanes centre pixels of one vector compare their taps with.
+struct WideCentres {
+    VW u, v, n, shear_u, shear_v, inv_two_sigma_sq_n, normal_x, normal_y, normal_z, id, inv_two_sigma_sq,
+        inv_two_sigma_sq_v;
+    hn::Vec<DWI> reach, x;
+    std::ptrdiff_t c0 = 0;  ///< the first centre's index in the planes
+};
+
+/// Adds the taps at offsets o_begin..o_end of the centres `c` into their
+/// sums, in that order. Without `Guarded` every tap vector must lie inside
+/// the planes (then no load checks its bounds).
+template <int K, bool Sheared, bool AlongY, bool Guarded>
+HWY_INLINE void add_taps(const GatherSweep &s, const WideCentres &c, int o_begin, int o_end, VW (&sum)[K],
+                         VW &weight_sum) {
+    const DW d;
+    const DWI di;
+    const GatherGuides &g = *s.guides;
+    const std::ptrdiff_t size = std::ptrdiff_t(g.width) * g.height;
+    const std::ptrdiff_t step = AlongY ? std::ptrdiff_t(g.width) : 1;  // between neighbouring taps
+    auto load = [size, d](const float *plane, std::ptrdiff_t index) HWY_ATTR {
+        return Guarded ? load_guarded(plane, index, size) : hn::LoadU(d, plane + index);
+    };
+    const float *const normal_x = g.normal_x.data(), *const normal_y = g.normal_y.data(),
+                       *const normal_z = g.normal_z.data(), *const id = g.object_id.data(),
+                       *const coord_u = g.coord_u_m.data(), *const coord_v = g.coord_v_m.data(),
+                       *const coord_n = Sheared ? g.coord_n_m.data() : nullptr;
+    const VW cos_threshold = hn::Set(d, s.cos_threshold);
+    const bool anisotropic = g.anisotropic(), clip_x = !AlongY && !s.symmetric_borders;
+    for (int o = o_begin; o <= o_end; ++o) {
+        // |o| <= reach (and along x 0 <= x + o < width), lane by lane;
+        // with symmetric borders reach <= min(x, width - 1 - x) implies the latter.
+        auto inside = hn::Gt(c.reach, hn::Set(di, (o < 0 ? -o : o) - 1));
+        if (clip_x) {
+            const auto x_tap = hn::Add(c.x, hn::Set(di, o));
+            inside =
+                hn::And(inside, hn::And(hn::Gt(x_tap, hn::Set(di, -1)), hn::Lt(x_tap, hn::Set(di, g.width))));
+        }
+        const auto active = hn::RebindMask(d, inside);
+        const std::ptrdiff_t t = c.c0 + std::ptrdiff_t(o) * step;
+        const VW cos_angle =
+            hn::Add(hn::Add(hn::Mul(c.normal_x, load(normal_x, t)), hn::Mul(c.normal_y, load(normal_y, t))),
+                    hn::Mul(c.normal_z, load(normal_z, t)));
+        const auto accepted = hn::And(hn::Eq(load(id, t), c.id), hn::Ge(cos_angle, cos_threshold));
+        VW du = hn::Sub(load(coord_u, t), c.u), dv = hn::Sub(load(coord_v, t), c.v);
+        VW normal_term = hn::Zero(d);
+        if (Sheared) {
+            const VW dn = hn::Sub(load(coord_n, t), c.n);
+            du = hn::Sub(du, hn::Mul(c.shear_u, dn));
+            dv = hn::Sub(dv, hn::Mul(c.shear_v, dn));
+            normal_term = hn::Mul(hn::Mul(dn, dn), c.inv_two_sigma_sq_n);
+        }
+        // AAF Eq. 11
+        const VW exponent = hn::Sub(
+            gaussian_exponent(du, dv, c.inv_two_sigma_sq, c.inv_two_sigma_sq_v, anisotropic), normal_term);
+        const VW weight = hn::IfThenElseZero(accepted, fast_exp_nonpositive(d, exponent));
+        weight_sum = hn::IfThenElse(active, hn::Add(weight_sum, weight), weight_sum);
+        for (int k = 0; k < K; ++k)
+            sum[k] = hn::IfThenElse(active, hn::Add(sum[k], hn::Mul(weight, load(s.source[k], t))), sum[k]);
+    }
+}
+
 /// One row of a 1D sweep (both passes of the separable gather), along x
 /// or, with `AlongY`, along y: kWideLanes neighbouring centre pixels of row
 /// `y` per vector, one lane each, all walking the same tap offsets (along y:
@@ -230,13 +296,9 @@ void gather_row_along(const GatherSweep &s, int y) {
     const DWI di;
     const GatherGuides &g = *s.guides;
     const std::ptrdiff_t size = std::ptrdiff_t(g.width) * g.height, row = std::ptrdiff_t(y) * g.width;
-    // Distance between neighbouring taps in the planes.
-    const std::ptrdiff_t step = AlongY ? std::ptrdiff_t(g.width) : 1;
+    const std::ptrdiff_t step = AlongY ? std::ptrdiff_t(g.width) : 1;  // between neighbouring taps
     const float *const normal_x = g.normal_x.data(), *const normal_y = g.normal_y.data(),
-                       *const normal_z = g.normal_z.data(), *const id = g.object_id.data(),
-                       *const coord_u = g.coord_u_m.data(), *const coord_v = g.coord_v_m.data(),
-                       *const coord_n = Sheared ? g.coord_n_m.data() : nullptr;
-    const VW cos_threshold = hn::Set(d, s.cos_threshold);
+                       *const normal_z = g.normal_z.data(), *const id = g.object_id.data();
     const bool anisotropic = g.anisotropic();
     for (int x0 = 0; x0 < g.width; x0 += kWideLanes) {
         const std::ptrdiff_t c0 = row + x0;
@@ -257,56 +319,34 @@ void gather_row_along(const GatherSweep &s, int y) {
         VW sum[K], weight_sum = hn::Zero(d);
         for (int k = 0; k < K; ++k) sum[k] = hn::Zero(d);
         if (widest >= 0) {
-            const VW u = load_guarded(coord_u, c0, size), v = load_guarded(coord_v, c0, size);
-            const VW n = Sheared ? load_guarded(coord_n, c0, size) : hn::Zero(d);
-            const VW shear_u = Sheared ? load_guarded(g.shear_u.data(), c0, size) : hn::Zero(d);
-            const VW shear_v = Sheared ? load_guarded(g.shear_v.data(), c0, size) : hn::Zero(d);
-            const VW inv_two_sigma_sq_n =
+            WideCentres c;
+            c.c0 = c0;
+            c.u = load_guarded(g.coord_u_m.data(), c0, size);
+            c.v = load_guarded(g.coord_v_m.data(), c0, size);
+            c.n = Sheared ? load_guarded(g.coord_n_m.data(), c0, size) : hn::Zero(d);
+            c.shear_u = Sheared ? load_guarded(g.shear_u.data(), c0, size) : hn::Zero(d);
+            c.shear_v = Sheared ? load_guarded(g.shear_v.data(), c0, size) : hn::Zero(d);
+            c.inv_two_sigma_sq_n =
                 Sheared ? load_guarded(g.inv_two_sigma_sq_n.data(), c0, size) : hn::Zero(d);
-            const VW nx = load_guarded(normal_x, c0, size), ny = load_guarded(normal_y, c0, size),
-                     nz = load_guarded(normal_z, c0, size), centre_id = load_guarded(id, c0, size);
-            const VW inv_two_sigma_sq = load_guarded(g.inv_two_sigma_sq.data(), c0, size);
-            const VW inv_two_sigma_sq_v =
+            c.normal_x = load_guarded(normal_x, c0, size);
+            c.normal_y = load_guarded(normal_y, c0, size);
+            c.normal_z = load_guarded(normal_z, c0, size);
+            c.id = load_guarded(id, c0, size);
+            c.inv_two_sigma_sq = load_guarded(g.inv_two_sigma_sq.data(), c0, size);
+            c.inv_two_sigma_sq_v =
                 anisotropic ? load_guarded(g.inv_two_sigma_sq_v.data(), c0, size) : hn::Zero(d);
-            const auto reach_v = hn::Load(di, reach);
-            const auto x_v = hn::Iota(di, x0);
+            c.reach = hn::Load(di, reach);
+            c.x = hn::Iota(di, x0);
             // Along y the taps' rows are shared by all lanes: 0 <= y + o < height.
             const int o_begin = AlongY ? std::max(-widest, -y) : -widest;
             const int o_end = AlongY ? std::min(widest, g.height - 1 - y) : widest;
-            for (int o = o_begin; o <= o_end; ++o) {
-                // |o| <= reach (and along x 0 <= x + o < width), lane by lane;
-                // with symmetric borders reach <= min(x, width - 1 - x) implies the latter.
-                auto inside = hn::Gt(reach_v, hn::Set(di, (o < 0 ? -o : o) - 1));
-                if (!AlongY && !s.symmetric_borders) {
-                    const auto x_tap = hn::Add(x_v, hn::Set(di, o));
-                    inside = hn::And(
-                        inside, hn::And(hn::Gt(x_tap, hn::Set(di, -1)), hn::Lt(x_tap, hn::Set(di, g.width))));
-                }
-                const auto active = hn::RebindMask(d, inside);
-                const std::ptrdiff_t t = c0 + std::ptrdiff_t(o) * step;
-                const VW cos_angle = hn::Add(hn::Add(hn::Mul(nx, load_guarded(normal_x, t, size)),
-                                                     hn::Mul(ny, load_guarded(normal_y, t, size))),
-                                             hn::Mul(nz, load_guarded(normal_z, t, size)));
-                const auto accepted =
-                    hn::And(hn::Eq(load_guarded(id, t, size), centre_id), hn::Ge(cos_angle, cos_threshold));
-                VW du = hn::Sub(load_guarded(coord_u, t, size), u),
-                   dv = hn::Sub(load_guarded(coord_v, t, size), v);
-                VW normal_term = hn::Zero(d);
-                if (Sheared) {
-                    const VW dn = hn::Sub(load_guarded(coord_n, t, size), n);
-                    du = hn::Sub(du, hn::Mul(shear_u, dn));
-                    dv = hn::Sub(dv, hn::Mul(shear_v, dn));
-                    normal_term = hn::Mul(hn::Mul(dn, dn), inv_two_sigma_sq_n);
-                }
-                // AAF Eq. 11
-                const VW exponent = hn::Sub(
-                    gaussian_exponent(du, dv, inv_two_sigma_sq, inv_two_sigma_sq_v, anisotropic), normal_term);
-                const VW weight = hn::IfThenElseZero(accepted, fast_exp_nonpositive(d, exponent));
-                weight_sum = hn::IfThenElse(active, hn::Add(weight_sum, weight), weight_sum);
-                for (int k = 0; k < K; ++k)
-                    sum[k] = hn::IfThenElse(
-                        active, hn::Add(sum[k], hn::Mul(weight, load_guarded(s.source[k], t, size))), sum[k]);
-            }
+            // Away from the planes' first and last pixels no tap vector needs its bounds checked.
+            const std::ptrdiff_t first = c0 + std::ptrdiff_t(o_begin) * step,
+                                 last = c0 + std::ptrdiff_t(o_end) * step + kWideLanes;
+            if (first >= 0 && last <= size)
+                add_taps<K, Sheared, AlongY, false>(s, c, o_begin, o_end, sum, weight_sum);
+            else
+                add_taps<K, Sheared, AlongY, true>(s, c, o_begin, o_end, sum, weight_sum);
         }
         alignas(64) float lanes[K + 1][kWideLanes];
         hn::Store(weight_sum, d, lanes[K]);
