@@ -19,6 +19,10 @@ TEST_CASE("Frame allocator: aligned blocks that keep their values, reused after 
         scratch[count - 1] = 7.0f;
         CHECK(scratch[count - 1] == 7.0f);
     }
+    // An empty scratch plane is still a block of its own.
+    const FrameScratch empty = make_frame_scratch(0), other = make_frame_scratch(0);
+    CHECK(empty.get() != nullptr);
+    CHECK(empty.get() != other.get());
     // Freed blocks returned to the system; allocation works as before.
     release_frame_memory();
     FrameVector<int> after(4096, 3);
