@@ -2,6 +2,7 @@
 // the 6D accumulation layout and the filter's normalisation, against values
 // computed by hand.
 #include <algorithm>
+#include <array>
 #include <catch2/catch.hpp>
 #include <cmath>
 #include <random>
@@ -495,4 +496,79 @@ TEST_CASE("MAAF 6D synthetic soft edge at k = 0.5: the light-attenuated pair wei
     const double light = edge_error(e, 3);
     INFO("Eq. 10 " << eq10 << ", light-attenuated " << light);
     CHECK(light < eq10);
+}
+
+TEST_CASE("MAAF 6D partition check: each of the filter's reasons for the central filter, by hand", "[maaf6]") {
+    // example_wedge(0.01, 0.02): x band min(1e6, 100 / 0.01) = 1e4 > Omega_y^max / y_min = 10, so not clipped;
+    // sigma_x^0 = 10 / 5 = 2 rad/m reaches 3 k / 2 = 1.5 m.
+    Maaf6Wedge w = example_wedge(0.01, 0.02);
+    Maaf6PartitionCheck c = maaf6_partition_check(w, 3, 1.0, 1.6);
+    CHECK(c.partition_used());
+    c = maaf6_partition_check(w, 3, 1.0, 1.4);  // (a): 1.5 m > 1.4 m
+    CHECK((c.beyond_window && !c.band_clipped && !c.focal_box));
+    w.omega_x_max = 5;  // (b): 10 >= 5; the clipped sigma_x^0 = 5 / 5 = 1 reaches 3 m
+    c = maaf6_partition_check(w, 3, 1.0, 3.1);
+    CHECK((!c.beyond_window && c.band_clipped && !c.focal_box));
+    c = maaf6_partition_check(w, 3, 1.0, 2.9);
+    CHECK((c.beyond_window && c.band_clipped && !c.focal_box));
+    c = maaf6_partition_check(example_wedge(-0.01, 0.02), 3, 1.0, 1.6);  // (c) alone: the x band stays 1e6
+    CHECK((!c.beyond_window && !c.band_clipped && c.focal_box));
+    CHECK(maaf6_partition_check(example_wedge(-0.01, 0.02), 1, 1.0, 1e-3).partition_used());  // N = 1: nothing to drop
+    // Whatever the check says, maaf6_filter_components() keeps the offset pairs exactly where it passes.
+    for (double window_m : {1.4, 1.6, 2.9, 3.1})
+        for (double omega_x : {5.0, 1e6})
+            for (double u_min : {-0.01, 0.01}) {
+                Maaf6Wedge v = example_wedge(u_min, 0.02);
+                v.omega_x_max = omega_x;
+                const bool kept = maaf6_filter_components(v, 3, 1.0, window_m)[2].weight > 0;
+                CHECK(kept == maaf6_partition_check(v, 3, 1.0, window_m).partition_used());
+            }
+}
+
+TEST_CASE("MAAF 6D partition census: the filter's choice per pixel, with its window of max radius times the "
+          "pixel size",
+          "[maaf6]") {
+    // Seven pixels in a row: background; a hit without a wedge (no y-wedge, u slopes of both signs);
+    // the partition; (a); (b); (a) and (b); (c) (a y-wedge, u slopes of both signs). example_wedge's y-wedge [1, 2] at Omega_y^max 10
+    // (central reach 1.5 m unclipped, 3 m clipped to the x band 5); windows 12 px times the pixel size.
+    const int width = 7, height = 1, n = width * height;
+    std::vector<std::vector<float>> sums(75, std::vector<float>(n, 0.0f)), weights(25, std::vector<float>(n, 0.0f));
+    std::vector<float> id{0, 1, 1, 1, 1, 1, 1}, ymin{-1, -1, 1, 1, 1, 1, 1}, ymax{-1, -1, 2, 2, 2, 2, 2},
+        umin{0.01f, -0.01f, 0.01f, 0.01f, 0.01f, 0.01f, -0.01f}, umax(n, 0.02f),
+        omegax{1e6f, 1e6f, 1e6f, 1e6f, 5, 5, 1e6f}, size{1, 1, 1, 0.1f, 1, 0.2f, 1}, spp(n, 16.0f);
+    std::vector<float> pos[3], nrm[3];
+    for (int c = 0; c < 3; ++c) {
+        pos[c].assign(n, 0.0f);
+        nrm[c].assign(n, c == 1 ? 1.0f : 0.0f);
+    }
+    Maaf6LayerInputs layer;
+    for (auto &p : sums) layer.sums.push_back(plane_view<const float>(p.data(), width, height));
+    for (auto &p : weights) layer.weights.push_back(plane_view<const float>(p.data(), width, height));
+    layer.y_min = plane_view<const float>(ymin.data(), width, height);
+    layer.y_max = plane_view<const float>(ymax.data(), width, height);
+    layer.omega_y_max = 10;
+    Maaf6SharedInputs shared;
+    shared.u_min = plane_view<const float>(umin.data(), width, height);
+    shared.u_max = plane_view<const float>(umax.data(), width, height);
+    shared.omega_x = plane_view<const float>(omegax.data(), width, height);
+    for (int c = 0; c < 3; ++c) {
+        shared.position[std::size_t(c)] = plane_view<const float>(pos[c].data(), width, height);
+        shared.normal[std::size_t(c)] = plane_view<const float>(nrm[c].data(), width, height);
+    }
+    shared.object_id = plane_view<const float>(id.data(), width, height);
+    shared.pixel_size = plane_view<const float>(size.data(), width, height);
+    shared.samples = plane_view<const float>(spp.data(), width, height);
+    shared.omega_u_max = 100;
+    Maaf6FilterParams params;  // k 1, max radius 12 px, N = 3
+    Maaf6PartitionCensus census = maaf6_partition_census(layer, shared, params);
+    CHECK(census.background == 1);
+    CHECK(census.no_wedge == 1);
+    CHECK(census.filtered == 5);
+    CHECK(census.by_reasons == std::array<long, 8>{1, 1, 1, 1, 1, 0, 0, 0});
+    params.max_radius_px = 40;  // windows 4 m and 8 m: no pixel reaches beyond
+    census = maaf6_partition_census(layer, shared, params);
+    CHECK(census.by_reasons == std::array<long, 8>{2, 0, 2, 0, 1, 0, 0, 0});
+    params.pairs_used = 1;
+    census = maaf6_partition_census(layer, shared, params);
+    CHECK(census.by_reasons == std::array<long, 8>{5, 0, 0, 0, 0, 0, 0, 0});
 }

@@ -85,21 +85,27 @@ std::vector<Maaf6Component> maaf6_pair_components(const Maaf6Wedge &w, int pairs
     return out;
 }
 
-std::vector<Maaf6Component> maaf6_filter_components(const Maaf6Wedge &w, int pairs, double k, double window_m) {
-    std::vector<Maaf6Component> out = maaf6_pair_components(w, pairs);
-    if (pairs == 1) return out;
+Maaf6PartitionCheck maaf6_partition_check(const Maaf6Wedge &w, int pairs, double k, double window_m) {
+    const std::vector<Maaf6Component> components = maaf6_pair_components(w, pairs);
+    Maaf6PartitionCheck check;
+    if (pairs == 1) return check;
     // The x band the partition was cut to, as maaf6_pair_components() computes it.
     const double u_abs_min = std::min(std::fabs(w.u_min), std::fabs(w.u_max));
     double band_x = w.omega_x_max;
     if (w.has_y && one_signed(w)) band_x = std::min(band_x, w.omega_u_max / u_abs_min);
-    const bool band_clipped = w.has_y ? w.omega_y_max >= w.y_min * band_x
-                                      : !one_signed(w) || w.omega_u_max >= u_abs_min * w.omega_x_max;
-    const bool beyond_window = !(3.0 * k < out[0].sigma_x * window_m);  // 3 k / sigma_x^0 > window
+    check.band_clipped = w.has_y ? w.omega_y_max >= w.y_min * band_x
+                                 : !one_signed(w) || w.omega_u_max >= u_abs_min * w.omega_x_max;
+    check.beyond_window = !(3.0 * k < components[0].sigma_x * window_m);  // 3 k / sigma_x^0 > window
     // The focal-plane box (MAAF Sec. 6.2): the u-wedge straddles 0, so there is no
     // one-signed wedge to pack; the pixel gets extra samples instead (measured on room:
     // the partition there tripled the direct layer's error, see maaf6.h).
-    const bool focal_box = w.has_u && !one_signed(w);
-    if (!band_clipped && !beyond_window && !focal_box) return out;
+    check.focal_box = w.has_u && !one_signed(w);
+    return check;
+}
+
+std::vector<Maaf6Component> maaf6_filter_components(const Maaf6Wedge &w, int pairs, double k, double window_m) {
+    std::vector<Maaf6Component> out = maaf6_pair_components(w, pairs);
+    if (maaf6_partition_check(w, pairs, k, window_m).partition_used()) return out;
     const Maaf6Component central = maaf6_pair_components(w, 1)[0];  // MYRD14's axis-aligned filter
     for (Maaf6Component &c : out) c.weight = 0;
     out[0] = central;

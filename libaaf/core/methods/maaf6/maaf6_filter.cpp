@@ -23,10 +23,26 @@ void check(const ConstPlaneView &v, int width, int height, const char *what) {
         throw Error(std::string("MAAF 6D input '") + what + "' is missing or has another size");
 }
 
-}  // namespace
+/// The wedge of pixel (x, y) of a hit; false where there is none to filter
+/// along (no y-wedge and no one-signed u-wedge, or no finite positive pixel band).
+bool pixel_wedge(const Maaf6LayerInputs &layer, const Maaf6SharedInputs &shared, int x, int y, Maaf6Wedge &wedge) {
+    // Non-finite inputs (a broken pixel) count as no wedge: they stay in their own pixel.
+    wedge.has_y = layer.y_max(x, y) >= 0 && layer.y_min(x, y) >= 0 && std::isfinite(layer.y_max(x, y)) &&
+                  layer.y_max(x, y) >= layer.y_min(x, y);
+    wedge.y_min = wedge.has_y ? double(layer.y_min(x, y)) : 0.0;
+    wedge.y_max = wedge.has_y ? double(layer.y_max(x, y)) : 0.0;
+    wedge.omega_y_max = layer.omega_y_max;
+    wedge.has_u = shared.omega_u_max > 0 && std::isfinite(shared.u_min(x, y)) && std::isfinite(shared.u_max(x, y)) &&
+                  shared.u_max(x, y) >= shared.u_min(x, y);
+    wedge.u_min = double(shared.u_min(x, y));
+    wedge.u_max = double(shared.u_max(x, y));
+    wedge.omega_u_max = shared.omega_u_max;
+    wedge.omega_x_max = double(shared.omega_x(x, y));
+    return (wedge.has_y || (wedge.has_u && wedge.u_min * wedge.u_max > 0)) && wedge.omega_x_max > 0 &&
+           std::isfinite(wedge.omega_x_max);
+}
 
-void maaf6_filter_layer(const Maaf6LayerInputs &layer, const Maaf6SharedInputs &shared, const LightPlane &light,
-                        const Maaf6FilterParams &params, const std::array<PlaneView, 3> &out) {
+void check_inputs(const Maaf6LayerInputs &layer, const Maaf6SharedInputs &shared, const Maaf6FilterParams &params) {
     const int width = shared.object_id.width, height = shared.object_id.height;
     const int stored_n = 2 * params.stored_pairs - 1;
     if (params.pairs_used != 1 && params.pairs_used != params.stored_pairs)
@@ -47,6 +63,15 @@ void maaf6_filter_layer(const Maaf6LayerInputs &layer, const Maaf6SharedInputs &
         check(shared.normal[std::size_t(c)], width, height, "normal");
     }
     if (!(params.k > 0)) throw Error("MAAF 6D: k must be positive");
+}
+
+}  // namespace
+
+void maaf6_filter_layer(const Maaf6LayerInputs &layer, const Maaf6SharedInputs &shared, const LightPlane &light,
+                        const Maaf6FilterParams &params, const std::array<PlaneView, 3> &out) {
+    check_inputs(layer, shared, params);
+    const int width = shared.object_id.width, height = shared.object_id.height;
+    const int stored_n = 2 * params.stored_pairs - 1;
     const double cos_threshold = std::cos(double(params.normal_threshold_deg) * kPi / 180.0);
     const int used_n = 2 * params.pairs_used - 1;
 
@@ -62,20 +87,7 @@ void maaf6_filter_layer(const Maaf6LayerInputs &layer, const Maaf6SharedInputs &
                 continue;
             }
             Maaf6Wedge wedge;
-            // Non-finite inputs (a broken pixel) count as no wedge: they stay in their own pixel.
-            wedge.has_y = layer.y_max(x, y) >= 0 && layer.y_min(x, y) >= 0 && std::isfinite(layer.y_max(x, y)) &&
-                          layer.y_max(x, y) >= layer.y_min(x, y);
-            wedge.y_min = wedge.has_y ? double(layer.y_min(x, y)) : 0.0;
-            wedge.y_max = wedge.has_y ? double(layer.y_max(x, y)) : 0.0;
-            wedge.omega_y_max = layer.omega_y_max;
-            wedge.has_u = shared.omega_u_max > 0 && std::isfinite(shared.u_min(x, y)) &&
-                          std::isfinite(shared.u_max(x, y)) && shared.u_max(x, y) >= shared.u_min(x, y);
-            wedge.u_min = double(shared.u_min(x, y));
-            wedge.u_max = double(shared.u_max(x, y));
-            wedge.omega_u_max = shared.omega_u_max;
-            wedge.omega_x_max = double(shared.omega_x(x, y));
-            if ((!wedge.has_y && !(wedge.has_u && wedge.u_min * wedge.u_max > 0)) || !(wedge.omega_x_max > 0) ||
-                !std::isfinite(wedge.omega_x_max)) {
+            if (!pixel_wedge(layer, shared, x, y, wedge)) {
                 // No wedge to filter along (a pinhole without y-wedge, or the focal-plane box):
                 // the pixel band is the pixel itself; MAAF Sec. 6.2 adds samples there instead.
                 for (int c = 0; c < 3; ++c) out[std::size_t(c)](x, y) = own_mean(c);
@@ -144,6 +156,27 @@ void maaf6_filter_layer(const Maaf6LayerInputs &layer, const Maaf6SharedInputs &
             }
         }
     });
+}
+
+Maaf6PartitionCensus maaf6_partition_census(const Maaf6LayerInputs &layer, const Maaf6SharedInputs &shared,
+                                            const Maaf6FilterParams &params) {
+    check_inputs(layer, shared, params);
+    Maaf6PartitionCensus census;
+    for (int y = 0; y < shared.object_id.height; ++y)
+        for (int x = 0; x < shared.object_id.width; ++x) {
+            Maaf6Wedge wedge;
+            if (shared.object_id(x, y) == 0) {
+                ++census.background;
+            } else if (!pixel_wedge(layer, shared, x, y, wedge)) {
+                ++census.no_wedge;
+            } else {
+                ++census.filtered;
+                const double window_m = double(params.max_radius_px) * double(shared.pixel_size(x, y));
+                const Maaf6PartitionCheck c = maaf6_partition_check(wedge, params.pairs_used, params.k, window_m);
+                ++census.by_reasons[std::size_t(int(c.beyond_window) + 2 * int(c.band_clipped) + 4 * int(c.focal_box))];
+            }
+        }
+    return census;
 }
 
 }  // namespace aaf

@@ -92,6 +92,18 @@ std::vector<Maaf6Component> maaf6_pair_components(const Maaf6Wedge &wedge, int p
 /// k: the filter's width scale (Maaf6FilterParams::k). Throws as maaf6_pair_components().
 std::vector<Maaf6Component> maaf6_filter_components(const Maaf6Wedge &wedge, int pairs, double k, double window_m);
 
+/// Which of maaf6_filter_components()'s reasons hold at one pixel (several can):
+/// beyond_window (a), band_clipped (b), focal_box (c), in the order listed there.
+/// The partition is used where none holds. For N = 1 none is reported (there is
+/// nothing to fall back from). Throws as maaf6_pair_components().
+struct Maaf6PartitionCheck {
+    bool beyond_window = false;
+    bool band_clipped = false;
+    bool focal_box = false;
+    bool partition_used() const { return !beyond_window && !band_clipped && !focal_box; }
+};
+Maaf6PartitionCheck maaf6_partition_check(const Maaf6Wedge &wedge, int pairs, double k, double window_m);
+
 /// The y band's attenuation at a pair's y centre, G(C_y^p; Omega_y^max / 2) =
 /// exp(-(sigma C_y^p)^2 / 2) for Omega_y^max = 2 / sigma: the spectrum of the
 /// Gaussian light (or lobe) model whose band-limit MAAF Sec. 3 takes as

@@ -62,4 +62,19 @@ struct Maaf6FilterParams {
 void maaf6_filter_layer(const Maaf6LayerInputs &layer, const Maaf6SharedInputs &shared, const LightPlane &light,
                         const Maaf6FilterParams &params, const std::array<PlaneView, 3> &out);
 
+/// Where maaf6_filter_layer() uses the partition, and why not elsewhere
+/// (maaf6_partition_check() of each pixel's wedge, window and k as the filter has them).
+struct Maaf6PartitionCensus {
+    long background = 0;  ///< no primary hit: the pixel keeps its mean
+    long no_wedge = 0;    ///< a hit without a wedge to filter along: keeps its mean
+    long filtered = 0;    ///< the rest: filtered by the partition or the central filter
+    /// filtered pixels by the reasons that hold, index beyond_window + 2 band_clipped + 4 focal_box
+    /// (index 0: the partition is used)
+    std::array<long, 8> by_reasons{};
+};
+
+/// Counts maaf6_filter_layer()'s choice per pixel for `layer`. Throws as it does.
+Maaf6PartitionCensus maaf6_partition_census(const Maaf6LayerInputs &layer, const Maaf6SharedInputs &shared,
+                                            const Maaf6FilterParams &params);
+
 }  // namespace aaf
