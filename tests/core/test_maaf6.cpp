@@ -362,6 +362,29 @@ TEST_CASE("MAAF 6D synthetic edge: no bias from pairs the window cannot resolve,
     }
 }
 
+TEST_CASE("MAAF 6D synthetic edge: a lens-only pixel whose u-wedge the pixel band clips keeps its own mean",
+          "[maaf6]") {
+    // Nearly in focus (s_u = 0.1, a circle of confusion of 0.5 cm against 1 cm pixels): Omega_u^max / s_u
+    // = 400 rad/m is past the pixel band 200, so the filter's band would be the pixel band itself, and a
+    // sharp edge (1 cm) only gets blurred. Each pixel keeps its own mean, which with 256 strata is the
+    // exact integral; a u-wedge inside the band is still filtered (the sign test below).
+    for (int axis : {1, 2}) {
+        EdgeCase e;
+        e.axis = axis;
+        e.y_wedge = false;
+        e.slope = e.wedge_lo = e.wedge_hi = 0.1;
+        e.omega_v = 40;
+        e.edge_m = 0.01;
+        const double aaf = edge_error(e, 1), maaf = edge_error(e, 3);
+        INFO("axis " << axis << ": AAF " << aaf << ", MAAF " << maaf);
+        CHECK(aaf < 1e-5);
+        CHECK(maaf < 1e-5);
+        // One notch inside the band (Omega_u^max / s_u = 190 < 200): filtered, so the sharp edge moves.
+        e.omega_v = 19;
+        CHECK(edge_error(e, 1) > 1e-3);
+    }
+}
+
 TEST_CASE("MAAF 6D synthetic edge: the tap - centre displacement matches the wedge's sign, per subspace",
           "[maaf6]") {
     // g(x_a + s v) has its spectrum on Omega_v = s Omega_x; the partition is active (Omega_x extent

@@ -38,8 +38,14 @@ bool pixel_wedge(const Maaf6LayerInputs &layer, const Maaf6SharedInputs &shared,
     wedge.u_max = double(shared.u_max(x, y));
     wedge.omega_u_max = shared.omega_u_max;
     wedge.omega_x_max = double(shared.omega_x(x, y));
-    return (wedge.has_y || (wedge.has_u && wedge.u_min * wedge.u_max > 0)) && wedge.omega_x_max > 0 &&
-           std::isfinite(wedge.omega_x_max);
+    if (!(wedge.omega_x_max > 0 && std::isfinite(wedge.omega_x_max))) return false;
+    if (wedge.has_y) return true;
+    // Only a u-wedge: filtered where it is one-signed and narrower than the pixel band.
+    // Clipped by the pixel band (a circle of confusion of about a pixel or less),
+    // the filter would be the pixel band's own, which only blurs: the lens
+    // samples vary over less than it, so there is no noise for it to remove.
+    const double u_abs_min = std::min(std::fabs(wedge.u_min), std::fabs(wedge.u_max));
+    return wedge.has_u && wedge.u_min * wedge.u_max > 0 && wedge.omega_u_max < u_abs_min * wedge.omega_x_max;
 }
 
 void check_inputs(const Maaf6LayerInputs &layer, const Maaf6SharedInputs &shared, const Maaf6FilterParams &params) {

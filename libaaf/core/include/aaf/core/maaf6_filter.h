@@ -56,8 +56,11 @@ struct Maaf6FilterParams {
 /// a tenth of the central term's alone, the central term alone is used (AAF's
 /// filter), then the pixel's own mean; negative results are clamped to 0; the
 /// background keeps its mean, and so does a pixel without a y-wedge whose
-/// u-wedge is absent (pinhole) or the focal-plane box (MAAF Sec. 6.2 gives
-/// it more samples instead: its pixel band is the pixel itself). No NaN or Inf leaves it (inputs finite).
+/// u-wedge is absent (pinhole), the focal-plane box (MAAF Sec. 6.2 gives
+/// it more samples instead: its pixel band is the pixel itself) or clipped
+/// by the pixel band (Omega_u^max >= min |s_u| Omega_x^max: a circle of
+/// confusion of about a pixel, whose filter would only blur). No NaN or Inf
+/// leaves it (inputs finite).
 /// Writes `out` (3 planes). Throws aaf::Error on mismatched sizes.
 void maaf6_filter_layer(const Maaf6LayerInputs &layer, const Maaf6SharedInputs &shared, const LightPlane &light,
                         const Maaf6FilterParams &params, const std::array<PlaneView, 3> &out);
