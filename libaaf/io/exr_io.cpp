@@ -91,6 +91,11 @@ void check_declared_size_against_file(const std::string &path, const OIIO::Image
 /// file's bytes before OpenImageIO opens it: the first part's declared size
 /// against the budget, then the chunk tables against the file's length.
 void check_before_opening(const std::string &path) {
+    // Given a folder, OpenImageIO tries every format reader on it, and some
+    // (libheif's) can take minutes to give up.
+    struct stat info {};
+    if (stat(path.c_str(), &info) == 0 && S_ISDIR(info.st_mode))
+        throw InputError(path + ": is a directory, not an image");
     const ExrHeaders headers = read_exr_headers(path);
     if (headers.parts.empty()) return;
     const ExrPart &first = headers.parts.front();

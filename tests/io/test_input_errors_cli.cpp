@@ -130,3 +130,21 @@ TEST_CASE("an output path that is a folder exits 3 with 'is a directory'", "[io]
     CHECK(result.output == "aaf: error: " + folder.string() + ": is a directory\n");
     CHECK(fs::is_empty(folder));
 }
+
+TEST_CASE("an input that is a folder exits 3 with 'is a directory' before any reader tries it", "[io][cli]") {
+    // OpenImageIO would try every format reader on a folder; libheif's could run for minutes.
+    const fs::path dir = scratch_dir("cli_folder_input");
+    const fs::path folder = dir / "in.exr";
+    fs::create_directory(folder);
+    const std::string expected = "aaf: error: " + folder.string() + ": is a directory, not an image\n";
+    const std::string commands[] = {"info " + folder.string(),
+                                    "filter aaf " + folder.string() + " -o " + (dir / "out.exr").string()};
+    for (const std::string &command : commands) {
+        const auto result = run_aaf(command);
+        INFO(command);
+        CHECK(result.exit_code == 3);
+        CHECK(result.output == expected);
+    }
+    CHECK(fs::is_empty(folder));
+    CHECK(!fs::exists(dir / "out.exr"));
+}
