@@ -31,6 +31,43 @@ Maaf6Wedge example_wedge(double u_min, double u_max) {
     return w;
 }
 
+/// The planes maaf6_filter_layer() reads, all width x height, and the views of them it takes.
+struct Maaf6Planes {
+    int width = 0, height = 0;
+    std::vector<std::vector<float>> sums, weights;  ///< 3 (2N-1)^2 and (2N-1)^2 of them
+    std::vector<float> y_min, y_max, u_min, u_max, omega_x, id, pixel_size, spp, position[3], normal[3];
+
+    Maaf6LayerInputs layer(double omega_y_max) const {
+        Maaf6LayerInputs in;
+        for (const auto &p : sums) in.sums.push_back(view(p));
+        for (const auto &p : weights) in.weights.push_back(view(p));
+        in.y_min = view(y_min);
+        in.y_max = view(y_max);
+        in.omega_y_max = omega_y_max;
+        return in;
+    }
+    Maaf6SharedInputs shared(double omega_u_max) const {
+        Maaf6SharedInputs in;
+        in.u_min = view(u_min);
+        in.u_max = view(u_max);
+        in.omega_x = view(omega_x);
+        for (std::size_t c = 0; c < 3; ++c) {
+            in.position[c] = view(position[c]);
+            in.normal[c] = view(normal[c]);
+        }
+        in.object_id = view(id);
+        in.pixel_size = view(pixel_size);
+        in.samples = view(spp);
+        in.omega_u_max = omega_u_max;
+        return in;
+    }
+
+  private:
+    ConstPlaneView view(const std::vector<float> &plane) const {
+        return plane_view<const float>(plane.data(), width, height);
+    }
+};
+
 }  // namespace
 
 TEST_CASE("MAAF 6D without a lens is the 2D partition of MAAF Eq. 6-10", "[maaf6]") {
@@ -159,11 +196,21 @@ TEST_CASE("MAAF 6D filter: a fully lit region keeps each pixel's own mean exactl
     // and the output c times the pixel's own mean weight, i.e. its own mean (AAF's r(x) V(x) with V = 1);
     // with unit weights that is a constant image.
     const int width = 24, height = 16, n = width * height;
-    std::vector<std::vector<float>> sums(75, std::vector<float>(n)), weights(25, std::vector<float>(n));
-    std::vector<float> ymin(n), ymax(n), umin(n), umax(n), omegax(n, 200.0f), id(n, 1.0f), size(n, 0.01f),
-        spp(n, 16.0f), own[3];
+    Maaf6Planes planes;
+    planes.width = width;
+    planes.height = height;
+    auto &sums = planes.sums, &weights = planes.weights;
+    auto &ymin = planes.y_min, &ymax = planes.y_max, &umin = planes.u_min, &umax = planes.u_max;
+    auto &pos = planes.position, &nrm = planes.normal;
+    sums.assign(75, std::vector<float>(n));
+    weights.assign(25, std::vector<float>(n));
+    for (auto *p : {&ymin, &ymax, &umin, &umax}) p->assign(n, 0.0f);
+    planes.omega_x.assign(n, 200.0f);
+    planes.id.assign(n, 1.0f);
+    planes.pixel_size.assign(n, 0.01f);
+    planes.spp.assign(n, 16.0f);
+    std::vector<float> own[3];
     for (auto &o : own) o.assign(n, 0.0f);
-    std::vector<float> pos[3], nrm[3];
     for (int c = 0; c < 3; ++c) {
         pos[c].assign(n, 0.0f);
         nrm[c].assign(n, c == 1 ? 1.0f : 0.0f);
@@ -196,24 +243,8 @@ TEST_CASE("MAAF 6D filter: a fully lit region keeps each pixel's own mean exactl
         for (int c = 0; c < 75; ++c) sums[std::size_t(c)][std::size_t(i)] = float(rgb[std::size_t(c)]);
         for (int c = 0; c < 25; ++c) weights[std::size_t(c)][std::size_t(i)] = float(weight[std::size_t(c)]);
     }
-    Maaf6LayerInputs layer;
-    for (auto &p : sums) layer.sums.push_back(plane_view<const float>(p.data(), width, height));
-    for (auto &p : weights) layer.weights.push_back(plane_view<const float>(p.data(), width, height));
-    layer.y_min = plane_view<const float>(ymin.data(), width, height);
-    layer.y_max = plane_view<const float>(ymax.data(), width, height);
-    layer.omega_y_max = 10;
-    Maaf6SharedInputs shared;
-    shared.u_min = plane_view<const float>(umin.data(), width, height);
-    shared.u_max = plane_view<const float>(umax.data(), width, height);
-    shared.omega_x = plane_view<const float>(omegax.data(), width, height);
-    for (int c = 0; c < 3; ++c) {
-        shared.position[std::size_t(c)] = plane_view<const float>(pos[c].data(), width, height);
-        shared.normal[std::size_t(c)] = plane_view<const float>(nrm[c].data(), width, height);
-    }
-    shared.object_id = plane_view<const float>(id.data(), width, height);
-    shared.pixel_size = plane_view<const float>(size.data(), width, height);
-    shared.samples = plane_view<const float>(spp.data(), width, height);
-    shared.omega_u_max = 100;
+    const Maaf6LayerInputs layer = planes.layer(10);
+    const Maaf6SharedInputs shared = planes.shared(100);
     LightPlane light;
     light.axis_u = {1, 0, 0};
     light.axis_v = {0, 0, 1};
@@ -260,11 +291,22 @@ double edge_error(const EdgeCase &e, int pairs_used) {
     const int width = e.axis == 1 ? 41 : 25, height = e.axis == 1 ? 25 : 41, n = width * height, strata = 256;
     const double pixel_m = 0.01;
     auto g = [&](double t) { return 0.5 + 0.5 * std::tanh((t - 0.2) / e.edge_m); };
-    std::vector<std::vector<float>> sums(75, std::vector<float>(n)), weights(25, std::vector<float>(n));
-    std::vector<float> ymin(n, e.y_wedge ? float(e.wedge_lo) : -1.0f), ymax(n, e.y_wedge ? float(e.wedge_hi) : -1.0f),
-        umin(n, e.y_wedge ? 0.0f : float(e.wedge_lo)), umax(n, e.y_wedge ? 0.0f : float(e.wedge_hi)),
-        omegax(n, float(2 / pixel_m)), id(n, 1.0f), size(n, float(pixel_m)), spp(n, float(strata)), exact(n);
-    std::vector<float> pos[3], nrm[3];
+    Maaf6Planes planes;
+    planes.width = width;
+    planes.height = height;
+    auto &sums = planes.sums, &weights = planes.weights;
+    auto &pos = planes.position, &nrm = planes.normal;
+    sums.assign(75, std::vector<float>(n));
+    weights.assign(25, std::vector<float>(n));
+    planes.y_min.assign(n, e.y_wedge ? float(e.wedge_lo) : -1.0f);
+    planes.y_max.assign(n, e.y_wedge ? float(e.wedge_hi) : -1.0f);
+    planes.u_min.assign(n, e.y_wedge ? 0.0f : float(e.wedge_lo));
+    planes.u_max.assign(n, e.y_wedge ? 0.0f : float(e.wedge_hi));
+    planes.omega_x.assign(n, float(2 / pixel_m));
+    planes.id.assign(n, 1.0f);
+    planes.pixel_size.assign(n, float(pixel_m));
+    planes.spp.assign(n, float(strata));
+    std::vector<float> exact(n);
     for (int c = 0; c < 3; ++c) {
         pos[c].assign(n, 0.0f);
         nrm[c].assign(n, c == 1 ? 1.0f : 0.0f);
@@ -300,24 +342,8 @@ double edge_error(const EdgeCase &e, int pairs_used) {
         for (int c = 0; c < 75; ++c) sums[std::size_t(c)][std::size_t(i)] = float(rgb[std::size_t(c)]);
         for (int c = 0; c < 25; ++c) weights[std::size_t(c)][std::size_t(i)] = float(weight[std::size_t(c)]);
     }
-    Maaf6LayerInputs layer;
-    for (auto &p : sums) layer.sums.push_back(plane_view<const float>(p.data(), width, height));
-    for (auto &p : weights) layer.weights.push_back(plane_view<const float>(p.data(), width, height));
-    layer.y_min = plane_view<const float>(ymin.data(), width, height);
-    layer.y_max = plane_view<const float>(ymax.data(), width, height);
-    layer.omega_y_max = e.omega_v;
-    Maaf6SharedInputs shared;
-    shared.u_min = plane_view<const float>(umin.data(), width, height);
-    shared.u_max = plane_view<const float>(umax.data(), width, height);
-    shared.omega_x = plane_view<const float>(omegax.data(), width, height);
-    for (int c = 0; c < 3; ++c) {
-        shared.position[std::size_t(c)] = plane_view<const float>(pos[c].data(), width, height);
-        shared.normal[std::size_t(c)] = plane_view<const float>(nrm[c].data(), width, height);
-    }
-    shared.object_id = plane_view<const float>(id.data(), width, height);
-    shared.pixel_size = plane_view<const float>(size.data(), width, height);
-    shared.samples = plane_view<const float>(spp.data(), width, height);
-    shared.omega_u_max = e.y_wedge ? 0.0 : e.omega_v;
+    const Maaf6LayerInputs layer = planes.layer(e.omega_v);
+    const Maaf6SharedInputs shared = planes.shared(e.y_wedge ? 0.0 : e.omega_v);
     LightPlane light;
     light.axis_u = {1, 0, 0};
     light.axis_v = {0, 0, 1};
@@ -555,33 +581,25 @@ TEST_CASE("MAAF 6D partition census: the filter's choice per pixel, with its win
     // the partition; (a); (b); (a) and (b); (c) (a y-wedge, u slopes of both signs). example_wedge's y-wedge [1, 2] at Omega_y^max 10
     // (central reach 1.5 m unclipped, 3 m clipped to the x band 5); windows 12 px times the pixel size.
     const int width = 7, height = 1, n = width * height;
-    std::vector<std::vector<float>> sums(75, std::vector<float>(n, 0.0f)), weights(25, std::vector<float>(n, 0.0f));
-    std::vector<float> id{0, 1, 1, 1, 1, 1, 1}, ymin{-1, -1, 1, 1, 1, 1, 1}, ymax{-1, -1, 2, 2, 2, 2, 2},
-        umin{0.01f, -0.01f, 0.01f, 0.01f, 0.01f, 0.01f, -0.01f}, umax(n, 0.02f),
-        omegax{1e6f, 1e6f, 1e6f, 1e6f, 5, 5, 1e6f}, size{1, 1, 1, 0.1f, 1, 0.2f, 1}, spp(n, 16.0f);
-    std::vector<float> pos[3], nrm[3];
+    Maaf6Planes planes;
+    planes.width = width;
+    planes.height = height;
+    planes.sums.assign(75, std::vector<float>(n, 0.0f));
+    planes.weights.assign(25, std::vector<float>(n, 0.0f));
+    planes.id = {0, 1, 1, 1, 1, 1, 1};
+    planes.y_min = {-1, -1, 1, 1, 1, 1, 1};
+    planes.y_max = {-1, -1, 2, 2, 2, 2, 2};
+    planes.u_min = {0.01f, -0.01f, 0.01f, 0.01f, 0.01f, 0.01f, -0.01f};
+    planes.u_max.assign(n, 0.02f);
+    planes.omega_x = {1e6f, 1e6f, 1e6f, 1e6f, 5, 5, 1e6f};
+    planes.pixel_size = {1, 1, 1, 0.1f, 1, 0.2f, 1};
+    planes.spp.assign(n, 16.0f);
     for (int c = 0; c < 3; ++c) {
-        pos[c].assign(n, 0.0f);
-        nrm[c].assign(n, c == 1 ? 1.0f : 0.0f);
+        planes.position[c].assign(n, 0.0f);
+        planes.normal[c].assign(n, c == 1 ? 1.0f : 0.0f);
     }
-    Maaf6LayerInputs layer;
-    for (auto &p : sums) layer.sums.push_back(plane_view<const float>(p.data(), width, height));
-    for (auto &p : weights) layer.weights.push_back(plane_view<const float>(p.data(), width, height));
-    layer.y_min = plane_view<const float>(ymin.data(), width, height);
-    layer.y_max = plane_view<const float>(ymax.data(), width, height);
-    layer.omega_y_max = 10;
-    Maaf6SharedInputs shared;
-    shared.u_min = plane_view<const float>(umin.data(), width, height);
-    shared.u_max = plane_view<const float>(umax.data(), width, height);
-    shared.omega_x = plane_view<const float>(omegax.data(), width, height);
-    for (int c = 0; c < 3; ++c) {
-        shared.position[std::size_t(c)] = plane_view<const float>(pos[c].data(), width, height);
-        shared.normal[std::size_t(c)] = plane_view<const float>(nrm[c].data(), width, height);
-    }
-    shared.object_id = plane_view<const float>(id.data(), width, height);
-    shared.pixel_size = plane_view<const float>(size.data(), width, height);
-    shared.samples = plane_view<const float>(spp.data(), width, height);
-    shared.omega_u_max = 100;
+    const Maaf6LayerInputs layer = planes.layer(10);
+    const Maaf6SharedInputs shared = planes.shared(100);
     Maaf6FilterParams params;  // k 1, max radius 12 px, N = 3
     Maaf6PartitionCensus census = maaf6_partition_census(layer, shared, params);
     CHECK(census.background == 1);
