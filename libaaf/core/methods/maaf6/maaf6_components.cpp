@@ -112,6 +112,13 @@ std::vector<Maaf6Component> maaf6_filter_components(const Maaf6Wedge &w, int pai
     return out;
 }
 
+double maaf6_lens_band(const Maaf6Wedge &w) {
+    check_wedge(w, 1);
+    if (!one_signed(w)) return 0.0;
+    const double band = w.omega_u_max / std::min(std::fabs(w.u_min), std::fabs(w.u_max));
+    return band < w.omega_x_max ? band : 0.0;
+}
+
 double maaf6_light_attenuation(double centre_y, double omega_y_max) {
     if (!(omega_y_max > 0) || !std::isfinite(omega_y_max)) throw Error("MAAF 6D: the y band must be positive and finite");
     const double t = centre_y / (0.5 * omega_y_max);  // sigma C_y with Omega_y^max = 2 / sigma (MAAF Sec. 3)

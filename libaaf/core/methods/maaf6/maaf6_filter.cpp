@@ -44,8 +44,7 @@ bool pixel_wedge(const Maaf6LayerInputs &layer, const Maaf6SharedInputs &shared,
     // Clipped by the pixel band (a circle of confusion of about a pixel or less),
     // the filter would be the pixel band's own, which only blurs: the lens
     // samples vary over less than it, so there is no noise for it to remove.
-    const double u_abs_min = std::min(std::fabs(wedge.u_min), std::fabs(wedge.u_max));
-    return wedge.has_u && wedge.u_min * wedge.u_max > 0 && wedge.omega_u_max < u_abs_min * wedge.omega_x_max;
+    return maaf6_lens_band(wedge) > 0;
 }
 
 void check_inputs(const Maaf6LayerInputs &layer, const Maaf6SharedInputs &shared, const Maaf6FilterParams &params) {
@@ -115,7 +114,13 @@ void maaf6_filter_layer(const Maaf6LayerInputs &layer, const Maaf6SharedInputs &
             const double std_m = pairs[0].sigma_x > 0 ? params.k / pairs[0].sigma_x : 1e30;
             const double reach_px = 3.0 * std_m / std::max(1e-12, double(shared.pixel_size(x, y)));
             const int r = int(std::min(double(params.max_radius_px), std::ceil(reach_px)));
-            double num[3] = {0, 0, 0}, den = 0, num0[3] = {0, 0, 0}, den0 = 0;
+            // The unoccluded light that multiplies the filtered ratio: with a lens wedge its samples
+            // see whatever surface the lens ray hits (across a blurred silhouette, the surface behind),
+            // so the pixel's own mean carries all of the defocus noise. It varies with u alone, so it
+            // is filtered with the lens wedge's own axis-aligned band (never wider than the ratio's).
+            const double lens_band = maaf6_lens_band(wedge);
+            const double lens_std_m = lens_band > 0 ? params.k / lens_band : 0.0;
+            double num[3] = {0, 0, 0}, den = 0, num0[3] = {0, 0, 0}, den0 = 0, unoccluded = 0, unoccluded_den = 0;
             for (int ty = std::max(0, y - r); ty <= std::min(height - 1, y + r); ++ty)
                 for (int tx = std::max(0, x - r); tx <= std::min(width - 1, x + r); ++tx) {
                     if (shared.object_id(tx, ty) == 0) continue;
@@ -137,6 +142,13 @@ void maaf6_filter_layer(const Maaf6LayerInputs &layer, const Maaf6SharedInputs &
                     const float count = shared.samples(tx, ty);
                     if (!(count > 0)) continue;
                     const double per_sample = depth_weight / double(count);
+                    if (lens_std_m > 0) {
+                        const double t1_std = double(dot(d, t1)) / lens_std_m, t2_std = double(dot(d, t2)) / lens_std_m;
+                        const double n_std = double(dot(d, n)) / lens_std_m;
+                        const double lens_kernel = std::exp(-0.5 * (t1_std * t1_std + t2_std * t2_std + n_std * n_std));
+                        unoccluded += lens_kernel * double(layer.weights[0](tx, ty)) / double(count);
+                        unoccluded_den += lens_kernel;
+                    }
                     for (int a = 0; a < pixel_n; ++a) k1[std::size_t(a)] *= per_sample;
                     for (int a = 0; a < pixel_n; ++a)
                         for (int b = 0; b < pixel_n; ++b) {
@@ -150,11 +162,12 @@ void maaf6_filter_layer(const Maaf6LayerInputs &layer, const Maaf6SharedInputs &
                     den0 += central * double(layer.weights[0](tx, ty));
                     for (int col = 0; col < 3; ++col) num0[col] += central * double(layer.sums[std::size_t(col)](tx, ty));
                 }
+            const double unoccluded_mean = unoccluded_den > 0 ? unoccluded / unoccluded_den : own_weight;
             for (int col = 0; col < 3; ++col) {
                 // The offset components can cancel most of the normalisation: below a tenth of the
                 // central term's, fall back to the central term (AAF's filter) rather than amplify noise.
-                double v = den > 0.1 * den0 && den0 > 1e-12 ? own_weight * num[col] / den
-                           : den0 > 1e-12                   ? own_weight * num0[col] / den0
+                double v = den > 0.1 * den0 && den0 > 1e-12 ? unoccluded_mean * num[col] / den
+                           : den0 > 1e-12                   ? unoccluded_mean * num0[col] / den0
                                                             : double(own_mean(col));
                 if (!std::isfinite(v)) v = double(own_mean(col));
                 v = std::max(0.0, v);  // radiance is not negative; the offset kernels' ringing can be

@@ -104,6 +104,16 @@ struct Maaf6PartitionCheck {
 };
 Maaf6PartitionCheck maaf6_partition_check(const Maaf6Wedge &wedge, int pairs, double k, double window_m);
 
+/// The x band of the pixel's lens wedge alone, Omega_u^max / min |s_u| (MAAF
+/// Sec. 3 with L = A): the band of what varies with the lens point only, such
+/// as the unoccluded direct light, whose samples hit the surfaces the lens
+/// ray sees (another surface across a blurred silhouette). 0 where that wedge
+/// is absent (pinhole), the focal-plane box (u slopes of both signs), or
+/// clipped by the pixel band (a circle of confusion of about a pixel or less:
+/// the samples then vary over less than the filter, and the pixel's own mean is
+/// the estimate). Throws as maaf6_pair_components().
+double maaf6_lens_band(const Maaf6Wedge &wedge);
+
 /// The y band's attenuation at a pair's y centre, G(C_y^p; Omega_y^max / 2) =
 /// exp(-(sigma C_y^p)^2 / 2) for Omega_y^max = 2 / sigma: the spectrum of the
 /// Gaussian light (or lobe) model whose band-limit MAAF Sec. 3 takes as
