@@ -10,6 +10,7 @@ packages=(
   libhwy-dev             # Google Highway: the core's SIMD gather with runtime dispatch (a private dependency)
   python3-openimageio python3-numpy   # scripts/make_bad_corpus.py (run with /usr/bin/python3)
   python3-dev python3-pybind11         # the Python module aaf (libaaf/python), built for /usr/bin/python3
+  python3-matplotlib                   # the studies' plots (scripts/plot_*.py, ratio_study.py)
 )
 missing=()
 for p in "${packages[@]}"; do

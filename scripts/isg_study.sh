@@ -8,6 +8,7 @@
 set -euo pipefail
 root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 aaf="${AAF:-$root/build/cli/aaf}"
+"$root/scripts/deps.sh"  # the plots need python3-matplotlib
 [ -x "$aaf" ] || "$root/scripts/build.sh"
 out="${AAF_ISG_OUT:-$root/scripts/isg_study/results}"
 work="$(mktemp -d)"

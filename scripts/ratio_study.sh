@@ -13,6 +13,7 @@
 set -euo pipefail
 root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 aaf="${AAF:-$root/build/cli/aaf}"
+"$root/scripts/deps.sh"  # the plots need python3-matplotlib
 [ -x "$aaf" ] || "$root/scripts/build.sh"
 out="${RATIO_STUDY_OUT:-$root/scripts/ratio_study}"
 /usr/bin/python3 "$root/scripts/ratio_study.py" --aaf "$aaf" --out "$out" "$@"

@@ -9,12 +9,6 @@
 set -euo pipefail
 root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 "$root/scripts/build.sh"
-if ! dpkg -s python3-matplotlib >/dev/null 2>&1; then
-  sudo=""
-  [ "$(id -u)" -eq 0 ] || sudo="sudo"
-  $sudo apt-get update -q
-  DEBIAN_FRONTEND=noninteractive $sudo apt-get install -y -q --no-install-recommends python3-matplotlib
-fi
 out="${AAF_STUDY_OUT:-$root/out/study}"
 mkdir -p "$out"
 "$root/build/scripts/study/aaf_study" -o "$out/study.csv" "$@"
