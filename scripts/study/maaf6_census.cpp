@@ -3,7 +3,9 @@
 // the filtered pixels by the reasons of aaf::maaf6_filter_components()
 // ((a) the central component reaches beyond the window, (b) the x band clips
 // the wedge, (c) the focal-plane box), counted by aaf::maaf6_partition_census()
-// with the filter's own parameters. Prints a table.
+// with the filter's own parameters; "cut": of the partition's pixels, those
+// whose window the guides or the border cut (the central filter there too).
+// Prints a table.
 #include <CLI/CLI.hpp>
 #include <cstdio>
 #include <iostream>
@@ -65,8 +67,8 @@ int main(int argc, char **argv) {
         shared.omega_u_max = double(attribute(aovs, attr::kMaaf6OmegaLens));
         std::printf("%s, k %g, max radius %d px: filtered pixels of each layer by the reasons for the central filter\n",
                     input.c_str(), params.k, params.max_radius_px);
-        std::printf("%-9s %8s %8s %8s | %9s %9s %9s %9s %9s %9s %9s %9s\n", "layer", "backgr.", "no wedge",
-                    "filtered", "partition", "a", "b", "a+b", "c", "a+c", "b+c", "a+b+c");
+        std::printf("%-9s %8s %8s %8s | %9s %9s %9s %9s %9s %9s %9s %9s | %9s\n", "layer", "backgr.", "no wedge",
+                    "filtered", "partition", "a", "b", "a+b", "c", "a+c", "b+c", "a+b+c", "cut");
         struct LayerSpec {
             const char *name;
             Role sums, weights;
@@ -85,7 +87,7 @@ int main(int argc, char **argv) {
             const Maaf6PartitionCensus census = maaf6_partition_census(layer, shared, params);
             std::printf("%-9s %8ld %8ld %8ld |", spec.name, census.background, census.no_wedge, census.filtered);
             for (long count : census.by_reasons) std::printf(" %8.1f%%", percent(count, census.filtered));
-            std::printf("\n");
+            std::printf(" | %8.1f%%\n", percent(census.window_cut, census.filtered));
         }
     } catch (const std::exception &e) {
         std::cerr << "maaf6_census: error: " << e.what() << "\n";

@@ -710,3 +710,86 @@ TEST_CASE("MAAF 6D filter: with a lens wedge the unoccluded light is filtered wi
         }
     }
 }
+
+TEST_CASE("MAAF 6D filter: where the guides or the border cut the window, the pixel gets the axis-aligned "
+          "filter's own bits; over a whole window the partition",
+          "[maaf6]") {
+    // A floor (normal +y, 30 columns of 1 cm) meets a wall (normal +x) that its taps reject; noisy
+    // visibility on a y-wedge whose partition is active (s 0.25-0.35, Omega_y^max 40, central 3 std
+    // 8-9 cm inside the 12 cm window). The pairs' cos and sin kernels cancel only over a whole window.
+    const int width = 41, height = 25, n = width * height, wall = 30;
+    const double pixel_m = 0.01;
+    Maaf6Planes planes;
+    planes.width = width;
+    planes.height = height;
+    planes.sums.assign(75, std::vector<float>(n));
+    planes.weights.assign(25, std::vector<float>(n));
+    planes.y_min.assign(n, 0.25f);
+    planes.y_max.assign(n, 0.35f);
+    planes.u_min.assign(n, 0.0f);
+    planes.u_max.assign(n, 0.0f);
+    planes.omega_x.assign(n, float(2 / pixel_m));
+    planes.id.assign(n, 1.0f);
+    planes.pixel_size.assign(n, float(pixel_m));
+    planes.spp.assign(n, 16.0f);
+    for (int c = 0; c < 3; ++c) {
+        planes.position[c].assign(n, 0.0f);
+        planes.normal[c].assign(n, 0.0f);
+    }
+    Maaf6Wedge w;
+    w.has_y = true;
+    w.y_min = 0.25;
+    w.y_max = 0.35;
+    w.omega_y_max = 40;
+    w.has_u = false;
+    w.omega_x_max = 2 / pixel_m;
+    const Maaf6SampleSide side(maaf6_pair_components(w, 3));
+    std::mt19937 rng(5);
+    std::uniform_real_distribution<double> unit(0, 1);
+    for (int i = 0; i < n; ++i) {
+        const int x = i % width, y = i / width;
+        planes.position[0][std::size_t(i)] = float(pixel_m * x);
+        planes.position[2][std::size_t(i)] = float(pixel_m * y);
+        planes.normal[x < wall ? 1 : 0][std::size_t(i)] = 1.0f;
+        std::vector<double> rgb(75, 0.0), weight(25, 0.0);
+        for (int s = 0; s < 16; ++s) {
+            const float v = unit(rng) < 0.5 ? 1.0f : 0.0f;
+            const float value[3] = {v, v, v};
+            side.accumulate(0.1 * (unit(rng) - 0.5), 0, 0.1 * (unit(rng) - 0.5), 0, value, 1.0, rgb.data(),
+                            weight.data());
+        }
+        for (int c = 0; c < 75; ++c) planes.sums[std::size_t(c)][std::size_t(i)] = float(rgb[std::size_t(c)]);
+        for (int c = 0; c < 25; ++c) planes.weights[std::size_t(c)][std::size_t(i)] = float(weight[std::size_t(c)]);
+    }
+    LightPlane light;
+    light.axis_u = {1, 0, 0};
+    light.axis_v = {0, 0, 1};
+    std::vector<float> out[2];
+    for (int pairs : {3, 1}) {
+        std::vector<float> &o = out[pairs == 3 ? 0 : 1];
+        std::vector<float> g(n), b(n);
+        o.assign(n, -1.0f);
+        Maaf6FilterParams params;
+        params.pairs_used = pairs;
+        maaf6_filter_layer(planes.layer(40), planes.shared(0), light, params,
+                           {plane_view(o.data(), width, height), plane_view(g.data(), width, height),
+                            plane_view(b.data(), width, height)});
+    }
+    const int row = height / 2;
+    for (int x : {0, 1, wall - 2, wall - 1}) {  // the border or the wall cuts about half the window
+        INFO("cut window, column " << x);
+        CHECK(out[0][std::size_t(row * width + x)] == out[1][std::size_t(row * width + x)]);
+    }
+    int differ = 0;
+    for (int x = 10; x <= 18; ++x)  // whole windows: the partition
+        differ += out[0][std::size_t(row * width + x)] != out[1][std::size_t(row * width + x)];
+    CHECK(differ == 9);
+    // The census counts the cut windows where the filter gave the axis-aligned bits.
+    Maaf6FilterParams params;
+    const Maaf6PartitionCensus census = maaf6_partition_census(planes.layer(40), planes.shared(0), params);
+    long same = 0;
+    for (int i = 0; i < n; ++i) same += out[0][std::size_t(i)] == out[1][std::size_t(i)];
+    CHECK(census.by_reasons[0] == n);
+    CHECK(census.window_cut == same);
+    CHECK(census.window_cut > 2 * height);  // the border columns and the wall's neighbours at least
+}

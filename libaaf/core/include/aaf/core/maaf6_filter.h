@@ -61,6 +61,16 @@ struct Maaf6FilterParams {
 /// by the pixel band (Omega_u^max >= min |s_u| Omega_x^max: a circle of
 /// confusion of about a pixel, whose filter would only blur). No NaN or Inf
 /// leaves it (inputs finite).
+/// Where the partition is used but the guides (another normal, no hit) or the
+/// image's border take away more than 20% of the central envelope's mass
+/// from the window, the pixel gets the axis-aligned filter (`--pairs 1`'s
+/// bits): the pairs' cos and sin kernels cancel only over a whole window,
+/// and over a cut one they bias the pixel (room: indirect light at 128 spp
+/// 28% above N = 1 without this rule, 5% with it). With a filtered lens
+/// wedge (maaf6_lens_band() > 0) the unoccluded light that multiplies the
+/// filtered ratio is the Gaussian mean of the taps' own with the lens band,
+/// not the pixel's own mean: its samples see whatever surface the lens ray
+/// hits, so the own mean would carry the defocus noise through.
 /// Writes `out` (3 planes). Throws aaf::Error on mismatched sizes.
 void maaf6_filter_layer(const Maaf6LayerInputs &layer, const Maaf6SharedInputs &shared, const LightPlane &light,
                         const Maaf6FilterParams &params, const std::array<PlaneView, 3> &out);
@@ -74,6 +84,9 @@ struct Maaf6PartitionCensus {
     /// filtered pixels by the reasons that hold, index beyond_window + 2 band_clipped + 4 focal_box
     /// (index 0: the partition is used)
     std::array<long, 8> by_reasons{};
+    /// of by_reasons[0]: pixels whose window the guides (other normals, no hit) or the image's border
+    /// cut by more than 20% of the central envelope's mass, which get the axis-aligned filter instead
+    long window_cut = 0;
 };
 
 /// Counts maaf6_filter_layer()'s choice per pixel for `layer`. Throws as it does.
