@@ -266,7 +266,7 @@ Maaf6PartitionCensus maaf6_partition_census(const Maaf6LayerInputs &layer, const
                 // The window the filter gathers over, and how much of it the guides and the border keep.
                 const std::vector<Maaf6Component> pairs =
                     maaf6_filter_components(wedge, params.pairs_used, params.k, window_m);
-                const double std_m = params.k / pairs[0].sigma_x;
+                const double std_m = pairs[0].sigma_x > 0 ? params.k / pairs[0].sigma_x : 1e30;  // as the filter
                 const int r = window_radius(shared, params, x, y, std_m);
                 const double mass_all =
                     window_envelope(std_m / std::max(1e-12, double(shared.pixel_size(x, y))), r, envelope_px);
