@@ -62,7 +62,7 @@ void add_info_command(CLI::App &app) {
         io::add_channels_from_other_parts(options->input, layout, borrowable, aovs);
         std::printf("channels (the first part's, then those read from other parts):\n");
         for (std::size_t c = 0; c < aovs.channel_names().size(); ++c) {
-            const std::vector<float> &plane = aovs.plane(c);
+            const AovSet::Plane &plane = aovs.plane(c);
             auto [lo, hi] = std::minmax_element(plane.begin(), plane.end());
             const double mean = std::accumulate(plane.begin(), plane.end(), 0.0) / double(plane.size());
             std::printf("  %-20s min %-12g max %-12g mean %g\n", aovs.channel_names()[c].c_str(), *lo, *hi,

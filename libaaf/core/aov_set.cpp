@@ -29,7 +29,7 @@ PlaneView AovSet::add_channel(const std::string &name, float fill) {
     return plane_view(planes_.back().data(), width_, height_);
 }
 
-PlaneView AovSet::add_channel(const std::string &name, std::vector<float> plane) {
+PlaneView AovSet::add_channel(const std::string &name, Plane plane) {
     if (has_channel(name)) throw Error("channel " + quoted(name) + " already exists");
     if (plane.size() != pixel_count()) throw Error("channel " + quoted(name) + " has another size");
     names_.push_back(name);
@@ -38,10 +38,10 @@ PlaneView AovSet::add_channel(const std::string &name, std::vector<float> plane)
     return plane_view(planes_.back().data(), width_, height_);
 }
 
-std::vector<float> AovSet::take_channel(const std::string &name) {
+AovSet::Plane AovSet::take_channel(const std::string &name) {
     const std::size_t i = index_of(name);
     if (i == std::string::npos) throw Error("missing channel " + quoted(name));
-    std::vector<float> plane = std::move(planes_[i]);
+    Plane plane = std::move(planes_[i]);
     names_.erase(names_.begin() + std::ptrdiff_t(i));
     planes_.erase(planes_.begin() + std::ptrdiff_t(i));
     precisions_.erase(precisions_.begin() + std::ptrdiff_t(i));

@@ -267,15 +267,29 @@ void interleave(const std::vector<const float *> &planes, std::size_t count, flo
     }
 }
 
+/// The pixel type to ask OpenImageIO for to get float pixels: "native"
+/// (UNKNOWN) when every channel is stored as float. Asked for FLOAT instead,
+/// OpenImageIO 2.4 reads into a buffer of its own and converts float to
+/// float from there: a 640x480 frame of 33 float channels took 460 ms and
+/// 12900 page faults to read, natively 205 ms and 2900.
+TypeDesc float_request(const OIIO::ImageSpec &spec) {
+    const bool all_float =
+        spec.format == TypeDesc::FLOAT &&
+        std::all_of(spec.channelformats.begin(), spec.channelformats.end(),
+                    [](TypeDesc format) { return format == TypeDesc::FLOAT; });
+    return all_float ? TypeDesc::UNKNOWN : TypeDesc::FLOAT;
+}
+
 /// Reads every channel of the current part of `input` as float into
 /// `planes` (one width x height plane per channel), a strip of scanlines at
 /// a time: no interleaved copy of the whole image is held.
 void read_into_planes(OIIO::ImageInput &input, const OIIO::ImageSpec &spec, const std::vector<float *> &planes,
                       const std::string &path) {
     const std::size_t channels = planes.size(), width = std::size_t(spec.width);
+    const TypeDesc request = float_request(spec);
     if (spec.tile_width > 0) {  // tiled: OpenImageIO assembles the tiles
         std::vector<float> pixels(width * std::size_t(spec.height) * channels);
-        if (!input.read_image(0, 0, 0, int(channels), TypeDesc::FLOAT, pixels.data()))
+        if (!input.read_image(0, 0, 0, int(channels), request, pixels.data()))
             throw InputError(path + ": cannot read pixels: " + pending_error(&input));
         deinterleave(pixels.data(), width * std::size_t(spec.height), planes);
         return;
@@ -285,7 +299,7 @@ void read_into_planes(OIIO::ImageInput &input, const OIIO::ImageSpec &spec, cons
     for (int row = 0; row < spec.height; row += rows) {
         const int count = std::min(rows, spec.height - row);
         if (!input.read_scanlines(0, 0, spec.y + row, spec.y + row + count, spec.z, 0, int(channels),
-                                  TypeDesc::FLOAT, strip.data()))
+                                  request, strip.data()))
             throw InputError(path + ": cannot read pixels: " + pending_error(&input));
         std::vector<float *> rows_of_planes;
         for (float *plane : planes) rows_of_planes.push_back(plane + std::size_t(row) * width);

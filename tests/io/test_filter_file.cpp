@@ -74,7 +74,7 @@ io::FrameFilter doubling_filter(int *concurrency = nullptr) {
 /// Writes `aovs` as part 0 (with a matrix attribute AovSet cannot hold) and
 /// the channels `toy.in` plus `extra.u` as part 1 ("extra"), as renderers
 /// that write one AOV per part do.
-void write_two_parts(const fs::path &path, const AovSet &aovs, const std::vector<float> &toy_in) {
+void write_two_parts(const fs::path &path, const AovSet &aovs, const AovSet::Plane &toy_in) {
     using OIIO::TypeDesc;
     OIIO::ImageSpec first(kWidth, kHeight, int(aovs.channel_names().size()), TypeDesc::FLOAT);
     first.channelnames = aovs.channel_names();
@@ -146,7 +146,7 @@ TEST_CASE("filter_file: other parts and header attributes go through, borrowed c
     const fs::path dir = scratch_dir("filter_file_parts");
     const std::string input = (dir / "in.exr").string(), output = (dir / "out.exr").string();
     AovSet first = toy_frame();
-    const std::vector<float> toy_in = first.plane(first.index_of("toy.in"));
+    const AovSet::Plane toy_in = first.plane(first.index_of("toy.in"));
     AovSet without_toy(kWidth, kHeight);
     for (const std::string &name : first.channel_names())
         if (name != "toy.in")

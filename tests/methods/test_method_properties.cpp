@@ -55,11 +55,11 @@ AovSet run_method(const Method &method, const AovSet &input, int threads = 0) {
     return out;
 }
 
-bool same_bytes(const std::vector<float> &a, const std::vector<float> &b) {
+bool same_bytes(const AovSet::Plane &a, const AovSet::Plane &b) {
     return a.size() == b.size() && std::memcmp(a.data(), b.data(), a.size() * sizeof(float)) == 0;
 }
 
-const std::vector<float> &plane(const AovSet &aovs, const std::string &name) {
+const AovSet::Plane &plane(const AovSet &aovs, const std::string &name) {
     return aovs.plane(aovs.index_of(name));
 }
 

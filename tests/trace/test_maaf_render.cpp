@@ -32,8 +32,9 @@ AovSet render_maaf(int spp, int threads = 0, std::uint64_t seed = 1) {
     return trace::render_scene("grids", settings);
 }
 
-const std::vector<float> &plane(const AovSet &aovs, const std::string &name) {
-    return aovs.plane(aovs.index_of(name));
+std::vector<float> plane(const AovSet &aovs, const std::string &name) {
+    const AovSet::Plane &values = aovs.plane(aovs.index_of(name));
+    return std::vector<float>(values.begin(), values.end());
 }
 
 std::vector<float> filtered(const AovSet &aovs, const std::string &method,

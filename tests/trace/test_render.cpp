@@ -46,9 +46,11 @@ Vec3 position(const AovSet &aovs, int x, int y) {
 }
 
 /// The stored plane of the channel called `name`.
-const std::vector<float> &plane(const AovSet &aovs, const std::string &name) {
+std::vector<float> plane(const AovSet &aovs, const std::string &name) {
     const auto &names = aovs.channel_names();
-    return aovs.plane(std::size_t(std::find(names.begin(), names.end(), name) - names.begin()));
+    const AovSet::Plane &values =
+        aovs.plane(std::size_t(std::find(names.begin(), names.end(), name) - names.begin()));
+    return std::vector<float>(values.begin(), values.end());
 }
 
 bool same_channels(const AovSet &a, const AovSet &b) {

@@ -5,6 +5,7 @@
 #include <variant>
 #include <vector>
 
+#include "aaf/core/frame_allocator.h"
 #include "aaf/core/plane_view.h"
 #include "aaf/core/vec3.h"
 
@@ -25,6 +26,11 @@ using AttributeValue = std::variant<int, float, std::string, Vec3>;
 /// stay valid while channels are added.
 class AovSet {
   public:
+    /// One channel's storage: from the frame allocator (frame_allocator.h),
+    /// which backs frame-sized planes with huge pages, so reading a frame
+    /// into its planes costs far fewer page faults.
+    using Plane = FrameVector<float>;
+
     AovSet() = default;
     AovSet(int width, int height);
 
@@ -36,10 +42,10 @@ class AovSet {
     PlaneView add_channel(const std::string &name, float fill = 0.0f);
     /// Adds a channel holding `plane` (moved in, width * height floats);
     /// throws aaf::Error if the name exists or the size differs.
-    PlaneView add_channel(const std::string &name, std::vector<float> plane);
+    PlaneView add_channel(const std::string &name, Plane plane);
     /// Removes channel `name` and returns its plane (moved out, no copy);
     /// throws aaf::Error naming the channel when it is missing.
-    std::vector<float> take_channel(const std::string &name);
+    Plane take_channel(const std::string &name);
 
     bool has_channel(const std::string &name) const;
     /// Throws aaf::Error naming the channel when it is missing.
@@ -54,7 +60,7 @@ class AovSet {
     Precision precision(std::size_t index) const { return precisions_[index]; }
     void set_precision(const std::string &name, Precision precision);
     /// Contiguous storage of the i-th channel (width * height floats, row-major).
-    const std::vector<float> &plane(std::size_t index) const { return planes_[index]; }
+    const Plane &plane(std::size_t index) const { return planes_[index]; }
 
     std::map<std::string, AttributeValue> attributes;
 
@@ -62,7 +68,7 @@ class AovSet {
     int width_ = 0;
     int height_ = 0;
     std::vector<std::string> names_;
-    std::vector<std::vector<float>> planes_;
+    std::vector<Plane> planes_;
     std::vector<Precision> precisions_;
 };
 
