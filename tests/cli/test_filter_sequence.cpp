@@ -144,11 +144,13 @@ TEST_CASE("filter: a run killed by SIGTERM mid-write leaves no partial or tempor
     render_sequence(dir);
     const std::string in = (dir / "in.####.exr").string(), out = (dir / "out.####.exr").string();
     // The test hook holds each finished temporary 3 s before its rename; the
-    // kill lands while frame 1's temporary exists.
+    // kill lands while frame 1's temporary exists: the script waits for it to
+    // appear (up to 60 s: a loaded machine starts the tool late), then kills.
     const fs::path script = dir / "kill.sh";
     std::ofstream(script) << "AAF_TEST_HOLD_BEFORE_RENAME_S=3 " << AAF_EXECUTABLE << " filter aaf " << in
                           << " -o " << out << " --frames 1-4 >/dev/null 2>&1 &\n"
-                          << "pid=$!\nsleep 1.5\n"
+                          << "pid=$!\nfor i in $(seq 1 1200); do ls -a " << dir.string()
+                          << " | grep -q 'tmp-' && break; sleep 0.05; done\n"
                           << "ls -a " << dir.string() << " | grep -c 'tmp-' > " << (dir / "seen.txt").string()
                           << "\nkill -TERM $pid\nwait $pid\necho $? > " << (dir / "status.txt").string()
                           << "\n";
