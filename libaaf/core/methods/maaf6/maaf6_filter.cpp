@@ -60,7 +60,6 @@ int window_radius(const Maaf6SharedInputs &shared, const Maaf6FilterParams &para
     return int(std::min(double(params.max_radius_px), std::ceil(reach_px)));
 }
 
-
 void check(const ConstPlaneView &v, int width, int height, const char *what) {
     if (!v.valid() || v.width != width || v.height != height)
         throw Error(std::string("MAAF 6D input '") + what + "' is missing or has another size");
