@@ -143,8 +143,10 @@ void gather_sweep(const GatherGuides &g, float cos_threshold, bool symmetric_bor
                     modulation.omega_u = mod_u.omega_rad_per_m(x, y);
                 if (mod_v.kind != AxisModulation::Kind::None)
                     modulation.omega_v = mod_v.omega_rad_per_m(x, y);
-                if (mod_u.inv_two_sigma_sq.valid()) modulation.inv_two_sigma_sq_u = mod_u.inv_two_sigma_sq(x, y);
-                if (mod_v.inv_two_sigma_sq.valid()) modulation.inv_two_sigma_sq_v = mod_v.inv_two_sigma_sq(x, y);
+                if (mod_u.inv_two_sigma_sq.valid())
+                    modulation.inv_two_sigma_sq_u = mod_u.inv_two_sigma_sq(x, y);
+                if (mod_v.inv_two_sigma_sq.valid())
+                    modulation.inv_two_sigma_sq_v = mod_v.inv_two_sigma_sq(x, y);
             }
             int reach_x = along_x ? radius : 0, reach_y = along_y ? radius : 0;
             if (symmetric_borders) {
@@ -284,12 +286,12 @@ void sweep_all(const GatherGuides &g, float cos_threshold, bool symmetric_border
 
 void check_guides(const GatherGuides &g) {
     const std::size_t count = std::size_t(g.width) * std::size_t(g.height);
-    for (const FrameVector<float> *plane : {&g.coord_u_m, &g.coord_v_m, &g.normal_x, &g.normal_y, &g.normal_z,
-                                            &g.object_id, &g.inv_two_sigma_sq})
+    for (const FramePlane<float> *plane : {&g.coord_u_m, &g.coord_v_m, &g.normal_x, &g.normal_y, &g.normal_z,
+                                           &g.object_id, &g.inv_two_sigma_sq})
         if (plane->size() != count) throw Error("gather guides: a plane does not match the guides' size");
     if (!g.inv_two_sigma_sq_v.empty() && g.inv_two_sigma_sq_v.size() != count)
         throw Error("gather guides: the v width plane must match the guides' size or be empty");
-    for (const FrameVector<float> *plane : {&g.coord_n_m, &g.shear_u, &g.shear_v, &g.inv_two_sigma_sq_n})
+    for (const FramePlane<float> *plane : {&g.coord_n_m, &g.shear_u, &g.shear_v, &g.inv_two_sigma_sq_n})
         if (plane->size() != (g.sheared() ? count : 0))
             throw Error("gather guides: the shear planes must all match the guides' size or all be empty");
     if (g.radius_px.size() != count)
@@ -321,10 +323,23 @@ void GatherGuides::resize(int new_width, int new_height) {
     width = new_width;
     height = new_height;
     const std::size_t count = std::size_t(width) * std::size_t(height);
-    for (FrameVector<float> *plane :
+    for (FramePlane<float> *plane :
          {&coord_u_m, &coord_v_m, &normal_x, &normal_y, &normal_z, &object_id, &inv_two_sigma_sq})
         plane->assign(count, 0.0f);
     radius_px.assign(count, 0);
+}
+
+void GatherGuides::allocate(int new_width, int new_height) {
+    width = new_width;
+    height = new_height;
+    const std::size_t count = std::size_t(width) * std::size_t(height);
+    for (FramePlane<float> *plane :
+         {&coord_u_m, &coord_v_m, &normal_x, &normal_y, &normal_z, &object_id, &inv_two_sigma_sq}) {
+        plane->clear();
+        plane->resize(count);
+    }
+    radius_px.clear();
+    radius_px.resize(count);
 }
 
 void GatherSettings::validate() const {

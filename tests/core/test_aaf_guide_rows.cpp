@@ -18,6 +18,7 @@
 #include "aaf/core/aaf_bandlimits.h"
 #include "aaf/core/aaf_filter.h"
 #include "aaf/core/aaf_guide_rows.h"
+#include "aaf/core/frame_allocator.h"
 #include "aaf/core/occluder_fill.h"
 
 using namespace aaf;
@@ -179,7 +180,7 @@ GatherGuides reference_guides(const AafInputs &in, const LightPlane &light, cons
     if (anisotropic) guides.inv_two_sigma_sq_v.assign(count, 0.0f);
     const bool along_light = params.light_distance != AafLightDistance::OrthogonalProjection;
     if (along_light)
-        for (FrameVector<float> *p :
+        for (FramePlane<float> *p :
              {&guides.coord_n_m, &guides.shear_u, &guides.shear_v, &guides.inv_two_sigma_sq_n})
             p->assign(count, 0.0f);
     const float variance_u_m2 = light.variance_u_m2(), variance_v_m2 = light.variance_v_m2();
@@ -253,6 +254,14 @@ bool same_bits(const A &a, const B &b) {
            (a.empty() || std::memcmp(a.data(), b.data(), a.size() * sizeof(float)) == 0);
 }
 
+/// Fills frame blocks of `count` numbers with NaN and frees them, so that the
+/// planes the guides then take from the allocator (sized without zero-filling)
+/// hold NaN (as radii, a huge number) wherever they would not be written.
+void poison_frame_memory(std::size_t count) {
+    std::vector<FramePlane<float>> planes(32);
+    for (FramePlane<float> &plane : planes) plane.assign(count, std::numeric_limits<float>::quiet_NaN());
+}
+
 }  // namespace
 
 TEST_CASE("AAF guides: every instruction set gives the scalar definition's bits", "[aaf][simd]") {
@@ -285,6 +294,7 @@ TEST_CASE("AAF guides: every instruction set gives the scalar definition's bits"
                             names.insert(detail::aaf_guide_row_target());
                             // NaN beforehand: every pixel's beta must be written.
                             std::vector<float> beta(frame.d1.size(), std::numeric_limits<float>::quiet_NaN());
+                            poison_frame_memory(frame.d1.size());
                             const GatherGuides g = aaf_gather_guides(
                                 in, light, params, plane_view(beta.data(), frame.width, frame.height));
                             INFO("target " << hwy::TargetName(target) << ", light distance " << int(distance)

@@ -64,21 +64,19 @@ GatherGuides aaf_gather_guides(const AafInputs &in, const LightPlane &light, con
     // Filled before the guides exist, so the search's scratch planes never coexist with them.
     const FilledOccluders occluders =
         fill_occluder_distances(in.d2_min, in.d2_max, in.object_id, params.fill_radius_px);
+    // Sized without zero-filling: the guide rows below write every pixel of every plane.
     GatherGuides guides;
-    guides.resize(in.visibility.width, in.visibility.height);
+    guides.allocate(in.visibility.width, in.visibility.height);
+    const std::size_t count = std::size_t(guides.width) * std::size_t(guides.height);
     const LightBandlimitAxes bandlimit_sigma_m = aaf_light_sigmas_m(light, params);
     // One band-limit per light axis: the Gaussian is anisotropic in the light's plane.
     const bool anisotropic = bandlimit_sigma_m.u_m != bandlimit_sigma_m.v_m;
-    if (anisotropic)
-        guides.inv_two_sigma_sq_v.assign(std::size_t(guides.width) * std::size_t(guides.height), 0.0f);
+    if (anisotropic) guides.inv_two_sigma_sq_v.resize(count);
     const bool along_light = params.light_distance != AafLightDistance::OrthogonalProjection;
-    if (along_light) {
-        const std::size_t count = std::size_t(guides.width) * std::size_t(guides.height);
-        guides.coord_n_m.assign(count, 0.0f);
-        guides.shear_u.assign(count, 0.0f);
-        guides.shear_v.assign(count, 0.0f);
-        guides.inv_two_sigma_sq_n.assign(count, 0.0f);
-    }
+    if (along_light)
+        for (FramePlane<float> *plane :
+             {&guides.coord_n_m, &guides.shear_u, &guides.shear_v, &guides.inv_two_sigma_sq_n})
+            plane->resize(count);
     detail::AafGuideConstants constants;
     for (int a = 0; a < 3; ++a) {
         constants.center[a] = light.center[a];

@@ -14,6 +14,16 @@ namespace aaf {
 
 namespace {
 
+/// Copies row `y` of `plane` to `to` (width floats).
+void copy_row(ConstPlaneView plane, int y, float *to) {
+    const float *const from = &plane(0, y);
+    if (plane.pixel_stride == 1) {
+        std::copy(from, from + plane.width, to);
+        return;
+    }
+    for (int x = 0; x < plane.width; ++x) to[x] = from[std::ptrdiff_t(x) * plane.pixel_stride];
+}
+
 /// Rows of centres searched per band; a band's scratch also holds the r rows above and below it.
 int band_rows(int radius_px) {
     return std::max(64, 4 * radius_px);
@@ -26,8 +36,9 @@ FilledOccluders fill_occluder_distances(ConstPlaneView d2_min, ConstPlaneView d2
     const int width = d2_max.width, height = d2_max.height;
     const std::size_t count = std::size_t(width) * std::size_t(height);
     FilledOccluders filled;
-    filled.d2_min_m.assign(count, 0.0f);
-    filled.d2_max_m.assign(count, 0.0f);
+    // Not zero-filled: the rows below write every pixel (its own distances, 0, or the search's mean).
+    filled.d2_min_m.resize(count);
+    filled.d2_max_m.resize(count);
     const int r = radius_px;
     // The disc's half-width on each row: dx^2 + dy^2 <= r^2.
     std::vector<int> half_width(std::size_t(r) + 1);
@@ -48,10 +59,14 @@ FilledOccluders fill_occluder_distances(ConstPlaneView d2_min, ConstPlaneView d2
     const std::unique_ptr<float[]> lender_id(new float[padded_width * scratch_rows]),
         min_m(new float[padded_width * scratch_rows]), max_m(new float[padded_width * scratch_rows]);
     // Per pixel of the scratch rows, whether its row holds an occluded pixel
-    // within r columns (a running count along the row), so that a window's
-    // test below is an OR over its 2r + 1 rows: most unoccluded pixels have
-    // no occluded pixel in their window and skip the search.
-    std::vector<std::uint8_t> occluded_near_in_row(std::size_t(width) * scratch_rows);
+    // within r columns (an OR over those columns), so that a window's test
+    // below is an OR over its 2r + 1 rows: most unoccluded pixels have no
+    // occluded pixel in their window and skip the search, and the search
+    // skips rows that hold no lender for any of a vector's centres.
+    const std::size_t near_stride = std::size_t(width) + detail::kOccluderSearchPadding;
+    std::vector<std::uint8_t> occluded_near_in_row(near_stride * scratch_rows, 0);
+    // Per padded pixel of the scratch rows, 1 where it lends its distances.
+    std::vector<std::uint8_t> occluded_scratch(padded_width * scratch_rows);
 
     detail::OccluderSearch search;
     search.lender_id = lender_id.get();
@@ -62,44 +77,50 @@ FilledOccluders fill_occluder_distances(ConstPlaneView d2_min, ConstPlaneView d2
     search.width = width;
     search.height = height;
     search.half_width = half_width.data();
+    search.occluded_near = occluded_near_in_row.data();
+    search.near_stride = near_stride;
 
     for (int band_begin = 0; band_begin < height; band_begin += band) {
         const int band_end = std::min(height, band_begin + band);
         // The scratch holds image rows [first, last).
         const int first = std::max(0, band_begin - r), last = std::min(height, band_end + r);
         search.first_row = first;
-        auto padded = [&](int x, int y) {
-            return std::size_t(y - first) * padded_width + std::size_t(x + r);
-        };
         parallel_for_rows(last - first, [&](int row_in_scratch) {
             const int y = first + row_in_scratch;
-            const std::size_t row_first = std::size_t(row_in_scratch) * padded_width;
-            // Padding: matches no id, no distances.
-            for (const std::size_t begin : {std::size_t(0), std::size_t(r) + std::size_t(width)}) {
-                const std::size_t end = begin == 0 ? std::size_t(r) : padded_width;
-                std::fill(lender_id.get() + row_first + begin, lender_id.get() + row_first + end,
-                          std::numeric_limits<float>::quiet_NaN());
-                std::fill(min_m.get() + row_first + begin, min_m.get() + row_first + end, 0.0f);
-                std::fill(max_m.get() + row_first + begin, max_m.get() + row_first + end, 0.0f);
-            }
-            std::vector<int> occluded_before(std::size_t(width) + 1, 0);
-            for (int x = 0; x < width; ++x) {
-                const std::size_t i = padded(x, y);
-                min_m[i] = d2_min(x, y);
-                max_m[i] = d2_max(x, y);
-                const bool occluded = has_occluder(max_m[i]);
-                lender_id[i] = occluded ? object_id(x, y) : std::numeric_limits<float>::quiet_NaN();
-                occluded_before[std::size_t(x) + 1] = occluded_before[std::size_t(x)] + int(occluded);
-            }
-            // Locals, not the captures: byte stores may alias anything, which would
-            // keep the compiler reloading the bounds and from vectorising.
+            // Locals, not the captures: byte and float stores may alias
+            // anything, which would keep the compiler reloading them and
+            // from vectorising the loops below.
             const int w = width, reach = r;
-            const int *const before = occluded_before.data();
+            float *const ids = lender_id.get() + std::size_t(row_in_scratch) * padded_width;
+            float *const mins = min_m.get() + std::size_t(row_in_scratch) * padded_width;
+            float *const maxs = max_m.get() + std::size_t(row_in_scratch) * padded_width;
+            // Padding: matches no id, no distances.
+            for (const std::size_t begin : {std::size_t(0), std::size_t(reach) + std::size_t(w)}) {
+                const std::size_t end = begin == 0 ? std::size_t(reach) : padded_width;
+                std::fill(ids + begin, ids + end, std::numeric_limits<float>::quiet_NaN());
+                std::fill(mins + begin, mins + end, 0.0f);
+                std::fill(maxs + begin, maxs + end, 0.0f);
+            }
+            copy_row(d2_min, y, mins + reach);
+            copy_row(d2_max, y, maxs + reach);
+            copy_row(object_id, y, ids + reach);
+            // Only occluded pixels lend their distances.
+            std::uint8_t *const occluded =
+                occluded_scratch.data() + std::size_t(row_in_scratch) * padded_width;
+            std::fill(occluded, occluded + padded_width, std::uint8_t(0));
+            for (int x = reach; x < reach + w; ++x) {
+                const bool lends = has_occluder(maxs[x]);
+                occluded[x] = std::uint8_t(lends);
+                ids[x] = lends ? ids[x] : std::numeric_limits<float>::quiet_NaN();
+            }
+            // Per pixel, whether its row holds an occluded pixel within r columns.
             std::uint8_t *const near =
-                occluded_near_in_row.data() + std::size_t(row_in_scratch) * std::size_t(w);
-            for (int x = 0; x < w; ++x)
-                near[x] =
-                    std::uint8_t(before[std::min(w, x + reach + 1)] - before[std::max(0, x - reach)] > 0);
+                occluded_near_in_row.data() + std::size_t(row_in_scratch) * near_stride;
+            std::fill(near, near + w, std::uint8_t(0));
+            for (int dx = 0; dx <= 2 * reach; ++dx) {
+                const std::uint8_t *const from = occluded + dx;
+                for (int x = 0; x < w; ++x) near[x] = std::uint8_t(near[x] | from[x]);
+            }
         });
         parallel_for_rows(band_end - band_begin, [&](int row_in_band) {
             const int y = band_begin + row_in_band;
@@ -114,19 +135,27 @@ FilledOccluders fill_occluder_distances(ConstPlaneView d2_min, ConstPlaneView d2
                 std::uint8_t *const any = occluded_in_window.data();
                 for (int ny = std::max(0, y - r); ny <= std::min(height - 1, y + r); ++ny) {
                     const std::uint8_t *const near =
-                        occluded_near_in_row.data() + std::size_t(ny - first) * std::size_t(w);
+                        occluded_near_in_row.data() + std::size_t(ny - first) * near_stride;
                     for (int x = 0; x < w; ++x) any[x] = std::uint8_t(any[x] | near[x]);
                 }
             }
             const std::size_t row = std::size_t(y) * width;
-            for (int x = 0; x < width; ++x) {
-                const std::size_t p = padded(x, y);
-                if (has_occluder(max_m[p])) {
-                    filled.d2_min_m[row + x] = min_m[p];
-                    filled.d2_max_m[row + x] = max_m[p];
-                    continue;
+            {
+                const int w = width;  // locals: see above
+                const std::size_t p = std::size_t(y - first) * padded_width + std::size_t(r);
+                const float *const mins = min_m.get() + p, *const maxs = max_m.get() + p;
+                float *const out_min = filled.d2_min_m.data() + row, *const out_max =
+                                                                         filled.d2_max_m.data() + row;
+                const std::uint8_t *const any = occluded_in_window.data();
+                float *const ids = centre_id.data();
+                copy_row(object_id, y, ids);
+                for (int x = 0; x < w; ++x) {
+                    const bool own = has_occluder(maxs[x]);
+                    out_min[x] = own ? mins[x] : 0.0f;
+                    out_max[x] = own ? maxs[x] : 0.0f;
+                    // NaN: no search (occluded itself, or no occluded pixel in its window).
+                    ids[x] = !own && any[x] ? ids[x] : std::numeric_limits<float>::quiet_NaN();
                 }
-                if (occluded_in_window[std::size_t(x)]) centre_id[std::size_t(x)] = object_id(x, y);
             }
             detail::search_occluder_row(search, y, centre_id.data(), filled.d2_min_m.data() + row,
                                         filled.d2_max_m.data() + row);

@@ -37,6 +37,12 @@ void SearchOccluderRow(const OccluderSearch &s, int y, const float *centre_id, f
         auto sum_min = hn::Zero(dd), sum_max = hn::Zero(dd), lenders = hn::Zero(dd);
         const auto one = hn::Set(dd, 1.0);
         for (int ny = y_begin; ny <= y_end; ++ny) {
+            // No occluded pixel within pad columns of any centre: the row adds nothing.
+            const unsigned char *const near =
+                s.occluded_near + std::size_t(ny - s.first_row) * s.near_stride + std::size_t(x0);
+            bool any_near = false;
+            for (int l = 0; l < lanes; ++l) any_near |= near[l] != 0;
+            if (!any_near) continue;
             const int w = s.half_width[std::abs(ny - y)];
             const std::size_t row = std::size_t(ny - s.first_row) * s.padded_width + std::size_t(r + x0);
             for (int dx = -w; dx <= w; ++dx) {

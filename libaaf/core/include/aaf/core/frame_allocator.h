@@ -3,6 +3,8 @@
 #include <cstddef>
 #include <memory>
 #include <new>
+#include <type_traits>
+#include <utility>
 #include <vector>
 
 namespace aaf {
@@ -45,6 +47,33 @@ struct FrameAllocator {
 /// A plane (or any per-pixel array) of one frame.
 template <typename T>
 using FrameVector = std::vector<T, FrameAllocator<T>>;
+
+/// A FrameAllocator whose construct() without a value default-initialises,
+/// so a FramePlane's resize(n) leaves new numbers uninitialised: no serial
+/// zero-fill of a plane that is about to be written in full.
+template <typename T>
+struct FramePlaneAllocator : FrameAllocator<T> {
+    template <typename U>
+    struct rebind {
+        using other = FramePlaneAllocator<U>;
+    };
+    FramePlaneAllocator() = default;
+    template <typename U>
+    FramePlaneAllocator(const FramePlaneAllocator<U> &) noexcept {}
+    template <typename U>
+    void construct(U *p) noexcept(std::is_nothrow_default_constructible_v<U>) {
+        ::new (static_cast<void *>(p)) U;
+    }
+    template <typename U, typename... Args>
+    void construct(U *p, Args &&...args) {
+        ::new (static_cast<void *>(p)) U(std::forward<Args>(args)...);
+    }
+};
+
+/// A plane of one frame whose resize(n) does not initialise its numbers;
+/// assign(n, value) and the other members behave as FrameVector's.
+template <typename T>
+using FramePlane = std::vector<T, FramePlaneAllocator<T>>;
 
 /// Frees a frame_allocate() block; for uninitialised scratch planes.
 struct FrameDeleter {

@@ -12,26 +12,27 @@ namespace aaf {
 /// (AAF Eq. 10-12, and the filters of the methods built on it): where each
 /// pixel lies in the 2D plane distances are measured in, its normal and
 /// object, and its own Gaussian's width and reach. Planar, row-major,
-/// width x height. `resize` fills every plane with "not filtered".
+/// width x height. `resize` fills every plane with "not filtered";
+/// `allocate` sizes them uninitialised, for a caller that writes every pixel.
 struct GatherGuides {
     int width = 0, height = 0;
     /// Coordinates in the plane tap distances are measured in, world metres
     /// (AAF: the light's plane, so du^2 + dv^2 is the distance of AAF Eq. 12).
-    FrameVector<float> coord_u_m, coord_v_m;
+    FramePlane<float> coord_u_m, coord_v_m;
     /// Unit normal; zero where unknown (then only the centre itself counts).
-    FrameVector<float> normal_x, normal_y, normal_z;
+    FramePlane<float> normal_x, normal_y, normal_z;
     /// Taps on another object are rejected; NaN matches nothing, not even itself,
     /// so a pixel with unusable geometry (non-finite position) is never a tap.
-    FrameVector<float> object_id;
+    FramePlane<float> object_id;
     /// 1 / (2 sigma^2) of the pixel's Gaussian, metres^-2.
-    FrameVector<float> inv_two_sigma_sq;
+    FramePlane<float> inv_two_sigma_sq;
     /// Optional (empty, or guide-sized): the Gaussian's 1 / (2 sigma^2) along
     /// v, so a tap weighs exp(-du^2 inv_two_sigma_sq - dv^2 this); empty =
     /// isotropic (AAF: one band-limit per light axis, aaf_bandlimits_axes()).
-    FrameVector<float> inv_two_sigma_sq_v;
+    FramePlane<float> inv_two_sigma_sq_v;
     bool anisotropic() const { return !inv_two_sigma_sq_v.empty(); }
     /// Taps reach this many pixels along each filtered axis; 0 = the pixel keeps its value.
-    FrameVector<int> radius_px;
+    FramePlane<int> radius_px;
     /// Optional (all empty, or all guide-sized): a third coordinate n (metres)
     /// and, per centre pixel, shears a_u, a_v: a tap's offsets become
     /// du - a_u dn, dv - a_v dn, i.e. the tap is slid along a direction of the
@@ -40,10 +41,13 @@ struct GatherGuides {
     /// With them, per centre, the weight 1 / (2 sigma_n^2) (metres^-2) of the
     /// offset dn itself: a tap weighs exp(... - dn^2 inv_two_sigma_sq_n) (AAF:
     /// the spread of the slide's direction over the light, 0 = none).
-    FrameVector<float> coord_n_m, shear_u, shear_v, inv_two_sigma_sq_n;
+    FramePlane<float> coord_n_m, shear_u, shear_v, inv_two_sigma_sq_n;
     bool sheared() const { return !shear_u.empty(); }
 
     void resize(int width, int height);
+    /// The seven planes and radius_px at width x height, their pixels
+    /// uninitialised; the optional planes untouched.
+    void allocate(int width, int height);
     std::size_t index(int x, int y) const { return std::size_t(y) * std::size_t(width) + std::size_t(x); }
 };
 

@@ -12,8 +12,8 @@ namespace aaf {
 /// pixels of the same object within `radius_px` (a disc); 0 where there is none.
 /// d1 is known at every pixel and is not borrowed. Row-major, width x height.
 struct FilledOccluders {
-    FrameVector<float> d2_min_m;
-    FrameVector<float> d2_max_m;
+    FramePlane<float> d2_min_m;
+    FramePlane<float> d2_max_m;
 };
 
 /// Computes the fill on the current oneTBB arena (thread-count independent).

@@ -19,6 +19,12 @@ struct OccluderSearch {
     int first_row = 0;
     /// The disc: row dy (|dy| <= pad) spans dx in [-half_width[|dy|], half_width[|dy|]].
     const int *half_width = nullptr;
+    /// Per row (from first_row, `near_stride` bytes apart) and column x: 1
+    /// where an occluded pixel lies in columns [x - pad, x + pad] of that row,
+    /// 0 elsewhere and in at least kOccluderSearchPadding bytes past the row,
+    /// so a vector of centres skips rows that hold no lender for any of them.
+    const unsigned char *occluded_near = nullptr;
+    std::size_t near_stride = 0;
 };
 
 /// Columns of padding, beyond the disc's, that rows and centre ids need on the right.
