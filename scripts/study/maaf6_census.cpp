@@ -46,6 +46,7 @@ int main(int argc, char **argv) {
     app.add_option("input", input, "A render of `aaf render SCENE --aovs maaf6`")->required();
     app.add_option("--k", params.k, "As aaf filter maaf6 --k")->capture_default_str();
     app.add_option("--max-radius", params.max_radius_px, "As aaf filter maaf6 --max-radius")->capture_default_str();
+    app.add_option("--band-spp", params.band_spp, "As aaf filter maaf6 --band-spp")->capture_default_str();
     CLI11_PARSE(app, argc, argv);
     try {
         const AovSet aovs = io::read_aovs(input);

@@ -460,3 +460,83 @@ TEST_CASE("MAAF 6D filter: where the guides or the border cut the window, the pi
     CHECK(census.window_cut == same);
     CHECK(census.window_cut > 2 * height);  // the border columns and the wall's neighbours at least
 }
+
+TEST_CASE("MAAF 6D filter: with band_spp the filter narrows as samples are added, down to each pixel's own mean",
+          "[maaf6]") {
+    // A lens-only wedge (s_u 0.5, Omega_u^max 10) over 1 cm pixels: the lens band 20 rad/m, a std of
+    // k / 20 = 5 px, averages a checkerboard of unoccluded light (0.5 / 1.5) to its mean 1. With band_spp
+    // 16 the bands widen as sqrt(spp / 16): at 1296 spp the std is 0.56 px (the checkerboard partly
+    // kept), at 1600 spp the band reaches the pixel band (10 x 10 >= 0.5 x 200) and each pixel keeps its own
+    // mean, the reference of an infinitely sampled pixel. At 16 spp, and with band_spp 0 at any spp,
+    // the filter is the paper's.
+    const int width = 41, height = 41, n = width * height;
+    const double pixel_m = 0.01, s_u = 0.5;
+    Maaf6Wedge w;
+    w.has_u = true;
+    w.u_min = w.u_max = s_u;
+    w.omega_u_max = 10;
+    w.omega_x_max = 2 / pixel_m;
+    const Maaf6SampleSide side(maaf6_pair_components(w, 3));
+    std::mt19937 rng(5);
+    std::uniform_real_distribution<double> lens(-0.1, 0.1);
+    const float colour[3] = {0.2f, 0.4f, 0.8f};
+    // The checkerboard's deviation from its mean left in the filtered pixels (1: kept, 0: averaged out).
+    auto checker_left = [&](float spp, double band_spp) {
+        Maaf6Planes planes;
+        planes.width = width;
+        planes.height = height;
+        planes.sums.assign(75, std::vector<float>(n));
+        planes.weights.assign(25, std::vector<float>(n));
+        planes.y_min.assign(n, -1.0f);
+        planes.y_max.assign(n, -1.0f);
+        planes.u_min.assign(n, float(s_u));
+        planes.u_max.assign(n, float(s_u));
+        planes.omega_x.assign(n, float(2 / pixel_m));
+        planes.id.assign(n, 1.0f);
+        planes.pixel_size.assign(n, float(pixel_m));
+        planes.spp.assign(n, spp);
+        for (int c = 0; c < 3; ++c) {
+            planes.position[c].assign(n, 0.0f);
+            planes.normal[c].assign(n, c == 1 ? 1.0f : 0.0f);
+        }
+        for (int i = 0; i < n; ++i) {
+            const int x = i % width, y = i / width;
+            planes.position[0][std::size_t(i)] = float(pixel_m * x);
+            planes.position[2][std::size_t(i)] = float(pixel_m * y);
+            const double unoccluded = (x + y) % 2 ? 1.5 : 0.5;
+            std::vector<double> rgb(75, 0.0), weight(25, 0.0);
+            for (int s = 0; s < 16; ++s) {  // 16 samples, repeated to make up spp
+                const float visible = s % 2 ? 1.0f : 0.0f;
+                const float value[3] = {float(colour[0] * unoccluded) * visible,
+                                        float(colour[1] * unoccluded) * visible,
+                                        float(colour[2] * unoccluded) * visible};
+                side.accumulate(0, lens(rng), 0, lens(rng), value, unoccluded, rgb.data(), weight.data());
+            }
+            const double repeat = double(spp) / 16;
+            for (int c = 0; c < 75; ++c)
+                planes.sums[std::size_t(c)][std::size_t(i)] = float(repeat * rgb[std::size_t(c)]);
+            for (int c = 0; c < 25; ++c)
+                planes.weights[std::size_t(c)][std::size_t(i)] = float(repeat * weight[std::size_t(c)]);
+        }
+        Maaf6FilterParams params;
+        params.band_spp = band_spp;
+        std::vector<float> out[3];
+        filter_planes(planes, 10, 10, params, out);
+        double left = 0;
+        int count = 0;
+        for (int y = params.max_radius_px; y < height - params.max_radius_px; ++y)
+            for (int x = params.max_radius_px; x < width - params.max_radius_px; ++x, ++count) {
+                const std::size_t i = std::size_t(y * width + x);
+                const double own = (x + y) % 2 ? 1.5 : 0.5;
+                left += (out[1][i] / (0.5 * colour[1]) - 1.0) / (own - 1.0);
+            }
+        return left / count;
+    };
+    CHECK(std::abs(checker_left(16, 0)) < 0.01);     // the paper's filter: averaged out
+    CHECK(std::abs(checker_left(16, 16)) < 0.01);    // band_spp 16 at 16 spp: the same
+    CHECK(std::abs(checker_left(1600, 0)) < 0.01);   // fixed bands ignore the samples
+    const double at_1296 = checker_left(1296, 16);  // std 0.56 px: the checkerboard partly kept
+    CHECK(at_1296 > 0.05);
+    CHECK(at_1296 < 0.95);
+    CHECK(checker_left(1600, 16) == Approx(1.0).epsilon(1e-4));  // each pixel's own mean
+}

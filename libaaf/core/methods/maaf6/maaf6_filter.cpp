@@ -67,18 +67,23 @@ void check(const ConstPlaneView &v, int width, int height, const char *what) {
 
 /// The wedge of pixel (x, y) of a hit; false where there is none to filter
 /// along (no y-wedge and no one-signed u-wedge, or no finite positive pixel band).
-bool pixel_wedge(const Maaf6LayerInputs &layer, const Maaf6SharedInputs &shared, int x, int y, Maaf6Wedge &wedge) {
+bool pixel_wedge(const Maaf6LayerInputs &layer, const Maaf6SharedInputs &shared, const Maaf6FilterParams &params,
+                 int x, int y, Maaf6Wedge &wedge) {
     // Non-finite inputs (a broken pixel) count as no wedge: they stay in their own pixel.
     wedge.has_y = layer.y_max(x, y) >= 0 && layer.y_min(x, y) >= 0 && std::isfinite(layer.y_max(x, y)) &&
                   layer.y_max(x, y) >= layer.y_min(x, y);
     wedge.y_min = wedge.has_y ? double(layer.y_min(x, y)) : 0.0;
     wedge.y_max = wedge.has_y ? double(layer.y_max(x, y)) : 0.0;
-    wedge.omega_y_max = layer.omega_y_max;
+    // AAF Sec. 5.2's consistency: the bands widen as sqrt(n / band_spp) past band_spp samples.
+    const double samples = double(shared.samples(x, y));
+    const double widening =
+        params.band_spp > 0 && samples > params.band_spp ? std::sqrt(samples / params.band_spp) : 1.0;
+    wedge.omega_y_max = layer.omega_y_max * widening;
     wedge.has_u = shared.omega_u_max > 0 && std::isfinite(shared.u_min(x, y)) && std::isfinite(shared.u_max(x, y)) &&
                   shared.u_max(x, y) >= shared.u_min(x, y);
     wedge.u_min = double(shared.u_min(x, y));
     wedge.u_max = double(shared.u_max(x, y));
-    wedge.omega_u_max = shared.omega_u_max;
+    wedge.omega_u_max = shared.omega_u_max * widening;
     wedge.omega_x_max = double(shared.omega_x(x, y));
     if (!(wedge.omega_x_max > 0 && std::isfinite(wedge.omega_x_max))) return false;
     if (wedge.has_y) return true;
@@ -135,7 +140,7 @@ void maaf6_filter_layer(const Maaf6LayerInputs &layer, const Maaf6SharedInputs &
                 continue;
             }
             Maaf6Wedge wedge;
-            if (!pixel_wedge(layer, shared, x, y, wedge)) {
+            if (!pixel_wedge(layer, shared, params, x, y, wedge)) {
                 // No wedge to filter along (a pinhole without y-wedge, or the focal-plane box):
                 // the pixel band is the pixel itself; MAAF Sec. 6.2 adds samples there instead.
                 for (int c = 0; c < 3; ++c) out[std::size_t(c)](x, y) = own_mean(c);
@@ -254,7 +259,7 @@ Maaf6PartitionCensus maaf6_partition_census(const Maaf6LayerInputs &layer, const
             Maaf6Wedge wedge;
             if (shared.object_id(x, y) == 0) {
                 ++census.background;
-            } else if (!pixel_wedge(layer, shared, x, y, wedge)) {
+            } else if (!pixel_wedge(layer, shared, params, x, y, wedge)) {
                 ++census.no_wedge;
             } else {
                 ++census.filtered;

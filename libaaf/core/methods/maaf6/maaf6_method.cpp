@@ -56,6 +56,12 @@ class Maaf6Method final : public Method {
             ParameterInfo::real("normal_threshold", "20", "degrees",
                                 "Reject taps whose normal turns more (MAAF Sec. 6.2)", 0, 180),
             ParameterInfo::integer("max_radius", "12", "pixels", "Largest filter radius", 0, 1 << 12),
+            ParameterInfo::real("band_spp", "0", "spp",
+                                "Samples per pixel at which the light and lens bands are MAAF Sec. 3's; past it "
+                                "they widen as sqrt(spp / band_spp), so the filter narrows as samples are added "
+                                "and converges to the reference (AAF Sec. 5.2's consistency; 16, the first pass, "
+                                "is the natural choice); 0 = the paper's fixed bands",
+                                0),
         };
         info_.required_attributes = light_attribute_names();
         for (const char *name : {attr::kMaaf6Pairs, attr::kMaaf6OmegaDirect, attr::kMaaf6OmegaIndirect,
@@ -90,6 +96,7 @@ class Maaf6Method final : public Method {
         params.light_weights = parameters.get_choice("pair_weights") == "light";
         params.normal_threshold_deg = parameters.get_float("normal_threshold");
         params.max_radius_px = parameters.get_int("max_radius");
+        params.band_spp = double(parameters.get_float("band_spp"));
         const LightPlane light = read_light_attributes(images.attributes());
         const int channels = maaf6_channel_count(pairs);
 

@@ -36,6 +36,13 @@ struct Maaf6FilterParams {
     /// Multiply each used pair's mu_p (MAAF Eq. 10) by maaf6_light_attenuation(C_y^p, the
     /// layer's Omega_y^max): the light's spectrum at the pair's y centre (not in the paper).
     bool light_weights = false;
+    /// The samples per pixel at which the y and u bands are MAAF Sec. 3's: a
+    /// pixel with n > band_spp samples has them widened by sqrt(n / band_spp),
+    /// AAF Sec. 5.2's consistency (mu grows as the square root of the
+    /// samples), so its filter narrows as samples are added and the filtered
+    /// image converges to the reference. 0 (the default): the bands whatever
+    /// the samples, as the paper has them (see the README for why it is off).
+    double band_spp = 0;
 };
 
 /// Filters one layer (MAAF Eq. 21-22 with the 6D product of MAAF Sec. 6.2):
