@@ -3,6 +3,7 @@
 #pragma once
 
 #include <array>
+#include <random>
 #include <vector>
 
 #include "aaf/core/maaf6.h"
@@ -74,6 +75,60 @@ inline void filter_planes(const Maaf6Planes &planes, double omega_y_max, double 
                        {plane_view(out[0].data(), planes.width, planes.height),
                         plane_view(out[1].data(), planes.width, planes.height),
                         plane_view(out[2].data(), planes.width, planes.height)});
+}
+
+/// A floor of `width` x `height` pixels of `pixel_m` metres (normal +y) under a
+/// lens-only wedge of slope s_u (both slopes, Omega_u^max 10), whose
+/// unoccluded light is a checkerboard of 0.5 and 1.5 (mean 1): per pixel 16
+/// lens samples (points uniform on [-0.1, 0.1] from `seed`), every other one
+/// occluded, of radiance colour[c] times the unoccluded light, accumulated
+/// for N = 3 and then scaled to `spp` samples (as `spp` / 16 repeats of them).
+inline Maaf6Planes lens_checkerboard(int width, int height, double pixel_m, double s_u, float spp, unsigned seed,
+                                     const float (&colour)[3]) {
+    const std::size_t n = std::size_t(width) * std::size_t(height);
+    Maaf6Planes planes;
+    planes.width = width;
+    planes.height = height;
+    planes.sums.assign(75, std::vector<float>(n));
+    planes.weights.assign(25, std::vector<float>(n));
+    planes.y_min.assign(n, -1.0f);
+    planes.y_max.assign(n, -1.0f);
+    planes.u_min.assign(n, float(s_u));
+    planes.u_max.assign(n, float(s_u));
+    planes.omega_x.assign(n, float(2 / pixel_m));
+    planes.id.assign(n, 1.0f);
+    planes.pixel_size.assign(n, float(pixel_m));
+    planes.spp.assign(n, spp);
+    for (int c = 0; c < 3; ++c) {
+        planes.position[c].assign(n, 0.0f);
+        planes.normal[c].assign(n, c == 1 ? 1.0f : 0.0f);
+    }
+    Maaf6Wedge w;
+    w.has_y = false;
+    w.has_u = true;
+    w.u_min = w.u_max = s_u;
+    w.omega_u_max = 10;
+    w.omega_x_max = 2 / pixel_m;
+    const Maaf6SampleSide side(maaf6_pair_components(w, 3));
+    std::mt19937 rng(seed);
+    std::uniform_real_distribution<double> lens(-0.1, 0.1);
+    const double repeat = double(spp) / 16;
+    for (std::size_t i = 0; i < n; ++i) {
+        const int x = int(i % std::size_t(width)), y = int(i / std::size_t(width));
+        planes.position[0][i] = float(pixel_m * x);
+        planes.position[2][i] = float(pixel_m * y);
+        const double unoccluded = (x + y) % 2 ? 1.5 : 0.5;
+        std::vector<double> rgb(75, 0.0), weight(25, 0.0);
+        for (int s = 0; s < 16; ++s) {
+            const float visible = s % 2 ? 1.0f : 0.0f;
+            const float value[3] = {float(colour[0] * unoccluded) * visible, float(colour[1] * unoccluded) * visible,
+                                    float(colour[2] * unoccluded) * visible};
+            side.accumulate(0, lens(rng), 0, lens(rng), value, unoccluded, rgb.data(), weight.data());
+        }
+        for (int c = 0; c < 75; ++c) planes.sums[std::size_t(c)][i] = float(repeat * rgb[std::size_t(c)]);
+        for (int c = 0; c < 25; ++c) planes.weights[std::size_t(c)][i] = float(repeat * weight[std::size_t(c)]);
+    }
+    return planes;
 }
 
 }  // namespace aaf::maaf6_test

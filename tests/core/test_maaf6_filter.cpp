@@ -322,53 +322,11 @@ TEST_CASE("MAAF 6D filter: with a lens wedge the unoccluded light is filtered wi
     // sample occluded (ratio 0.5). Taking the pixel's own mean of it (AAF's r(x) V(x) factoring) would keep
     // the checkerboard; filtered with the lens band (std k / 20 rad/m = 5 px) it averages out. Nearly in
     // focus (the band clipped by the pixel band) each pixel keeps its own.
-    const int width = 41, height = 41, n = width * height;
+    const int width = 41, height = 41;
     const double pixel_m = 0.01;
+    const float colour[3] = {0.2f, 0.4f, 0.8f};
     for (const double s_u : {0.5, 0.02}) {
-        Maaf6Planes planes;
-        planes.width = width;
-        planes.height = height;
-        planes.sums.assign(75, std::vector<float>(n));
-        planes.weights.assign(25, std::vector<float>(n));
-        planes.y_min.assign(n, -1.0f);
-        planes.y_max.assign(n, -1.0f);
-        planes.u_min.assign(n, float(s_u));
-        planes.u_max.assign(n, float(s_u));
-        planes.omega_x.assign(n, float(2 / pixel_m));
-        planes.id.assign(n, 1.0f);
-        planes.pixel_size.assign(n, float(pixel_m));
-        planes.spp.assign(n, 16.0f);
-        for (int c = 0; c < 3; ++c) {
-            planes.position[c].assign(n, 0.0f);
-            planes.normal[c].assign(n, c == 1 ? 1.0f : 0.0f);
-        }
-        Maaf6Wedge w;
-        w.has_y = false;
-        w.has_u = true;
-        w.u_min = w.u_max = s_u;
-        w.omega_u_max = 10;
-        w.omega_x_max = 2 / pixel_m;
-        const Maaf6SampleSide side(maaf6_pair_components(w, 3));
-        std::mt19937 rng(11);
-        std::uniform_real_distribution<double> lens(-0.1, 0.1);
-        const float colour[3] = {0.2f, 0.4f, 0.8f};
-        std::vector<float> own_unoccluded(n);
-        for (int i = 0; i < n; ++i) {
-            const int x = i % width, y = i / width;
-            planes.position[0][std::size_t(i)] = float(pixel_m * x);
-            planes.position[2][std::size_t(i)] = float(pixel_m * y);
-            const double unoccluded = (x + y) % 2 ? 1.5 : 0.5;
-            own_unoccluded[std::size_t(i)] = float(unoccluded);
-            std::vector<double> rgb(75, 0.0), weight(25, 0.0);
-            for (int s = 0; s < 16; ++s) {
-                const float visible = s % 2 ? 1.0f : 0.0f;
-                const float value[3] = {float(colour[0] * unoccluded) * visible, float(colour[1] * unoccluded) * visible,
-                                        float(colour[2] * unoccluded) * visible};
-                side.accumulate(0, lens(rng), 0, lens(rng), value, unoccluded, rgb.data(), weight.data());
-            }
-            for (int c = 0; c < 75; ++c) planes.sums[std::size_t(c)][std::size_t(i)] = float(rgb[std::size_t(c)]);
-            for (int c = 0; c < 25; ++c) planes.weights[std::size_t(c)][std::size_t(i)] = float(weight[std::size_t(c)]);
-        }
+        const Maaf6Planes planes = lens_checkerboard(width, height, pixel_m, s_u, 16, 11, colour);
         std::vector<float> out[3];
         for (int pairs : {3, 1}) {
             INFO("s_u " << s_u << ", pairs " << pairs);
@@ -378,7 +336,7 @@ TEST_CASE("MAAF 6D filter: with a lens wedge the unoccluded light is filtered wi
             for (int y = params.max_radius_px; y < height - params.max_radius_px; ++y)
                 for (int x = params.max_radius_px; x < width - params.max_radius_px; ++x) {
                     const std::size_t i = std::size_t(y * width + x);
-                    const double unoccluded = s_u > 0.1 ? 1.0 : double(own_unoccluded[i]);
+                    const double unoccluded = s_u > 0.1 ? 1.0 : (x + y) % 2 ? 1.5 : 0.5;
                     for (int c = 0; c < 3; ++c)
                         REQUIRE(out[c][i] == Approx(0.5 * colour[c] * unoccluded).epsilon(0.01));
                 }
@@ -469,55 +427,12 @@ TEST_CASE("MAAF 6D filter: with band_spp the filter narrows as samples are added
     // kept), at 1600 spp the band reaches the pixel band (10 x 10 >= 0.5 x 200) and each pixel keeps its own
     // mean, the reference of an infinitely sampled pixel. At 16 spp, and with band_spp 0 at any spp,
     // the filter is the paper's.
-    const int width = 41, height = 41, n = width * height;
+    const int width = 41, height = 41;
     const double pixel_m = 0.01, s_u = 0.5;
-    Maaf6Wedge w;
-    w.has_u = true;
-    w.u_min = w.u_max = s_u;
-    w.omega_u_max = 10;
-    w.omega_x_max = 2 / pixel_m;
-    const Maaf6SampleSide side(maaf6_pair_components(w, 3));
-    std::mt19937 rng(5);
-    std::uniform_real_distribution<double> lens(-0.1, 0.1);
     const float colour[3] = {0.2f, 0.4f, 0.8f};
     // The checkerboard's deviation from its mean left in the filtered pixels (1: kept, 0: averaged out).
     auto checker_left = [&](float spp, double band_spp) {
-        Maaf6Planes planes;
-        planes.width = width;
-        planes.height = height;
-        planes.sums.assign(75, std::vector<float>(n));
-        planes.weights.assign(25, std::vector<float>(n));
-        planes.y_min.assign(n, -1.0f);
-        planes.y_max.assign(n, -1.0f);
-        planes.u_min.assign(n, float(s_u));
-        planes.u_max.assign(n, float(s_u));
-        planes.omega_x.assign(n, float(2 / pixel_m));
-        planes.id.assign(n, 1.0f);
-        planes.pixel_size.assign(n, float(pixel_m));
-        planes.spp.assign(n, spp);
-        for (int c = 0; c < 3; ++c) {
-            planes.position[c].assign(n, 0.0f);
-            planes.normal[c].assign(n, c == 1 ? 1.0f : 0.0f);
-        }
-        for (int i = 0; i < n; ++i) {
-            const int x = i % width, y = i / width;
-            planes.position[0][std::size_t(i)] = float(pixel_m * x);
-            planes.position[2][std::size_t(i)] = float(pixel_m * y);
-            const double unoccluded = (x + y) % 2 ? 1.5 : 0.5;
-            std::vector<double> rgb(75, 0.0), weight(25, 0.0);
-            for (int s = 0; s < 16; ++s) {  // 16 samples, repeated to make up spp
-                const float visible = s % 2 ? 1.0f : 0.0f;
-                const float value[3] = {float(colour[0] * unoccluded) * visible,
-                                        float(colour[1] * unoccluded) * visible,
-                                        float(colour[2] * unoccluded) * visible};
-                side.accumulate(0, lens(rng), 0, lens(rng), value, unoccluded, rgb.data(), weight.data());
-            }
-            const double repeat = double(spp) / 16;
-            for (int c = 0; c < 75; ++c)
-                planes.sums[std::size_t(c)][std::size_t(i)] = float(repeat * rgb[std::size_t(c)]);
-            for (int c = 0; c < 25; ++c)
-                planes.weights[std::size_t(c)][std::size_t(i)] = float(repeat * weight[std::size_t(c)]);
-        }
+        const Maaf6Planes planes = lens_checkerboard(width, height, pixel_m, s_u, spp, 5, colour);
         Maaf6FilterParams params;
         params.band_spp = band_spp;
         std::vector<float> out[3];
