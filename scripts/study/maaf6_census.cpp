@@ -4,7 +4,8 @@
 // ((a) the central component reaches beyond the window, (b) the x band clips
 // the wedge, (c) the focal-plane box), counted by aaf::maaf6_partition_census()
 // with the filter's own parameters; "cut": of the partition's pixels, those
-// whose window the guides or the border cut (the central filter there too).
+// whose window the guides or the border cut (the central filter there too);
+// "widened": the pixels whose bands --band-spp widens (the central filter).
 // Prints a table.
 #include <CLI/CLI.hpp>
 #include <cstdio>
@@ -68,8 +69,8 @@ int main(int argc, char **argv) {
         shared.omega_u_max = double(attribute(aovs, attr::kMaaf6OmegaLens));
         std::printf("%s, k %g, max radius %d px: filtered pixels of each layer by the reasons for the central filter\n",
                     input.c_str(), params.k, params.max_radius_px);
-        std::printf("%-9s %8s %8s %8s | %9s %9s %9s %9s %9s %9s %9s %9s | %9s\n", "layer", "backgr.", "no wedge",
-                    "filtered", "partition", "a", "b", "a+b", "c", "a+c", "b+c", "a+b+c", "cut");
+        std::printf("%-9s %8s %8s %8s | %9s | %9s %9s %9s %9s %9s %9s %9s %9s | %9s\n", "layer", "backgr.",
+                    "no wedge", "filtered", "widened", "partition", "a", "b", "a+b", "c", "a+c", "b+c", "a+b+c", "cut");
         struct LayerSpec {
             const char *name;
             Role sums, weights;
@@ -86,7 +87,8 @@ int main(int argc, char **argv) {
             layer.y_max = wedge.at(spec.wedge_channel + 1);
             layer.omega_y_max = double(attribute(aovs, spec.omega));
             const Maaf6PartitionCensus census = maaf6_partition_census(layer, shared, params);
-            std::printf("%-9s %8ld %8ld %8ld |", spec.name, census.background, census.no_wedge, census.filtered);
+            std::printf("%-9s %8ld %8ld %8ld | %8.1f%% |", spec.name, census.background, census.no_wedge,
+                        census.filtered, percent(census.band_widened, census.filtered));
             for (long count : census.by_reasons) std::printf(" %8.1f%%", percent(count, census.filtered));
             std::printf(" | %8.1f%%\n", percent(census.window_cut, census.filtered));
         }

@@ -31,6 +31,7 @@ struct Maaf6Planes {
     int width = 0, height = 0;
     std::vector<std::vector<float>> sums, weights;  ///< 3 (2N-1)^2 and (2N-1)^2 of them
     std::vector<float> y_min, y_max, u_min, u_max, omega_x, id, pixel_size, spp, position[3], normal[3];
+    SampleDensity y_density, lens_density;  ///< what y and u were drawn from (fitted pair weights)
 
     Maaf6LayerInputs layer(double omega_y_max) const {
         Maaf6LayerInputs in;
@@ -39,6 +40,7 @@ struct Maaf6Planes {
         in.y_min = view(y_min);
         in.y_max = view(y_max);
         in.omega_y_max = omega_y_max;
+        in.y_density = y_density;
         return in;
     }
     Maaf6SharedInputs shared(double omega_u_max) const {
@@ -54,6 +56,7 @@ struct Maaf6Planes {
         in.pixel_size = view(pixel_size);
         in.samples = view(spp);
         in.omega_u_max = omega_u_max;
+        in.lens_density = lens_density;
         return in;
     }
 

@@ -2,10 +2,12 @@
 
 #include <algorithm>
 #include <cmath>
+#include <memory>
 #include <string>
 
 #include "aaf/core/error.h"
 #include "aaf/core/maaf6.h"
+#include "aaf/core/maaf_accumulation.h"
 #include "aaf/core/parallel.h"
 
 namespace aaf {
@@ -65,6 +67,21 @@ void check(const ConstPlaneView &v, int width, int height, const char *what) {
         throw Error(std::string("MAAF 6D input '") + what + "' is missing or has another size");
 }
 
+/// Whether pixel (x, y)'s bands are widened (Maaf6FilterParams::band_spp).
+bool band_widened(const Maaf6SharedInputs &shared, const Maaf6FilterParams &params, int x, int y) {
+    return params.band_spp > 0 && double(shared.samples(x, y)) > params.band_spp;
+}
+
+/// The pairs pixel (x, y) is filtered with: 1 where its bands are widened.
+/// The stored sums carry the phases cos / sin(C_y^p y + C_u^p u) of the
+/// partition at the render's bands; a widened band would move every C_y^p and
+/// C_u^p, which the sums cannot follow, and pairs with widened x centres and
+/// the stored phases sit off the wedge (room, converged shadows, --band-spp 64:
+/// N = 3 0.0090 against N = 1 0.0025). The axis-aligned filter needs no phase.
+int pixel_pairs(const Maaf6SharedInputs &shared, const Maaf6FilterParams &params, int x, int y) {
+    return band_widened(shared, params, x, y) ? 1 : params.pairs_used;
+}
+
 /// The wedge of pixel (x, y) of a hit; false where there is none to filter
 /// along (no y-wedge and no one-signed u-wedge, or no finite positive pixel band).
 bool pixel_wedge(const Maaf6LayerInputs &layer, const Maaf6SharedInputs &shared, const Maaf6FilterParams &params,
@@ -76,8 +93,7 @@ bool pixel_wedge(const Maaf6LayerInputs &layer, const Maaf6SharedInputs &shared,
     wedge.y_max = wedge.has_y ? double(layer.y_max(x, y)) : 0.0;
     // AAF Sec. 5.2's consistency: the bands widen as sqrt(n / band_spp) past band_spp samples.
     const double samples = double(shared.samples(x, y));
-    const double widening =
-        params.band_spp > 0 && samples > params.band_spp ? std::sqrt(samples / params.band_spp) : 1.0;
+    const double widening = band_widened(shared, params, x, y) ? std::sqrt(samples / params.band_spp) : 1.0;
     wedge.omega_y_max = layer.omega_y_max * widening;
     wedge.has_u = shared.omega_u_max > 0 && std::isfinite(shared.u_min(x, y)) && std::isfinite(shared.u_max(x, y)) &&
                   shared.u_max(x, y) >= shared.u_min(x, y);
@@ -126,6 +142,14 @@ void maaf6_filter_layer(const Maaf6LayerInputs &layer, const Maaf6SharedInputs &
     const int stored_n = 2 * params.stored_pairs - 1;
     const double cos_threshold = std::cos(double(params.normal_threshold_deg) * kPi / 180.0);
     const int used_n = 2 * params.pairs_used - 1;
+    // The fitted pair weights' tables (MaafFittedWeights): the y-wedge's and, without one, the lens wedge's.
+    std::unique_ptr<MaafFittedWeights> fitted_y, fitted_u;
+    if (params.pair_weights == Maaf6PairWeights::Fitted && params.pairs_used > 1) {
+        fitted_y = std::make_unique<MaafFittedWeights>(layer.y_density, layer.omega_y_max, params.pairs_used, params.k);
+        if (shared.omega_u_max > 0)
+            fitted_u = std::make_unique<MaafFittedWeights>(shared.lens_density, shared.omega_u_max, params.pairs_used,
+                                                           params.k);
+    }
 
     parallel_for_rows(height, [&](int y) {
         std::vector<double> k1(static_cast<std::size_t>(used_n)), k2(static_cast<std::size_t>(used_n));
@@ -147,14 +171,26 @@ void maaf6_filter_layer(const Maaf6LayerInputs &layer, const Maaf6SharedInputs &
                 continue;
             }
             const double window_m = double(params.max_radius_px) * double(shared.pixel_size(x, y));
-            std::vector<Maaf6Component> pairs = maaf6_filter_components(wedge, params.pairs_used, params.k, window_m);
+            std::vector<Maaf6Component> pairs =
+                maaf6_filter_components(wedge, pixel_pairs(shared, params, x, y), params.k, window_m);
             // Where the offset pairs have weight 0 (the axis-aligned fallback) their kernels are 0:
             // only the central channel is gathered, with the same result.
             const bool offsets_used =
                 std::any_of(pairs.begin() + 1, pairs.end(), [](const Maaf6Component &c) { return c.weight != 0; });
             if (!offsets_used) pairs.resize(1);
-            if (params.light_weights && offsets_used)
+            if (params.pair_weights == Maaf6PairWeights::Light && offsets_used)
                 for (Maaf6Component &c : pairs) c.weight *= maaf6_light_attenuation(c.centre_y, wedge.omega_y_max);
+            if (params.pair_weights == Maaf6PairWeights::Fitted && offsets_used) {
+                // The partition is used, so the wedge is not clipped by the x band: its slope
+                // ratio and the band's widening are all the fit depends on.
+                const double u_lo = std::min(std::fabs(wedge.u_min), std::fabs(wedge.u_max));
+                const double u_hi = std::max(std::fabs(wedge.u_min), std::fabs(wedge.u_max));
+                const MaafFittedWeights &table = wedge.has_y ? *fitted_y : *fitted_u;
+                const double ratio = wedge.has_y ? wedge.y_min / wedge.y_max : u_lo / u_hi;
+                double mu[kMaafMaxPairs];
+                table.weights(ratio, mu);
+                for (std::size_t p = 1; p < pairs.size(); ++p) pairs[p].weight = mu[p - 1];
+            }
             const int pixel_n = offsets_used ? used_n : 1;
             const Vec3 p = read3(shared.position, x, y), n = normalize(read3(shared.normal, x, y));
             Vec3 t1, t2;
@@ -263,6 +299,10 @@ Maaf6PartitionCensus maaf6_partition_census(const Maaf6LayerInputs &layer, const
                 ++census.no_wedge;
             } else {
                 ++census.filtered;
+                if (params.pairs_used > 1 && pixel_pairs(shared, params, x, y) == 1) {
+                    ++census.band_widened;
+                    continue;
+                }
                 const double window_m = double(params.max_radius_px) * double(shared.pixel_size(x, y));
                 const Maaf6PartitionCheck c = maaf6_partition_check(wedge, params.pairs_used, params.k, window_m);
                 ++census.by_reasons[std::size_t(int(c.beyond_window) + 2 * int(c.band_clipped) + 4 * int(c.focal_box))];

@@ -1,6 +1,7 @@
 // MAAF for combined effects (Wu et al. 2017, Sec. 6.2): soft shadows,
 // defocus and one-bounce indirect light of a maaf6 render, direct and
 // indirect filtered apart with their own wedges, then summed.
+#include <cmath>
 #include <string>
 #include <variant>
 #include <vector>
@@ -25,6 +26,14 @@ T header_value(const MethodImages &images, const char *name) {
     return *value;
 }
 
+/// The direct layer's y: a point of the light seen along one of the receiver's tangent axes,
+/// which follow the light's; one density for both, of the light's geometric-mean half side.
+SampleDensity light_density(const LightPlane &light) {
+    const double half = 0.5 * std::sqrt(double(light.width_m) * double(light.height_m));
+    if (light.profile == LightProfile::Uniform) return {DensityShape::Uniform, half, 1.0};
+    return {DensityShape::TruncatedGaussian, half, double(light.sigma_m)};
+}
+
 class Maaf6Method final : public Method {
   public:
     Maaf6Method() {
@@ -44,10 +53,11 @@ class Maaf6Method final : public Method {
             ParameterInfo::choice("pairs", "all", {"all", "1"},
                                   "Filter pairs N per 3D subspace: all of the sums' (N = 3, 25 filters in 6D) or "
                                   "1, the central axis-aligned filter alone (AAF for combined effects, MYRD14)"),
-            ParameterInfo::choice("pair_weights", "eq10", {"eq10", "light"},
-                                  "mu_p of the offset pairs: MAAF Eq. 10 (the paper), or Eq. 10 times the Gaussian "
-                                  "light model's spectrum at the pair's y centre, exp(-(sigma C_y)^2 / 2) with "
-                                  "Omega_y^max = 2 / sigma (less over-sharpening; not in the paper, see the README)"),
+            ParameterInfo::choice("pair_weights", "eq10", {"eq10", "light", "fitted"},
+                                  "mu_p of the offset pairs: MAAF Eq. 10 (the paper); light: Eq. 10 times the "
+                                  "Gaussian light model's spectrum at the pair's y centre; fitted: least squares "
+                                  "so that the filter passes the sampling density's spectrum along the wedge, as "
+                                  "the light integral does (neither in the paper; see the README)"),
             ParameterInfo::real("k", "1", "",
                                 "Width scale: each component's Fourier std is its half-width divided by k (as "
                                 "`aaf filter maaf --k`; 1 = the paper's reading, measured best on room for both "
@@ -93,11 +103,16 @@ class Maaf6Method final : public Method {
         params.stored_pairs = pairs;
         params.pairs_used = parameters.get_choice("pairs") == "1" ? 1 : pairs;
         params.k = double(parameters.get_float("k"));
-        params.light_weights = parameters.get_choice("pair_weights") == "light";
+        const std::string weights = parameters.get_choice("pair_weights");
+        params.pair_weights = weights == "light"    ? Maaf6PairWeights::Light
+                              : weights == "fitted" ? Maaf6PairWeights::Fitted
+                                                    : Maaf6PairWeights::Eq10;
         params.normal_threshold_deg = parameters.get_float("normal_threshold");
         params.max_radius_px = parameters.get_int("max_radius");
         params.band_spp = double(parameters.get_float("band_spp"));
         const LightPlane light = read_light_attributes(images.attributes());
+        // The lens is a uniform disc of radius A = 4 / Omega_u^max (the contract's MAAF Sec. 3 band, L = A).
+        if (shared.omega_u_max > 0) shared.lens_density = {DensityShape::Semicircle, 4.0 / shared.omega_u_max, 1.0};
         const int channels = maaf6_channel_count(pairs);
 
         struct Layer {
@@ -117,6 +132,7 @@ class Maaf6Method final : public Method {
             layer.y_min = images.input(Role::Maaf6Wedge, spec.wedge_channel);
             layer.y_max = images.input(Role::Maaf6Wedge, spec.wedge_channel + 1);
             layer.omega_y_max = double(header_value<float>(images, spec.omega));
+            layer.y_density = l == 0 ? light_density(light) : SampleDensity{DensityShape::CosineLobe, 1.0, 1.0};
             if (!(layer.omega_y_max > 0))
                 throw InputError("header attribute '" + std::string(spec.omega) + "' must be positive");
             const std::array<PlaneView, 3> out = {images.output(spec.output, 0), images.output(spec.output, 1),

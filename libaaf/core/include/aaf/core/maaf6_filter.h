@@ -4,6 +4,7 @@
 #include <vector>
 
 #include "aaf/core/light_plane.h"
+#include "aaf/core/maaf_fitted_weights.h"
 #include "aaf/core/plane_view.h"
 
 namespace aaf {
@@ -15,6 +16,7 @@ struct Maaf6LayerInputs {
     std::vector<ConstPlaneView> weights;  ///< (2N-1)^2 planes
     ConstPlaneView y_min, y_max;          ///< the layer's y slopes; -1 in both = no y-wedge
     double omega_y_max = 0;               ///< the layer's Omega_y^max (light: rad/m; indirect: rad)
+    SampleDensity y_density;              ///< what y is drawn from (Maaf6PairWeights::Fitted only)
 };
 
 struct Maaf6SharedInputs {
@@ -25,6 +27,14 @@ struct Maaf6SharedInputs {
     ConstPlaneView pixel_size;
     ConstPlaneView samples;  ///< path samples per pixel (maaf6.spp)
     double omega_u_max = 0;  ///< 0 = pinhole (no u-wedge)
+    SampleDensity lens_density;  ///< what u is drawn from (Maaf6PairWeights::Fitted only)
+};
+
+/// The offset pairs' weights mu_p.
+enum class Maaf6PairWeights {
+    Eq10,   ///< MAAF Eq. 10, as the paper
+    Light,  ///< Eq. 10 times maaf6_light_attenuation() at C_y^p (a Gaussian light model; not in the paper)
+    Fitted, ///< MaafFittedWeights: fitted to the sampling density's spectrum along the wedge (not in the paper)
 };
 
 struct Maaf6FilterParams {
@@ -33,15 +43,18 @@ struct Maaf6FilterParams {
     double k = 1;          ///< width scale, as `aaf filter maaf --k` (1: the paper's reading)
     float normal_threshold_deg = 20;  ///< MAAF Sec. 6.2: taps whose normal turns more are rejected
     int max_radius_px = 12;
-    /// Multiply each used pair's mu_p (MAAF Eq. 10) by maaf6_light_attenuation(C_y^p, the
-    /// layer's Omega_y^max): the light's spectrum at the pair's y centre (not in the paper).
-    bool light_weights = false;
+    /// The offset pairs' mu_p. Fitted: per pixel from the y-wedge's slope ratio
+    /// with the layer's y_density, or, without a y-wedge, the u-wedge's with
+    /// the lens_density (the u phases of a pixel with both are not in the fit).
+    Maaf6PairWeights pair_weights = Maaf6PairWeights::Eq10;
     /// The samples per pixel at which the y and u bands are MAAF Sec. 3's: a
     /// pixel with n > band_spp samples has them widened by sqrt(n / band_spp),
     /// AAF Sec. 5.2's consistency (mu grows as the square root of the
     /// samples), so its filter narrows as samples are added and the filtered
-    /// image converges to the reference. 0 (the default): the bands whatever
-    /// the samples, as the paper has them (see the README for why it is off).
+    /// image converges to the reference. Such a pixel gets the axis-aligned
+    /// filter (N = 1) at its widened bands: the stored phases belong to the
+    /// render's bands. 0 (the default): the bands whatever the samples, as the
+    /// paper has them (see the README for why it is off).
     double band_spp = 0;
 };
 
@@ -88,8 +101,11 @@ struct Maaf6PartitionCensus {
     long background = 0;  ///< no primary hit: the pixel keeps its mean
     long no_wedge = 0;    ///< a hit without a wedge to filter along: keeps its mean
     long filtered = 0;    ///< the rest: filtered by the partition or the central filter
-    /// filtered pixels by the reasons that hold, index beyond_window + 2 band_clipped + 4 focal_box
-    /// (index 0: the partition is used)
+    /// of the filtered pixels (N > 1), those whose bands band_spp widens: they get the axis-aligned
+    /// filter at the widened band (the stored phases belong to the render's bands)
+    long band_widened = 0;
+    /// the other filtered pixels by the reasons that hold, index beyond_window + 2 band_clipped +
+    /// 4 focal_box (index 0: the partition is used)
     std::array<long, 8> by_reasons{};
     /// of by_reasons[0]: pixels whose window the guides (other normals, no hit) or the image's border
     /// cut by more than 20% of the central envelope's mass, which get the axis-aligned filter instead

@@ -1,0 +1,91 @@
+#pragma once
+
+#include <vector>
+
+namespace aaf {
+
+/// The distribution the samples of one MAAF coordinate (y on the light, y as
+/// a bounce direction, u on the lens) are drawn from, projected on one axis.
+/// The maaf6 filter has no y or u envelope of its own: the sampling density
+/// is the envelope (Maaf6SampleSide), so its spectrum, the density's
+/// characteristic function, is the filter's response along Omega_y.
+enum class DensityShape {
+    Uniform,            ///< uniform on [-half_width, half_width] (a uniform rectangular light)
+    TruncatedGaussian,  ///< exp(-y^2 / (2 sigma^2)) on [-half_width, half_width] (a Gaussian light)
+    Semicircle,         ///< a uniform disc of radius half_width seen along one axis (the lens)
+    CosineLobe,         ///< cosine-weighted directions as tan theta along one axis (indirect light)
+};
+
+struct SampleDensity {
+    DensityShape shape = DensityShape::Uniform;
+    double half_width = 1;  ///< y units (metres on a light or lens); unused by CosineLobe
+    double sigma = 1;       ///< TruncatedGaussian only
+};
+
+/// The density's characteristic function phi(omega) = E[cos(omega y)]
+/// (phi(0) = 1, even): sin(w h) / (w h) for Uniform; 2 J1(w h) / (w h) for
+/// Semicircle; |w| K1(|w|) for CosineLobe (the marginal 1 / (2 (1 + y^2)^1.5)
+/// of the density 1 / (pi (1 + r^2)^2) that cosine-weighted directions have
+/// on the unit plane above the receiver); TruncatedGaussian by quadrature,
+/// tabulated at construction. omega in rad per y unit.
+class SampleSpectrum {
+  public:
+    explicit SampleSpectrum(const SampleDensity &density);
+    double operator()(double omega) const;
+
+  private:
+    SampleDensity density_;
+    double table_step_ = 0;      ///< TruncatedGaussian: omega spacing of table_
+    std::vector<double> table_;  ///< TruncatedGaussian: phi at i * table_step_
+};
+
+/// Pair weights mu_1 .. mu_{N-1} fitted so that the maaf6 filter's response
+/// along the wedge matches the sampling density's spectrum (mu_0 = 1).
+///
+/// Why. The filter realises component p (MAAF Eq. 11-13) with the x kernel of
+/// maaf6_x_kernel() and, along y, the sampling density times cos / sin(C_y^p y).
+/// On a wedge line Omega_y = s Omega_x (slope s) its response is therefore,
+/// with a_p = k / sigma_x^p the primal std and phi the density's spectrum,
+///   H_s(W) = [a_0 e^{-(W a_0)^2/2} phi(W s) + sum_p mu_p a_p (e^{-((W - C_x)a_p)^2/2} phi(W s - C_y)
+///             + e^{-((W + C_x)a_p)^2/2} phi(W s + C_y) - e_p e^{-(W a_p)^2/2} (phi(W s - C_y) + phi(W s + C_y)))] / a_0,
+/// e_p the pair's DC correction, while the light integral that the pixel
+/// should get passes phi(W s) whatever W: the ideal filter is phi(Omega_y)
+/// on the whole wedge (MAAF Eq. 14's accuracy, with the density's spectrum
+/// as the target). Eq. 10's mu_p ignore that the components overlap through
+/// phi and that each realised component's Fourier peak is a_p / a_0 of the
+/// central's: on room's converged shadows they darkened smooth penumbrae by
+/// about 2% (README, issue 15).
+///
+/// The fit. mu minimises sum over slopes s and frequencies W of
+/// (H_s(W) - phi(W s))^2 / W^2 (the 1 / W^2: an edge's spectrum, so this is
+/// the squared error of filtered edges), s = 1 / tau with tau uniform over
+/// [s_min / s_max, 1] (uniform over the wedge's area at each Omega_y, as
+/// Eq. 14 weighs it), W over (0, 4 Omega_y^max / s_min]. Everything scales with
+/// s_min and Omega_y^max, so the weights depend only on t = s_min / s_max,
+/// q = (the density's scale) x Omega_y^max, N and k.
+class MaafFittedWeights {
+  public:
+    /// A table over t in [0, 1] (33 nodes) for a layer whose density is
+    /// `density` and whose band is omega_max (per y unit): q = density scale x
+    /// omega_max. pairs: N (2 .. 8); k: as Maaf6FilterParams::k. Throws
+    /// aaf::Error on non-positive or non-finite arguments.
+    MaafFittedWeights(const SampleDensity &density, double omega_max, int pairs, double k);
+
+    /// mu_1 .. mu_{N-1} into mu[0 .. N-2] for a wedge of slope ratio t =
+    /// s_min / s_max (clamped to [0, 1]), interpolated linearly in t.
+    void weights(double t, double *mu) const;
+
+    int pairs() const { return pairs_; }
+
+  private:
+    int pairs_ = 1;
+    std::vector<double> table_;  ///< [t node][p - 1]
+};
+
+/// One fit (MaafFittedWeights' "The fit"): mu_1 .. mu_{N-1} for slope ratio
+/// t in [0, 1], the density's spectrum `spectrum` and the band omega_max it is
+/// partitioned with (per y unit). Exposed for tests.
+std::vector<double> maaf_fit_pair_weights(const SampleSpectrum &spectrum, double omega_max, double t, int pairs,
+                                          double k);
+
+}  // namespace aaf
