@@ -48,6 +48,9 @@ int main(int argc, char **argv) {
     app.add_option("--k", params.k, "As aaf filter maaf6 --k")->capture_default_str();
     app.add_option("--max-radius", params.max_radius_px, "As aaf filter maaf6 --max-radius")->capture_default_str();
     app.add_option("--band-spp", params.band_spp, "As aaf filter maaf6 --band-spp")->capture_default_str();
+    double indirect_band_spp = 128;
+    app.add_option("--indirect-band-spp", indirect_band_spp, "As aaf filter maaf6 --indirect-band-spp")
+        ->capture_default_str();
     CLI11_PARSE(app, argc, argv);
     try {
         const AovSet aovs = io::read_aovs(input);
@@ -86,7 +89,9 @@ int main(int argc, char **argv) {
             layer.y_min = wedge.at(spec.wedge_channel);
             layer.y_max = wedge.at(spec.wedge_channel + 1);
             layer.omega_y_max = double(attribute(aovs, spec.omega));
-            const Maaf6PartitionCensus census = maaf6_partition_census(layer, shared, params);
+            Maaf6FilterParams layer_params = params;
+            if (spec.wedge_channel == 2) layer_params.band_spp = indirect_band_spp;
+            const Maaf6PartitionCensus census = maaf6_partition_census(layer, shared, layer_params);
             std::printf("%-9s %8ld %8ld %8ld | %8.1f%% |", spec.name, census.background, census.no_wedge,
                         census.filtered, percent(census.band_widened, census.filtered));
             for (long count : census.by_reasons) std::printf(" %8.1f%%", percent(count, census.filtered));

@@ -426,10 +426,11 @@ TEST_CASE("MAAF 6D filter: with band_spp the filter narrows as samples are added
           "[maaf6]") {
     // A lens-only wedge (s_u 0.5, Omega_u^max 10) over 1 cm pixels: the lens band 20 rad/m, a std of
     // k / 20 = 5 px, averages a checkerboard of unoccluded light (0.5 / 1.5) to its mean 1. With band_spp
-    // 16 the bands widen as sqrt(spp / 16): at 1296 spp the std is 0.56 px (the checkerboard partly
-    // kept), at 1600 spp the band reaches the pixel band (10 x 10 >= 0.5 x 200) and each pixel keeps its own
-    // mean, the reference of an infinitely sampled pixel. At 16 spp, and with band_spp 0 at any spp,
-    // the filter is the paper's.
+    // 16 the bands widen as sqrt(spp / 16), the pixel band with them: at 1296 spp the std is 0.56 px
+    // (the checkerboard partly kept), at 1600 spp 0.5 px, at 6400 spp 0.25 px (the neighbours' weight
+    // e^-8), at 25600 0.125 px (e^-32): the filter converges to each pixel's own mean, the reference
+    // of an infinitely sampled pixel. At 16 spp, and with band_spp 0 at any spp, the filter is the
+    // paper's.
     const int width = 41, height = 41;
     const double pixel_m = 0.01, s_u = 0.5;
     const float colour[3] = {0.2f, 0.4f, 0.8f};
@@ -456,7 +457,11 @@ TEST_CASE("MAAF 6D filter: with band_spp the filter narrows as samples are added
     const double at_1296 = checker_left(1296, 16);  // std 0.56 px: the checkerboard partly kept
     CHECK(at_1296 > 0.05);
     CHECK(at_1296 < 0.95);
-    CHECK(checker_left(1600, 16) == Approx(1.0).epsilon(1e-4));  // each pixel's own mean
+    const double at_1600 = checker_left(1600, 16);
+    CHECK(at_1600 > at_1296);
+    CHECK(at_1600 < 0.95);
+    CHECK(checker_left(6400, 16) > 0.99);
+    CHECK(checker_left(25600, 16) == Approx(1.0).epsilon(1e-4));  // std 0.125 px: each pixel's own mean
 }
 
 TEST_CASE("MAAF 6D synthetic soft edge: the pair weights fitted to the light's spectrum bias converged "

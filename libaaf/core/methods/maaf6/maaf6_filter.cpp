@@ -100,7 +100,10 @@ bool pixel_wedge(const Maaf6LayerInputs &layer, const Maaf6SharedInputs &shared,
     wedge.u_min = double(shared.u_min(x, y));
     wedge.u_max = double(shared.u_max(x, y));
     wedge.omega_u_max = shared.omega_u_max * widening;
-    wedge.omega_x_max = double(shared.omega_x(x, y));
+    // The pixel band widens too: it bounds the filter at the render's sampling rate, and with it
+    // fixed a wedge clipped by it would keep blurring over the neighbours whatever the samples
+    // (room, shadows alone at 48x36: 0.0109 at 64 spp, 0.0107 at 256).
+    wedge.omega_x_max = double(shared.omega_x(x, y)) * widening;
     if (!(wedge.omega_x_max > 0 && std::isfinite(wedge.omega_x_max))) return false;
     if (wedge.has_y) return true;
     // Only a u-wedge: filtered where it is one-signed and narrower than the pixel band.

@@ -53,11 +53,12 @@ class Maaf6Method final : public Method {
             ParameterInfo::choice("pairs", "all", {"all", "1"},
                                   "Filter pairs N per 3D subspace: all of the sums' (N = 3, 25 filters in 6D) or "
                                   "1, the central axis-aligned filter alone (AAF for combined effects, MYRD14)"),
-            ParameterInfo::choice("pair_weights", "eq10", {"eq10", "light", "fitted"},
-                                  "mu_p of the offset pairs: MAAF Eq. 10 (the paper); light: Eq. 10 times the "
-                                  "Gaussian light model's spectrum at the pair's y centre; fitted: least squares "
-                                  "so that the filter passes the sampling density's spectrum along the wedge, as "
-                                  "the light integral does (neither in the paper; see the README)"),
+            ParameterInfo::choice("pair_weights", "fitted", {"fitted", "eq10", "light"},
+                                  "mu_p of the offset pairs: fitted: least squares so that the filter passes the "
+                                  "sampling density's spectrum along the wedge, as the light integral does (not in "
+                                  "the paper; measured better than Eq. 10 on room, see the README); eq10: MAAF "
+                                  "Eq. 10, the paper's; light: Eq. 10 times the Gaussian light model's spectrum at "
+                                  "the pair's y centre"),
             ParameterInfo::real("k", "1", "",
                                 "Width scale: each component's Fourier std is its half-width divided by k (as "
                                 "`aaf filter maaf --k`; 1 = the paper's reading, measured best on room for both "
@@ -66,11 +67,18 @@ class Maaf6Method final : public Method {
             ParameterInfo::real("normal_threshold", "20", "degrees",
                                 "Reject taps whose normal turns more (MAAF Sec. 6.2)", 0, 180),
             ParameterInfo::integer("max_radius", "12", "pixels", "Largest filter radius", 0, 1 << 12),
-            ParameterInfo::real("band_spp", "0", "spp",
-                                "Samples per pixel at which the light and lens bands are MAAF Sec. 3's; past it "
-                                "they widen as sqrt(spp / band_spp), so the filter narrows as samples are added "
-                                "and converges to the reference (AAF Sec. 5.2's consistency; 16, the first pass, "
-                                "is the natural choice); 0 = the paper's fixed bands",
+            ParameterInfo::real("band_spp", "16", "spp",
+                                "Samples per pixel at which the direct layer's light and lens bands are MAAF "
+                                "Sec. 3's; past it they widen as sqrt(spp / band_spp), the pixel band with them, "
+                                "and the pixel gets the axis-aligned filter, so the filter narrows as samples are "
+                                "added and converges to the reference (AAF Sec. 5.2's consistency; 16 = the first "
+                                "pass); 0 = the paper's fixed bands, whose bias stays whatever the samples",
+                                0),
+            ParameterInfo::real("indirect_band_spp", "128", "spp",
+                                "As band_spp, for the indirect layer: its noise is several times the direct "
+                                "layer's at equal samples, so its filter stays wide for longer (on room fixed bands "
+                                "were best for it up to 256 spp; 128 is the smallest that lost nothing up to 128 "
+                                "spp, see the README); 0 = fixed bands",
                                 0),
         };
         info_.required_attributes = light_attribute_names();
@@ -110,6 +118,7 @@ class Maaf6Method final : public Method {
         params.normal_threshold_deg = parameters.get_float("normal_threshold");
         params.max_radius_px = parameters.get_int("max_radius");
         params.band_spp = double(parameters.get_float("band_spp"));
+        const double indirect_band_spp = double(parameters.get_float("indirect_band_spp"));
         const LightPlane light = read_light_attributes(images.attributes());
         // The lens is a uniform disc of radius A = 4 / Omega_u^max (the contract's MAAF Sec. 3 band, L = A).
         if (shared.omega_u_max > 0) shared.lens_density = {DensityShape::Semicircle, 4.0 / shared.omega_u_max, 1.0};
@@ -137,7 +146,9 @@ class Maaf6Method final : public Method {
                 throw InputError("header attribute '" + std::string(spec.omega) + "' must be positive");
             const std::array<PlaneView, 3> out = {images.output(spec.output, 0), images.output(spec.output, 1),
                                                   images.output(spec.output, 2)};
-            maaf6_filter_layer(layer, shared, light, params, out);
+            Maaf6FilterParams layer_params = params;
+            if (l == 1) layer_params.band_spp = indirect_band_spp;
+            maaf6_filter_layer(layer, shared, light, layer_params, out);
             progress.report(0.45 * (l + 1));
         }
         // MAAF Sec. 6.2: direct and indirect filtered apart, then summed.

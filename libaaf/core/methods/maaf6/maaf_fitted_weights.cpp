@@ -153,7 +153,10 @@ std::vector<double> maaf_fit_pair_weights(const SampleSpectrum &phi, double omeg
 
 MaafFittedWeights::MaafFittedWeights(const SampleDensity &density, double omega_max, int pairs, double k)
     : pairs_(pairs) {
-    const SampleSpectrum phi(density);
+    if (!(omega_max > 0) || !std::isfinite(omega_max)) throw Error("MAAF fitted weights: the band must be positive and finite");
+    SampleDensity scaled = density;
+    if (scaled.half_width == 0) scaled.half_width = 2.0 / omega_max;
+    const SampleSpectrum phi(scaled);
     const int n = pairs - 1;
     table_.resize(kRatioNodes * static_cast<std::size_t>(std::max(n, 0)));
     for (int ti = 0; ti < kRatioNodes; ++ti) {

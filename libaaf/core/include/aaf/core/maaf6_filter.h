@@ -46,16 +46,17 @@ struct Maaf6FilterParams {
     /// The offset pairs' mu_p. Fitted: per pixel from the y-wedge's slope ratio
     /// with the layer's y_density, or, without a y-wedge, the u-wedge's with
     /// the lens_density (the u phases of a pixel with both are not in the fit).
-    Maaf6PairWeights pair_weights = Maaf6PairWeights::Eq10;
+    Maaf6PairWeights pair_weights = Maaf6PairWeights::Fitted;
     /// The samples per pixel at which the y and u bands are MAAF Sec. 3's: a
     /// pixel with n > band_spp samples has them widened by sqrt(n / band_spp),
     /// AAF Sec. 5.2's consistency (mu grows as the square root of the
     /// samples), so its filter narrows as samples are added and the filtered
     /// image converges to the reference. Such a pixel gets the axis-aligned
     /// filter (N = 1) at its widened bands: the stored phases belong to the
-    /// render's bands. 0 (the default): the bands whatever the samples, as the
-    /// paper has them (see the README for why it is off).
-    double band_spp = 0;
+    /// render's bands. 16 (the default): the first pass's samples. 0: the bands
+    /// whatever the samples, as the paper has them, whose bias no sample count
+    /// removes (README, "Consistency").
+    double band_spp = 16;
 };
 
 /// Filters one layer (MAAF Eq. 21-22 with the 6D product of MAAF Sec. 6.2):

@@ -18,8 +18,11 @@ enum class DensityShape {
 
 struct SampleDensity {
     DensityShape shape = DensityShape::Uniform;
-    double half_width = 1;  ///< y units (metres on a light or lens); unused by CosineLobe
-    double sigma = 1;       ///< TruncatedGaussian only
+    /// y units (metres on a light or lens); unused by CosineLobe. 0: 2 / Omega^max of the
+    /// band it is used with (MaafFittedWeights), the toolkit's uniform light (Omega_y^max =
+    /// 2 / sigma with sigma = half the side).
+    double half_width = 0;
+    double sigma = 1;  ///< TruncatedGaussian only
 };
 
 /// The density's characteristic function phi(omega) = E[cos(omega y)]
@@ -66,8 +69,8 @@ class SampleSpectrum {
 class MaafFittedWeights {
   public:
     /// A table over t in [0, 1] (33 nodes) for a layer whose density is
-    /// `density` and whose band is omega_max (per y unit): q = density scale x
-    /// omega_max. pairs: N (2 .. 8); k: as Maaf6FilterParams::k. Throws
+    /// `density` (half_width 0: 2 / omega_max) and whose band is omega_max (per
+    /// y unit): q = density scale x omega_max. pairs: N (2 .. 8); k: as Maaf6FilterParams::k. Throws
     /// aaf::Error on non-positive or non-finite arguments.
     MaafFittedWeights(const SampleDensity &density, double omega_max, int pairs, double k);
 
