@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "aaf/core/aov_contract.h"
+#include "aaf/core/error.h"
 #include "aaf/core/filter_aovs.h"
 #include "aaf/core/method_registry.h"
 #include "aaf/trace/render.h"
@@ -148,4 +149,21 @@ TEST_CASE("maaf6: the render and both filters give the same bytes for any thread
         for (const char *name : {"R", "G", "B"})
             REQUIRE(a.plane(a.index_of(name)) == b.plane(b.index_of(name)));
     }
+}
+
+TEST_CASE("maaf6: a band header attribute that is infinite, negative or NaN is an input error naming it", "[maaf6]") {
+    const AovSet render = render_room("all", 4, 1, 16, 12);
+    const float bad[] = {INFINITY, -1.0f, NAN};
+    for (const char *name : {attr::kMaaf6OmegaLens, attr::kMaaf6OmegaDirect, attr::kMaaf6OmegaIndirect})
+        for (float value : bad) {
+            INFO(name << " = " << value);
+            AovSet broken = render;
+            broken.attributes[name] = value;
+            try {
+                (void)filtered(broken, "all");
+                FAIL("no error");
+            } catch (const InputError &e) {
+                CHECK(std::string(e.what()).find(name) != std::string::npos);
+            }
+        }
 }

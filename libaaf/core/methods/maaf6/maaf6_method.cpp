@@ -107,6 +107,9 @@ class Maaf6Method final : public Method {
         shared.pixel_size = images.input(Role::PixelSize);
         shared.samples = images.input(Role::Maaf6Spp);
         shared.omega_u_max = double(header_value<float>(images, attr::kMaaf6OmegaLens));
+        if (!(shared.omega_u_max >= 0) || !std::isfinite(shared.omega_u_max))
+            throw InputError("header attribute '" + std::string(attr::kMaaf6OmegaLens) +
+                             "' must be finite and not negative (0: a pinhole)");
         Maaf6FilterParams params;
         params.stored_pairs = pairs;
         params.pairs_used = parameters.get_choice("pairs") == "1" ? 1 : pairs;
@@ -142,8 +145,8 @@ class Maaf6Method final : public Method {
             layer.y_max = images.input(Role::Maaf6Wedge, spec.wedge_channel + 1);
             layer.omega_y_max = double(header_value<float>(images, spec.omega));
             layer.y_density = l == 0 ? light_density(light) : SampleDensity{DensityShape::CosineLobe, 1.0, 1.0};
-            if (!(layer.omega_y_max > 0))
-                throw InputError("header attribute '" + std::string(spec.omega) + "' must be positive");
+            if (!(layer.omega_y_max > 0) || !std::isfinite(layer.omega_y_max))
+                throw InputError("header attribute '" + std::string(spec.omega) + "' must be positive and finite");
             const std::array<PlaneView, 3> out = {images.output(spec.output, 0), images.output(spec.output, 1),
                                                   images.output(spec.output, 2)};
             Maaf6FilterParams layer_params = params;

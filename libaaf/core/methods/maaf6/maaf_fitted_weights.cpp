@@ -64,20 +64,16 @@ double truncated_gaussian_spectrum(double omega, double half_width, double sigma
 SampleSpectrum::SampleSpectrum(const SampleDensity &density) : density_(density) {
     if (!(density.half_width > 0) || !std::isfinite(density.half_width))
         throw Error("MAAF sample density: the half width must be positive and finite");
-    if (density.shape == DensityShape::TruncatedGaussian) {
-        if (!(density.sigma > 0) || !std::isfinite(density.sigma))
-            throw Error("MAAF sample density: sigma must be positive and finite");
-        // phi up to 256 / h, beyond which the fit's 1 / W^2 weight and the
-        // spectrum's 1 / (w h) decay leave nothing: 4096 linear steps.
-        constexpr int kNodes = 4096;
-        table_step_ = 256.0 / density.half_width / (kNodes - 1);
-        table_.resize(kNodes);
-        for (int i = 0; i < kNodes; ++i)
-            table_[std::size_t(i)] = truncated_gaussian_spectrum(i * table_step_, density.half_width, density.sigma);
-    }
+    if (density.shape == DensityShape::TruncatedGaussian && (!(density.sigma > 0) || !std::isfinite(density.sigma)))
+        throw Error("MAAF sample density: sigma must be positive and finite");
+    constexpr int kSteps = 16384;
+    const double reach = density.shape == DensityShape::CosineLobe ? 64.0 : 256.0 / density.half_width;
+    table_step_ = reach / kSteps;
+    table_.resize(kSteps + 1);
+    for (int i = 0; i <= kSteps; ++i) table_[std::size_t(i)] = exact(i * table_step_);
 }
 
-double SampleSpectrum::operator()(double omega) const {
+double SampleSpectrum::exact(double omega) const {
     const double w = std::fabs(omega);
     switch (density_.shape) {
     case DensityShape::Uniform: {
@@ -90,15 +86,18 @@ double SampleSpectrum::operator()(double omega) const {
     }
     case DensityShape::CosineLobe:
         return w < 1e-12 ? 1.0 : w > 700 ? 0.0 : w * std::cyl_bessel_k(1.0, w);
-    case DensityShape::TruncatedGaussian: {
-        const double at = w / table_step_;
-        if (at >= double(table_.size() - 1)) return 0.0;
-        const std::size_t i = std::size_t(at);
-        const double f = at - double(i);
-        return (1.0 - f) * table_[i] + f * table_[i + 1];
-    }
+    case DensityShape::TruncatedGaussian:
+        return truncated_gaussian_spectrum(w, density_.half_width, density_.sigma);
     }
     return 0.0;
+}
+
+double SampleSpectrum::operator()(double omega) const {
+    const double at = std::fabs(omega) / table_step_;
+    if (!(at < double(table_.size() - 1))) return exact(omega);
+    const std::size_t i = std::size_t(at);
+    const double f = at - double(i);
+    return (1.0 - f) * table_[i] + f * table_[i + 1];
 }
 
 std::vector<double> maaf_fit_pair_weights(const SampleSpectrum &phi, double omega_max, double t, int pairs,

@@ -29,17 +29,20 @@ struct SampleDensity {
 /// (phi(0) = 1, even): sin(w h) / (w h) for Uniform; 2 J1(w h) / (w h) for
 /// Semicircle; |w| K1(|w|) for CosineLobe (the marginal 1 / (2 (1 + y^2)^1.5)
 /// of the density 1 / (pi (1 + r^2)^2) that cosine-weighted directions have
-/// on the unit plane above the receiver); TruncatedGaussian by quadrature,
-/// tabulated at construction. omega in rad per y unit.
+/// on the unit plane above the receiver); TruncatedGaussian by quadrature.
+/// omega in rad per y unit. exact() evaluates it; operator() interpolates a
+/// table of it built at construction (16384 steps up to 256 / h, 64 for
+/// CosineLobe; exact() beyond), which the fits evaluate a million times.
 class SampleSpectrum {
   public:
     explicit SampleSpectrum(const SampleDensity &density);
+    double exact(double omega) const;
     double operator()(double omega) const;
 
   private:
     SampleDensity density_;
-    double table_step_ = 0;      ///< TruncatedGaussian: omega spacing of table_
-    std::vector<double> table_;  ///< TruncatedGaussian: phi at i * table_step_
+    double table_step_ = 0;
+    std::vector<double> table_;  ///< exact(i * table_step_)
 };
 
 /// Pair weights mu_1 .. mu_{N-1} fitted so that the maaf6 filter's response
