@@ -11,14 +11,17 @@ using namespace aaf;
 TEST_CASE("MAAF sample spectra: each density's characteristic function, by hand", "[maaf6]") {
     // sin(1) / 1, 2 J1(1) / 1 and 1 K1(1) from tables (Abramowitz & Stegun 9.1, 9.8).
     CHECK(SampleSpectrum({DensityShape::Uniform, 2.0, 1.0}).exact(0.5) == Approx(0.8414709848).epsilon(1e-9));
-    CHECK(SampleSpectrum({DensityShape::Semicircle, 1.0, 1.0}).exact(-1.0) == Approx(2 * 0.4400505857).epsilon(1e-9));
-    CHECK(SampleSpectrum({DensityShape::CosineLobe, 1.0, 1.0}).exact(1.0) == Approx(0.6019072302).epsilon(1e-9));
+    CHECK(SampleSpectrum({DensityShape::Semicircle, 1.0, 1.0}).exact(-1.0) ==
+          Approx(2 * 0.4400505857).epsilon(1e-9));
+    CHECK(SampleSpectrum({DensityShape::CosineLobe, 1.0, 1.0}).exact(1.0) ==
+          Approx(0.6019072302).epsilon(1e-9));
     for (DensityShape shape : {DensityShape::Uniform, DensityShape::Semicircle, DensityShape::CosineLobe,
                                DensityShape::TruncatedGaussian}) {
         const SampleSpectrum phi({shape, 1.0, 0.5});
         CHECK(phi(0.0) == Approx(1.0).epsilon(1e-12));
         // The interpolated table the fits use, against the exact function, inside and beyond its reach.
-        for (double w : {0.013, 0.7, 2.8, 9.1, 33.3, 300.0}) CHECK(phi(w) == Approx(phi.exact(w)).margin(1e-4));
+        for (double w : {0.013, 0.7, 2.8, 9.1, 33.3, 300.0})
+            CHECK(phi(w) == Approx(phi.exact(w)).margin(1e-4));
     }
     // A Gaussian cut at 8 sigma is the Gaussian's exp(-(w sigma)^2 / 2); one of huge sigma is uniform.
     CHECK(SampleSpectrum({DensityShape::TruncatedGaussian, 0.8, 0.1}).exact(10.0) ==
@@ -37,7 +40,8 @@ TEST_CASE("MAAF sample spectra: the lens and the cosine lobe match the samples t
     double disc[2] = {0, 0}, lobe[2] = {0, 0};
     for (int i = 0; i < n; ++i) {
         const double r = std::sqrt(unit(rng)), phi = 2 * 3.14159265358979 * unit(rng);
-        const double x = r * std::cos(phi);  // the disc's point; Malley: the same point lifted is a cosine direction
+        const double x =
+            r * std::cos(phi);  // the disc's point; Malley: the same point lifted is a cosine direction
         const double tan_theta = r / std::sqrt(1 - r * r);
         for (int k = 0; k < 2; ++k) {
             disc[k] += std::cos(omegas[k] * x) / n;
@@ -46,8 +50,10 @@ TEST_CASE("MAAF sample spectra: the lens and the cosine lobe match the samples t
     }
     for (int k = 0; k < 2; ++k) {
         INFO("omega " << omegas[k]);
-        CHECK(SampleSpectrum({DensityShape::Semicircle, 1.0, 1.0})(omegas[k]) == Approx(disc[k]).margin(0.005));
-        CHECK(SampleSpectrum({DensityShape::CosineLobe, 1.0, 1.0})(omegas[k]) == Approx(lobe[k]).margin(0.005));
+        CHECK(SampleSpectrum({DensityShape::Semicircle, 1.0, 1.0})(omegas[k]) ==
+              Approx(disc[k]).margin(0.005));
+        CHECK(SampleSpectrum({DensityShape::CosineLobe, 1.0, 1.0})(omegas[k]) ==
+              Approx(lobe[k]).margin(0.005));
     }
 }
 
@@ -74,15 +80,16 @@ TEST_CASE("MAAF fitted weights: the table holds the fit at its nodes and is line
     CHECK_THROWS(maaf_fit_pair_weights(phi, 40.0, 0.5, 1, 1.0));
 }
 
-TEST_CASE("MAAF fitted weights: a Gaussian light's wider spectrum gets smaller outer weights than a uniform one's",
-          "[maaf6]") {
+TEST_CASE(
+    "MAAF fitted weights: a Gaussian light's wider spectrum gets smaller outer weights than a uniform one's",
+    "[maaf6]") {
     // Same band Omega_y^max = 2 / 0.05: a uniform light of half side 5 cm passes sinc(C_y h) at the
     // outer pair's C_y = 0.8 Omega_y^max (sinc(1.6) = 0.62), a Gaussian of sigma 5 cm exp(-(1.6)^2 / 2)
     // = 0.28 (MAAF Eq. 10 gives both 0.73). The fit follows the spectrum the filter has to pass.
     const std::vector<double> uniform =
         maaf_fit_pair_weights(SampleSpectrum({DensityShape::Uniform, 0.05, 1.0}), 40.0, 1.0, 3, 1.0);
-    const std::vector<double> gaussian =
-        maaf_fit_pair_weights(SampleSpectrum({DensityShape::TruncatedGaussian, 0.4, 0.05}), 40.0, 1.0, 3, 1.0);
+    const std::vector<double> gaussian = maaf_fit_pair_weights(
+        SampleSpectrum({DensityShape::TruncatedGaussian, 0.4, 0.05}), 40.0, 1.0, 3, 1.0);
     INFO("uniform " << uniform[0] << " " << uniform[1] << ", Gaussian " << gaussian[0] << " " << gaussian[1]);
     CHECK(gaussian[1] < uniform[1] - 0.2);
 }

@@ -56,8 +56,8 @@ class Maaf6Method final : public Method {
             ParameterInfo::choice("pair_weights", "fitted", {"fitted", "eq10", "light"},
                                   "mu_p of the offset pairs: fitted: least squares so that the filter passes the "
                                   "sampling density's spectrum along the wedge, as the light integral does (not in "
-                                  "the paper; measured better than Eq. 10 on room, see the README); eq10: MAAF "
-                                  "Eq. 10, the paper's; light: Eq. 10 times the Gaussian light model's spectrum at "
+                                  "the paper; measured better than MAAF Eq. 10 on room, see the README); eq10: MAAF "
+                                  "Eq. 10, the paper's; light: MAAF Eq. 10 times the Gaussian light model's spectrum at "
                                   "the pair's y centre"),
             ParameterInfo::real("k", "1", "",
                                 "Width scale: each component's Fourier std is its half-width divided by k (as "
@@ -124,7 +124,8 @@ class Maaf6Method final : public Method {
         const double indirect_band_spp = double(parameters.get_float("indirect_band_spp"));
         const LightPlane light = read_light_attributes(images.attributes());
         // The lens is a uniform disc of radius A = 4 / Omega_u^max (the contract's MAAF Sec. 3 band, L = A).
-        if (shared.omega_u_max > 0) shared.lens_density = {DensityShape::Semicircle, 4.0 / shared.omega_u_max, 1.0};
+        if (shared.omega_u_max > 0)
+            shared.lens_density = {DensityShape::Semicircle, 4.0 / shared.omega_u_max, 1.0};
         const int channels = maaf6_channel_count(pairs);
 
         struct Layer {

@@ -12,10 +12,10 @@ namespace aaf {
 
 namespace {
 
-constexpr int kSlopeNodes = 9;       ///< tau nodes of the fit
-constexpr int kFrequencyNodes = 320; ///< W nodes of the fit
+constexpr int kSlopeNodes = 9;           ///< tau nodes of the fit
+constexpr int kFrequencyNodes = 320;     ///< W nodes of the fit
 constexpr double kFrequencyReach = 4.0;  ///< W up to this many times the wedge's x extent
-constexpr int kRatioNodes = 33;      ///< t nodes of the table
+constexpr int kRatioNodes = 33;          ///< t nodes of the table
 
 /// Solves the small symmetric system m x = r (n <= 7) by Gaussian elimination with partial pivoting.
 std::vector<double> solve(std::vector<double> m, std::vector<double> r, int n) {
@@ -64,7 +64,8 @@ double truncated_gaussian_spectrum(double omega, double half_width, double sigma
 SampleSpectrum::SampleSpectrum(const SampleDensity &density) : density_(density) {
     if (!(density.half_width > 0) || !std::isfinite(density.half_width))
         throw Error("MAAF sample density: the half width must be positive and finite");
-    if (density.shape == DensityShape::TruncatedGaussian && (!(density.sigma > 0) || !std::isfinite(density.sigma)))
+    if (density.shape == DensityShape::TruncatedGaussian &&
+        (!(density.sigma > 0) || !std::isfinite(density.sigma)))
         throw Error("MAAF sample density: sigma must be positive and finite");
     constexpr int kSteps = 16384;
     const double reach = density.shape == DensityShape::CosineLobe ? 64.0 : 256.0 / density.half_width;
@@ -76,18 +77,18 @@ SampleSpectrum::SampleSpectrum(const SampleDensity &density) : density_(density)
 double SampleSpectrum::exact(double omega) const {
     const double w = std::fabs(omega);
     switch (density_.shape) {
-    case DensityShape::Uniform: {
-        const double x = w * density_.half_width;
-        return x < 1e-8 ? 1.0 : std::sin(x) / x;
-    }
-    case DensityShape::Semicircle: {
-        const double x = w * density_.half_width;
-        return x < 1e-8 ? 1.0 : 2.0 * std::cyl_bessel_j(1.0, x) / x;
-    }
-    case DensityShape::CosineLobe:
-        return w < 1e-12 ? 1.0 : w > 700 ? 0.0 : w * std::cyl_bessel_k(1.0, w);
-    case DensityShape::TruncatedGaussian:
-        return truncated_gaussian_spectrum(w, density_.half_width, density_.sigma);
+        case DensityShape::Uniform: {
+            const double x = w * density_.half_width;
+            return x < 1e-8 ? 1.0 : std::sin(x) / x;
+        }
+        case DensityShape::Semicircle: {
+            const double x = w * density_.half_width;
+            return x < 1e-8 ? 1.0 : 2.0 * std::cyl_bessel_j(1.0, x) / x;
+        }
+        case DensityShape::CosineLobe:
+            return w < 1e-12 ? 1.0 : w > 700 ? 0.0 : w * std::cyl_bessel_k(1.0, w);
+        case DensityShape::TruncatedGaussian:
+            return truncated_gaussian_spectrum(w, density_.half_width, density_.sigma);
     }
     return 0.0;
 }
@@ -136,30 +137,35 @@ std::vector<double> maaf_fit_pair_weights(const SampleSpectrum &phi, double omeg
                 const double mid = std::exp(-0.5 * (w * ap) * (w * ap));
                 const double phi_lo = phi(w * s - cp.centre_y), phi_hi = phi(w * s + cp.centre_y);
                 basis[std::size_t(p - 1)] =
-                    (ap / a[0]) * (lo * phi_lo + hi * phi_hi - dc[std::size_t(p)] * mid * (phi_lo + phi_hi)) / w;
+                    (ap / a[0]) * (lo * phi_lo + hi * phi_hi - dc[std::size_t(p)] * mid * (phi_lo + phi_hi)) /
+                    w;
             }
             for (int p = 0; p < n; ++p) {
                 rhs[std::size_t(p)] -= basis[std::size_t(p)] * residual;
-                for (int q = 0; q < n; ++q) normal[std::size_t(p * n + q)] += basis[std::size_t(p)] * basis[std::size_t(q)];
+                for (int q = 0; q < n; ++q)
+                    normal[std::size_t(p * n + q)] += basis[std::size_t(p)] * basis[std::size_t(q)];
             }
         }
     }
     double trace = 0;
     for (int p = 0; p < n; ++p) trace += normal[std::size_t(p * n + p)];
-    for (int p = 0; p < n; ++p) normal[std::size_t(p * n + p)] += 1e-12 * trace;  // keeps a null direction at 0
+    for (int p = 0; p < n; ++p)
+        normal[std::size_t(p * n + p)] += 1e-12 * trace;  // keeps a null direction at 0
     return solve(normal, rhs, n);
 }
 
 MaafFittedWeights::MaafFittedWeights(const SampleDensity &density, double omega_max, int pairs, double k)
     : pairs_(pairs) {
-    if (!(omega_max > 0) || !std::isfinite(omega_max)) throw Error("MAAF fitted weights: the band must be positive and finite");
+    if (!(omega_max > 0) || !std::isfinite(omega_max))
+        throw Error("MAAF fitted weights: the band must be positive and finite");
     SampleDensity scaled = density;
     if (scaled.half_width == 0) scaled.half_width = 2.0 / omega_max;
     const SampleSpectrum phi(scaled);
     const int n = pairs - 1;
     table_.resize(kRatioNodes * static_cast<std::size_t>(std::max(n, 0)));
     for (int ti = 0; ti < kRatioNodes; ++ti) {
-        const std::vector<double> mu = maaf_fit_pair_weights(phi, omega_max, double(ti) / (kRatioNodes - 1), pairs, k);
+        const std::vector<double> mu =
+            maaf_fit_pair_weights(phi, omega_max, double(ti) / (kRatioNodes - 1), pairs, k);
         std::copy(mu.begin(), mu.end(), table_.begin() + std::ptrdiff_t(ti * n));
     }
 }

@@ -33,7 +33,7 @@ struct Maaf6SharedInputs {
 /// The offset pairs' weights mu_p.
 enum class Maaf6PairWeights {
     Eq10,   ///< MAAF Eq. 10, as the paper
-    Light,  ///< Eq. 10 times maaf6_light_attenuation() at C_y^p (a Gaussian light model; not in the paper)
+    Light,  ///< MAAF Eq. 10 times maaf6_light_attenuation() at C_y^p (a Gaussian light model; not in the paper)
     Fitted, ///< MaafFittedWeights: fitted to the sampling density's spectrum along the wedge (not in the paper)
 };
 

@@ -52,12 +52,13 @@ class SampleSpectrum {
 /// maaf6_x_kernel() and, along y, the sampling density times cos / sin(C_y^p y).
 /// On a wedge line Omega_y = s Omega_x (slope s) its response is therefore,
 /// with a_p = k / sigma_x^p the primal std and phi the density's spectrum,
-///   H_s(W) = [a_0 e^{-(W a_0)^2/2} phi(W s) + sum_p mu_p a_p (e^{-((W - C_x)a_p)^2/2} phi(W s - C_y)
-///             + e^{-((W + C_x)a_p)^2/2} phi(W s + C_y) - e_p e^{-(W a_p)^2/2} (phi(W s - C_y) + phi(W s + C_y)))] / a_0,
+///   H_s(W) = [a_0 G(W a_0) phi(W s) + sum_p mu_p a_p (G((W - C_x) a_p) phi(W s - C_y)
+///             + G((W + C_x) a_p) phi(W s + C_y) - e_p G(W a_p) (phi(W s - C_y) + phi(W s + C_y)))] / a_0,
+/// G(z) = e^{-z^2 / 2},
 /// e_p the pair's DC correction, while the light integral that the pixel
 /// should get passes phi(W s) whatever W: the ideal filter is phi(Omega_y)
 /// on the whole wedge (MAAF Eq. 14's accuracy, with the density's spectrum
-/// as the target). Eq. 10's mu_p ignore that the components overlap through
+/// as the target). MAAF Eq. 10's mu_p ignore that the components overlap through
 /// phi and that each realised component's Fourier peak is a_p / a_0 of the
 /// central's: on room's converged shadows they darkened smooth penumbrae by
 /// about 2% (README, issue 15).
@@ -66,7 +67,7 @@ class SampleSpectrum {
 /// (H_s(W) - phi(W s))^2 / W^2 (the 1 / W^2: an edge's spectrum, so this is
 /// the squared error of filtered edges), s = 1 / tau with tau uniform over
 /// [s_min / s_max, 1] (uniform over the wedge's area at each Omega_y, as
-/// Eq. 14 weighs it), W over (0, 4 Omega_y^max / s_min]. Everything scales with
+/// MAAF Eq. 14 weighs it), W over (0, 4 Omega_y^max / s_min]. Everything scales with
 /// s_min and Omega_y^max, so the weights depend only on t = s_min / s_max,
 /// q = (the density's scale) x Omega_y^max, N and k.
 class MaafFittedWeights {
@@ -91,7 +92,7 @@ class MaafFittedWeights {
 /// One fit (MaafFittedWeights' "The fit"): mu_1 .. mu_{N-1} for slope ratio
 /// t in [0, 1], the density's spectrum `spectrum` and the band omega_max it is
 /// partitioned with (per y unit). Exposed for tests.
-std::vector<double> maaf_fit_pair_weights(const SampleSpectrum &spectrum, double omega_max, double t, int pairs,
-                                          double k);
+std::vector<double> maaf_fit_pair_weights(const SampleSpectrum &spectrum, double omega_max, double t,
+                                          int pairs, double k);
 
 }  // namespace aaf
