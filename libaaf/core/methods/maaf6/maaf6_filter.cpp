@@ -184,8 +184,8 @@ void maaf6_filter_layer(const Maaf6LayerInputs &layer, const Maaf6SharedInputs &
             if (params.pair_weights == Maaf6PairWeights::Light && offsets_used)
                 for (Maaf6Component &c : pairs) c.weight *= maaf6_light_attenuation(c.centre_y, wedge.omega_y_max);
             if (params.pair_weights == Maaf6PairWeights::Fitted && offsets_used) {
-                // The partition is used, so the wedge is not clipped by the x band: its slope
-                // ratio and the band's widening are all the fit depends on.
+                // The partition is used, so the wedge is neither clipped by the x band nor
+                // widened (pixel_pairs): its slope ratio is all the fit depends on.
                 const double u_lo = std::min(std::fabs(wedge.u_min), std::fabs(wedge.u_max));
                 const double u_hi = std::max(std::fabs(wedge.u_min), std::fabs(wedge.u_max));
                 const MaafFittedWeights &table = wedge.has_y ? *fitted_y : *fitted_u;

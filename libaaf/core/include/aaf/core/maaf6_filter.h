@@ -53,7 +53,8 @@ struct Maaf6FilterParams {
     /// samples), so its filter narrows as samples are added and the filtered
     /// image converges to the reference. Such a pixel gets the axis-aligned
     /// filter (N = 1) at its widened bands: the stored phases belong to the
-    /// render's bands. 16 (the default): the first pass's samples. 0: the bands
+    /// render's bands. 16 (the default): the first pass's samples; the maaf6
+    /// method passes 128 for the indirect layer (`--indirect-band-spp`). 0: the bands
     /// whatever the samples, as the paper has them, whose bias no sample count
     /// removes (README, "Consistency").
     double band_spp = 16;
