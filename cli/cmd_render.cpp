@@ -16,14 +16,17 @@
 
 #include "aaf/core/aov_contract.h"
 #include "aaf/core/error.h"
+#include "aaf/core/method_registry.h"
 #include "aaf/core/sample_statistics.h"
 #include "aaf/io/atomic_file.h"
 #include "aaf/io/exr_io.h"
+#include "aaf/io/filter_file.h"
 #include "aaf/io/sequence.h"
 #include "aaf/trace/render.h"
 #include "channel_options.h"
 #include "commands.h"
 #include "frame_runner.h"
+#include "missing_input_report.h"
 #include "provenance.h"
 
 namespace aaf::cli {
@@ -167,11 +170,53 @@ std::string render_parameters(const trace::RenderSettings &settings) {
     return text.str();
 }
 
+/// `aaf render --filter METHOD --filter-param NAME=VALUE ...`: the method
+/// that filters each frame before it is written, and its parameters.
+struct RenderFilter {
+    const Method *method = nullptr;
+    ParameterSet parameters;
+};
+
+/// The method named by --filter with its defaults and the --filter-param
+/// values over them; an unknown method, a malformed NAME=VALUE or a bad
+/// value is a usage error (exit 2), found before anything renders.
+RenderFilter render_filter(const std::string &name, const std::vector<std::string> &assignments) {
+    RenderFilter filter;
+    try {
+        filter.method = &find_method(name);
+    } catch (const Error &e) {
+        throw UsageError(std::string("--filter: ") + e.what());
+    }
+    filter.parameters = filter.method->default_parameters();
+    for (const std::string &assignment : assignments) {
+        const std::size_t equals = assignment.find('=');
+        if (equals == std::string::npos || equals == 0)
+            throw UsageError("--filter-param '" + assignment + "': expected NAME=VALUE (aaf filter " + name +
+                             " --help lists the names)");
+        try {
+            filter.parameters.set(assignment.substr(0, equals), assignment.substr(equals + 1));
+        } catch (const Error &e) {
+            throw UsageError("--filter-param '" + assignment + "': " + e.what());
+        }
+    }
+    return filter;
+}
+
+/// The filter's settings for the output's provenance, as `aaf filter` records
+/// them but prefixed "filter." (a method may have a parameter named like a render setting).
+std::string filter_parameters(const RenderFilter &filter) {
+    std::string text = " filter=" + filter.method->info().name;
+    for (const ParameterInfo &parameter : filter.method->info().parameters)
+        text += " filter." + parameter.name + "=" + filter.parameters.text(parameter.name);
+    return text;
+}
+
 }  // namespace
 
 void add_render_command(CLI::App &app) {
     struct Options {
-        std::string scene, output, light, aovs = "aaf", frames, resume, progress = "auto";
+        std::string scene, output, light, aovs = "aaf", frames, resume, progress = "auto", filter;
+        std::vector<std::string> filter_params;
         std::string light_bandlimit = to_string(trace::RenderSettings{}.light_bandlimit);
         std::string light_axes = to_string(trace::RenderSettings{}.light_axes);
         std::string pixel_footprint = trace::RenderSettings{}.projected_pixel ? "projected" : "receiver";
@@ -248,6 +293,12 @@ void add_render_command(CLI::App &app) {
     cmd->add_flag("--skip-existing", options->skip_existing,
                   "Skip frames whose output is complete (all spp, not a checkpoint) and up to date: made by this aaf "
                   "with these settings from the scene files unchanged since; redo stale or partial ones");
+    cmd->add_option("--filter", options->filter,
+                    "Filter each frame with this method (aaf filter METHOD) before writing it: one process, no "
+                    "intermediate file; --aovs defaults to the method's inputs");
+    cmd->add_option("--filter-param", options->filter_params,
+                    "NAME=VALUE: a parameter of the --filter method (names and ranges: aaf filter METHOD --help); "
+                    "repeatable");
     cmd->add_flag("--list", options->list, "List the scenes found by name and exit");
     cmd->callback([options, cmd] {
         if (options->list) {
@@ -266,6 +317,18 @@ void add_render_command(CLI::App &app) {
             settings.aovs = trace::parse_aov_groups(options->aovs);
         } catch (const Error &e) {
             throw UsageError(std::string("--aovs: ") + e.what());
+        }
+        std::optional<RenderFilter> filter;
+        if (!options->filter.empty()) {
+            filter = render_filter(options->filter, options->filter_params);
+            const unsigned needed = trace::aov_groups_for_method(options->filter);
+            if (cmd->count("--aovs") == 0)
+                settings.aovs = needed;
+            else if ((settings.aovs & needed) != needed)
+                throw UsageError("--filter " + options->filter + " reads AOVs that --aovs " + options->aovs +
+                                 " does not render (add " + options->filter + " to --aovs, or leave --aovs out)");
+        } else if (!options->filter_params.empty()) {
+            throw UsageError("--filter-param needs --filter");
         }
         check_settings(settings, !options->resume.empty());
         // Options that only shape the adaptive second pass do nothing without it.
@@ -306,8 +369,18 @@ void add_render_command(CLI::App &app) {
         const auto job_provenance = [&](const FrameJob &job) {
             trace::RenderSettings frame_settings = settings;
             if (sequence) frame_settings.frame = job.frame;
-            return Provenance{"render", render_parameters(frame_settings), scene_hash};
+            std::string parameters = render_parameters(frame_settings);
+            if (filter) parameters += filter_parameters(*filter);
+            return Provenance{"render", parameters, scene_hash};
         };
+        // One pipeline for the whole sequence: a method that reads the
+        // previous frame's output gets it, as in `aaf filter`.
+        std::optional<io::FrameFilter> frame_filter;
+        io::FilterFileOptions filter_options;
+        if (filter) {
+            frame_filter = io::method_filter(*filter->method, filter->parameters, filter_options.channels);
+            filter_options.threads = settings.threads;
+        }
         run.up_to_date = [&](const FrameJob &job) { return output_up_to_date(job.output, job_provenance(job)); };
         RenderReporter reporter(sequence ? Progress::None : run.progress);
         std::signal(SIGINT, on_interrupt);
@@ -328,9 +401,28 @@ void add_render_command(CLI::App &app) {
             trace::RenderTimings timings;
             // Scene and resume errors name their file themselves.
             AovSet aovs = trace::render_scene(job.input, frame_settings, &timings);
+            const int done = std::get<int>(aovs.attributes.at(attr::kSppDone));
+            // Statistics of the render, taken before the filter may replace its channels.
+            const ChannelMap channels;
+            const double mean_spp =
+                settings.adaptive ? mean_spp_over_shaded(aovs.channel(channels.channel(Role::SamplesPerPixel)),
+                                                         aovs.channel(channels.channel(Role::ObjectId)))
+                                  : 0.0;
+            double filter_s = 0;
+            // An interrupted render is written unfiltered, so that --resume can continue it.
+            if (frame_filter && done >= frame_settings.spp) {
+                const std::vector<std::string> recipes =
+                    missing_input_recipes(*filter->method, aovs, filter_options.channels);
+                if (!recipes.empty()) throw InputError(missing_inputs_message(*filter->method, recipes));
+                const auto start = std::chrono::steady_clock::now();
+                io::FilterFileReport report;
+                aovs = io::filter_frame(std::move(aovs), job.input, *frame_filter, filter_options, report);
+                filter_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+                for (const std::string &warning : report.warnings)
+                    std::fprintf(stderr, "aaf: warning: %s\n", warning.c_str());
+            }
             stamp(provenance, aovs);
             io::write_aovs(aovs, job.output);
-            const int done = std::get<int>(aovs.attributes.at(attr::kSppDone));
             if (done < frame_settings.spp) {
                 std::fprintf(
                     stderr, "aaf: interrupted after %d of %d spp; %s holds them: continue with --resume %s\n",
@@ -338,13 +430,12 @@ void add_render_command(CLI::App &app) {
                 throw Interrupted{};
             }
             if (settings.adaptive) {
-                const ChannelMap channels;
                 std::printf(
                     "adaptive sampling: average %.2f spp over shaded pixels; first pass %.3f s, "
-                    "plan %.3f s, second pass %.3f s\n",
-                    mean_spp_over_shaded(aovs.channel(channels.channel(Role::SamplesPerPixel)),
-                                         aovs.channel(channels.channel(Role::ObjectId))),
-                    timings.first_pass_s, timings.plan_s, timings.second_pass_s);
+                    "plan %.3f s, second pass %.3f s",
+                    mean_spp, timings.first_pass_s, timings.plan_s, timings.second_pass_s);
+                if (frame_filter) std::printf(", filter %.3f s", filter_s);
+                std::printf("\n");
             }
         });
         if (failed > 0)

@@ -13,7 +13,8 @@
 #   aaf_filter    aaf filter aaf in.exr -o out.exr   (CLI defaults)
 #   each method   aaf filter METHOD (maaf needs the maaf AOVs: left out here)
 # and, at 640x480 only, the adaptive frame (aaf render grids --adaptive, then
-# aaf filter aaf, written). Peak memory (maximum RSS, /usr/bin/time -v) of one
+# aaf filter aaf, written; and the same in one process, aaf render grids
+# --adaptive --filter aaf, alternately). Peak memory (maximum RSS, /usr/bin/time -v) of one
 # aaf filter run, of `aaf --version` (the mapped libraries alone: the
 # baseline) and of the oiiotool copy; the frame's AOV bytes are width x height
 # x the bytes of its channels as stored, and the peak is given over them both
@@ -83,11 +84,16 @@ done
 
 # The adaptive frame at 640x480: render (9 spp first pass, the CLI defaults) + filter + write.
 frame=()
+one=()
 for ((r = 0; r < reps; ++r)); do
     t=$(now)
     "$aaf" render grids --adaptive -o "$dir/adaptive.exr" --progress none >/dev/null
     "$aaf" filter aaf "$dir/adaptive.exr" -o "$dir/adaptive_filtered.exr" >/dev/null
     frame+=("$(echo "($(now) - $t) * 1000" | bc -l)")
+    t=$(now)
+    "$aaf" render grids --adaptive --filter aaf -o "$dir/adaptive_one.exr" --progress none >/dev/null
+    one+=("$(echo "($(now) - $t) * 1000" | bc -l)")
 done
 echo
 echo "Adaptive 640x480 grids frame (aaf render grids --adaptive; aaf filter aaf): median $(printf '%s\n' "${frame[@]}" | median | xargs printf '%.0f') ms"
+echo "The same in one process (aaf render grids --adaptive --filter aaf): median $(printf '%s\n' "${one[@]}" | median | xargs printf '%.0f') ms"

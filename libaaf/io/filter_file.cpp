@@ -117,6 +117,23 @@ FrameFilter method_filter(const Method &method, const ParameterSet &parameters, 
     return filter;
 }
 
+AovSet filter_frame(AovSet input, const std::string &source, const FrameFilter &filter,
+                    const FilterFileOptions &options, FilterFileReport &report) {
+    warn_if_defocused(source, input, filter, report);
+    if (options.replace_non_finite)
+        report.non_finite = replace_non_finite(input, filter.input_channels(input));
+    warn_if_non_finite(source, report);
+
+    const ChannelMap resolved = options.channels.resolved(input);
+    AovSet output;
+    // The input moves into the filter, which moves its planes into the output: a lower peak of memory.
+    run_with_threads(options.threads, [&] {
+        output = with_context(source, [&] { return filter.run(std::move(input)); });
+    });
+    if (options.keep_beauty) output = keep_beauty(output, resolved);
+    return output;
+}
+
 FilterFileReport filter_file(const std::string &input_path, const std::string &output_path,
                              const FrameFilter &filter, const FilterFileOptions &options) {
     check_not_same_file(input_path, output_path);
@@ -127,20 +144,10 @@ FilterFileReport filter_file(const std::string &input_path, const std::string &o
     AovSet input = read_aovs(input_path, &layout);
     // AOVs the first part lacks may sit in other parts (one AOV per part);
     // they are read for the filter and stay in their parts in the output.
+    // Scrubbing (in filter_frame) asks for the channels again: the borrowed
+    // ones may complete a synonym.
     report.borrowed = add_channels_from_other_parts(input_path, layout, filter.input_channels(input), input);
-    warn_if_defocused(input_path, input, filter, report);
-    // Asked again: the borrowed channels may complete a synonym.
-    if (options.replace_non_finite)
-        report.non_finite = replace_non_finite(input, filter.input_channels(input));
-    warn_if_non_finite(input_path, report);
-
-    const ChannelMap resolved = options.channels.resolved(input);
-    AovSet output;
-    // The input moves into the filter, which moves its planes into the output: a lower peak of memory.
-    run_with_threads(options.threads, [&] {
-        output = with_context(input_path, [&] { return filter.run(std::move(input)); });
-    });
-    if (options.keep_beauty) output = keep_beauty(output, resolved);
+    AovSet output = filter_frame(std::move(input), input_path, filter, options, report);
     if (!report.borrowed.empty()) output = without_channels(output, report.borrowed);
     WriteOptions write = options.write;
     write.layout = &layout;

@@ -69,6 +69,15 @@ struct FilterFileReport {
     std::vector<std::string> borrowed;
 };
 
+/// Filters one frame in memory, as filter_file() does between reading and
+/// writing: warns (into `report`, each message prefixed with `source`) of a
+/// thin-lens input and of NaN/Inf, scrubs them, runs `filter` under
+/// `options.threads` workers and optionally keeps the beauty. `source`
+/// names the frame in messages and errors (a file, or a scene for a render
+/// filtered before it is written). `options.write` is not used.
+AovSet filter_frame(AovSet input, const std::string &source, const FrameFilter &filter,
+                    const FilterFileOptions &options, FilterFileReport &report);
+
 /// Filters one frame, file to file: reads `input_path` with its layout (every
 /// header attribute, the windows, the other parts), borrows the filter's input
 /// channels the first part lacks from the other parts, scrubs NaN/Inf, runs
