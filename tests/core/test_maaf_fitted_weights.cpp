@@ -3,7 +3,10 @@
 #include <catch2/catch.hpp>
 #include <cmath>
 #include <random>
+#include <thread>
+#include <vector>
 
+#include "aaf/core/error.h"
 #include "aaf/core/maaf_fitted_weights.h"
 
 using namespace aaf;
@@ -92,4 +95,44 @@ TEST_CASE(
         SampleSpectrum({DensityShape::TruncatedGaussian, 0.4, 0.05}), 40.0, 1.0, 3, 1.0);
     INFO("uniform " << uniform[0] << " " << uniform[1] << ", Gaussian " << gaussian[0] << " " << gaussian[1]);
     CHECK(gaussian[1] < uniform[1] - 0.2);
+}
+
+TEST_CASE("MAAF fitted weights: the process-wide tables equal fresh ones, shared by equal arguments",
+          "[maaf6]") {
+    const SampleDensity gaussian{DensityShape::TruncatedGaussian, 0.5, 0.25};
+    const auto same_weights = [](const MaafFittedWeights &a, const MaafFittedWeights &b) {
+        REQUIRE(a.pairs() == b.pairs());
+        for (double t : {0.0, 0.031, 0.5, 0.77, 1.0}) {
+            double mu_a[8] = {}, mu_b[8] = {};
+            a.weights(t, mu_a);
+            b.weights(t, mu_b);
+            for (int p = 0; p + 1 < a.pairs(); ++p)
+                if (mu_a[p] != mu_b[p]) return false;  // bit for bit
+        }
+        return true;
+    };
+    const auto first = shared_fitted_weights(gaussian, 3.0, 3, 1.0);
+    CHECK(same_weights(*first, MaafFittedWeights(gaussian, 3.0, 3, 1.0)));
+    CHECK(shared_fitted_weights(gaussian, 3.0, 3, 1.0) == first);  // built once
+    // Any argument that changes the table gives another one.
+    CHECK(shared_fitted_weights(gaussian, 3.0, 4, 1.0) != first);
+    CHECK(shared_fitted_weights(gaussian, 3.0, 3, 0.5) != first);
+    CHECK(shared_fitted_weights(gaussian, 2.0, 3, 1.0) != first);
+    CHECK(shared_fitted_weights({DensityShape::Uniform, 0.5, 0.25}, 3.0, 3, 1.0) != first);
+    CHECK(shared_fitted_weights({DensityShape::TruncatedGaussian, 0.5, 0.3}, 3.0, 3, 1.0) != first);
+    // Many callers at once (the two layers, a library's own threads) get equal tables.
+    std::vector<std::shared_ptr<const MaafFittedWeights>> got(8);
+    std::vector<std::thread> threads;
+    for (std::size_t i = 0; i < got.size(); ++i)
+        threads.emplace_back([&, i] { got[i] = shared_fitted_weights(gaussian, 5.0 + double(i % 2), 3, 1.0); });
+    for (std::thread &thread : threads) thread.join();
+    for (std::size_t i = 0; i < got.size(); ++i)
+        CHECK(same_weights(*got[i], MaafFittedWeights(gaussian, 5.0 + double(i % 2), 3, 1.0)));
+    // Past 32 other argument sets the first is forgotten and rebuilt, with the same bits.
+    for (int i = 0; i < 40; ++i) shared_fitted_weights({DensityShape::Uniform, 0.5, 1.0}, 1.0 + i, 2, 1.0);
+    const auto rebuilt = shared_fitted_weights(gaussian, 3.0, 3, 1.0);
+    CHECK(rebuilt != first);
+    CHECK(same_weights(*rebuilt, *first));
+    // Bad arguments still throw, and nothing is kept for them.
+    CHECK_THROWS_AS(shared_fitted_weights(gaussian, 0.0, 3, 1.0), Error);
 }

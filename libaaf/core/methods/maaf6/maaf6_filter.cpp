@@ -146,12 +146,12 @@ void maaf6_filter_layer(const Maaf6LayerInputs &layer, const Maaf6SharedInputs &
     const double cos_threshold = std::cos(double(params.normal_threshold_deg) * kPi / 180.0);
     const int used_n = 2 * params.pairs_used - 1;
     // The fitted pair weights' tables (MaafFittedWeights): the y-wedge's and, without one, the lens wedge's.
-    std::unique_ptr<MaafFittedWeights> fitted_y, fitted_u;
+    std::shared_ptr<const MaafFittedWeights> fitted_y, fitted_u;
     if (params.pair_weights == Maaf6PairWeights::Fitted && params.pairs_used > 1) {
         const int n = params.pairs_used;
-        fitted_y = std::make_unique<MaafFittedWeights>(layer.y_density, layer.omega_y_max, n, params.k);
+        fitted_y = shared_fitted_weights(layer.y_density, layer.omega_y_max, n, params.k);
         if (shared.omega_u_max > 0)
-            fitted_u = std::make_unique<MaafFittedWeights>(shared.lens_density, shared.omega_u_max, n, params.k);
+            fitted_u = shared_fitted_weights(shared.lens_density, shared.omega_u_max, n, params.k);
     }
 
     parallel_for_rows(height, [&](int y) {

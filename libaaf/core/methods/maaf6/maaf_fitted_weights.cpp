@@ -2,8 +2,11 @@
 
 #include <algorithm>
 #include <cmath>
+#include <deque>
 #include <limits>
+#include <mutex>
 #include <string>
+#include <tuple>
 
 #include "aaf/core/error.h"
 #include "aaf/core/maaf_components.h"
@@ -177,6 +180,36 @@ void MaafFittedWeights::weights(double t, double *mu) const {
     const double f = at - t0;
     for (int p = 0; p < n; ++p)
         mu[p] = (1 - f) * table_[std::size_t(t0 * n + p)] + f * table_[std::size_t((t0 + 1) * n + p)];
+}
+
+std::shared_ptr<const MaafFittedWeights> shared_fitted_weights(const SampleDensity &density, double omega_max,
+                                                              int pairs, double k) {
+    using Key = std::tuple<DensityShape, double, double, double, int, double>;
+    struct Entry {
+        Key key;
+        std::shared_ptr<const MaafFittedWeights> table;
+    };
+    constexpr std::size_t kKept = 32;
+    static std::mutex mutex;
+    static std::deque<Entry> kept;  // oldest first
+    const Key key{density.shape, density.half_width, density.sigma, omega_max, pairs, k};
+    const auto find = [&]() -> std::shared_ptr<const MaafFittedWeights> {
+        for (const Entry &entry : kept)
+            if (entry.key == key) return entry.table;
+        return nullptr;
+    };
+    {
+        const std::lock_guard<std::mutex> lock(mutex);
+        if (auto table = find()) return table;
+    }
+    // Built outside the lock: other layers and callers are not held up. Two
+    // callers may build the same table at once; both results are equal.
+    auto built = std::make_shared<const MaafFittedWeights>(density, omega_max, pairs, k);
+    const std::lock_guard<std::mutex> lock(mutex);
+    if (auto table = find()) return table;
+    if (kept.size() == kKept) kept.pop_front();
+    kept.push_back({key, built});
+    return built;
 }
 
 }  // namespace aaf

@@ -1,5 +1,6 @@
 #pragma once
 
+#include <memory>
 #include <vector>
 
 namespace aaf {
@@ -88,6 +89,16 @@ class MaafFittedWeights {
     int pairs_ = 1;
     std::vector<double> table_;  ///< [t node][p - 1]
 };
+
+/// The table MaafFittedWeights(density, omega_max, pairs, k) builds, kept
+/// for the process: a sequence's frames, the two layers' lens wedges and
+/// repeated calls share one table instead of each paying for the density's
+/// spectrum and 33 fits (about 0.1 s, more than the rest of a small frame's
+/// filter). The table is a function of the arguments alone, so a shared one
+/// has the bits a fresh one would. The last 32 argument sets are kept;
+/// thread-safe. Throws as the constructor.
+std::shared_ptr<const MaafFittedWeights> shared_fitted_weights(const SampleDensity &density, double omega_max,
+                                                              int pairs, double k);
 
 /// One fit (MaafFittedWeights' "The fit"): mu_1 .. mu_{N-1} for slope ratio
 /// t in [0, 1], the density's spectrum `spectrum` and the band omega_max it is
