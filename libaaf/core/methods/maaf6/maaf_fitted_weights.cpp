@@ -183,7 +183,7 @@ void MaafFittedWeights::weights(double t, double *mu) const {
 }
 
 std::shared_ptr<const MaafFittedWeights> shared_fitted_weights(const SampleDensity &density, double omega_max,
-                                                              int pairs, double k) {
+                                                               int pairs, double k) {
     using Key = std::tuple<DensityShape, double, double, double, int, double>;
     struct Entry {
         Key key;
