@@ -1,5 +1,6 @@
 #include <unistd.h>
 
+#include <algorithm>
 #include <cerrno>
 #include <chrono>
 #include <climits>
@@ -193,8 +194,12 @@ RenderFilter render_filter(const std::string &name, const std::vector<std::strin
         if (equals == std::string::npos || equals == 0)
             throw UsageError("--filter-param '" + assignment + "': expected NAME=VALUE (aaf filter " + name +
                              " --help lists the names)");
+        // As `aaf filter METHOD --help` spells it (--normal-threshold) or as declared (normal_threshold).
+        std::string parameter = assignment.substr(0, equals);
+        if (parameter.rfind("--", 0) == 0) parameter.erase(0, 2);
+        std::replace(parameter.begin(), parameter.end(), '-', '_');
         try {
-            filter.parameters.set(assignment.substr(0, equals), assignment.substr(equals + 1));
+            filter.parameters.set(parameter, assignment.substr(equals + 1));
         } catch (const Error &e) {
             throw UsageError("--filter-param '" + assignment + "': " + e.what());
         }
@@ -297,8 +302,8 @@ void add_render_command(CLI::App &app) {
                     "Filter each frame with this method (aaf filter METHOD) before writing it: one process, no "
                     "intermediate file; --aovs defaults to the method's inputs");
     cmd->add_option("--filter-param", options->filter_params,
-                    "NAME=VALUE: a parameter of the --filter method (names and ranges: aaf filter METHOD --help); "
-                    "repeatable");
+                    "NAME=VALUE: a parameter of the --filter method, named as its option in aaf filter METHOD "
+                    "--help (normal-threshold=30) or as declared (normal_threshold=30); repeatable");
     cmd->add_flag("--list", options->list, "List the scenes found by name and exit");
     cmd->callback([options, cmd] {
         if (options->list) {

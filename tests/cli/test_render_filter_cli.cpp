@@ -50,6 +50,11 @@ TEST_CASE("render --filter writes what render then filter write, pixel for pixel
                     .exit_code == 0);
         const auto one = run_aaf("render grids --adaptive --filter aaf --filter-param k=2" + size + " -o " +
                                  (dir / "one.exr").string());
+        // The option's spelling in `aaf filter aaf --help` names the same parameter.
+        REQUIRE(run_aaf("render grids --adaptive --filter aaf --filter-param --k=2" + size + " -o " +
+                        (dir / "spelled.exr").string())
+                    .exit_code == 0);
+        require_same_pixels(dir / "one.exr", dir / "spelled.exr");
         REQUIRE(one.exit_code == 0);
         CHECK_THAT(one.output, Catch::Contains(", filter "));  // the adaptive summary times the filter
         require_same_pixels(dir / "two.exr", dir / "one.exr");
@@ -97,6 +102,8 @@ TEST_CASE("render --filter refuses bad options before it renders", "[cli][render
              Case{"--filter aaf --filter-param =3", "expected NAME=VALUE"},
              Case{"--filter aaf --filter-param k=-1", "--filter-param 'k=-1'"},
              Case{"--filter aaf --filter-param no_such=1", "--filter-param 'no_such=1'"},
+             Case{"--filter aaf --filter-param normal-threshold=200",
+                  "--filter-param 'normal-threshold=200'"},
              Case{"--filter-param k=2", "--filter-param needs --filter"},
              Case{"--filter aaf --aovs shadow", "--filter aaf reads AOVs that --aovs shadow does not render"},
          }) {
