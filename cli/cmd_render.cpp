@@ -222,6 +222,8 @@ void add_render_command(CLI::App &app) {
     struct Options {
         std::string scene, output, light, aovs = "aaf", frames, resume, progress = "auto", filter;
         std::vector<std::string> filter_params;
+        io::WriteOptions write;  ///< of complete frames; checkpoints keep the defaults, for --resume
+        bool keep_beauty = false;
         std::string light_bandlimit = to_string(trace::RenderSettings{}.light_bandlimit);
         std::string light_axes = to_string(trace::RenderSettings{}.light_axes);
         std::string pixel_footprint = trace::RenderSettings{}.projected_pixel ? "projected" : "receiver";
@@ -304,6 +306,19 @@ void add_render_command(CLI::App &app) {
     cmd->add_option("--filter-param", options->filter_params,
                     "NAME=VALUE: a parameter of the --filter method, named as its option in aaf filter METHOD "
                     "--help (normal-threshold=30) or as declared (normal_threshold=30); repeatable");
+    cmd->add_flag("--keep-beauty", options->keep_beauty,
+                  "With --filter: R,G,B stay the render's and the filtered image is added as aaf.R/G/B (as aaf "
+                  "filter --keep-beauty)");
+    cmd->add_flag("--half", options->write.half_colour,
+                  "Store colour layers of a complete frame as half; data layers (P, N, progress...) stay float");
+    cmd->add_option("--compression", options->write.compression,
+                    "EXR compression of a complete frame, as aaf filter's (a checkpoint keeps zip:1)")
+        ->check(CLI::Validator(
+            [](const std::string &name) {
+                return io::is_known_compression(name) ? std::string() : "unknown compression '" + name + "'";
+            },
+            "COMPRESSION"))
+        ->capture_default_str();
     cmd->add_flag("--list", options->list, "List the scenes found by name and exit");
     cmd->callback([options, cmd] {
         if (options->list) {
@@ -334,6 +349,8 @@ void add_render_command(CLI::App &app) {
                                  " does not render (add " + options->filter + " to --aovs, or leave --aovs out)");
         } else if (!options->filter_params.empty()) {
             throw UsageError("--filter-param needs --filter");
+        } else if (options->keep_beauty) {
+            throw UsageError("--keep-beauty needs --filter");
         }
         check_settings(settings, !options->resume.empty());
         // Options that only shape the adaptive second pass do nothing without it.
@@ -376,6 +393,11 @@ void add_render_command(CLI::App &app) {
             if (sequence) frame_settings.frame = job.frame;
             std::string parameters = render_parameters(frame_settings);
             if (filter) parameters += filter_parameters(*filter);
+            // Only where they differ from the defaults, so that earlier outputs stay up to date.
+            if (options->keep_beauty) parameters += " keep_beauty=true";
+            if (options->write.half_colour) parameters += " half=true";
+            if (options->write.compression != io::WriteOptions{}.compression)
+                parameters += " compression=" + options->write.compression;
             return Provenance{"render", parameters, scene_hash};
         };
         // One pipeline for the whole sequence: a method that reads the
@@ -385,6 +407,7 @@ void add_render_command(CLI::App &app) {
         if (filter) {
             frame_filter = io::method_filter(*filter->method, filter->parameters, filter_options.channels);
             filter_options.threads = settings.threads;
+            filter_options.keep_beauty = options->keep_beauty;
         }
         run.up_to_date = [&](const FrameJob &job) { return output_up_to_date(job.output, job_provenance(job)); };
         RenderReporter reporter(sequence ? Progress::None : run.progress);
@@ -427,13 +450,14 @@ void add_render_command(CLI::App &app) {
                     std::fprintf(stderr, "aaf: warning: %s\n", warning.c_str());
             }
             stamp(provenance, aovs);
-            io::write_aovs(aovs, job.output);
             if (done < frame_settings.spp) {
+                io::write_aovs(aovs, job.output);  // as a checkpoint: exact, for --resume
                 std::fprintf(
                     stderr, "aaf: interrupted after %d of %d spp; %s holds them: continue with --resume %s\n",
                     done, frame_settings.spp, job.output.c_str(), job.output.c_str());
                 throw Interrupted{};
             }
+            io::write_aovs(aovs, job.output, options->write);
             if (settings.adaptive) {
                 std::printf(
                     "adaptive sampling: average %.2f spp over shaded pixels; first pass %.3f s, "

@@ -72,6 +72,24 @@ TEST_CASE("render --filter writes what render then filter write, pixel for pixel
         CHECK(std::vector<float>(a, a + made.pixel_count()) != std::vector<float>(b, b + k3.pixel_count()));
     }
 
+    SECTION("--keep-beauty, --half and --compression as aaf filter's") {
+        const std::string output = " --keep-beauty --half --compression zips";
+        REQUIRE(run_aaf("render grids --spp 4" + size + " -o " + (dir / "aovs.exr").string()).exit_code == 0);
+        REQUIRE(run_aaf("filter aaf --progress none" + output + " " + (dir / "aovs.exr").string() + " -o " +
+                        (dir / "two.exr").string())
+                    .exit_code == 0);
+        REQUIRE(
+            run_aaf("render grids --spp 4 --filter aaf" + output + size + " -o " + (dir / "one.exr").string())
+                .exit_code == 0);
+        require_same_pixels(dir / "two.exr", dir / "one.exr");
+        const aaf::AovSet made = aaf::io::read_aovs((dir / "one.exr").string());
+        CHECK(made.has_channel("aaf.R"));  // the filtered image beside the render's own R,G,B
+        CHECK(made.precision(made.index_of("R")) == aaf::Precision::Half);
+        CHECK(made.precision(made.index_of("P.X")) == aaf::Precision::Float);
+        CHECK_THAT(string_attribute(made, "aaf:provenance:parameters"),
+                   Catch::Contains("keep_beauty=true half=true compression=zips"));
+    }
+
     SECTION("a sequence through a method that reads the previous frame's output (ratio --temporal)") {
         const std::string frames = " --frames 1-3 --spp 4 --aovs ratio,motion";
         REQUIRE(run_aaf("render grids" + frames + size + " -o " + (dir / "r.####.exr").string()).exit_code ==
@@ -105,6 +123,8 @@ TEST_CASE("render --filter refuses bad options before it renders", "[cli][render
              Case{"--filter aaf --filter-param normal-threshold=200",
                   "--filter-param 'normal-threshold=200'"},
              Case{"--filter-param k=2", "--filter-param needs --filter"},
+             Case{"--keep-beauty", "--keep-beauty needs --filter"},
+             Case{"--filter aaf --compression zap", "unknown compression 'zap'"},
              Case{"--filter aaf --aovs shadow", "--filter aaf reads AOVs that --aovs shadow does not render"},
          }) {
         INFO(c.options);
