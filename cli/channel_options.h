@@ -11,6 +11,7 @@
 
 #include "aaf/core/aov_contract.h"
 #include "aaf/core/error.h"
+#include "aaf/io/exr_io.h"
 #include "commands.h"
 
 namespace aaf::cli {
@@ -46,6 +47,25 @@ inline void add_map_and_threads_options(CLI::App &cmd, std::vector<std::string> 
 
 /// The default channel map with every `--map role=channel` override applied;
 /// a bad override is a usage error.
+/// `--half` and `--compression`: how an EXR output is stored (io::WriteOptions),
+/// the same for every command that writes one; `applies_to` says which images.
+inline void add_write_options(CLI::App &cmd, io::WriteOptions &write, const std::string &applies_to) {
+    cmd.add_flag("--half", write.half_colour,
+                 "Store colour layers (beauty, unshadowed, albedo, unclaimed LAYER.R/G/B/A) of " + applies_to +
+                     " as half; data layers (P, N, ... whatever their names) stay float");
+    cmd.add_option("--compression", write.compression,
+                   "EXR compression of " + applies_to +
+                       ": zip:1 (ZIP at deflate level 1, fast, for intermediates), zip (level 6, smaller), zip:N "
+                       "or zips:N (level N, 1-9), zips, piz, rle, none, or the lossy dwaa/dwab (colour layers "
+                       "only: the data layers then go to a ZIP part named 'data')")
+        ->check(CLI::Validator(
+            [](const std::string &name) {
+                return io::is_known_compression(name) ? std::string() : "unknown compression '" + name + "'";
+            },
+            "COMPRESSION"))
+        ->capture_default_str();
+}
+
 inline ChannelMap channel_map_from(const std::vector<std::string> &specs) {
     ChannelMap map;
     for (const std::string &spec : specs) try {

@@ -99,20 +99,7 @@ void add_common_options(CLI::App &cmd, FilterOptions &options) {
     cmd.add_flag("--replace-beauty,!--keep-beauty", options.replace_beauty,
                  "R,G,B become the filtered image, the input's kept as noisy.R/G/B (default); "
                  "--keep-beauty leaves R,G,B as they were and adds the filtered image as aaf.R/G/B");
-    cmd.add_flag(
-        "--half", options.write.half_colour,
-        "Store colour layers (beauty, unshadowed, albedo, unclaimed LAYER.R/G/B/A) as half; data layers "
-        "(P, N, ... whatever their names) stay float");
-    cmd.add_option("--compression", options.write.compression,
-                   "EXR compression: zip:1 (ZIP at deflate level 1, fast, for intermediates), zip (level 6, "
-                   "smaller), zip:N or zips:N (level N, 1-9), zips, piz, rle, none, or the lossy dwaa/dwab (colour "
-                   "layers only: the data layers then go to a ZIP part named 'data')")
-        ->check(CLI::Validator(
-            [](const std::string &name) {
-                return io::is_known_compression(name) ? std::string() : "unknown compression '" + name + "'";
-            },
-            "COMPRESSION"))
-        ->capture_default_str();
+    add_write_options(cmd, options.write, "the output");
     add_map_and_threads_options(cmd, options.maps, options.threads);
 }
 

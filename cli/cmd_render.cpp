@@ -309,16 +309,7 @@ void add_render_command(CLI::App &app) {
     cmd->add_flag("--keep-beauty", options->keep_beauty,
                   "With --filter: R,G,B stay the render's and the filtered image is added as aaf.R/G/B (as aaf "
                   "filter --keep-beauty)");
-    cmd->add_flag("--half", options->write.half_colour,
-                  "Store colour layers of a complete frame as half; data layers (P, N, progress...) stay float");
-    cmd->add_option("--compression", options->write.compression,
-                    "EXR compression of a complete frame, as aaf filter's (a checkpoint keeps zip:1)")
-        ->check(CLI::Validator(
-            [](const std::string &name) {
-                return io::is_known_compression(name) ? std::string() : "unknown compression '" + name + "'";
-            },
-            "COMPRESSION"))
-        ->capture_default_str();
+    add_write_options(*cmd, options->write, "a complete frame (a checkpoint stays float, zip:1)");
     cmd->add_flag("--list", options->list, "List the scenes found by name and exit");
     cmd->callback([options, cmd] {
         if (options->list) {
