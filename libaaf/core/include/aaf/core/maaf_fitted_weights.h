@@ -93,7 +93,7 @@ class MaafFittedWeights {
 /// The table MaafFittedWeights(density, omega_max, pairs, k) builds, kept
 /// for the process: a sequence's frames, the two layers' lens wedges and
 /// repeated calls share one table instead of each paying for the density's
-/// spectrum and 33 fits (about 0.1 s, more than the rest of a small frame's
+/// spectrum and 33 fits (about 0.05 s each, more than the rest of a small frame's
 /// filter). The table is a function of the arguments alone, so a shared one
 /// has the bits a fresh one would. The last 32 argument sets are kept;
 /// thread-safe. Throws as the constructor.
