@@ -4,10 +4,13 @@
 // renders.
 #include <catch2/catch.hpp>
 
+#include <cstdlib>
 #include <filesystem>
+#include <fstream>
 #include <string>
 #include <vector>
 
+#include "aaf/core/aov_contract.h"
 #include "aaf/io/exr_io.h"
 #include "run_aaf.h"
 
@@ -151,4 +154,32 @@ TEST_CASE("render --filter --skip-existing redoes a frame whose filter parameter
     CHECK_FALSE(skipped(render(" --filter aaf --filter-param k=2")));  // a filter parameter changed
     CHECK(skipped(render(" --filter aaf --filter-param k=2")));
     CHECK_FALSE(skipped(render("")));  // unfiltered is another output
+}
+
+TEST_CASE("render --filter stopped by Ctrl-C writes the render unfiltered, and --resume --filter finishes it",
+          "[cli][render][resume][interrupt]") {
+    const fs::path dir = scratch_dir("render_filter_interrupt");
+    const std::string out = (dir / "ref.exr").string(), whole = (dir / "whole.exr").string();
+    const std::string render = "render grids --width 48 --height 36 --spp 16384 --filter gaussian ";
+    // Interrupt as soon as the first checkpoint is on disk (as test_render_cli.cpp's Ctrl-C test).
+    const std::string script =
+        "(" + std::string(AAF_EXECUTABLE) + " " + render + "--checkpoint 0.001 --threads 1 -o " + out +
+        " >/dev/null 2>&1 & pid=$!; while [ ! -f " + out +
+        " ]; do sleep 0.02; done; kill -INT $pid; wait $pid; echo $? > " + (dir / "rc.txt").string() + ")";
+    REQUIRE(std::system(("/bin/sh -c '" + script + "'").c_str()) == 0);
+    std::ifstream rc_file(dir / "rc.txt");
+    int rc = -1;
+    rc_file >> rc;
+    CHECK(rc == 130);
+    const aaf::AovSet partial = aaf::io::read_aovs(out);
+    CHECK(std::get<int>(partial.attributes.at(aaf::attr::kSppDone)) < 16384);
+    // Unfiltered: no filter output beside the render's own channels.
+    CHECK_FALSE(partial.has_channel("noisy.R"));
+    CHECK_FALSE(partial.has_channel("aaf.V"));
+
+    REQUIRE(run_aaf(render + "--resume " + out + " -o " + out).exit_code == 0);
+    REQUIRE(run_aaf(render + "-o " + whole).exit_code == 0);
+    const aaf::AovSet finished = aaf::io::read_aovs(out);
+    CHECK(finished.has_channel("noisy.R"));
+    require_same_pixels(whole, out);
 }
