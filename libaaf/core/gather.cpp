@@ -254,7 +254,7 @@ void sweep_all(const GatherGuides &g, float cos_threshold, bool symmetric_border
                 sweep.source[k] = sources[first + k];
                 sweep.output[k] = outputs[first + k];
             }
-            parallel_for_rows(g.height, [&](int y) { detail::gather_row(sweep, y); });
+            detail::gather_rows_tiled(sweep);
             continue;
         }
         auto run = [&](auto channels) {

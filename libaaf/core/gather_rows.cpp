@@ -283,15 +283,15 @@ HWY_INLINE void add_taps(const GatherSweep &s, const WideCentres &c, int o_begin
     }
 }
 
-/// One row of a 1D sweep (both passes of the separable gather), along x
-/// or, with `AlongY`, along y: kWideLanes neighbouring centre pixels of row
-/// `y` per vector, one lane each, all walking the same tap offsets (along y:
+/// Pixels [x_begin, x_end) of row `y` of a 1D sweep (both passes of the
+/// separable gather), along x or, with `AlongY`, along y: kWideLanes
+/// neighbouring centre pixels per vector, one lane each, all walking the same tap offsets (along y:
 /// rows y + o, loaded contiguously, so no transpose is needed). Each pixel's
 /// sums run over its taps from left to right (top to bottom), one add at a
 /// time, so neither the lane count nor the threads change a bit, and along y
 /// the bits are those of the along-x sweep over the transposed image.
 template <int K, bool Sheared, bool AlongY>
-void gather_row_along(const GatherSweep &s, int y) {
+void gather_row_along(const GatherSweep &s, int y, int x_begin, int x_end) {
     const DW d;
     const DWI di;
     const GatherGuides &g = *s.guides;
@@ -300,15 +300,15 @@ void gather_row_along(const GatherSweep &s, int y) {
     const float *const normal_x = g.normal_x.data(), *const normal_y = g.normal_y.data(),
                        *const normal_z = g.normal_z.data(), *const id = g.object_id.data();
     const bool anisotropic = g.anisotropic();
-    for (int x0 = 0; x0 < g.width; x0 += kWideLanes) {
+    for (int x0 = x_begin; x0 < x_end; x0 += kWideLanes) {
         const std::ptrdiff_t c0 = row + x0;
         // Each lane's reach: its radius, cut at the image's edges as gather_row_k cuts it.
         alignas(64) std::int32_t reach[kWideLanes];
         int widest = -1;
         for (int i = 0; i < kWideLanes; ++i) {
             const int x = x0 + i;
-            reach[i] = -1;  // past the row's end: no taps
-            if (x >= g.width) continue;
+            reach[i] = -1;  // past the range's end: no taps
+            if (x >= x_end) continue;
             const int radius = g.radius_px[std::size_t(c0 + i)];
             int r = radius;
             if (s.symmetric_borders)
@@ -351,7 +351,7 @@ void gather_row_along(const GatherSweep &s, int y) {
         alignas(64) float lanes[K + 1][kWideLanes];
         hn::Store(weight_sum, d, lanes[K]);
         for (int k = 0; k < K; ++k) hn::Store(sum[k], d, lanes[k]);
-        for (int i = 0; i < kWideLanes && x0 + i < g.width; ++i) {
+        for (int i = 0; i < kWideLanes && x0 + i < x_end; ++i) {
             const std::size_t c = std::size_t(c0 + i);
             if (reach[i] < 0) {  // radius 0: the pixel keeps its value
                 for (int k = 0; k < K; ++k) s.output[k][c] = s.source[k][c];
@@ -371,11 +371,11 @@ void gather_row_along(const GatherSweep &s, int y) {
 }
 
 template <int K, bool Sheared>
-void gather_row_k(const GatherSweep &s, int y) {
-    if (s.along_x && !s.along_y) return gather_row_along<K, Sheared, false>(s, y);
-    if (s.along_y && !s.along_x) return gather_row_along<K, Sheared, true>(s, y);
+void gather_row_k(const GatherSweep &s, int y, int x_begin, int x_end) {
+    if (s.along_x && !s.along_y) return gather_row_along<K, Sheared, false>(s, y, x_begin, x_end);
+    if (s.along_y && !s.along_x) return gather_row_along<K, Sheared, true>(s, y, x_begin, x_end);
     const GatherGuides &g = *s.guides;
-    for (int x = 0; x < g.width; ++x) {
+    for (int x = x_begin; x < x_end; ++x) {
         const std::size_t c = g.index(x, y);
         const int radius = g.radius_px[c];
         if (radius == 0) {
@@ -393,16 +393,16 @@ void gather_row_k(const GatherSweep &s, int y) {
 }
 
 template <bool Sheared>
-void gather_row_sheared(const GatherSweep &s, int y) {
+void gather_row_sheared(const GatherSweep &s, int y, int x_begin, int x_end) {
     switch (s.channels) {
         case 1:
-            return gather_row_k<1, Sheared>(s, y);
+            return gather_row_k<1, Sheared>(s, y, x_begin, x_end);
         case 2:
-            return gather_row_k<2, Sheared>(s, y);
+            return gather_row_k<2, Sheared>(s, y, x_begin, x_end);
         case 3:
-            return gather_row_k<3, Sheared>(s, y);
+            return gather_row_k<3, Sheared>(s, y, x_begin, x_end);
         default:
-            return gather_row_k<4, Sheared>(s, y);
+            return gather_row_k<4, Sheared>(s, y, x_begin, x_end);
     }
 }
 
@@ -410,11 +410,14 @@ const char *GatherRowTarget() {
     return hwy::TargetName(HWY_TARGET);
 }
 
-void GatherRow(const GatherSweep &s, int y) {
+void GatherRow(const GatherSweep &s, int y, int x_begin, int x_end) {
+    x_begin = std::max(x_begin, 0);
+    x_end = std::min(x_end, s.guides->width);
+    if (x_begin >= x_end) return;
     if (s.guides->sheared())
-        gather_row_sheared<true>(s, y);
+        gather_row_sheared<true>(s, y, x_begin, x_end);
     else
-        gather_row_sheared<false>(s, y);
+        gather_row_sheared<false>(s, y, x_begin, x_end);
 }
 
 }  // namespace HWY_NAMESPACE
@@ -422,13 +425,44 @@ void GatherRow(const GatherSweep &s, int y) {
 HWY_AFTER_NAMESPACE();
 
 #if HWY_ONCE
+#include <tbb/blocked_range2d.h>
+#include <tbb/parallel_for.h>
+#include <tbb/partitioner.h>
+
+#include "aaf/core/parallel.h"
+
 namespace aaf::detail {
 
 HWY_EXPORT(GatherRow);
 HWY_EXPORT(GatherRowTarget);
 
+void gather_row(const GatherSweep &sweep, int y, int x_begin, int x_end) {
+    HWY_DYNAMIC_DISPATCH(GatherRow)(sweep, y, x_begin, x_end);
+}
+
 void gather_row(const GatherSweep &sweep, int y) {
-    HWY_DYNAMIC_DISPATCH(GatherRow)(sweep, y);
+    gather_row(sweep, y, 0, sweep.guides->width);
+}
+
+void gather_rows_tiled(const GatherSweep &sweep) {
+    const int width = sweep.guides->width, height = sweep.guides->height;
+    // Along x a row's taps are its own pixels: whole rows. So are narrow images,
+    // whose window of rows already fits the cache.
+    if (!sweep.along_y || width <= 2 * kGatherStripPixels) {
+        parallel_for_rows(height, [&](int y) { gather_row(sweep, y); });
+        return;
+    }
+    const int strips = (width + kGatherStripPixels - 1) / kGatherStripPixels;
+    // Tiles of at most kGatherTileRows rows by one strip (simple_partitioner
+    // splits down to the grain): a thread walks its tile's rows within one strip.
+    tbb::parallel_for(
+        tbb::blocked_range2d<int>(0, height, kGatherTileRows, 0, strips, 1),
+        [&](const tbb::blocked_range2d<int> &tile) {
+            for (int strip = tile.cols().begin(); strip != tile.cols().end(); ++strip)
+                for (int y = tile.rows().begin(); y != tile.rows().end(); ++y)
+                    gather_row(sweep, y, strip * kGatherStripPixels, (strip + 1) * kGatherStripPixels);
+        },
+        tbb::simple_partitioner());
 }
 
 const char *gather_row_target() {

@@ -10,11 +10,13 @@
 #include <random>
 #include <set>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "aaf/core/fast_exp.h"
 #include "aaf/core/gather.h"
 #include "aaf/core/gather_rows.h"
+#include "aaf/core/thread_count.h"
 
 using namespace aaf;
 
@@ -84,7 +86,8 @@ std::vector<float> run(const GatherGuides &g, GatherMode mode, int channels) {
 
 /// One 1D pass of the documented gather along x in double precision: the
 /// normalised sum of accepted taps' exp(-(du^2 + dv^2) inv_two_sigma_sq).
-double reference_along_x(const GatherGuides &g, const std::vector<float> &source, int x, int y, float cos_threshold) {
+double reference_along_x(const GatherGuides &g, const std::vector<float> &source, int x, int y,
+                         float cos_threshold) {
     const std::size_t c = g.index(x, y);
     if (g.radius_px[c] == 0) return source[c];
     const int reach = std::min({g.radius_px[c], x, g.width - 1 - x});  // symmetric borders (the default)
@@ -92,7 +95,8 @@ double reference_along_x(const GatherGuides &g, const std::vector<float> &source
     bool centre_counted = false;
     for (int tx = x - reach; tx <= x + reach; ++tx) {
         const std::size_t t = g.index(tx, y);
-        const double cos_angle = double(g.normal_x[c]) * g.normal_x[t] + double(g.normal_y[c]) * g.normal_y[t] +
+        const double cos_angle = double(g.normal_x[c]) * g.normal_x[t] +
+                                 double(g.normal_y[c]) * g.normal_y[t] +
                                  double(g.normal_z[c]) * g.normal_z[t];
         if (!(g.object_id[t] == g.object_id[c] && cos_angle >= cos_threshold)) continue;
         if (t == c) centre_counted = true;
@@ -114,27 +118,27 @@ TEST_CASE("Gather SIMD: every instruction set of the build gives the same bits",
     const std::vector<std::int64_t> targets = hwy::SupportedAndGeneratedTargets();
     REQUIRE(!targets.empty());
     for (const bool anisotropic : {false, true})
-    for (const bool sheared : {false, true})
-        for (const GatherMode mode : {GatherMode::Separable, GatherMode::Full2D})
-            for (const int channels : {1, 3, 5}) {
-                // 29 columns: a partial vector at each row's end for every lane count.
-                const GatherGuides g = varied_guides(29, 13, sheared, anisotropic);
-                std::vector<float> first;
-                std::set<std::string> names;
-                for (const std::int64_t target : targets) {
-                    hwy::SetSupportedTargetsForTest(target);
-                    names.insert(detail::gather_row_target());
-                    const std::vector<float> result = run(g, mode, channels);
-                    if (first.empty()) first = result;
-                    INFO("target " << hwy::TargetName(target) << ", anisotropic " << anisotropic << ", sheared "
-                                   << sheared << ", channels "
-                                   << channels << ", 2D " << (mode == GatherMode::Full2D));
-                    CHECK(std::memcmp(result.data(), first.data(), first.size() * sizeof(float)) == 0);
+        for (const bool sheared : {false, true})
+            for (const GatherMode mode : {GatherMode::Separable, GatherMode::Full2D})
+                for (const int channels : {1, 3, 5}) {
+                    // 29 columns: a partial vector at each row's end for every lane count.
+                    const GatherGuides g = varied_guides(29, 13, sheared, anisotropic);
+                    std::vector<float> first;
+                    std::set<std::string> names;
+                    for (const std::int64_t target : targets) {
+                        hwy::SetSupportedTargetsForTest(target);
+                        names.insert(detail::gather_row_target());
+                        const std::vector<float> result = run(g, mode, channels);
+                        if (first.empty()) first = result;
+                        INFO("target " << hwy::TargetName(target) << ", anisotropic " << anisotropic
+                                       << ", sheared " << sheared << ", channels " << channels << ", 2D "
+                                       << (mode == GatherMode::Full2D));
+                        CHECK(std::memcmp(result.data(), first.data(), first.size() * sizeof(float)) == 0);
+                    }
+                    hwy::SetSupportedTargetsForTest(0);
+                    // Dispatch really switched: as many kernels ran as targets were offered.
+                    CHECK(names.size() == targets.size());
                 }
-                hwy::SetSupportedTargetsForTest(0);
-                // Dispatch really switched: as many kernels ran as targets were offered.
-                CHECK(names.size() == targets.size());
-            }
 }
 
 TEST_CASE("Gather SIMD: one 1D pass equals the documented weights summed in double", "[gather][simd]") {
@@ -162,7 +166,8 @@ TEST_CASE("Gather SIMD: one 1D pass equals the documented weights summed in doub
             for (int x = 0; x < g.width; ++x) {
                 INFO("target " << hwy::TargetName(target) << " pixel " << x << ", " << y);
                 // fast_exp's relative error (3e-7) and float sums of a few taps.
-                CHECK(out[g.index(x, y)] == Approx(reference_along_x(g, source, x, y, cos_threshold)).epsilon(2e-6));
+                CHECK(out[g.index(x, y)] ==
+                      Approx(reference_along_x(g, source, x, y, cos_threshold)).epsilon(2e-6));
             }
     }
     hwy::SetSupportedTargetsForTest(0);
@@ -264,4 +269,56 @@ TEST_CASE("Gather SIMD: the vertical pass and the separable gather give the scal
                 }
                 hwy::SetSupportedTargetsForTest(0);
             }
+}
+
+TEST_CASE("Gather SIMD: column ranges and the tiled sweep give the bits of whole rows", "[gather][simd]") {
+    // Wider than two strips, so the vertical sweep runs in tiles; 549 is not a
+    // multiple of any lane count or of the strip, and 70 rows split into
+    // several row blocks with the default strip and tile sizes.
+    static_assert(549 > 2 * detail::kGatherStripPixels, "the image must be tiled");
+    const float cos_threshold = std::cos(25.0f * 3.14159265358979323846f / 180.0f);
+    for (const bool sheared : {false, true}) {
+        const GatherGuides g = varied_guides(549, 70, sheared);
+        const std::size_t n = std::size_t(g.width) * g.height;
+        std::mt19937 rng(3);
+        std::uniform_real_distribution<float> unit(0.0f, 1.0f);
+        std::vector<float> source_a(n), source_b(n);
+        for (float &v : source_a) v = unit(rng);
+        for (float &v : source_b) v = unit(rng);
+        // Along y (the tiled case), along x and in 2D.
+        for (const auto &[along_x, along_y] : {std::pair{false, true}, {true, false}, {true, true}}) {
+            INFO("sheared " << sheared << ", along x " << along_x << ", along y " << along_y);
+            detail::GatherSweep sweep;
+            sweep.guides = &g;
+            sweep.cos_threshold = cos_threshold;
+            sweep.along_x = along_x;
+            sweep.along_y = along_y;
+            sweep.channels = 2;
+            sweep.source[0] = source_a.data();
+            sweep.source[1] = source_b.data();
+            std::vector<float> expected_a(n), expected_b(n);
+            sweep.output[0] = expected_a.data();
+            sweep.output[1] = expected_b.data();
+            for (int y = 0; y < g.height; ++y) detail::gather_row(sweep, y);
+
+            std::vector<float> out_a(n, std::nanf("")), out_b(n, std::nanf(""));
+            sweep.output[0] = out_a.data();
+            sweep.output[1] = out_b.data();
+            // Ranges that cut vectors and strips anywhere, one clamped at each end.
+            for (int y = 0; y < g.height; ++y)
+                for (const auto &[begin, end] : {std::pair{-5, 13}, {13, 300}, {300, 301}, {301, 600}})
+                    detail::gather_row(sweep, y, begin, end);
+            CHECK(std::memcmp(out_a.data(), expected_a.data(), n * sizeof(float)) == 0);
+            CHECK(std::memcmp(out_b.data(), expected_b.data(), n * sizeof(float)) == 0);
+
+            for (const int threads : {1, 2, 3}) {
+                INFO(threads << " threads");
+                std::fill(out_a.begin(), out_a.end(), std::nanf(""));
+                std::fill(out_b.begin(), out_b.end(), std::nanf(""));
+                run_with_threads(threads, [&] { detail::gather_rows_tiled(sweep); });
+                CHECK(std::memcmp(out_a.data(), expected_a.data(), n * sizeof(float)) == 0);
+                CHECK(std::memcmp(out_b.data(), expected_b.data(), n * sizeof(float)) == 0);
+            }
+        }
+    }
 }

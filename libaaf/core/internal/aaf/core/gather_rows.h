@@ -29,6 +29,20 @@ struct GatherSweep {
 /// the bits are the same for every instruction set and thread count.
 void gather_row(const GatherSweep &sweep, int y);
 
+/// gather_row for pixels [x_begin, x_end) of row `y` alone (clamped to the
+/// row), with the same bits: each pixel's sums depend on its taps only.
+void gather_row(const GatherSweep &sweep, int y, int x_begin, int x_end);
+
+/// Runs gather_row over the whole image in parallel. A vertical sweep of a
+/// wide image goes in tiles of kGatherTileRows rows by kGatherStripPixels
+/// columns, so that its window of rows (up to 2 radius + 1 of them, eight or
+/// more planes) stays in the core's cache from one row to the next at any
+/// image width; other sweeps go row by row.
+void gather_rows_tiled(const GatherSweep &sweep);
+
+inline constexpr int kGatherTileRows = 64;
+inline constexpr int kGatherStripPixels = 256;
+
 /// Name of the instruction set gather_row runs with now (Highway's target
 /// name, e.g. "AVX2"), for tests and benchmarks.
 const char *gather_row_target();
