@@ -35,4 +35,25 @@ inline RunResult run_aaf(const std::string &args, const std::string &executable 
     return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, text.str()};
 }
 
+/// Runs the aaf executable with `args` (a progressive render with
+/// `--checkpoint` and `-o output`), sends it SIGINT (Ctrl-C) as soon as its
+/// first checkpoint is on disk (its handler is set long before) and returns
+/// its exit code (that of its own end if it ends before any checkpoint). `scratch` holds the exit code's
+/// file.
+inline int interrupt_at_first_checkpoint(const std::string &args, const fs::path &output,
+                                         const fs::path &scratch) {
+    const fs::path rc_path = scratch / "interrupt_rc.txt";
+    fs::remove(rc_path);
+    const std::string script = "(" + std::string(AAF_EXECUTABLE) + " " + args +
+                               " >/dev/null 2>&1 & pid=$!; while [ ! -f " + output.string() +
+                               " ] && kill -0 $pid 2>/dev/null; do sleep 0.02; done; kill -INT $pid; "
+                               "wait $pid; echo $? > " +
+                               rc_path.string() + ")";
+    if (std::system(("/bin/sh -c '" + script + "'").c_str()) != 0) return -1;
+    std::ifstream rc_file(rc_path);
+    int rc = -1;
+    rc_file >> rc;
+    return rc;
+}
+
 }  // namespace aaf_test

@@ -11,6 +11,7 @@
 #include "run_aaf.h"
 
 namespace fs = std::filesystem;
+using aaf_test::interrupt_at_first_checkpoint;
 using aaf_test::run_aaf;
 using aaf_test::scratch_dir;
 
@@ -39,9 +40,8 @@ fs::path write_moving_light_scene(const fs::path &dir) {
 TEST_CASE("CLI: render --list shows the shipped scenes", "[cli][render]") {
     const auto result = run_aaf("render --list");
     CHECK(result.exit_code == 0);
-    for (const char *name :
-         {"grids", "spheres", "tentacles", "bench", "studio", "gallery", "tilted", "grazing", "contact",
-          "livingroom", "room"})
+    for (const char *name : {"grids", "spheres", "tentacles", "bench", "studio", "gallery", "tilted",
+                             "grazing", "contact", "livingroom", "room"})
         CHECK_THAT(result.output, Catch::Contains(std::string(name) + "\n"));
 }
 
@@ -212,18 +212,9 @@ TEST_CASE("CLI: Ctrl-C stops a reference after its round, writes it, and --resum
           "[cli][render][resume][interrupt]") {
     const fs::path dir = scratch_dir("render_interrupt");
     const std::string out = (dir / "ref.exr").string(), whole = (dir / "whole.exr").string();
-    const std::string common =
-        std::string(AAF_EXECUTABLE) + " render grids --width 48 --height 36 --spp 16384 ";
-    // Interrupt as soon as the first checkpoint is on disk (the handler is set long before).
-    const std::string script = "(" + common + "--checkpoint 0.001 --threads 1 -o " + out +
-                               " >/dev/null 2>&1 & pid=$!; while [ ! -f " + out +
-                               " ]; do sleep 0.02; done; kill -INT $pid; wait $pid; echo $? > " +
-                               (dir / "rc.txt").string() + ")";
-    REQUIRE(std::system(("/bin/sh -c '" + script + "'").c_str()) == 0);
-    std::ifstream rc_file(dir / "rc.txt");
-    int rc = -1;
-    rc_file >> rc;
-    CHECK(rc == 130);
+    CHECK(interrupt_at_first_checkpoint(
+              "render grids --width 48 --height 36 --spp 16384 --checkpoint 0.001 --threads 1 -o " + out, out,
+              dir) == 130);
     const aaf::AovSet partial = aaf::io::read_aovs(out);
     const int done = std::get<int>(partial.attributes.at(aaf::attr::kSppDone));
     CHECK(done < 16384);

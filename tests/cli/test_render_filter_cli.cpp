@@ -15,6 +15,7 @@
 #include "run_aaf.h"
 
 namespace fs = std::filesystem;
+using aaf_test::interrupt_at_first_checkpoint;
 using aaf_test::run_aaf;
 using aaf_test::scratch_dir;
 
@@ -161,16 +162,8 @@ TEST_CASE("render --filter stopped by Ctrl-C writes the render unfiltered, and -
     const fs::path dir = scratch_dir("render_filter_interrupt");
     const std::string out = (dir / "ref.exr").string(), whole = (dir / "whole.exr").string();
     const std::string render = "render grids --width 48 --height 36 --spp 16384 --filter gaussian ";
-    // Interrupt as soon as the first checkpoint is on disk (as test_render_cli.cpp's Ctrl-C test).
-    const std::string script =
-        "(" + std::string(AAF_EXECUTABLE) + " " + render + "--checkpoint 0.001 --threads 1 -o " + out +
-        " >/dev/null 2>&1 & pid=$!; while [ ! -f " + out +
-        " ]; do sleep 0.02; done; kill -INT $pid; wait $pid; echo $? > " + (dir / "rc.txt").string() + ")";
-    REQUIRE(std::system(("/bin/sh -c '" + script + "'").c_str()) == 0);
-    std::ifstream rc_file(dir / "rc.txt");
-    int rc = -1;
-    rc_file >> rc;
-    CHECK(rc == 130);
+    CHECK(interrupt_at_first_checkpoint(render + "--checkpoint 0.001 --threads 1 -o " + out, out, dir) ==
+          130);
     const aaf::AovSet partial = aaf::io::read_aovs(out);
     CHECK(std::get<int>(partial.attributes.at(aaf::attr::kSppDone)) < 16384);
     // Unfiltered: no filter output beside the render's own channels.
