@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "aaf/core/occluder_fill.h"
+#include "aaf/core/thread_count.h"
 
 using namespace aaf;
 
@@ -54,8 +55,9 @@ FilledOccluders reference_fill(ConstPlaneView d2_min, ConstPlaneView d2_max, Con
 }  // namespace
 
 TEST_CASE("Occluder fill: the disc's mean of same-object occluded neighbours, bit for bit", "[aaf][fill]") {
-    // The fill searches bands of at least 64 rows with r rows of scratch either
-    // side: 150 rows are several bands, whose seams the disc must cross.
+    // The fill searches bands of rows in parallel, each with r rows of scratch
+    // either side: 150 rows are several bands, whose seams the disc must cross,
+    // and the band height follows the thread count.
     const auto size = GENERATE(std::make_pair(37, 29), std::make_pair(23, 150));
     const int width = size.first, height = size.second;
     // Interleaved channels (d2min, d2max, id), as an AOV buffer holds them;
@@ -82,16 +84,21 @@ TEST_CASE("Occluder fill: the disc's mean of same-object occluded neighbours, bi
     for (const int radius : {0, 1, 3, 5, 8, 20}) {
         const FilledOccluders want = reference_fill(channel(0), channel(1), channel(2), radius);
         // The search is vectorised with runtime dispatch: every instruction set of the build.
-        for (const std::int64_t target : hwy::SupportedAndGeneratedTargets()) {
-            hwy::SetSupportedTargetsForTest(target);
-            const FilledOccluders got = fill_occluder_distances(channel(0), channel(1), channel(2), radius);
-            INFO(width << "x" << height << ", radius " << radius << ", target " << hwy::TargetName(target));
-            REQUIRE(got.d2_max_m.size() == want.d2_max_m.size());
-            CHECK(std::memcmp(got.d2_min_m.data(), want.d2_min_m.data(),
-                              want.d2_min_m.size() * sizeof(float)) == 0);
-            CHECK(std::memcmp(got.d2_max_m.data(), want.d2_max_m.data(),
-                              want.d2_max_m.size() * sizeof(float)) == 0);
-        }
+        for (const std::int64_t target : hwy::SupportedAndGeneratedTargets())
+            for (const int threads : {1, 2, 3}) {
+                hwy::SetSupportedTargetsForTest(target);
+                FilledOccluders got;
+                run_with_threads(threads, [&] {
+                    got = fill_occluder_distances(channel(0), channel(1), channel(2), radius);
+                });
+                INFO(width << "x" << height << ", radius " << radius << ", target " << hwy::TargetName(target)
+                           << ", " << threads << " threads");
+                REQUIRE(got.d2_max_m.size() == want.d2_max_m.size());
+                CHECK(std::memcmp(got.d2_min_m.data(), want.d2_min_m.data(),
+                                  want.d2_min_m.size() * sizeof(float)) == 0);
+                CHECK(std::memcmp(got.d2_max_m.data(), want.d2_max_m.data(),
+                                  want.d2_max_m.size() * sizeof(float)) == 0);
+            }
         hwy::SetSupportedTargetsForTest(0);
         for (std::size_t i = 0; i < want.d2_max_m.size(); ++i)
             filled_somewhere += int(!has_occluder(pixels[i * 3 + 1]) && want.d2_max_m[i] > 0);
