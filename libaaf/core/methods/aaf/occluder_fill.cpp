@@ -156,7 +156,8 @@ FilledOccluders fill_occluder_distances(ConstPlaneView d2_min, ConstPlaneView d2
             const std::size_t p = std::size_t(y - first) * padded_width + std::size_t(reach);
             const float *const mins = s.d2_min_m.data() + p, *const maxs = s.d2_max_m.data() + p;
             const std::uint8_t *const window = any;
-            float *const out_min = filled.d2_min_m.data() + row, *const out_max = filled.d2_max_m.data() + row;
+            float *const out_min = filled.d2_min_m.data() + row, *const out_max =
+                                                                     filled.d2_max_m.data() + row;
             float *const ids = s.centre_id.data();
             copy_row(object_id, y, ids);
             std::fill(ids + w, ids + w + detail::kOccluderSearchPadding, kNaN);
