@@ -35,8 +35,11 @@ template <class DF>
 HWY_INLINE hn::Vec<DF> fast_exp_nonpositive(DF d, hn::Vec<DF> x) {
     using VF = hn::Vec<DF>;
     const hn::RebindToSigned<DF> di;
-    const VF above_floor = hn::IfThenElse(hn::Gt(x, hn::Set(d, -87.0f)), x, hn::Set(d, -87.0f));
-    const VF clamped = hn::IfThenElse(hn::Lt(above_floor, hn::Zero(d)), above_floor, hn::Zero(d));
+    // Max and Min, one instruction each, give the scalar comparisons' bits:
+    // Max(NaN, -87) is -87 as there, and where Min(-0, 0) keeps -0 instead
+    // of the scalar 0, both give exp = 1 exactly.
+    const VF above_floor = hn::Max(x, hn::Set(d, -87.0f));
+    const VF clamped = hn::Min(above_floor, hn::Zero(d));
     // Truncation towards zero, as static_cast<int>.
     const auto k_int =
         hn::ConvertTo(di, hn::Sub(hn::Mul(clamped, hn::Set(d, 1.44269504088896341f)), hn::Set(d, 0.5f)));
@@ -61,20 +64,23 @@ struct TapPlanes {
 
 /// What a centre pixel compares its taps with.
 struct Centre {
-    V u, v, n, shear_u, shear_v, inv_two_sigma_sq_n, normal_x, normal_y, normal_z, id, inv_two_sigma_sq,
-        cos_threshold;
-    V inv_two_sigma_sq_v;  ///< along v, when the guides are anisotropic
+    V u, v, n, shear_u, shear_v, inv_two_sigma_sq_n, normal_x, normal_y, normal_z, id, cos_threshold;
+    /// -1 / (2 sigma^2), along v apart when the guides are anisotropic:
+    /// negated once per centre, not per tap (the same bits: rounding is symmetric).
+    V neg_inv_two_sigma_sq, neg_inv_two_sigma_sq_v;
     bool anisotropic = false;
 };
 
 /// The Gaussian's exponent: -(du^2 + dv^2) / (2 sigma^2) (AAF Eq. 11), or
-/// with the guides' per-axis widths -du^2 a_u - dv^2 a_v.
+/// with the guides' per-axis widths -du^2 a_u - dv^2 a_v; given the negated
+/// coefficients -1 / (2 sigma^2).
 template <class VF>
-HWY_INLINE VF gaussian_exponent(VF du, VF dv, VF inv_two_sigma_sq, VF inv_two_sigma_sq_v, bool anisotropic) {
+HWY_INLINE VF gaussian_exponent(VF du, VF dv, VF neg_inv_two_sigma_sq, VF neg_inv_two_sigma_sq_v,
+                                bool anisotropic) {
     if (anisotropic)
-        return hn::Neg(hn::Add(hn::Mul(hn::Mul(du, du), inv_two_sigma_sq),
-                               hn::Mul(hn::Mul(dv, dv), inv_two_sigma_sq_v)));
-    return hn::Mul(hn::Neg(hn::Add(hn::Mul(du, du), hn::Mul(dv, dv))), inv_two_sigma_sq);
+        return hn::Add(hn::Mul(hn::Mul(du, du), neg_inv_two_sigma_sq),
+                       hn::Mul(hn::Mul(dv, dv), neg_inv_two_sigma_sq_v));
+    return hn::Mul(hn::Add(hn::Mul(du, du), hn::Mul(dv, dv)), neg_inv_two_sigma_sq);
 }
 
 /// Adds kLanes taps from index `t` into the partial sums of block `b`;
@@ -96,8 +102,9 @@ HWY_INLINE void accumulate(const TapPlanes &g, const float *const *source, std::
         normal_term = hn::Mul(hn::Mul(dn, dn), c.inv_two_sigma_sq_n);
     }
     // AAF Eq. 11; the scalar loop's accepted (0 or 1) times the weight.
-    const V exponent = hn::Sub(
-        gaussian_exponent(du, dv, c.inv_two_sigma_sq, c.inv_two_sigma_sq_v, c.anisotropic), normal_term);
+    const V exponent =
+        hn::Sub(gaussian_exponent(du, dv, c.neg_inv_two_sigma_sq, c.neg_inv_two_sigma_sq_v, c.anisotropic),
+                normal_term);
     const V weight = hn::IfThenElseZero(accepted, fast_exp_nonpositive(d, exponent));
     if (Tail) {
         weight_sum[b] = hn::IfThenElse(active, hn::Add(weight_sum[b], weight), weight_sum[b]);
@@ -131,9 +138,9 @@ void gather_pixel(const GatherSweep &s, int x, int y, int reach_x, int reach_y) 
     centre.normal_y = hn::Set(d, normal_y);
     centre.normal_z = hn::Set(d, normal_z);
     centre.id = hn::Set(d, id);
-    centre.inv_two_sigma_sq = hn::Set(d, g.inv_two_sigma_sq[c]);
+    centre.neg_inv_two_sigma_sq = hn::Set(d, -g.inv_two_sigma_sq[c]);
     centre.anisotropic = g.anisotropic();
-    centre.inv_two_sigma_sq_v = hn::Set(d, centre.anisotropic ? g.inv_two_sigma_sq_v[c] : 0.0f);
+    centre.neg_inv_two_sigma_sq_v = hn::Set(d, centre.anisotropic ? -g.inv_two_sigma_sq_v[c] : 0.0f);
     centre.cos_threshold = hn::Set(d, s.cos_threshold);
     const TapPlanes planes{g.coord_u_m.data(), g.coord_v_m.data(), Sheared ? g.coord_n_m.data() : nullptr,
                            g.normal_x.data(),  g.normal_y.data(),  g.normal_z.data(),
@@ -224,8 +231,8 @@ HWY_INLINE VW load_guarded(const float *plane, std::ptrdiff_t index, std::ptrdif
 
 /// What the kWideLanes centre pixels of one vector compare their taps with.
 struct WideCentres {
-    VW u, v, n, shear_u, shear_v, inv_two_sigma_sq_n, normal_x, normal_y, normal_z, id, inv_two_sigma_sq,
-        inv_two_sigma_sq_v;
+    VW u, v, n, shear_u, shear_v, inv_two_sigma_sq_n, normal_x, normal_y, normal_z, id;
+    VW neg_inv_two_sigma_sq, neg_inv_two_sigma_sq_v;  ///< as Centre's
     hn::Vec<DWI> reach, x;
     std::ptrdiff_t c0 = 0;  ///< the first centre's index in the planes
 };
@@ -274,8 +281,9 @@ HWY_INLINE void add_taps(const GatherSweep &s, const WideCentres &c, int o_begin
             normal_term = hn::Mul(hn::Mul(dn, dn), c.inv_two_sigma_sq_n);
         }
         // AAF Eq. 11
-        const VW exponent = hn::Sub(
-            gaussian_exponent(du, dv, c.inv_two_sigma_sq, c.inv_two_sigma_sq_v, anisotropic), normal_term);
+        const VW exponent =
+            hn::Sub(gaussian_exponent(du, dv, c.neg_inv_two_sigma_sq, c.neg_inv_two_sigma_sq_v, anisotropic),
+                    normal_term);
         const VW weight = hn::IfThenElseZero(accepted, fast_exp_nonpositive(d, exponent));
         weight_sum = hn::IfThenElse(active, hn::Add(weight_sum, weight), weight_sum);
         for (int k = 0; k < K; ++k)
@@ -332,9 +340,9 @@ void gather_row_along(const GatherSweep &s, int y, int x_begin, int x_end) {
             c.normal_y = load_guarded(normal_y, c0, size);
             c.normal_z = load_guarded(normal_z, c0, size);
             c.id = load_guarded(id, c0, size);
-            c.inv_two_sigma_sq = load_guarded(g.inv_two_sigma_sq.data(), c0, size);
-            c.inv_two_sigma_sq_v =
-                anisotropic ? load_guarded(g.inv_two_sigma_sq_v.data(), c0, size) : hn::Zero(d);
+            c.neg_inv_two_sigma_sq = hn::Neg(load_guarded(g.inv_two_sigma_sq.data(), c0, size));
+            c.neg_inv_two_sigma_sq_v =
+                anisotropic ? hn::Neg(load_guarded(g.inv_two_sigma_sq_v.data(), c0, size)) : hn::Zero(d);
             c.reach = hn::Load(di, reach);
             c.x = hn::Iota(di, x0);
             // Along y the taps' rows are shared by all lanes: 0 <= y + o < height.

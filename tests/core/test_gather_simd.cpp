@@ -7,6 +7,7 @@
 #include <catch2/catch.hpp>
 #include <cmath>
 #include <cstring>
+#include <limits>
 #include <random>
 #include <set>
 #include <string>
@@ -24,8 +25,12 @@ namespace {
 
 /// Guides with everything the kernels branch on: radii 0 to 7 (some reaching
 /// past the edges), two objects, a NaN id, zero and tilted normals, widths
-/// that vary per pixel; optionally the shear planes.
-GatherGuides varied_guides(int width, int height, bool sheared, bool anisotropic = false) {
+/// that vary per pixel; optionally the shear planes. With `extremes`, pixels
+/// whose taps' exponents are NaN (a NaN coordinate), -inf (an infinite one)
+/// or -0 (zero width), all accepted by their neighbours' tests: the
+/// exponential's clamps must give the scalar function's bits for them.
+GatherGuides varied_guides(int width, int height, bool sheared, bool anisotropic = false,
+                           bool extremes = false) {
     std::mt19937 rng(7);
     std::uniform_real_distribution<float> unit(0.0f, 1.0f);
     GatherGuides g;
@@ -44,6 +49,14 @@ GatherGuides varied_guides(int width, int height, bool sheared, bool anisotropic
         }
     g.object_id[g.index(3, 2)] = std::nanf("");
     g.normal_x[g.index(5, 4)] = g.normal_z[g.index(5, 4)] = 0.0f;
+    if (extremes) {
+        g.coord_u_m[g.index(6, 1)] = std::nanf("");
+        g.coord_v_m[g.index(9, 7)] = std::numeric_limits<float>::infinity();
+        g.coord_u_m[g.index(20, 9)] = -std::numeric_limits<float>::infinity();
+        g.inv_two_sigma_sq[g.index(10, 3)] = 0.0f;
+        g.inv_two_sigma_sq[g.index(11, 5)] = 0.0f;
+        g.radius_px[g.index(10, 3)] = g.radius_px[g.index(11, 5)] = 5;
+    }
     if (anisotropic) {  // a second width along v (AAF: one band-limit per light axis)
         g.inv_two_sigma_sq_v.resize(g.coord_u_m.size());
         for (float &w : g.inv_two_sigma_sq_v) w = 1.0f / (2.0f * std::pow(0.005f + 0.03f * unit(rng), 2.0f));
@@ -122,7 +135,7 @@ TEST_CASE("Gather SIMD: every instruction set of the build gives the same bits",
             for (const GatherMode mode : {GatherMode::Separable, GatherMode::Full2D})
                 for (const int channels : {1, 3, 5}) {
                     // 29 columns: a partial vector at each row's end for every lane count.
-                    const GatherGuides g = varied_guides(29, 13, sheared, anisotropic);
+                    const GatherGuides g = varied_guides(29, 13, sheared, anisotropic, true);
                     std::vector<float> first;
                     std::set<std::string> names;
                     for (const std::int64_t target : targets) {
@@ -229,7 +242,7 @@ TEST_CASE("Gather SIMD: the vertical pass and the separable gather give the scal
     for (const bool anisotropic : {false, true})
         for (const bool sheared : {false, true})
             for (const bool symmetric : {false, true}) {
-                const GatherGuides g = varied_guides(29, 23, sheared, anisotropic);
+                const GatherGuides g = varied_guides(29, 23, sheared, anisotropic, true);
                 const std::size_t n = std::size_t(g.width) * g.height;
                 std::mt19937 rng(5);
                 std::uniform_real_distribution<float> unit(-1.0f, 1.0f);
