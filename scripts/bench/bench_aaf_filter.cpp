@@ -20,6 +20,12 @@
 // Rows run with the machine's default threads and with one, the same count
 // for oneTBB and OpenCV (counters tbb_threads, opencv_threads).
 //
+// BM_AafPhases times aaf_filter's steps one after the other in each
+// iteration, on the same render as BM_AafVsBaselines: fill_ms (AAF Sec. 6's
+// occluder fill alone), guide_rows_ms (aaf_gather_guides() minus the fill),
+// gather_ms, and the whole aaf_filter (aaf_ms); medians over the iterations,
+// so one slow iteration does not move them.
+//
 // BM_AafGuides times aaf_gather_guides() alone (guides_ms) and the whole
 // aaf_filter (aaf_ms) on an adaptive render of `grids` (9 spp first pass,
 // AAF Eq. 21 at mu 2, at most 100 spp), with and without its pixel.spp input:
@@ -27,6 +33,7 @@
 // render's filter does.
 #include <benchmark/benchmark.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <limits>
@@ -41,6 +48,7 @@
 #include "aaf/core/aaf_filter.h"
 #include "aaf/core/fixed_gaussian.h"
 #include "aaf/core/gather.h"
+#include "aaf/core/occluder_fill.h"
 #include "aaf/core/thread_count.h"
 #include "aaf/trace/render.h"
 
@@ -269,6 +277,53 @@ const AdaptiveFixture &adaptive_fixture(int width, int height) {
     return f;
 }
 
+double median_of(std::vector<double> values) {
+    std::sort(values.begin(), values.end());
+    return values.empty() ? 0.0 : values[values.size() / 2];
+}
+
+void BM_AafPhases(benchmark::State &state) {
+    const int width = int(state.range(0)), height = int(state.range(1));
+    const Fixture &f = fixture(width, height);
+    const std::size_t n = f.aovs.pixel_count();
+    std::vector<float> out(n), beta(n);
+    const aaf::AafOutputs outputs{aaf::plane_view(out.data(), width, height),
+                                  aaf::plane_view(beta.data(), width, height)};
+    const aaf::AafParams params;
+    std::vector<double> fill_ms, guide_rows_ms, gather_ms, aaf_ms;
+    aaf::run_with_threads(int(state.range(2)), [&] {
+        for (auto _ : state) {
+            auto t = std::chrono::steady_clock::now();
+            {
+                const aaf::FilledOccluders filled = aaf::fill_occluder_distances(
+                    f.inputs.d2_min, f.inputs.d2_max, f.inputs.object_id, params.fill_radius_px);
+                benchmark::DoNotOptimize(filled.d2_max_m.data());
+            }
+            fill_ms.push_back(ms_since(t));
+            t = std::chrono::steady_clock::now();
+            {
+                const aaf::GatherGuides guides = aaf::aaf_gather_guides(f.inputs, f.light, params);
+                benchmark::DoNotOptimize(guides.radius_px.data());
+            }
+            guide_rows_ms.push_back(ms_since(t) - fill_ms.back());
+            std::copy(f.visibility.begin(), f.visibility.end(), out.begin());
+            t = std::chrono::steady_clock::now();
+            aaf::gather(f.guides, f.settings, {aaf::plane_view<const float>(out.data(), width, height)},
+                        {aaf::plane_view(out.data(), width, height)});
+            gather_ms.push_back(ms_since(t));
+            t = std::chrono::steady_clock::now();
+            aaf::aaf_filter(f.inputs, f.light, params, outputs);
+            aaf_ms.push_back(ms_since(t));
+            benchmark::DoNotOptimize(out.data());
+            benchmark::ClobberMemory();
+        }
+    });
+    state.counters["fill_ms"] = median_of(fill_ms);
+    state.counters["guide_rows_ms"] = median_of(guide_rows_ms);
+    state.counters["gather_ms"] = median_of(gather_ms);
+    state.counters["aaf_ms"] = median_of(aaf_ms);
+}
+
 void BM_AafGuides(benchmark::State &state) {
     const int width = int(state.range(0)), height = int(state.range(1));
     const bool with_spp = state.range(2) != 0;
@@ -315,6 +370,13 @@ BENCHMARK(BM_AafVsBaselines)
     ->Args({3840, 2160, 0})
     ->Args({640, 480, 1})
     ->Args({1920, 1080, 1})
+    ->Unit(benchmark::kMillisecond)
+    ->UseRealTime();
+BENCHMARK(BM_AafPhases)
+    ->ArgNames({"width", "height", "threads"})
+    ->Args({640, 480, 0})
+    ->Args({1920, 1080, 0})
+    ->Args({640, 480, 1})
     ->Unit(benchmark::kMillisecond)
     ->UseRealTime();
 // One thread: the guides' own cost, without the machine's other load spread over threads.
