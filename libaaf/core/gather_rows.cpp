@@ -29,10 +29,12 @@ using V = hn::Vec<D>;
 constexpr int kLanes = HWY_MIN(kSums, int(HWY_LANES(float)));
 constexpr int kBlocks = kSums / kLanes;  ///< vectors per run of kSums taps
 
-/// fast_exp_nonpositive (fast_exp.h) lane by lane, operation for operation,
-/// so every lane gives the scalar function's bits, for any lane count.
+/// gather_exp_nonpositive (fast_exp.h) lane by lane, operation for
+/// operation: Highway's MulAdd is one fused rounding where the target has
+/// FMA (HWY_NATIVE_FMA: the scalar function's Fused) and a multiply then an
+/// add elsewhere, so every lane gives that function's bits, for any lane count.
 template <class DF>
-HWY_INLINE hn::Vec<DF> fast_exp_nonpositive(DF d, hn::Vec<DF> x) {
+HWY_INLINE hn::Vec<DF> gather_exp_nonpositive(DF d, hn::Vec<DF> x) {
     using VF = hn::Vec<DF>;
     const hn::RebindToSigned<DF> di;
     // Max and Min, one instruction each, give the scalar comparisons' bits:
@@ -40,20 +42,19 @@ HWY_INLINE hn::Vec<DF> fast_exp_nonpositive(DF d, hn::Vec<DF> x) {
     // of the scalar 0, both give exp = 1 exactly.
     const VF above_floor = hn::Max(x, hn::Set(d, -87.0f));
     const VF clamped = hn::Min(above_floor, hn::Zero(d));
-    // Truncation towards zero, as static_cast<int>.
-    const auto k_int =
-        hn::ConvertTo(di, hn::Sub(hn::Mul(clamped, hn::Set(d, 1.44269504088896341f)), hn::Set(d, 0.5f)));
-    const VF k = hn::ConvertTo(d, k_int);
-    const VF r = hn::Sub(hn::Sub(clamped, hn::Mul(k, hn::Set(d, 0.693145751953125f))),
-                         hn::Mul(k, hn::Set(d, 1.428606765330187045e-06f)));
-    VF p = hn::Set(d, 1.0f / 720.0f);
-    p = hn::Add(hn::Mul(p, r), hn::Set(d, 1.0f / 120.0f));
-    p = hn::Add(hn::Mul(p, r), hn::Set(d, 1.0f / 24.0f));
-    p = hn::Add(hn::Mul(p, r), hn::Set(d, 1.0f / 6.0f));
-    p = hn::Add(hn::Mul(p, r), hn::Set(d, 0.5f));
-    p = hn::Add(hn::Mul(p, r), hn::Set(d, 1.0f));
-    p = hn::Add(hn::Mul(p, r), hn::Set(d, 1.0f));
-    const VF scale = hn::BitCast(d, hn::ShiftLeft<23>(hn::Add(k_int, hn::Set(di, 127))));
+    const VF rounding_shift = hn::Set(d, 12582912.0f);  // 1.5 * 2^23
+    const VF shifted = hn::MulAdd(clamped, hn::Set(d, 1.44269504088896341f), rounding_shift);
+    const VF k = hn::Sub(shifted, rounding_shift);
+    const VF r = hn::NegMulAdd(k, hn::Set(d, 1.428606765330187045e-06f),
+                               hn::NegMulAdd(k, hn::Set(d, 0.693145751953125f), clamped));
+    VF p = hn::Set(d, 0.00836377405f);
+    p = hn::MulAdd(p, r, hn::Set(d, 0.0418798551f));
+    p = hn::MulAdd(p, r, hn::Set(d, 0.166665733f));
+    p = hn::MulAdd(p, r, hn::Set(d, 0.499993473f));
+    p = hn::MulAdd(p, r, hn::Set(d, 1.0f));
+    p = hn::MulAdd(p, r, hn::Set(d, 1.0f));
+    const VF scale =
+        hn::BitCast(d, hn::ShiftLeft<23>(hn::Sub(hn::BitCast(di, shifted), hn::Set(di, 0x4B400000 - 127))));
     return hn::Mul(p, scale);
 }
 
@@ -71,16 +72,33 @@ struct Centre {
     bool anisotropic = false;
 };
 
-/// The Gaussian's exponent: -(du^2 + dv^2) / (2 sigma^2) (AAF Eq. 11), or
-/// with the guides' per-axis widths -du^2 a_u - dv^2 a_v; given the negated
-/// coefficients -1 / (2 sigma^2).
-template <class VF>
-HWY_INLINE VF gaussian_exponent(VF du, VF dv, VF neg_inv_two_sigma_sq, VF neg_inv_two_sigma_sq_v,
-                                bool anisotropic) {
-    if (anisotropic)
-        return hn::Add(hn::Mul(hn::Mul(du, du), neg_inv_two_sigma_sq),
-                       hn::Mul(hn::Mul(dv, dv), neg_inv_two_sigma_sq_v));
-    return hn::Mul(hn::Add(hn::Mul(du, du), hn::Mul(dv, dv)), neg_inv_two_sigma_sq);
+/// One tap's weight for the centres `c` (Centre or WideCentres), given the
+/// tap's guides: 0 where its object id or normal is rejected, else the
+/// Gaussian exp(-(du^2 + dv^2) / (2 sigma^2)) (AAF Eq. 11), with the guides'
+/// per-axis widths exp(-du^2 a_u - dv^2 a_v), and when sheared with du, dv
+/// taken along the shear and the normal offset's own term. Every multiply
+/// followed by an add is one MulAdd (fused where the target has FMA); the
+/// tests' reference_pass writes the same operations out in scalar form.
+template <bool Sheared, class DF, class Centres>
+HWY_INLINE hn::Vec<DF> tap_weight(DF d, const Centres &c, hn::Vec<DF> cos_threshold, bool anisotropic,
+                                  hn::Vec<DF> normal_x, hn::Vec<DF> normal_y, hn::Vec<DF> normal_z,
+                                  hn::Vec<DF> id, hn::Vec<DF> u, hn::Vec<DF> v, hn::Vec<DF> n) {
+    using VF = hn::Vec<DF>;
+    const VF cos_angle =
+        hn::MulAdd(c.normal_z, normal_z, hn::MulAdd(c.normal_y, normal_y, hn::Mul(c.normal_x, normal_x)));
+    const auto accepted = hn::And(hn::Eq(id, c.id), hn::Ge(cos_angle, cos_threshold));
+    VF du = hn::Sub(u, c.u), dv = hn::Sub(v, c.v), dn = hn::Zero(d);
+    if (Sheared) {
+        dn = hn::Sub(n, c.n);
+        du = hn::NegMulAdd(c.shear_u, dn, du);
+        dv = hn::NegMulAdd(c.shear_v, dn, dv);
+    }
+    // The negated coefficients -1 / (2 sigma^2).
+    VF exponent = anisotropic ? hn::MulAdd(hn::Mul(du, du), c.neg_inv_two_sigma_sq,
+                                           hn::Mul(hn::Mul(dv, dv), c.neg_inv_two_sigma_sq_v))
+                              : hn::Mul(hn::MulAdd(du, du, hn::Mul(dv, dv)), c.neg_inv_two_sigma_sq);
+    if (Sheared) exponent = hn::NegMulAdd(hn::Mul(dn, dn), c.inv_two_sigma_sq_n, exponent);
+    return hn::IfThenElseZero(accepted, gather_exp_nonpositive(d, exponent));
 }
 
 /// Adds kLanes taps from index `t` into the partial sums of block `b`;
@@ -89,32 +107,18 @@ template <int K, bool Sheared, bool Tail>
 HWY_INLINE void accumulate(const TapPlanes &g, const float *const *source, std::size_t t, const Centre &c,
                            hn::Mask<D> active, V (&sum)[K][kBlocks], V (&weight_sum)[kBlocks], int b) {
     const D d;
-    const V cos_angle = hn::Add(hn::Add(hn::Mul(c.normal_x, hn::LoadU(d, g.normal_x + t)),
-                                        hn::Mul(c.normal_y, hn::LoadU(d, g.normal_y + t))),
-                                hn::Mul(c.normal_z, hn::LoadU(d, g.normal_z + t)));
-    const auto accepted = hn::And(hn::Eq(hn::LoadU(d, g.id + t), c.id), hn::Ge(cos_angle, c.cos_threshold));
-    V du = hn::Sub(hn::LoadU(d, g.u + t), c.u), dv = hn::Sub(hn::LoadU(d, g.v + t), c.v);
-    V normal_term = hn::Zero(d);
-    if (Sheared) {
-        const V dn = hn::Sub(hn::LoadU(d, g.n + t), c.n);
-        du = hn::Sub(du, hn::Mul(c.shear_u, dn));
-        dv = hn::Sub(dv, hn::Mul(c.shear_v, dn));
-        normal_term = hn::Mul(hn::Mul(dn, dn), c.inv_two_sigma_sq_n);
-    }
-    // AAF Eq. 11; the scalar loop's accepted (0 or 1) times the weight.
-    const V exponent =
-        hn::Sub(gaussian_exponent(du, dv, c.neg_inv_two_sigma_sq, c.neg_inv_two_sigma_sq_v, c.anisotropic),
-                normal_term);
-    const V weight = hn::IfThenElseZero(accepted, fast_exp_nonpositive(d, exponent));
+    const V weight = tap_weight<Sheared>(d, c, c.cos_threshold, c.anisotropic, hn::LoadU(d, g.normal_x + t),
+                                         hn::LoadU(d, g.normal_y + t), hn::LoadU(d, g.normal_z + t),
+                                         hn::LoadU(d, g.id + t), hn::LoadU(d, g.u + t), hn::LoadU(d, g.v + t),
+                                         Sheared ? hn::LoadU(d, g.n + t) : hn::Zero(d));
     if (Tail) {
         weight_sum[b] = hn::IfThenElse(active, hn::Add(weight_sum[b], weight), weight_sum[b]);
         for (int k = 0; k < K; ++k)
-            sum[k][b] = hn::IfThenElse(
-                active, hn::Add(sum[k][b], hn::Mul(weight, hn::LoadU(d, source[k] + t))), sum[k][b]);
+            sum[k][b] =
+                hn::IfThenElse(active, hn::MulAdd(weight, hn::LoadU(d, source[k] + t), sum[k][b]), sum[k][b]);
     } else {
         weight_sum[b] = hn::Add(weight_sum[b], weight);
-        for (int k = 0; k < K; ++k)
-            sum[k][b] = hn::Add(sum[k][b], hn::Mul(weight, hn::LoadU(d, source[k] + t)));
+        for (int k = 0; k < K; ++k) sum[k][b] = hn::MulAdd(weight, hn::LoadU(d, source[k] + t), sum[k][b]);
     }
 }
 
@@ -268,26 +272,12 @@ HWY_INLINE void add_taps(const GatherSweep &s, const WideCentres &c, int o_begin
         }
         const auto active = hn::RebindMask(d, inside);
         const std::ptrdiff_t t = c.c0 + std::ptrdiff_t(o) * step;
-        const VW cos_angle =
-            hn::Add(hn::Add(hn::Mul(c.normal_x, load(normal_x, t)), hn::Mul(c.normal_y, load(normal_y, t))),
-                    hn::Mul(c.normal_z, load(normal_z, t)));
-        const auto accepted = hn::And(hn::Eq(load(id, t), c.id), hn::Ge(cos_angle, cos_threshold));
-        VW du = hn::Sub(load(coord_u, t), c.u), dv = hn::Sub(load(coord_v, t), c.v);
-        VW normal_term = hn::Zero(d);
-        if (Sheared) {
-            const VW dn = hn::Sub(load(coord_n, t), c.n);
-            du = hn::Sub(du, hn::Mul(c.shear_u, dn));
-            dv = hn::Sub(dv, hn::Mul(c.shear_v, dn));
-            normal_term = hn::Mul(hn::Mul(dn, dn), c.inv_two_sigma_sq_n);
-        }
-        // AAF Eq. 11
-        const VW exponent =
-            hn::Sub(gaussian_exponent(du, dv, c.neg_inv_two_sigma_sq, c.neg_inv_two_sigma_sq_v, anisotropic),
-                    normal_term);
-        const VW weight = hn::IfThenElseZero(accepted, fast_exp_nonpositive(d, exponent));
+        const VW weight = tap_weight<Sheared>(
+            d, c, cos_threshold, anisotropic, load(normal_x, t), load(normal_y, t), load(normal_z, t),
+            load(id, t), load(coord_u, t), load(coord_v, t), Sheared ? load(coord_n, t) : hn::Zero(d));
         weight_sum = hn::IfThenElse(active, hn::Add(weight_sum, weight), weight_sum);
         for (int k = 0; k < K; ++k)
-            sum[k] = hn::IfThenElse(active, hn::Add(sum[k], hn::Mul(weight, load(s.source[k], t))), sum[k]);
+            sum[k] = hn::IfThenElse(active, hn::MulAdd(weight, load(s.source[k], t), sum[k]), sum[k]);
     }
 }
 
@@ -418,6 +408,10 @@ const char *GatherRowTarget() {
     return hwy::TargetName(HWY_TARGET);
 }
 
+bool GatherRowFuses() {
+    return HWY_NATIVE_FMA != 0;
+}
+
 void GatherRow(const GatherSweep &s, int y, int x_begin, int x_end) {
     x_begin = std::max(x_begin, 0);
     x_end = std::min(x_end, s.guides->width);
@@ -443,6 +437,7 @@ namespace aaf::detail {
 
 HWY_EXPORT(GatherRow);
 HWY_EXPORT(GatherRowTarget);
+HWY_EXPORT(GatherRowFuses);
 
 void gather_row(const GatherSweep &sweep, int y, int x_begin, int x_end) {
     HWY_DYNAMIC_DISPATCH(GatherRow)(sweep, y, x_begin, x_end);
@@ -475,6 +470,10 @@ void gather_rows_tiled(const GatherSweep &sweep) {
 
 const char *gather_row_target() {
     return HWY_DYNAMIC_DISPATCH(GatherRowTarget)();
+}
+
+bool gather_row_fuses() {
+    return HWY_DYNAMIC_DISPATCH(GatherRowFuses)();
 }
 
 }  // namespace aaf::detail

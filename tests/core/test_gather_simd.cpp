@@ -1,6 +1,7 @@
 // The gather's SIMD rows (gather_rows.h, Google Highway runtime dispatch):
-// every instruction set this build carries gives the same bits, and they
-// agree with a plain double-precision sum of the documented weights.
+// every instruction set this build carries gives its kind's bits (fused
+// multiply-adds or not), and they agree with a plain double-precision sum
+// of the documented weights.
 #include <hwy/targets.h>
 
 #include <algorithm>
@@ -127,7 +128,8 @@ double reference_along_x(const GatherGuides &g, const std::vector<float> &source
 
 }  // namespace
 
-TEST_CASE("Gather SIMD: every instruction set of the build gives the same bits", "[gather][simd]") {
+TEST_CASE("Gather SIMD: instruction sets that fuse alike give the same bits, the two kinds agree to rounding",
+          "[gather][simd]") {
     const std::vector<std::int64_t> targets = hwy::SupportedAndGeneratedTargets();
     REQUIRE(!targets.empty());
     for (const bool anisotropic : {false, true})
@@ -136,21 +138,30 @@ TEST_CASE("Gather SIMD: every instruction set of the build gives the same bits",
                 for (const int channels : {1, 3, 5}) {
                     // 29 columns: a partial vector at each row's end for every lane count.
                     const GatherGuides g = varied_guides(29, 13, sheared, anisotropic, true);
-                    std::vector<float> first;
+                    std::vector<float> first[2];  // per kind: rounded products, fused multiply-adds
                     std::set<std::string> names;
                     for (const std::int64_t target : targets) {
                         hwy::SetSupportedTargetsForTest(target);
                         names.insert(detail::gather_row_target());
+                        const bool fuses = detail::gather_row_fuses();
                         const std::vector<float> result = run(g, mode, channels);
-                        if (first.empty()) first = result;
+                        if (first[fuses].empty()) first[fuses] = result;
                         INFO("target " << hwy::TargetName(target) << ", anisotropic " << anisotropic
                                        << ", sheared " << sheared << ", channels " << channels << ", 2D "
                                        << (mode == GatherMode::Full2D));
-                        CHECK(std::memcmp(result.data(), first.data(), first.size() * sizeof(float)) == 0);
+                        CHECK(std::memcmp(result.data(), first[fuses].data(),
+                                          result.size() * sizeof(float)) == 0);
                     }
                     hwy::SetSupportedTargetsForTest(0);
                     // Dispatch really switched: as many kernels ran as targets were offered.
                     CHECK(names.size() == targets.size());
+                    // Where the build and machine have both kinds: the same
+                    // weights up to a few roundings (sources lie in [0, 1]).
+                    if (!first[0].empty() && !first[1].empty())
+                        for (std::size_t i = 0; i < first[0].size(); ++i) {
+                            INFO("output " << i << ": " << first[0][i] << " against " << first[1][i]);
+                            CHECK(std::abs(first[0][i] - first[1][i]) <= 1e-6f);
+                        }
                 }
 }
 
@@ -190,12 +201,14 @@ namespace {
 
 /// One pass of the separable gather at pixel (x, y), along y or x, in
 /// float, written out from its definition: taps from top to bottom (left to
-/// right), the weight accepted * fast_exp(exponent) added one tap at a time,
-/// the centre added back with weight 1 when its own test fails. The SIMD
-/// kernels must give exactly these bits (multiplies and adds kept apart:
-/// x86-64's baseline has no fused multiply-add to contract them into).
+/// right), the weight accepted * gather_exp(exponent) added one tap at a
+/// time, the centre added back with weight 1 when its own test fails. The
+/// SIMD kernels must give exactly these bits, with each multiply-add rounded
+/// once where `fused` (std::fma) and the product rounded first elsewhere
+/// (gather_row_fuses()).
 float reference_pass(const GatherGuides &g, const float *source, int x, int y, bool along_y,
-                     float cos_threshold, bool symmetric_borders) {
+                     float cos_threshold, bool symmetric_borders, bool fused) {
+    const auto mul_add = [fused](float a, float b, float c) { return fused ? std::fma(a, b, c) : a * b + c; };
     const std::size_t c = g.index(x, y);
     const int radius = g.radius_px[c];
     if (radius == 0) return source[c];
@@ -207,22 +220,24 @@ float reference_pass(const GatherGuides &g, const float *source, int x, int y, b
         const int tx = along_y ? x : x + o, ty = along_y ? y + o : y;
         if (tx < 0 || tx >= g.width || ty < 0 || ty >= g.height) continue;
         const std::size_t t = g.index(tx, ty);
-        const float cos_angle =
-            g.normal_x[c] * g.normal_x[t] + g.normal_y[c] * g.normal_y[t] + g.normal_z[c] * g.normal_z[t];
+        const float cos_angle = mul_add(g.normal_z[c], g.normal_z[t],
+                                        mul_add(g.normal_y[c], g.normal_y[t], g.normal_x[c] * g.normal_x[t]));
         const bool accepted = g.object_id[t] == g.object_id[c] && cos_angle >= cos_threshold;
-        float du = g.coord_u_m[t] - g.coord_u_m[c], dv = g.coord_v_m[t] - g.coord_v_m[c], normal_term = 0.0f;
+        float du = g.coord_u_m[t] - g.coord_u_m[c], dv = g.coord_v_m[t] - g.coord_v_m[c], dn = 0.0f;
         if (g.sheared()) {
-            const float dn = g.coord_n_m[t] - g.coord_n_m[c];
-            du = du - g.shear_u[c] * dn;
-            dv = dv - g.shear_v[c] * dn;
-            normal_term = dn * dn * g.inv_two_sigma_sq_n[c];
+            dn = g.coord_n_m[t] - g.coord_n_m[c];
+            du = mul_add(-g.shear_u[c], dn, du);
+            dv = mul_add(-g.shear_v[c], dn, dv);
         }
-        const float exponent = g.anisotropic()
-                                   ? -(du * du * g.inv_two_sigma_sq[c] + dv * dv * g.inv_two_sigma_sq_v[c])
-                                   : -(du * du + dv * dv) * g.inv_two_sigma_sq[c];
-        const float weight = accepted ? fast_exp_nonpositive(exponent - normal_term) : 0.0f;
+        float exponent = g.anisotropic()
+                             ? mul_add(du * du, -g.inv_two_sigma_sq[c], dv * dv * -g.inv_two_sigma_sq_v[c])
+                             : mul_add(du, du, dv * dv) * -g.inv_two_sigma_sq[c];
+        if (g.sheared()) exponent = mul_add(-(dn * dn), g.inv_two_sigma_sq_n[c], exponent);
+        const float weight = !accepted ? 0.0f
+                             : fused   ? gather_exp_nonpositive<true>(exponent)
+                                       : gather_exp_nonpositive<false>(exponent);
         weight_sum += weight;
-        sum += weight * source[t];
+        sum = mul_add(weight, source[t], sum);
     }
     const float nx = g.normal_x[c], ny = g.normal_y[c], nz = g.normal_z[c];
     if (!(nx * nx + ny * ny + nz * nz >= cos_threshold && g.object_id[c] == g.object_id[c])) {
@@ -246,16 +261,23 @@ TEST_CASE("Gather SIMD: the vertical pass and the separable gather give the scal
                 const std::size_t n = std::size_t(g.width) * g.height;
                 std::mt19937 rng(5);
                 std::uniform_real_distribution<float> unit(-1.0f, 1.0f);
-                std::vector<float> source(n), vertical(n), expected_vertical(n), expected(n);
+                std::vector<float> source(n), vertical(n);
                 for (float &v : source) v = unit(rng);
-                for (int y = 0; y < g.height; ++y)
-                    for (int x = 0; x < g.width; ++x)
-                        expected_vertical[g.index(x, y)] =
-                            reference_pass(g, source.data(), x, y, true, cos_threshold, symmetric);
-                for (int y = 0; y < g.height; ++y)
-                    for (int x = 0; x < g.width; ++x)
-                        expected[g.index(x, y)] = reference_pass(g, expected_vertical.data(), x, y, false,
-                                                                 cos_threshold, symmetric);
+                // Per kind of instruction set: products rounded first, fused multiply-adds.
+                std::vector<float> expected_vertical[2], expected[2];
+                for (const bool fused : {false, true}) {
+                    expected_vertical[fused].resize(n);
+                    expected[fused].resize(n);
+                    for (int y = 0; y < g.height; ++y)
+                        for (int x = 0; x < g.width; ++x)
+                            expected_vertical[fused][g.index(x, y)] =
+                                reference_pass(g, source.data(), x, y, true, cos_threshold, symmetric, fused);
+                    for (int y = 0; y < g.height; ++y)
+                        for (int x = 0; x < g.width; ++x)
+                            expected[fused][g.index(x, y)] =
+                                reference_pass(g, expected_vertical[fused].data(), x, y, false, cos_threshold,
+                                               symmetric, fused);
+                }
                 detail::GatherSweep sweep;
                 sweep.guides = &g;
                 sweep.cos_threshold = cos_threshold;
@@ -273,12 +295,14 @@ TEST_CASE("Gather SIMD: the vertical pass and the separable gather give the scal
                                    << ", sheared " << sheared << ", symmetric borders " << symmetric);
                     std::fill(vertical.begin(), vertical.end(), std::nanf(""));
                     for (int y = 0; y < g.height; ++y) detail::gather_row(sweep, y);
-                    CHECK(std::memcmp(vertical.data(), expected_vertical.data(), n * sizeof(float)) == 0);
+                    const bool fused = detail::gather_row_fuses();
+                    CHECK(std::memcmp(vertical.data(), expected_vertical[fused].data(), n * sizeof(float)) ==
+                          0);
                     // The whole separable gather, its output written over its source.
                     std::vector<float> image = source;
                     gather(g, settings, {plane_view<const float>(image.data(), g.width, g.height)},
                            {plane_view(image.data(), g.width, g.height)});
-                    CHECK(std::memcmp(image.data(), expected.data(), n * sizeof(float)) == 0);
+                    CHECK(std::memcmp(image.data(), expected[fused].data(), n * sizeof(float)) == 0);
                 }
                 hwy::SetSupportedTargetsForTest(0);
             }

@@ -19,7 +19,7 @@ using namespace aaf;
 namespace {
 
 /// The fill written out from its definition: every pixel of the disc, row by
-/// row, summed in double.
+/// row, summed in float.
 FilledOccluders reference_fill(ConstPlaneView d2_min, ConstPlaneView d2_max, ConstPlaneView id, int r) {
     const int width = d2_max.width, height = d2_max.height;
     FilledOccluders f;
@@ -33,8 +33,7 @@ FilledOccluders reference_fill(ConstPlaneView d2_min, ConstPlaneView d2_max, Con
                 f.d2_max_m[i] = d2_max(x, y);
                 continue;
             }
-            double sum_min = 0, sum_max = 0;
-            int count = 0;
+            float sum_min = 0, sum_max = 0, count = 0;
             for (int ny = y - r; ny <= y + r; ++ny)
                 for (int nx = x - r; nx <= x + r; ++nx) {
                     if (nx < 0 || ny < 0 || nx >= width || ny >= height) continue;
@@ -42,11 +41,11 @@ FilledOccluders reference_fill(ConstPlaneView d2_min, ConstPlaneView d2_max, Con
                     if (id(nx, ny) != id(x, y) || !has_occluder(d2_max(nx, ny))) continue;
                     sum_min += d2_min(nx, ny);
                     sum_max += d2_max(nx, ny);
-                    ++count;
+                    count += 1.0f;
                 }
             if (count > 0) {
-                f.d2_min_m[i] = float(sum_min / count);
-                f.d2_max_m[i] = float(sum_max / count);
+                f.d2_min_m[i] = sum_min / count;
+                f.d2_max_m[i] = sum_max / count;
             }
         }
     return f;
@@ -61,7 +60,7 @@ TEST_CASE("Occluder fill: the disc's mean of same-object occluded neighbours, bi
     const auto size = GENERATE(std::make_pair(37, 29), std::make_pair(23, 150));
     const int width = size.first, height = size.second;
     // Interleaved channels (d2min, d2max, id), as an AOV buffer holds them;
-    // distances spanning decades, so the double sums' order would show.
+    // distances spanning decades, so the float sums' order would show.
     std::mt19937 rng(13);
     std::uniform_real_distribution<float> unit(0.0f, 1.0f);
     std::vector<float> pixels(std::size_t(width) * height * 3);

@@ -18,24 +18,23 @@ namespace aaf::detail {
 namespace HWY_NAMESPACE {
 namespace hn = hwy::HWY_NAMESPACE;
 
-/// Neighbouring centres in the lanes, each its own double sums over the same
+/// Neighbouring centres in the lanes, each its own float sums over the same
 /// disc offsets in the window's reading order: a lane adds exactly the taps
 /// the scalar loop would, one at a time.
 void SearchOccluderRow(const OccluderSearch &s, int y, const float *centre_id, float *out_d2_min_m,
                        float *out_d2_max_m) {
-    const hn::ScalableTag<double> dd;
-    const hn::Rebind<float, decltype(dd)> df;
-    constexpr int kMaxLanes = int(HWY_LANES(double));
+    const hn::ScalableTag<float> df;
+    constexpr int kMaxLanes = int(HWY_LANES(float));
     static_assert(kMaxLanes <= kOccluderSearchPadding, "the padding covers a vector");
-    const int lanes = int(hn::Lanes(dd));
+    const int lanes = int(hn::Lanes(df));
     const int r = s.pad;
     const int y_begin = y - r < 0 ? 0 : y - r, y_end = y + r > s.height - 1 ? s.height - 1 : y + r;
     for (int x0 = 0; x0 < s.width; x0 += lanes) {
-        const auto centre = hn::PromoteTo(dd, hn::LoadU(df, centre_id + x0));
+        const auto centre = hn::LoadU(df, centre_id + x0);
         const auto searching = hn::Eq(centre, centre);  // NaN: no search
-        if (hn::AllFalse(dd, searching)) continue;
-        auto sum_min = hn::Zero(dd), sum_max = hn::Zero(dd), lenders = hn::Zero(dd);
-        const auto one = hn::Set(dd, 1.0);
+        if (hn::AllFalse(df, searching)) continue;
+        auto sum_min = hn::Zero(df), sum_max = hn::Zero(df), lenders = hn::Zero(df);
+        const auto one = hn::Set(df, 1.0f);
         for (int ny = y_begin; ny <= y_end; ++ny) {
             // No occluded pixel within pad columns of any centre: the row adds nothing.
             const unsigned char *const near =
@@ -47,24 +46,21 @@ void SearchOccluderRow(const OccluderSearch &s, int y, const float *centre_id, f
             const std::size_t row = std::size_t(ny - s.first_row) * s.padded_width + std::size_t(r + x0);
             for (int dx = -w; dx <= w; ++dx) {
                 const std::size_t t = row + std::size_t(std::ptrdiff_t(dx));
-                // Exact in double: the float comparison's result, NaN included.
-                const auto lends = hn::Eq(hn::PromoteTo(dd, hn::LoadU(df, s.lender_id + t)), centre);
-                sum_min = hn::IfThenElse(
-                    lends, hn::Add(sum_min, hn::PromoteTo(dd, hn::LoadU(df, s.d2_min_m + t))), sum_min);
-                sum_max = hn::IfThenElse(
-                    lends, hn::Add(sum_max, hn::PromoteTo(dd, hn::LoadU(df, s.d2_max_m + t))), sum_max);
+                const auto lends = hn::Eq(hn::LoadU(df, s.lender_id + t), centre);  // NaN lends to none
+                sum_min = hn::IfThenElse(lends, hn::Add(sum_min, hn::LoadU(df, s.d2_min_m + t)), sum_min);
+                sum_max = hn::IfThenElse(lends, hn::Add(sum_max, hn::LoadU(df, s.d2_max_m + t)), sum_max);
                 lenders = hn::IfThenElse(lends, hn::Add(lenders, one), lenders);
             }
         }
-        alignas(64) double sums[3][kMaxLanes];
-        hn::Store(sum_min, dd, sums[0]);
-        hn::Store(sum_max, dd, sums[1]);
-        hn::Store(lenders, dd, sums[2]);
+        alignas(64) float sums[3][kMaxLanes];
+        hn::Store(sum_min, df, sums[0]);
+        hn::Store(sum_max, df, sums[1]);
+        hn::Store(lenders, df, sums[2]);
         for (int l = 0; l < lanes && x0 + l < s.width; ++l) {
             if (sums[2][l] == 0) continue;
-            // The scalar loop's float(sum / count), count an exact small integer.
-            out_d2_min_m[x0 + l] = float(sums[0][l] / sums[2][l]);
-            out_d2_max_m[x0 + l] = float(sums[1][l] / sums[2][l]);
+            // The scalar loop's sum / count, count an exact small integer.
+            out_d2_min_m[x0 + l] = sums[0][l] / sums[2][l];
+            out_d2_max_m[x0 + l] = sums[1][l] / sums[2][l];
         }
     }
 }

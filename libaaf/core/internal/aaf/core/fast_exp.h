@@ -1,6 +1,7 @@
 #pragma once
 
 #include <algorithm>
+#include <cmath>
 #include <cstdint>
 #include <cstring>
 
@@ -32,6 +33,44 @@ inline float fast_exp_nonpositive(float x) {
     p = p * r + 1.0f;
     // Scale by 2^k through the exponent bits.
     const std::uint32_t bits = static_cast<std::uint32_t>(static_cast<std::int32_t>(k) + 127) << 23;
+    float scale;
+    std::memcpy(&scale, &bits, sizeof scale);
+    return p * scale;
+}
+
+/// exp(x) for x <= 0 as the gather kernels compute it (gather_rows.cpp),
+/// written out as their reference. The same clamps as fast_exp_nonpositive;
+/// k = round(x log2 e) by adding 1.5 * 2^23 (whose float has unit spacing,
+/// so the sum rounds to the nearest integer and its low bits hold k); the
+/// split ln 2 of Cody and Waite; a degree-5 polynomial for exp(r), |r| <=
+/// ln2/2, interpolated at Chebyshev nodes with p(0) = 1 and p'(0) = 1
+/// exactly (five multiply-adds where the Taylor form needs six). With
+/// `Fused` each multiply-add is rounded once (std::fma), as the kernels do
+/// on instruction sets with fused multiply-add (x86 AVX2 and AVX-512, Arm);
+/// without it a multiply then an add, as they do on the others (SSE4).
+/// Relative error below 3e-7 either way (test_fast_exp.cpp).
+template <bool Fused>
+inline float gather_exp_nonpositive(float x) {
+    const auto mul_add = [](float a, float b, float c) { return Fused ? std::fma(a, b, c) : a * b + c; };
+    constexpr float kLog2e = 1.44269504088896341f;
+    constexpr float kRoundingShift = 12582912.0f;  // 1.5 * 2^23
+    constexpr float kLn2Hi = 0.693145751953125f;   // k * kLn2Hi is exact
+    constexpr float kLn2Lo = 1.428606765330187045e-06f;
+    const float above_floor = x > -87.0f ? x : -87.0f;  // NaN lands on -87
+    const float clamped = above_floor < 0.0f ? above_floor : 0.0f;
+    const float shifted = mul_add(clamped, kLog2e, kRoundingShift);
+    const float k = shifted - kRoundingShift;  // exact: an integer in [-126, 0]
+    const float r = mul_add(-k, kLn2Lo, mul_add(-k, kLn2Hi, clamped));
+    float p = 0.00836377405f;
+    p = mul_add(p, r, 0.0418798551f);
+    p = mul_add(p, r, 0.166665733f);
+    p = mul_add(p, r, 0.499993473f);
+    p = mul_add(p, r, 1.0f);
+    p = mul_add(p, r, 1.0f);
+    // 2^k through the exponent bits: shifted's bits are those of 1.5 * 2^23 plus k.
+    std::int32_t shifted_bits;
+    std::memcpy(&shifted_bits, &shifted, sizeof shifted_bits);
+    const std::uint32_t bits = static_cast<std::uint32_t>(shifted_bits - (0x4B400000 - 127)) << 23;
     float scale;
     std::memcpy(&scale, &bits, sizeof scale);
     return p * scale;

@@ -47,4 +47,10 @@ inline constexpr int kGatherStripPixels = 256;
 /// name, e.g. "AVX2"), for tests and benchmarks.
 const char *gather_row_target();
 
+/// Whether that instruction set fuses the kernels' multiply-adds (one
+/// rounding each: x86 AVX2 and AVX-512, Arm) or rounds the product first
+/// (SSE4 and older): gather_exp_nonpositive's Fused (fast_exp.h). Targets
+/// that agree on it give the same bits; the two kinds differ by rounding.
+bool gather_row_fuses();
+
 }  // namespace aaf::detail

@@ -31,7 +31,7 @@ struct OccluderSearch {
 inline constexpr int kOccluderSearchPadding = 16;
 
 /// For every pixel x of row `y` whose `centre_id[x]` is not NaN: the mean
-/// d2min and d2max over the disc's lenders of that id, summed in double row
+/// d2min and d2max over the disc's lenders of that id, summed in float row
 /// by row, left to right, written to out_*[x] where there is at least one
 /// lender (others untouched). `centre_id` holds width + kOccluderSearchPadding
 /// entries, NaN past the row. Vectorised over neighbouring centres with
