@@ -298,25 +298,30 @@ void gather_row_along(const GatherSweep &s, int y, int x_begin, int x_end) {
     const float *const normal_x = g.normal_x.data(), *const normal_y = g.normal_y.data(),
                        *const normal_z = g.normal_z.data(), *const id = g.object_id.data();
     const bool anisotropic = g.anisotropic();
+    const VW cos_threshold = hn::Set(d, s.cos_threshold), one = hn::Set(d, 1.0f);
     for (int x0 = x_begin; x0 < x_end; x0 += kWideLanes) {
         const std::ptrdiff_t c0 = row + x0;
-        // Each lane's reach: its radius, cut at the image's edges as gather_row_k cuts it.
-        alignas(64) std::int32_t reach[kWideLanes];
-        int widest = -1;
-        for (int i = 0; i < kWideLanes; ++i) {
-            const int x = x0 + i;
-            reach[i] = -1;  // past the range's end: no taps
-            if (x >= x_end) continue;
-            const int radius = g.radius_px[std::size_t(c0 + i)];
-            int r = radius;
-            if (s.symmetric_borders)
-                r = AlongY ? std::min({r, y, g.height - 1 - y}) : std::min({r, x, g.width - 1 - x});
-            reach[i] = radius == 0 ? -1 : r;
-            widest = std::max(widest, reach[i]);
-        }
-        VW sum[K], weight_sum = hn::Zero(d);
-        for (int k = 0; k < K; ++k) sum[k] = hn::Zero(d);
-        if (widest >= 0) {
+        const int lanes = std::min(kWideLanes, x_end - x0);  // centres in this vector
+        // Each lane's reach: its radius, cut at the image's edges as
+        // gather_row_k cuts it; -1 (no taps) for radius 0 and past the range.
+        alignas(64) std::int32_t radius_lanes[kWideLanes] = {};
+        std::copy_n(g.radius_px.data() + c0, lanes, radius_lanes);
+        const auto radius = hn::Load(di, radius_lanes);
+        const auto lane_x = hn::Iota(di, x0);
+        auto cut = radius;
+        if (s.symmetric_borders)
+            cut = AlongY ? hn::Min(cut, hn::Set(di, std::min(y, g.height - 1 - y)))
+                         : hn::Min(cut, hn::Min(lane_x, hn::Sub(hn::Set(di, g.width - 1), lane_x)));
+        const auto filtered = hn::And(hn::Lt(lane_x, hn::Set(di, x0 + lanes)), hn::Ne(radius, hn::Zero(di)));
+        const auto reach = hn::IfThenElse(filtered, cut, hn::Set(di, -1));
+        const int widest = hn::GetLane(hn::MaxOfLanes(di, reach));
+        // The centres' own values: the output where a lane has no taps.
+        VW centre_source[K];
+        for (int k = 0; k < K; ++k) centre_source[k] = load_guarded(s.source[k], c0, size);
+        VW out[K];
+        if (widest < 0) {
+            for (int k = 0; k < K; ++k) out[k] = centre_source[k];
+        } else {
             WideCentres c;
             c.c0 = c0;
             c.u = load_guarded(g.coord_u_m.data(), c0, size);
@@ -333,8 +338,10 @@ void gather_row_along(const GatherSweep &s, int y, int x_begin, int x_end) {
             c.neg_inv_two_sigma_sq = hn::Neg(load_guarded(g.inv_two_sigma_sq.data(), c0, size));
             c.neg_inv_two_sigma_sq_v =
                 anisotropic ? hn::Neg(load_guarded(g.inv_two_sigma_sq_v.data(), c0, size)) : hn::Zero(d);
-            c.reach = hn::Load(di, reach);
-            c.x = hn::Iota(di, x0);
+            c.reach = reach;
+            c.x = lane_x;
+            VW sum[K], weight_sum = hn::Zero(d);
+            for (int k = 0; k < K; ++k) sum[k] = hn::Zero(d);
             // Along y the taps' rows are shared by all lanes: 0 <= y + o < height.
             const int o_begin = AlongY ? std::max(-widest, -y) : -widest;
             const int o_end = AlongY ? std::min(widest, g.height - 1 - y) : widest;
@@ -345,25 +352,27 @@ void gather_row_along(const GatherSweep &s, int y, int x_begin, int x_end) {
                 add_taps<K, Sheared, AlongY, false>(s, c, o_begin, o_end, sum, weight_sum);
             else
                 add_taps<K, Sheared, AlongY, true>(s, c, o_begin, o_end, sum, weight_sum);
+            // The centre always counts: a NaN or zero normal fails its own
+            // test (nor does a NaN id match itself), so it is added back with weight 1.
+            const VW length_sq =
+                hn::Add(hn::Add(hn::Mul(c.normal_x, c.normal_x), hn::Mul(c.normal_y, c.normal_y)),
+                        hn::Mul(c.normal_z, c.normal_z));
+            const auto uncounted = hn::Not(hn::And(hn::Ge(length_sq, cos_threshold), hn::Eq(c.id, c.id)));
+            const VW total_weight = hn::Add(weight_sum, hn::IfThenElseZero(uncounted, one));
+            const auto keeps_value = hn::RebindMask(d, hn::Lt(reach, hn::Zero(di)));
+            for (int k = 0; k < K; ++k) {
+                const VW total = hn::IfThenElse(uncounted, hn::Add(sum[k], centre_source[k]), sum[k]);
+                out[k] = hn::IfThenElse(keeps_value, centre_source[k], hn::Div(total, total_weight));
+            }
         }
-        alignas(64) float lanes[K + 1][kWideLanes];
-        hn::Store(weight_sum, d, lanes[K]);
-        for (int k = 0; k < K; ++k) hn::Store(sum[k], d, lanes[k]);
-        for (int i = 0; i < kWideLanes && x0 + i < x_end; ++i) {
-            const std::size_t c = std::size_t(c0 + i);
-            if (reach[i] < 0) {  // radius 0: the pixel keeps its value
-                for (int k = 0; k < K; ++k) s.output[k][c] = s.source[k][c];
+        for (int k = 0; k < K; ++k) {
+            if (lanes == kWideLanes) {
+                hn::StoreU(out[k], d, s.output[k] + c0);
                 continue;
             }
-            float total_weight = lanes[K][i];
-            // The centre always counts: a NaN or zero normal fails its own
-            // test, so it is added back with weight 1.
-            const bool centre_counted = (normal_x[c] * normal_x[c] + normal_y[c] * normal_y[c] +
-                                         normal_z[c] * normal_z[c]) >= s.cos_threshold &&
-                                        id[c] == id[c];
-            if (!centre_counted) total_weight += 1.0f;
-            for (int k = 0; k < K; ++k)
-                s.output[k][c] = (centre_counted ? lanes[k][i] : lanes[k][i] + s.source[k][c]) / total_weight;
+            alignas(64) float stored[kWideLanes];
+            hn::Store(out[k], d, stored);
+            std::copy_n(stored, lanes, s.output[k] + c0);
         }
     }
 }

@@ -5,7 +5,9 @@
 // Run: ./scripts/bench.sh
 //
 // BM_AafVsBaselines times every filter alternately inside each iteration, so
-// the ratios it reports come from one run on one machine:
+// the ratios it reports come from one run on one machine; every filter runs
+// once untimed first, and each counter is the median over the iterations
+// (before 2026-12-03, a mean, with aaf_filter's first call in it):
 //   aaf_ms      aaf_filter with default AafParams (guides + gather)
 //   gather_ms   gather() alone, one channel, on guides built once outside the timing
 //   opencv_ms   cv::GaussianBlur on the visibility (CV_32F), sigma = mean AAF beta in
@@ -132,6 +134,11 @@ const Fixture &fixture(int width, int height) {
     return f;
 }
 
+double median_of(std::vector<double> values) {
+    std::sort(values.begin(), values.end());
+    return values.empty() ? 0.0 : values[values.size() / 2];
+}
+
 double ms_since(std::chrono::steady_clock::time_point start) {
     return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
 }
@@ -167,12 +174,15 @@ void BM_AafVsBaselines(benchmark::State &state) {
     cv::setNumThreads(opencv_default);
     const int opencv_threads = cv::getNumThreads();
     int tbb_threads = 0;
-    double aaf_ms = 0, gather_ms = 0, opencv_ms = 0, opencv_1t_ms = 0, fixed_ms = 0, gather3_ms = 0,
-           gather1x3_ms = 0, bilateral_ms = 0;
+    // Per iteration, so that the counters are medians: one slow iteration
+    // (another process, a page fault) does not move them.
+    std::vector<double> aaf_ms, gather_ms, opencv_ms, opencv_1t_ms, fixed_ms, gather3_ms, gather1x3_ms,
+        bilateral_ms;
     aaf::run_with_threads(threads, [&] {
         tbb_threads = tbb::this_task_arena::max_concurrency();
 
         // Warm-up, untimed: every filter once, so first-touch and allocations are out of the timing.
+        aaf::aaf_filter(f.inputs, f.light, aaf::AafParams{}, aaf_outputs);
         opencv_blur();
         aaf::gather(f.guides, f.settings, {vis}, {outputs3[0]});
         aaf::fixed_gaussian_filter(vis, f.mean_sigma_px, outputs3[0]);
@@ -181,25 +191,25 @@ void BM_AafVsBaselines(benchmark::State &state) {
         for (auto _ : state) {
             auto t = std::chrono::steady_clock::now();
             aaf::aaf_filter(f.inputs, f.light, aaf::AafParams{}, aaf_outputs);
-            aaf_ms += ms_since(t);
+            aaf_ms.push_back(ms_since(t));
             benchmark::DoNotOptimize(out.data());
             benchmark::ClobberMemory();
 
             t = std::chrono::steady_clock::now();
             aaf::gather(f.guides, f.settings, {vis}, {outputs3[0]});
-            gather_ms += ms_since(t);
+            gather_ms.push_back(ms_since(t));
             benchmark::DoNotOptimize(out.data());
             benchmark::ClobberMemory();
 
             t = std::chrono::steady_clock::now();
             opencv_blur();
-            opencv_ms += ms_since(t);
+            opencv_ms.push_back(ms_since(t));
             benchmark::DoNotOptimize(cv_dst.data);
             benchmark::ClobberMemory();
 
             t = std::chrono::steady_clock::now();
             opencv_bilateral();
-            bilateral_ms += ms_since(t);
+            bilateral_ms.push_back(ms_since(t));
             benchmark::DoNotOptimize(cv_bilateral.data);
             benchmark::ClobberMemory();
 
@@ -207,48 +217,50 @@ void BM_AafVsBaselines(benchmark::State &state) {
             cv::setNumThreads(1);
             t = std::chrono::steady_clock::now();
             opencv_blur();
-            opencv_1t_ms += ms_since(t);
+            opencv_1t_ms.push_back(ms_since(t));
             benchmark::DoNotOptimize(cv_dst.data);
             benchmark::ClobberMemory();
             cv::setNumThreads(opencv_default);
 
             t = std::chrono::steady_clock::now();
             aaf::fixed_gaussian_filter(vis, f.mean_sigma_px, outputs3[0]);
-            fixed_ms += ms_since(t);
+            fixed_ms.push_back(ms_since(t));
             benchmark::DoNotOptimize(out.data());
             benchmark::ClobberMemory();
 
             t = std::chrono::steady_clock::now();
             aaf::gather(f.guides, f.settings, sources3, outputs3);
-            gather3_ms += ms_since(t);
+            gather3_ms.push_back(ms_since(t));
             benchmark::DoNotOptimize(out3.data());
             benchmark::ClobberMemory();
 
             t = std::chrono::steady_clock::now();
             for (int k = 0; k < 3; ++k) aaf::gather(f.guides, f.settings, {sources3[k]}, {outputs3[k]});
-            gather1x3_ms += ms_since(t);
+            gather1x3_ms.push_back(ms_since(t));
             benchmark::DoNotOptimize(out3.data());
             benchmark::ClobberMemory();
         }
     });
-    const double iters = double(state.iterations());
-    state.counters["aaf_ms"] = aaf_ms / iters;
-    state.counters["gather_ms"] = gather_ms / iters;
-    state.counters["opencv_ms"] = opencv_ms / iters;
-    state.counters["opencv_1thread_ms"] = opencv_1t_ms / iters;
-    state.counters["fixed_ms"] = fixed_ms / iters;
-    state.counters["gather3_ms"] = gather3_ms / iters;
-    state.counters["3x_gather1_ms"] = gather1x3_ms / iters;
-    state.counters["bilateral_ms"] = bilateral_ms / iters;
-    state.counters["aaf_over_bilateral"] = aaf_ms / bilateral_ms;
+    const double aaf = median_of(aaf_ms), gather = median_of(gather_ms), opencv = median_of(opencv_ms),
+                 fixed = median_of(fixed_ms), gather3 = median_of(gather3_ms),
+                 gather1x3 = median_of(gather1x3_ms), bilateral = median_of(bilateral_ms);
+    state.counters["aaf_ms"] = aaf;
+    state.counters["gather_ms"] = gather;
+    state.counters["opencv_ms"] = opencv;
+    state.counters["opencv_1thread_ms"] = median_of(opencv_1t_ms);
+    state.counters["fixed_ms"] = fixed;
+    state.counters["gather3_ms"] = gather3;
+    state.counters["3x_gather1_ms"] = gather1x3;
+    state.counters["bilateral_ms"] = bilateral;
+    state.counters["aaf_over_bilateral"] = aaf / bilateral;
     const double megapixels = double(n) / 1e6;
-    state.counters["aaf_ms_per_Mpx"] = aaf_ms / iters / megapixels;
-    state.counters["opencv_ms_per_Mpx"] = opencv_ms / iters / megapixels;
-    state.counters["gather_over_opencv"] = gather_ms / opencv_ms;
-    state.counters["aaf_over_opencv"] = aaf_ms / opencv_ms;
-    state.counters["fixed_over_opencv"] = fixed_ms / opencv_ms;
-    state.counters["aaf_over_fixed"] = aaf_ms / fixed_ms;
-    state.counters["gather3_over_3x_gather1"] = gather3_ms / gather1x3_ms;
+    state.counters["aaf_ms_per_Mpx"] = aaf / megapixels;
+    state.counters["opencv_ms_per_Mpx"] = opencv / megapixels;
+    state.counters["gather_over_opencv"] = gather / opencv;
+    state.counters["aaf_over_opencv"] = aaf / opencv;
+    state.counters["fixed_over_opencv"] = fixed / opencv;
+    state.counters["aaf_over_fixed"] = aaf / fixed;
+    state.counters["gather3_over_3x_gather1"] = gather3 / gather1x3;
     state.counters["mean_sigma_px"] = f.mean_sigma_px;
     state.counters["tbb_threads"] = tbb_threads;
     state.counters["opencv_threads"] = opencv_threads;
@@ -275,11 +287,6 @@ const AdaptiveFixture &adaptive_fixture(int width, int height) {
     f.inputs.spp = a.channel("pixel.spp");
     f.light = aaf::read_light_attributes(a);
     return f;
-}
-
-double median_of(std::vector<double> values) {
-    std::sort(values.begin(), values.end());
-    return values.empty() ? 0.0 : values[values.size() / 2];
 }
 
 void BM_AafPhases(benchmark::State &state) {
