@@ -299,15 +299,22 @@ void gather_row_along(const GatherSweep &s, int y, int x_begin, int x_end) {
                        *const normal_z = g.normal_z.data(), *const id = g.object_id.data();
     const bool anisotropic = g.anisotropic();
     const VW cos_threshold = hn::Set(d, s.cos_threshold), one = hn::Set(d, 1.0f);
+    const auto lane_offsets = hn::Iota(di, 0);
     for (int x0 = x_begin; x0 < x_end; x0 += kWideLanes) {
         const std::ptrdiff_t c0 = row + x0;
         const int lanes = std::min(kWideLanes, x_end - x0);  // centres in this vector
         // Each lane's reach: its radius, cut at the image's edges as
         // gather_row_k cuts it; -1 (no taps) for radius 0 and past the range.
-        alignas(64) std::int32_t radius_lanes[kWideLanes] = {};
-        std::copy_n(g.radius_px.data() + c0, lanes, radius_lanes);
-        const auto radius = hn::Load(di, radius_lanes);
-        const auto lane_x = hn::Iota(di, x0);
+        const std::int32_t *const radius_px = g.radius_px.data() + c0;
+        auto radius = hn::Zero(di);
+        if (lanes == kWideLanes) {
+            radius = hn::LoadU(di, radius_px);
+        } else {  // a loop, not std::copy_n: GCC makes that a slow `rep movs`
+            alignas(64) std::int32_t radius_lanes[kWideLanes] = {};
+            for (int i = 0; i < lanes; ++i) radius_lanes[i] = radius_px[i];
+            radius = hn::Load(di, radius_lanes);
+        }
+        const auto lane_x = hn::Add(lane_offsets, hn::Set(di, x0));
         auto cut = radius;
         if (s.symmetric_borders)
             cut = AlongY ? hn::Min(cut, hn::Set(di, std::min(y, g.height - 1 - y)))
