@@ -379,7 +379,7 @@ void gather_row_along(const GatherSweep &s, int y, int x_begin, int x_end) {
             }
             alignas(64) float stored[kWideLanes];
             hn::Store(out[k], d, stored);
-            std::copy_n(stored, lanes, s.output[k] + c0);
+            for (int i = 0; i < lanes; ++i) s.output[k][c0 + i] = stored[i];
         }
     }
 }
