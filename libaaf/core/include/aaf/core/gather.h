@@ -82,8 +82,9 @@ struct GatherSettings {
 /// count; runs on the current oneTBB arena. Vectorised with runtime
 /// dispatch: every instruction set with fused multiply-add (x86 AVX2 and
 /// AVX-512, Arm) gives the same bits, as does every one without (SSE4 and
-/// older); the two kinds differ by rounding (about 1e-7 relative). `sources[k]` and `outputs[k]` are
-/// guide-sized; an output may alias a source (sources are read first).
+/// older); the two kinds differ by rounding (within 1e-6 on data in [0, 1]).
+/// `sources[k]` and `outputs[k]` are guide-sized; an output may alias a
+/// source (sources are read first).
 /// Throws aaf::Error on mismatched sizes or counts.
 void gather(const GatherGuides &guides, const GatherSettings &settings,
             const std::vector<ConstPlaneView> &sources, const std::vector<PlaneView> &outputs);
