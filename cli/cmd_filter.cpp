@@ -58,6 +58,9 @@ std::string method_contract_line(const MethodInfo &method) {
     std::string text = "  " + method.name + ": reads " + role_keys(method.roles.required) + "; optional " +
                        role_keys(method.roles.optional) + "; writes " + role_keys(method.roles.outputs) +
                        "\n";
+    for (const MethodDelegate &delegate : method.delegates)
+        text += "    given " + delegate.why + " (" + delegate.method + "'s inputs) instead: runs `" +
+                delegate_command(delegate) + "`\n";
     for (const ParameterInfo &p : method.parameters) {
         text += "    " + p.option_name();
         if (p.type != ParameterType::Bool)
@@ -143,10 +146,12 @@ void add_method_command(CLI::App &filter, const Method &method) {
         };
         const Provenance *current = nullptr;  // the frame being filtered
         // Every missing input is named at once, with its recipe, before the method runs.
-        filter.run = [&method, &current, light, channels, run = filter.run](AovSet input) {
+        filter.run = [&method, &current, light, channels, parameters, run = filter.run](AovSet input) {
             if (light) apply_light_option(light, input);
-            const std::vector<std::string> recipes = missing_input_recipes(method, input, channels);
-            if (!recipes.empty()) throw InputError(missing_inputs_message(method, recipes));
+            // A render made for a delegate (a combined-effects render for `aaf filter aaf`) is checked as the delegate's.
+            const Method &chosen = *choose_method(method, parameters, input, channels).method;
+            const std::vector<std::string> recipes = missing_input_recipes(chosen, input, channels);
+            if (!recipes.empty()) throw InputError(missing_inputs_message(chosen, recipes));
             AovSet output = run(std::move(input));
             stamp(*current, output);
             return output;
@@ -168,6 +173,7 @@ void add_method_command(CLI::App &filter, const Method &method) {
             const Provenance frame = job_provenance(job);
             current = &frame;
             const io::FilterFileReport report = io::filter_file(job.input, job.output, filter, file);
+            for (const std::string &note : report.notes) std::fprintf(stderr, "aaf: note: %s\n", note.c_str());
             for (const std::string &warning : report.warnings)
                 std::fprintf(stderr, "aaf: warning: %s\n", warning.c_str());
         });

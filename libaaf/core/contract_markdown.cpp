@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <vector>
 
+#include "aaf/core/filter_aovs.h"
 #include "aaf/core/method_registry.h"
 
 namespace aaf {
@@ -63,6 +64,9 @@ std::string methods_markdown() {
         text += "| reads | optional | writes | header attributes |\n| --- | --- | --- | --- |\n";
         text += "| " + role_list(info.roles.required) + " | " + role_list(info.roles.optional) + " | " +
                 role_list(info.roles.outputs) + " | " + code_list(info.required_attributes) + " |\n\n";
+        for (const MethodDelegate &delegate : info.delegates)
+            text += "Given " + delegate.why + " (" + delegate.method + "'s inputs rather than its own), it runs `" +
+                    delegate_command(delegate) + "`.\n\n";
         if (info.parameters.empty()) continue;
         text += "| parameter | default | unit | valid | meaning |\n| --- | --- | --- | --- | --- |\n";
         for (const ParameterInfo &p : info.parameters) {

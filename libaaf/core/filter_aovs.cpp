@@ -4,6 +4,7 @@
 
 #include "aaf/core/error.h"
 #include "aaf/core/frame_allocator.h"
+#include "aaf/core/method_registry.h"
 #include "aaf/core/quoted.h"
 #include "aaf/core/ratio_layers.h"
 
@@ -116,16 +117,50 @@ std::vector<std::string> method_input_channels(const Method &method, const Chann
     return names;
 }
 
+std::string delegate_command(const MethodDelegate &delegate) {
+    const Method &method = find_method(delegate.method);
+    ParameterSet parameters = method.default_parameters();
+    std::string command = "aaf filter " + method.info().name;
+    for (const auto &[name, value] : delegate.parameters) {
+        parameters.set(name, value);  // checks the name and the value
+        command += " " + parameters.info(name).option_name() + " " + value;
+    }
+    return command;
+}
+
+MethodChoice choose_method(const Method &method, const ParameterSet &parameters, const AovSet &aovs,
+                           const ChannelMap &channels) {
+    MethodChoice choice{&method, parameters, {}};
+    if (missing_inputs(method, aovs, channels).empty()) return choice;
+    for (const MethodDelegate &delegate : method.info().delegates) {
+        const Method &other = find_method(delegate.method);
+        if (!missing_inputs(other, aovs, channels).empty()) continue;
+        choice.method = &other;
+        choice.parameters = other.default_parameters();
+        for (const auto &[name, value] : delegate.parameters) choice.parameters.set(name, value);
+        const std::string command = delegate_command(delegate);
+        choice.note = delegate.why + " (" + other.info().name + "'s inputs): filtered as `" + command + "`";
+        // The delegate's options are its own: a setting made for `method` would be silently lost.
+        const ParameterSet defaults = method.default_parameters();
+        for (const ParameterInfo &info : method.info().parameters)
+            if (parameters.text(info.name) != defaults.text(info.name))
+                throw Error(choice.note + ", which does not take " + method.info().name + "'s " +
+                            info.option_name() + ": give " + other.info().name + "'s options to `" + command +
+                            "`");
+        return choice;
+    }
+    return choice;  // check_inputs() names what `method` lacks
+}
+
 AovSet filter_aovs(const Method &method, const AovSet &input, const ChannelMap &channels,
                    const ParameterSet &parameters, const ProgressMonitor &monitor, const AovSet *history) {
     return filter_aovs(method, AovSet(input), channels, parameters, monitor, history);
 }
 
-AovSet filter_aovs(const Method &method, AovSet &&input, const ChannelMap &channels,
-                   const ParameterSet &parameters, const ProgressMonitor &monitor, const AovSet *history) {
-    // Other renderers' names are found through the synonym table.
-    const ChannelMap found = channels.resolved(input);
-    check_inputs(method, input, found);
+namespace {
+
+AovSet run_method(const Method &method, AovSet &&input, const ChannelMap &found, const ParameterSet &parameters,
+                  const ProgressMonitor &monitor, const AovSet *history) {
     const std::vector<Role> &outputs = method.info().roles.outputs;
     const bool composes_beauty = std::find(outputs.begin(), outputs.end(), Role::Beauty) != outputs.end();
 
@@ -195,6 +230,17 @@ AovSet filter_aovs(const Method &method, AovSet &&input, const ChannelMap &chann
     release_frame_memory();
     progress.report(1.0);
     return out;
+}
+
+}  // namespace
+
+AovSet filter_aovs(const Method &method, AovSet &&input, const ChannelMap &channels,
+                   const ParameterSet &parameters, const ProgressMonitor &monitor, const AovSet *history) {
+    // Other renderers' names are found through the synonym table.
+    const ChannelMap found = channels.resolved(input);
+    const MethodChoice choice = choose_method(method, parameters, input, found);
+    check_inputs(*choice.method, input, found);
+    return run_method(*choice.method, std::move(input), found, choice.parameters, monitor, history);
 }
 
 }  // namespace aaf

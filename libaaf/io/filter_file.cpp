@@ -67,7 +67,8 @@ void warn_if_defocused(const std::string &path, const AovSet &aovs, const FrameF
     const float *aperture = it == aovs.attributes.end() ? nullptr : std::get_if<float>(&it->second);
     if (aperture && *aperture > 0)
         report.warnings.push_back(path + ": rendered through a thin lens; " + filter.composes_beauty +
-                                  " filters the in-focus shadow, its output R,G,B has no defocus");
+                                  " filters the in-focus shadow, its output R,G,B has no defocus (aaf render "
+                                  "--aovs maaf6 writes a combined-effects render, which keeps it)");
 }
 
 /// One warning per file that had NaN or infinite inputs, with the count per channel.
@@ -87,12 +88,15 @@ void warn_if_non_finite(const std::string &path, FilterFileReport &report) {
 
 FrameFilter method_filter(const Method &method, const ParameterSet &parameters, const ChannelMap &channels) {
     FrameFilter filter;
-    filter.input_channels = [&method, channels](const AovSet &input) {
+    filter.input_channels = [&method, parameters, channels](const AovSet &input) {
         const ChannelMap found = channels.resolved(input);
-        std::vector<std::string> names = method_input_channels(method, found);
+        // The method that will run: `method` or the delegate it hands this input to.
+        const Method &chosen = *choose_method(method, parameters, input, found).method;
+        const MethodInfo &info = chosen.info();
+        std::vector<std::string> names = method_input_channels(chosen, found);
         // The ratio roles' per-light layers are inputs too (ratio_layers.h).
-        std::vector<Role> roles = method.info().roles.required;
-        roles.insert(roles.end(), method.info().roles.optional.begin(), method.info().roles.optional.end());
+        std::vector<Role> roles = info.roles.required;
+        roles.insert(roles.end(), info.roles.optional.begin(), info.roles.optional.end());
         const int lights = ratio_light_count(input.attributes);
         for (Role role : roles)
             if (is_per_light_role(role))
@@ -111,6 +115,9 @@ FrameFilter method_filter(const Method &method, const ParameterSet &parameters, 
         if (method.info().uses_history) *history = output;
         return output;
     };
+    filter.note = [&method, parameters, channels](const AovSet &input) {
+        return choose_method(method, parameters, input, channels).note;
+    };
     const std::vector<Role> &outputs = method.info().roles.outputs;
     if (std::find(outputs.begin(), outputs.end(), Role::Beauty) != outputs.end())
         filter.composes_beauty = method.info().name;
@@ -119,6 +126,10 @@ FrameFilter method_filter(const Method &method, const ParameterSet &parameters, 
 
 AovSet filter_frame(AovSet input, const std::string &source, const FrameFilter &filter,
                     const FilterFileOptions &options, FilterFileReport &report) {
+    if (filter.note) {
+        const std::string note = filter.note(input);
+        if (!note.empty()) report.notes.push_back(source + ": " + note);
+    }
     warn_if_defocused(source, input, filter, report);
     if (options.replace_non_finite)
         report.non_finite = replace_non_finite(input, filter.input_channels(input));
@@ -146,7 +157,9 @@ FilterFileReport filter_file(const std::string &input_path, const std::string &o
     // they are read for the filter and stay in their parts in the output.
     // Scrubbing (in filter_frame) asks for the channels again: the borrowed
     // ones may complete a synonym.
-    report.borrowed = add_channels_from_other_parts(input_path, layout, filter.input_channels(input), input);
+    // Which channels depends on the input (a delegate's, choose_method()), which may refuse it: name the file.
+    const std::vector<std::string> wanted = with_context(input_path, [&] { return filter.input_channels(input); });
+    report.borrowed = add_channels_from_other_parts(input_path, layout, wanted, input);
     AovSet output = filter_frame(std::move(input), input_path, filter, options, report);
     if (!report.borrowed.empty()) output = without_channels(output, report.borrowed);
     WriteOptions write = options.write;

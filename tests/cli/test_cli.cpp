@@ -1,6 +1,8 @@
 #include <catch2/catch.hpp>
 
+#include <algorithm>
 #include <filesystem>
+#include <utility>
 
 #include "aaf/io/exr_io.h"
 #include "aaf/trace/render.h"
@@ -158,4 +160,33 @@ TEST_CASE("CLI: usage errors exit 2", "[cli]") {
     CHECK(run_aaf("render grids --spp notanumber -o x.exr").exit_code == 2);
     CHECK(run_aaf("frobnicate").exit_code == 2);
     CHECK(run_aaf("--help").exit_code == 0);
+}
+
+TEST_CASE("CLI: filter aaf and filter maaf take a combined-effects render as maaf6 does, with a note", "[cli]") {
+    const fs::path dir = scratch_dir("cli_combined");
+    const std::string render = (dir / "combined.exr").string();
+    REQUIRE(run_aaf("render room --aovs maaf6 --width 24 --height 18 --spp 4 -o " + render).exit_code == 0);
+    for (const auto &[asked, delegate] : {std::pair<std::string, std::string>{"aaf", "maaf6 --pairs 1"},
+                                          std::pair<std::string, std::string>{"maaf", "maaf6"}}) {
+        INFO(asked);
+        const std::string out = (dir / (asked + ".exr")).string(), direct = (dir / "direct.exr").string();
+        const RunResult run = run_aaf("filter " + asked + " " + render + " -o " + out);
+        REQUIRE(run.exit_code == 0);
+        CHECK_THAT(run.output, Catch::Contains("aaf: note: " + render) &&
+                                   Catch::Contains("`aaf filter " + delegate + "`"));
+        REQUIRE(run_aaf("filter " + delegate + " " + render + " -o " + direct).exit_code == 0);
+        const aaf::AovSet a = aaf::io::read_aovs(out), b = aaf::io::read_aovs(direct);
+        REQUIRE(a.channel_names() == b.channel_names());
+        for (const std::string &name : a.channel_names()) {
+            INFO(name);
+            CHECK(a.plane(a.index_of(name)) == b.plane(b.index_of(name)));
+        }
+    }
+    // An AAF option the delegate does not take: one line naming it, nothing written.
+    const std::string refused = (dir / "refused.exr").string();
+    const RunResult run = run_aaf("filter aaf --k 2 " + render + " -o " + refused);
+    CHECK(run.exit_code == 1);
+    CHECK_THAT(run.output, Catch::StartsWith("aaf: error: " + render) && Catch::Contains("aaf's --k"));
+    CHECK(std::count(run.output.begin(), run.output.end(), '\n') == 1);
+    CHECK_FALSE(fs::exists(refused));
 }

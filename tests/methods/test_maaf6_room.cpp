@@ -167,3 +167,39 @@ TEST_CASE("maaf6: a band header attribute that is infinite, negative or NaN is a
             }
         }
 }
+
+TEST_CASE("maaf6: `aaf filter aaf` and `aaf filter maaf` on a combined render run maaf6 --pairs 1 and maaf6, "
+          "and refuse their own options",
+          "[maaf6]") {
+    const AovSet render = render_room("all", 8, 1, 32, 24);
+    const auto same = [](const AovSet &a, const AovSet &b) {
+        REQUIRE(a.channel_names() == b.channel_names());
+        for (const std::string &name : a.channel_names()) {
+            INFO(name);
+            REQUIRE(a.plane(a.index_of(name)) == b.plane(b.index_of(name)));
+        }
+    };
+    const Method &aaf = find_method("aaf"), &maaf = find_method("maaf");
+    same(filter_aovs(aaf, render, ChannelMap{}, aaf.default_parameters()), filtered(render, "1"));
+    same(filter_aovs(maaf, render, ChannelMap{}, maaf.default_parameters()), filtered(render, "all"));
+
+    const MethodChoice choice = choose_method(aaf, aaf.default_parameters(), render, ChannelMap{});
+    CHECK(choice.method == &find_method("maaf6"));
+    CHECK(choice.parameters.text("pairs") == "1");
+    CHECK(choice.note.find("aaf filter maaf6 --pairs 1") != std::string::npos);
+
+    // An AAF option that is not the default would be lost: an error naming it and where to go.
+    ParameterSet mu = aaf.default_parameters();
+    mu.set("mu", 3.0);
+    CHECK_THROWS_WITH(filter_aovs(aaf, render, ChannelMap{}, mu),
+                      Catch::Contains("--mu") && Catch::Contains("aaf filter maaf6 --pairs 1"));
+
+    // Without the whole maaf6 layer nothing is handed over: AAF names its own missing input.
+    AovSet partial = render;
+    (void)partial.take_channel("maaf6.spp");
+    CHECK(choose_method(aaf, aaf.default_parameters(), partial, ChannelMap{}).method == &aaf);
+    CHECK(choose_method(aaf, aaf.default_parameters(), partial, ChannelMap{}).note.empty());
+    CHECK_THROWS_AS(filter_aovs(aaf, partial, ChannelMap{}, aaf.default_parameters()), InputError);
+    CHECK_THROWS_WITH(filter_aovs(aaf, partial, ChannelMap{}, aaf.default_parameters()),
+                      Catch::Contains("AAF") && Catch::Contains("unshadowed"));
+}

@@ -93,6 +93,12 @@ TEST_CASE("Every method: the registry holds the built-ins and the test plug-in, 
         }
         const ParameterSet defaults = method->default_parameters();  // throws if a default is invalid
         for (const ParameterInfo &p : info.parameters) CHECK(defaults.text(p.name) != "");
+        // A delegate is another registered method, with parameters it has and values it takes.
+        for (const MethodDelegate &delegate : info.delegates) {
+            CHECK(delegate.method != info.name);
+            CHECK_FALSE(delegate.why.empty());
+            CHECK_NOTHROW(delegate_command(delegate));
+        }
     }
     CHECK(names.count("aaf") == 1);
     CHECK(names.count("gaussian") == 1);
@@ -275,7 +281,13 @@ TEST_CASE("Every method: a missing required input is named in a one-line input e
             const AovSet &full = realistic_input();
             AovSet input(full.width(), full.height());
             input.attributes = full.attributes;
-            const std::vector<std::string> &drop = role_info(role).channels;
+            std::vector<std::string> drop = role_info(role).channels;
+            // Without the roles only its delegates need: a render they could filter is handed to them.
+            for (const MethodDelegate &delegate : info.delegates)
+                for (Role other : find_method(delegate.method).info().roles.required)
+                    if (std::find(info.roles.required.begin(), info.roles.required.end(), other) ==
+                        info.roles.required.end())
+                        drop.insert(drop.end(), role_info(other).channels.begin(), role_info(other).channels.end());
             for (std::size_t c = 0; c < full.channel_names().size(); ++c)
                 if (std::find(drop.begin(), drop.end(), full.channel_names()[c]) == drop.end())
                     std::copy(full.plane(c).begin(), full.plane(c).end(),

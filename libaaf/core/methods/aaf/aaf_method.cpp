@@ -107,6 +107,10 @@ class AafMethod final : public Method {
         info_.roles.filtered = {{Role::Visibility, Role::FilteredVisibility}};
         info_.parameters = aaf_parameters();
         info_.required_attributes = light_attribute_names();
+        // AAF for soft shadows, defocus and indirect light together is maaf6's
+        // central filter alone, with its own widths per effect (MAAF Sec. 6.2's
+        // baseline, after MYRD14).
+        info_.delegates = {{"maaf6", {{"pairs", "1"}}, "a combined-effects render"}};
     }
 
     const MethodInfo &info() const override { return info_; }

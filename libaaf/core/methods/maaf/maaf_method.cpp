@@ -63,6 +63,8 @@ class MaafMethod final : public Method {
         info_.required_attributes = light_attribute_names();
         info_.required_attributes.push_back(attr::kMaafPairs);
         info_.required_attributes.push_back(attr::kMaafOmegaYMax);
+        // Soft shadows, defocus and indirect light in one render: the 6D filter (MAAF Sec. 6.2).
+        info_.delegates = {{"maaf6", {}, "a combined-effects render"}};
     }
 
     const MethodInfo &info() const override { return info_; }

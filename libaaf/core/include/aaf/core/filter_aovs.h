@@ -19,12 +19,36 @@ struct MissingInputs {
 /// the channels found as `channels.resolved(aovs)` finds them.
 MissingInputs missing_inputs(const Method &method, const AovSet &aovs, const ChannelMap &channels);
 
+/// The method that filters `aovs` when `method` is asked for, and its parameters.
+struct MethodChoice {
+    const Method *method = nullptr;
+    ParameterSet parameters;
+    /// Set when a delegate was chosen: "<why> (<its inputs>): filtered by
+    /// <delegate> <its parameters>", for the user.
+    std::string note;
+};
+
+/// The command line a delegate amounts to: "aaf filter maaf6 --pairs 1".
+/// Throws aaf::Error when it names no registered method or parameter.
+std::string delegate_command(const MethodDelegate &delegate);
+
+/// `method` with `parameters`, unless `aovs` lacks some of its required
+/// inputs and has every input of one of its delegates (MethodInfo::delegates,
+/// the first that can run): then that delegate at its defaults with the
+/// delegate's fixed parameters. A delegate takes none of `method`'s
+/// parameters, so choosing one while a parameter differs from its default
+/// throws aaf::Error naming the parameter and the delegate to set it on.
+/// filter_aovs() runs what this returns; file pipelines call it to know
+/// which channels will be read.
+MethodChoice choose_method(const Method &method, const ParameterSet &parameters, const AovSet &aovs,
+                           const ChannelMap &channels);
+
 /// The channels `method` may read, as `channels` names them (resolve it
 /// first): its required roles, the beauty, its optional roles. What a file
 /// pipeline borrows from other parts and scrubs of NaN before filtering.
 std::vector<std::string> method_input_channels(const Method &method, const ChannelMap &channels);
 
-/// Runs `method` on an AOV set that follows the contract (other renderers'
+/// Runs `method` (or the delegate choose_method() picks) on an AOV set that follows the contract (other renderers'
 /// names are found through the synonym table) and returns every input channel
 /// and attribute plus the method's outputs. Output policy, the same for every
 /// method: channels the method writes replace earlier ones of the same name

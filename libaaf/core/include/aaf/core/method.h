@@ -28,6 +28,18 @@ struct MethodRoles {
     std::vector<std::pair<Role, Role>> filtered;
 };
 
+/// Another method a method hands a render to when the render lacks the
+/// method's own inputs but has all of the other's: `aaf filter maaf` on a
+/// combined-effects render runs maaf6, `aaf filter aaf` maaf6 with one
+/// filter pair (the axis-aligned filter of the same effects). The delegate
+/// runs at its defaults with `parameters` set on top (choose_method(),
+/// filter_aovs.h).
+struct MethodDelegate {
+    std::string method;                                           ///< a registered method's name
+    std::vector<std::pair<std::string, std::string>> parameters;  ///< (name, value as text)
+    std::string why;  ///< what such a render is, for the user's note: "a combined-effects render"
+};
+
 /// What a method is: the declaration everything else is generated from.
 struct MethodInfo {
     std::string name;       ///< `aaf filter NAME`; lower case
@@ -41,6 +53,9 @@ struct MethodInfo {
     /// True when the method reads the previous frame's output (MethodImages::history)
     /// on a sequence: the pipeline then keeps each frame's output for the next.
     bool uses_history = false;
+    /// Methods that filter renders made for them instead, tried in order
+    /// when this method's own inputs are missing (MethodDelegate).
+    std::vector<MethodDelegate> delegates;
 };
 
 /// The images a method runs on: read-only views of its input roles (those

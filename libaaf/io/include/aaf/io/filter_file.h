@@ -30,6 +30,9 @@ struct FrameFilter {
     /// shadow (a defocused input's beauty then loses its defocus, which the
     /// pipeline warns about); empty when it leaves the beauty alone.
     std::string composes_beauty;
+    /// What the user should know about how `input` is filtered, empty when
+    /// nothing: a render handed to another method (choose_method()'s note).
+    std::function<std::string(const AovSet &input)> note;
 };
 
 /// The registered method `method` with `parameters` as the pipeline runs it:
@@ -59,6 +62,9 @@ struct FilterFileOptions {
 
 /// What filter_file() did besides writing the output.
 struct FilterFileReport {
+    /// Messages for the user that are not warnings, each "<input>: <note>":
+    /// the input was handed to another method (FrameFilter::note).
+    std::vector<std::string> notes;
     /// Messages for the user, each "<input>: <problem>", in the order found:
     /// a thin-lens input (AAF's output has no defocus), NaN/Inf replaced.
     std::vector<std::string> warnings;
