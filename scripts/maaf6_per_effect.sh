@@ -4,12 +4,12 @@
 # render with `aaf filter maaf6` (MAAF, N = 3) and `--pairs 1` (its
 # axis-aligned baseline), both at the CLI defaults, and writes the beauty
 # RMSE of the unfiltered and filtered images against a reference of the same
-# effects to scripts/study/results_maaf6/per_effect.csv.
+# effects to scripts/study/results_maaf6/per_effect_WIDTHxHEIGHT.csv.
 #
 #   scripts/maaf6_per_effect.sh [WIDTH HEIGHT [REFERENCE_SPP [SPP...]]]
 #
 # Defaults: 320x240 (the combined-effects study's size), a 1024 spp
-# reference (seed 1000), renders at 16 and 32 spp (seed 1). About 3 minutes
+# reference (seed 1000), renders at 16 and 32 spp (seed 1). About 7 minutes
 # on 2 cores.
 set -euo pipefail
 root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
@@ -45,5 +45,5 @@ for effects in shadows defocus indirect all; do
         echo "$row"
     done
 done
-mv "$csv" "$out/per_effect.csv"
-echo "wrote $out/per_effect.csv"
+mv "$csv" "$out/per_effect_${width}x$height.csv"
+echo "wrote $out/per_effect_${width}x$height.csv"
