@@ -81,9 +81,13 @@ void add_info_command(CLI::App &app) {
             std::printf("  %-24s %s\n", name.c_str(), format_attribute(value).c_str());
         std::printf("methods (what each lacks, with how to produce it):\n");
         for (const Method *method : methods()) {
-            const std::vector<std::string> recipes = missing_input_recipes(*method, aovs, channels);
-            std::printf("  %-8s %s\n", method->info().name.c_str(),
-                        recipes.empty() ? "ready" : ("missing " + std::to_string(recipes.size())).c_str());
+            // A render made for one of its delegates is ready too, as that delegate (choose_method).
+            const MethodChoice choice = choose_method(*method, method->default_parameters(), aovs, channels);
+            const std::vector<std::string> recipes = missing_input_recipes(*choice.method, aovs, channels);
+            const std::string status = !recipes.empty()     ? "missing " + std::to_string(recipes.size())
+                                       : choice.note.empty() ? std::string("ready")
+                                                             : "ready: " + choice.note;
+            std::printf("  %-8s %s\n", method->info().name.c_str(), status.c_str());
             for (const std::string &recipe : recipes) std::printf("             - %s\n", recipe.c_str());
         }
     });

@@ -166,6 +166,10 @@ TEST_CASE("CLI: filter aaf and filter maaf take a combined-effects render as maa
     const fs::path dir = scratch_dir("cli_combined");
     const std::string render = (dir / "combined.exr").string();
     REQUIRE(run_aaf("render room --aovs maaf6 --width 24 --height 18 --spp 4 -o " + render).exit_code == 0);
+    // `aaf info` says so too.
+    CHECK_THAT(run_aaf("info " + render).output,
+               Catch::Contains("\n  aaf      ready: a combined-effects render") &&
+                   Catch::Contains("\n  maaf     ready: a combined-effects render"));
     for (const auto &[asked, delegate] : {std::pair<std::string, std::string>{"aaf", "maaf6 --pairs 1"},
                                           std::pair<std::string, std::string>{"maaf", "maaf6"}}) {
         INFO(asked);
