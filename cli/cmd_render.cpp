@@ -17,6 +17,7 @@
 
 #include "aaf/core/aov_contract.h"
 #include "aaf/core/error.h"
+#include "aaf/core/filter_aovs.h"
 #include "aaf/core/method_registry.h"
 #include "aaf/core/sample_statistics.h"
 #include "aaf/io/atomic_file.h"
@@ -333,11 +334,25 @@ void add_render_command(CLI::App &app) {
         if (!options->filter.empty()) {
             filter = render_filter(options->filter, options->filter_params);
             const unsigned needed = trace::aov_groups_for_method(options->filter);
+            // A render for one of the method's delegates serves too: `--aovs maaf6 --filter aaf` runs
+            // maaf6 --pairs 1 (choose_method), at the delegate's defaults.
+            const MethodDelegate *served_by = nullptr;
+            for (const MethodDelegate &delegate : filter->method->info().delegates) {
+                const unsigned groups = trace::aov_groups_for_method(delegate.method);
+                if (!served_by && (settings.aovs & groups) == groups) served_by = &delegate;
+            }
             if (cmd->count("--aovs") == 0)
                 settings.aovs = needed;
-            else if ((settings.aovs & needed) != needed)
+            else if ((settings.aovs & needed) == needed)
+                ;  // the method's own inputs
+            else if (!served_by)
                 throw UsageError("--filter " + options->filter + " reads AOVs that --aovs " + options->aovs +
                                  " does not render (add " + options->filter + " to --aovs, or leave --aovs out)");
+            else if (!options->filter_params.empty())
+                throw UsageError("--filter-param: --aovs " + options->aovs + " renders for " + served_by->method +
+                                 ", so --filter " + options->filter + " runs `" + delegate_command(*served_by) +
+                                 "`, which takes none of " + options->filter + "'s parameters (use --filter " +
+                                 served_by->method + " --filter-param ...)");
         } else if (!options->filter_params.empty()) {
             throw UsageError("--filter-param needs --filter");
         } else if (options->keep_beauty) {
@@ -430,13 +445,15 @@ void add_render_command(CLI::App &app) {
             double filter_s = 0;
             // An interrupted render is written unfiltered, so that --resume can continue it.
             if (frame_filter && done >= frame_settings.spp) {
-                const std::vector<std::string> recipes =
-                    missing_input_recipes(*filter->method, aovs, filter_options.channels);
-                if (!recipes.empty()) throw InputError(missing_inputs_message(*filter->method, recipes));
+                const Method &chosen =
+                    *choose_method(*filter->method, filter->parameters, aovs, filter_options.channels).method;
+                const std::vector<std::string> recipes = missing_input_recipes(chosen, aovs, filter_options.channels);
+                if (!recipes.empty()) throw InputError(missing_inputs_message(chosen, recipes));
                 const auto start = std::chrono::steady_clock::now();
                 io::FilterFileReport report;
                 aovs = io::filter_frame(std::move(aovs), job.input, *frame_filter, filter_options, report);
                 filter_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+                for (const std::string &note : report.notes) std::fprintf(stderr, "aaf: note: %s\n", note.c_str());
                 for (const std::string &warning : report.warnings)
                     std::fprintf(stderr, "aaf: warning: %s\n", warning.c_str());
             }

@@ -186,6 +186,21 @@ TEST_CASE("CLI: filter aaf and filter maaf take a combined-effects render as maa
             CHECK(a.plane(a.index_of(name)) == b.plane(b.index_of(name)));
         }
     }
+    // The same in one process: render --aovs maaf6 --filter aaf (its parameters refused before rendering).
+    const std::string one = (dir / "one.exr").string(), baseline = (dir / "baseline.exr").string();
+    const RunResult rendered = run_aaf("render room --aovs maaf6 --filter aaf --width 24 --height 18 --spp 4 -o " + one);
+    REQUIRE(rendered.exit_code == 0);
+    CHECK_THAT(rendered.output, Catch::Contains("aaf: note: room: a combined-effects render"));
+    REQUIRE(run_aaf("filter maaf6 --pairs 1 " + render + " -o " + baseline).exit_code == 0);
+    for (const char *name : {"R", "G", "B"}) {
+        const aaf::AovSet a = aaf::io::read_aovs(one), b = aaf::io::read_aovs(baseline);
+        CHECK(a.plane(a.index_of(name)) == b.plane(b.index_of(name)));
+    }
+    CHECK(run_aaf("render room --aovs maaf6 --filter aaf --filter-param mu=3 --width 24 --height 18 --spp 4 -o " +
+                  (dir / "never.exr").string())
+              .exit_code == 2);
+    CHECK_FALSE(fs::exists(dir / "never.exr"));
+
     // An AAF option the delegate does not take: one line naming it, nothing written.
     const std::string refused = (dir / "refused.exr").string();
     const RunResult run = run_aaf("filter aaf --k 2 " + render + " -o " + refused);
