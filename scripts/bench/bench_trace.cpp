@@ -34,6 +34,7 @@
 
 #include <time.h>
 
+#include <array>
 #include <chrono>
 #include <cmath>
 #include <filesystem>
@@ -108,10 +109,19 @@ void for_each_shadow_ray(const Fixture &f, const Emit &emit) {
             const std::uint32_t key = rng.next_u32();
             const StratifiedGrid strata(kSpp);
             const Vec3 origin = offset_origin(primary.position, primary.normal);
+            // As the tracer: the batch's unit points, then the warp over the batch (the same bits
+            // as LightSampler::point one at a time), then the rays.
+            std::array<float, kSpp> s, t, u_m, v_m;
             for (std::uint32_t i = 0; i < kSpp; ++i) {
                 float u1, u2;
                 rng.next_float2(u1, u2);
-                const Vec3 target = sampler.point(strata.point(i, key, u1, u2));
+                const UnitPoint p = strata.point(i, key, u1, u2);
+                s[i] = p.s;
+                t[i] = p.t;
+            }
+            sampler.warp(s.data(), t.data(), kSpp, u_m.data(), v_m.data());
+            for (std::uint32_t i = 0; i < kSpp; ++i) {
+                const Vec3 target = f.scene.key_light().point_at(u_m[i], v_m[i]);
                 if (dot(primary.normal, target - primary.position) <= 0) continue;  // not traced
                 emit(Ray{origin, target - origin, 1.0f - 1e-4f});
             }
