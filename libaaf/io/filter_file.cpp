@@ -127,7 +127,7 @@ FrameFilter method_filter(const Method &method, const ParameterSet &parameters, 
 AovSet filter_frame(AovSet input, const std::string &source, const FrameFilter &filter,
                     const FilterFileOptions &options, FilterFileReport &report) {
     if (filter.note) {
-        const std::string note = filter.note(input);
+        const std::string note = with_context(source, [&] { return filter.note(input); });
         if (!note.empty()) report.notes.push_back(source + ": " + note);
     }
     warn_if_defocused(source, input, filter, report);
