@@ -341,14 +341,13 @@ void add_render_command(CLI::App &app) {
                 const unsigned groups = trace::aov_groups_for_method(delegate.method);
                 if (!served_by && (settings.aovs & groups) == groups) served_by = &delegate;
             }
+            const bool own_inputs = (settings.aovs & needed) == needed;
             if (cmd->count("--aovs") == 0)
                 settings.aovs = needed;
-            else if ((settings.aovs & needed) == needed)
-                ;  // the method's own inputs
-            else if (!served_by)
+            else if (!own_inputs && !served_by)
                 throw UsageError("--filter " + options->filter + " reads AOVs that --aovs " + options->aovs +
                                  " does not render (add " + options->filter + " to --aovs, or leave --aovs out)");
-            else if (!options->filter_params.empty())
+            else if (!own_inputs && !options->filter_params.empty())
                 throw UsageError("--filter-param: --aovs " + options->aovs + " renders for " + served_by->method +
                                  ", so --filter " + options->filter + " runs `" + delegate_command(*served_by) +
                                  "`, which takes none of " + options->filter + "'s parameters (use --filter " +
