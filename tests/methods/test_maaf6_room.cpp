@@ -180,6 +180,9 @@ TEST_CASE("maaf6: `aaf filter aaf` and `aaf filter maaf` on a combined render ru
         }
     };
     const Method &aaf = find_method("aaf"), &maaf = find_method("maaf");
+    // The two delegates' outputs differ on this render, so each equality below says which one ran.
+    const AovSet one_pair = filtered(render, "1"), all_pairs = filtered(render, "all");
+    REQUIRE(one_pair.plane(one_pair.index_of("R")) != all_pairs.plane(all_pairs.index_of("R")));
     same(filter_aovs(aaf, render, ChannelMap{}, aaf.default_parameters()), filtered(render, "1"));
     same(filter_aovs(maaf, render, ChannelMap{}, maaf.default_parameters()), filtered(render, "all"));
 

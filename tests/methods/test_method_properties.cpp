@@ -298,3 +298,39 @@ TEST_CASE("Every method: a missing required input is named in a one-line input e
         }
     }
 }
+
+TEST_CASE("Every method with a delegate: a render made for the delegate gives the delegate's output, byte for byte",
+          "[methods]") {
+    for (const Method *method : methods()) {
+        const MethodInfo &info = method->info();
+        for (const MethodDelegate &delegate : info.delegates) {
+            INFO(info.name << " -> " << delegate.method);
+            const Method &other = find_method(delegate.method);
+            // Without the roles only `method` needs: the render is the delegate's. A delegate that
+            // needs every role `method` does could never be chosen (a declaration to fix).
+            std::vector<std::string> drop;
+            for (Role role : info.roles.required)
+                if (std::find(other.info().roles.required.begin(), other.info().roles.required.end(), role) ==
+                    other.info().roles.required.end())
+                    drop.insert(drop.end(), role_info(role).channels.begin(), role_info(role).channels.end());
+            REQUIRE_FALSE(drop.empty());
+            const AovSet &full = realistic_input();
+            AovSet input(full.width(), full.height());
+            input.attributes = full.attributes;
+            for (std::size_t c = 0; c < full.channel_names().size(); ++c)
+                if (std::find(drop.begin(), drop.end(), full.channel_names()[c]) == drop.end())
+                    std::copy(full.plane(c).begin(), full.plane(c).end(),
+                              input.add_channel(full.channel_names()[c]).data);
+
+            ParameterSet parameters = other.default_parameters();
+            for (const auto &[name, value] : delegate.parameters) parameters.set(name, value);
+            const AovSet handed = run_method(*method, input);
+            const AovSet direct = filter_aovs(other, input, ChannelMap{}, parameters);
+            REQUIRE(handed.channel_names() == direct.channel_names());
+            for (const std::string &name : handed.channel_names()) {
+                INFO(name);
+                CHECK(same_bytes(plane(handed, name), plane(direct, name)));
+            }
+        }
+    }
+}
