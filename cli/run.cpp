@@ -2,9 +2,11 @@
 #include <cstdio>
 #include <exception>
 #include <iostream>
+#include <optional>
 #include <string>
 
 #include "aaf/core/error.h"
+#include "aaf/core/instruction_set.h"
 #include "aaf/io/atomic_file.h"
 #include "aaf/io/exr_io.h"
 #include "commands.h"
@@ -53,7 +55,9 @@ void check_subcommand_names(const CLI::App &app, int argc, char **argv) {
             if (sub->get_name() == word) next = sub;
         }
         if (!next) {
-            const char *what = level == &app ? "command" : level->get_name() == "filter" ? "method" : "subcommand";
+            const char *what = level == &app                   ? "command"
+                               : level->get_name() == "filter" ? "method"
+                                                               : "subcommand";
             throw UsageError(std::string("unknown ") + what + " '" + word + "' (" + known + ")");
         }
         level = next;
@@ -75,6 +79,19 @@ int run(int argc, char **argv) {
            "Largest image (all channels, as float) a command may read, GiB; default 16 or "
            "$AAF_MEMORY_LIMIT_GB")
         ->check(CLI::Range(1.0e-6, 1.0e6));
+    app.add_option_function<std::string>(
+        "--isa",
+        [](const std::string &name) {
+            const std::optional<InstructionSet> set = parse_instruction_set(name);
+            if (!set)
+                throw UsageError("--isa: unknown instruction set '" + name + "' (" +
+                                 instruction_set_choices() + ")");
+            if (!cpu_supports(*set)) throw UsageError("--isa " + name + ": this CPU cannot run it");
+            set_instruction_set(*set);
+        },
+        "Widest instruction set of the filter kernels and Embree: native (the fastest this CPU runs), "
+        "sse4.2, avx2 or avx512; default native or $AAF_ISA. Pin one that every node has for identical "
+        "bytes across a farm of mixed CPUs");
     add_render_command(app);
     add_plan_command(app);
     add_filter_command(app);
@@ -86,6 +103,11 @@ int run(int argc, char **argv) {
     // installs its own handler: it finishes the round and writes it).
     io::remove_temporaries_on_signal();
     try {
+        try {
+            (void)instruction_set();  // a wrong $AAF_ISA is a usage error, named before any work
+        } catch (const Error &e) {
+            throw UsageError(e.what());
+        }
         check_subcommand_names(app, argc, argv);
         app.parse(argc, argv);
     } catch (const CheckFailed &) {

@@ -447,6 +447,7 @@ HWY_AFTER_NAMESPACE();
 #include <tbb/parallel_for.h>
 #include <tbb/partitioner.h>
 
+#include "aaf/core/instruction_set.h"
 #include "aaf/core/parallel.h"
 
 namespace aaf::detail {
@@ -456,6 +457,7 @@ HWY_EXPORT(GatherRowTarget);
 HWY_EXPORT(GatherRowFuses);
 
 void gather_row(const GatherSweep &sweep, int y, int x_begin, int x_end) {
+    (void)instruction_set();  // applies $AAF_ISA before the first dispatch
     HWY_DYNAMIC_DISPATCH(GatherRow)(sweep, y, x_begin, x_end);
 }
 
@@ -485,10 +487,12 @@ void gather_rows_tiled(const GatherSweep &sweep) {
 }
 
 const char *gather_row_target() {
+    (void)instruction_set();
     return HWY_DYNAMIC_DISPATCH(GatherRowTarget)();
 }
 
 bool gather_row_fuses() {
+    (void)instruction_set();
     return HWY_DYNAMIC_DISPATCH(GatherRowFuses)();
 }
 

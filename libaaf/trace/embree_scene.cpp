@@ -1,10 +1,13 @@
 #include "embree_scene.h"
 
+#include <algorithm>
 #include <cstring>
 #include <limits>
 #include <string>
 
 #include "aaf/core/error.h"
+#include "aaf/core/instruction_set.h"
+#include "aaf/core/vec3d.h"
 
 namespace aaf::trace {
 
@@ -34,10 +37,25 @@ void check_device(RTCDevice device, const char *what) {
     if (code != RTC_ERROR_NONE) throw Error(std::string("Embree: ") + what + ": " + embree_error_name(code));
 }
 
+/// rtcNewDevice's configuration for `set`.
+const char *embree_device_config(InstructionSet set) {
+    switch (set) {
+        case InstructionSet::Sse42:
+            return "isa=sse4.2";
+        case InstructionSet::Avx2:
+            return "isa=avx2";
+        case InstructionSet::Avx512:
+            return "isa=avx512";
+        case InstructionSet::Native:
+            break;
+    }
+    return nullptr;  // Embree's choice: the fastest kernels this CPU runs
+}
+
 }  // namespace
 
 EmbreeScene::EmbreeScene(const SceneDescription &description, bool high_quality, bool robust) {
-    device_ = rtcNewDevice(nullptr);
+    device_ = rtcNewDevice(embree_device_config(instruction_set()));
     if (!device_) throw Error("Embree: cannot create a device");
     try {
         scene_ = rtcNewScene(device_);
@@ -58,6 +76,7 @@ EmbreeScene::EmbreeScene(const SceneDescription &description, bool high_quality,
                 vertices[3 * i + 2] = mesh.positions[i].z;
             }
             std::memcpy(indices, mesh.indices.data(), mesh.indices.size() * sizeof(unsigned));
+            triangles_.push_back({vertices, indices});  // the scene keeps the buffers alive
             rtcSetGeometryBuildQuality(geometry,
                                        high_quality ? RTC_BUILD_QUALITY_HIGH : RTC_BUILD_QUALITY_MEDIUM);
             rtcCommitGeometry(geometry);
@@ -101,9 +120,27 @@ Hit EmbreeScene::intersect(Vec3 origin, Vec3 direction, float t_near, float t_fa
     Hit hit;
     if (query.hit.geomID == RTC_INVALID_GEOMETRY_ID) return hit;
     hit.found = true;
-    hit.distance = query.ray.tfar;
-    hit.geometric_normal = {query.hit.Ng_x, query.hit.Ng_y, query.hit.Ng_z};
     hit.mesh_index = query.hit.geomID;
+    // Embree found the triangle; where the ray meets it is computed here, the
+    // same on every CPU (Embree's kernels differ in the last bits: its
+    // reciprocal estimates differ between instruction sets and vendors).
+    const MeshBuffers &mesh = triangles_[query.hit.geomID];
+    const unsigned *corner = mesh.indices + 3 * std::size_t(query.hit.primID);
+    const auto vertex = [&](unsigned index) {
+        const float *p = mesh.vertices + 3 * std::size_t(index);
+        return Vec3d(p[0], p[1], p[2]);
+    };
+    const Vec3d v0 = vertex(corner[0]), edge1 = vertex(corner[1]) - v0, edge2 = vertex(corner[2]) - v0;
+    // The plane's distance t = ((v0 - o) . n) / (d . n), n = e1 x e2 (the
+    // normal as Embree's), in double precision.
+    const Vec3d normal = cross(edge1, edge2);
+    const Vec3d d(direction.x, direction.y, direction.z);
+    const double denominator = dot(d, normal);
+    const double t = denominator != 0 ? dot(v0 - Vec3d(origin.x, origin.y, origin.z), normal) / denominator
+                                      : double(query.ray.tfar);
+    // Within the interval searched, where rounding at its ends could leave it.
+    hit.distance = float(std::clamp(t, double(t_near), double(t_far)));
+    hit.geometric_normal = {float(normal.x), float(normal.y), float(normal.z)};
     return hit;
 }
 

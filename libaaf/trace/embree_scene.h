@@ -3,6 +3,7 @@
 #include <embree3/rtcore.h>
 
 #include <limits>
+#include <vector>
 
 #include "scene_description.h"
 
@@ -46,8 +47,15 @@ class EmbreeScene {
     RTCScene handle() const { return scene_; }
 
   private:
+    /// A mesh's vertex and index buffers, as given to Embree.
+    struct MeshBuffers {
+        const float *vertices;    ///< x, y, z per vertex
+        const unsigned *indices;  ///< three per triangle
+    };
+
     RTCDevice device_ = nullptr;
     RTCScene scene_ = nullptr;
+    std::vector<MeshBuffers> triangles_;  ///< by geometry id
 };
 
 // Inline: it runs once per shadow ray.

@@ -55,7 +55,8 @@ void SampleCubicBatch(const float *cubics, int intervals, float limit, const flo
         const auto next_x0 = hn::GatherIndex(df, cubics + 4, base);
         const auto x = hn::Add(x0, hn::Mul(t, hn::Add(slope0, hn::Mul(t, hn::Add(c2, hn::Mul(t, c3))))));
         // std::clamp(x, x0, next_x0), comparison for comparison (signed zeros included).
-        const auto clamped = hn::IfThenElse(hn::Lt(x, x0), x0, hn::IfThenElse(hn::Lt(next_x0, x), next_x0, x));
+        const auto clamped =
+            hn::IfThenElse(hn::Lt(x, x0), x0, hn::IfThenElse(hn::Lt(next_x0, x), next_x0, x));
         const auto sampled =
             hn::IfThenElse(hn::Not(hn::Gt(v, zero)), low, hn::IfThenElse(hn::Ge(v, one), high, clamped));
         hn::StoreU(hn::Mul(scale_v, sampled), df, out + k);
@@ -68,12 +69,15 @@ void SampleCubicBatch(const float *cubics, int intervals, float limit, const flo
 HWY_AFTER_NAMESPACE();
 
 #if HWY_ONCE
+#include "aaf/core/instruction_set.h"
+
 namespace aaf::trace::detail {
 
 HWY_EXPORT(SampleCubicBatch);
 
 void sample_cubic_batch(const float *cubics, int intervals, float limit, const float *u, std::size_t count,
                         float scale, float *out) {
+    (void)instruction_set();  // applies $AAF_ISA before the first dispatch
     HWY_DYNAMIC_DISPATCH(SampleCubicBatch)(cubics, intervals, limit, u, count, scale, out);
 }
 

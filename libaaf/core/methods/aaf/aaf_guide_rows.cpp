@@ -277,6 +277,8 @@ const char *AafGuideRowTarget() {
 HWY_AFTER_NAMESPACE();
 
 #if HWY_ONCE
+#include "aaf/core/instruction_set.h"
+
 namespace aaf::detail {
 
 HWY_EXPORT(AafGuideRow);
@@ -284,10 +286,12 @@ HWY_EXPORT(AafGuideRowTarget);
 
 void aaf_guide_row(const AafGuideConstants &constants, const AafGuideRowInputs &in,
                    const AafGuideRowOutputs &out, int count) {
+    (void)instruction_set();  // applies $AAF_ISA before the first dispatch
     HWY_DYNAMIC_DISPATCH(AafGuideRow)(constants, in, out, count);
 }
 
 const char *aaf_guide_row_target() {
+    (void)instruction_set();
     return HWY_DYNAMIC_DISPATCH(AafGuideRowTarget)();
 }
 

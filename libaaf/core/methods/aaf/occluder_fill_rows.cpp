@@ -70,12 +70,15 @@ void SearchOccluderRow(const OccluderSearch &s, int y, const float *centre_id, f
 HWY_AFTER_NAMESPACE();
 
 #if HWY_ONCE
+#include "aaf/core/instruction_set.h"
+
 namespace aaf::detail {
 
 HWY_EXPORT(SearchOccluderRow);
 
 void search_occluder_row(const OccluderSearch &search, int y, const float *centre_id, float *out_d2_min_m,
                          float *out_d2_max_m) {
+    (void)instruction_set();  // applies $AAF_ISA before the first dispatch
     HWY_DYNAMIC_DISPATCH(SearchOccluderRow)(search, y, centre_id, out_d2_min_m, out_d2_max_m);
 }
 
