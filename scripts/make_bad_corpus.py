@@ -478,12 +478,146 @@ def fuzz_cases():
     ]
 
 
+def python_module_cases():
+    """The Python module `aaf` (libaaf/python), each call in a small driver
+    (tests/bad_inputs/python_case.py: Y is an 8x8 plane, RGB an aaf.Aovs):
+    a bad argument is aaf.Error naming it (exit 2), a bad file
+    aaf.InputError naming the file (exit 3), and nothing is written."""
+    def py(name, code, exit_code, names, **extra):
+        return case("python: " + name, [code], exit_code, names, program="python", **extra)
+
+    write = "aaf.write('out.exr', %s)"
+    return [
+        py("an int attribute of 2**40", write % "aaf.Aovs({'Y': Y}, {'frame_id': 2 ** 40})", 2, "frame_id"),
+        py("an int attribute below -2**31", write % "aaf.Aovs({'Y': Y}, {'n': -2 ** 31 - 1})", 2, "'n'"),
+        py("a float attribute of 1e300", write % "aaf.Aovs({'Y': Y}, {'far': 1e300})", 2, "far"),
+        py("a vector attribute with a str", write % "aaf.Aovs({'Y': Y}, {'v': (1, 'a', 2)})", 2, "'v'"),
+        py("a channel name that is an int", write % "aaf.Aovs({1: Y})", 2, "channel name"),
+        py("an attribute name that is a tuple", write % "aaf.Aovs({'Y': Y}, {(1, 2): 3})", 2, "attribute name"),
+        py("an empty channel name", write % "aaf.Aovs({'': Y, 'G': Y})", 2, "channel ''"),
+        py("write to .png", "aaf.write('out.png', RGB)", 2, "out.png"),
+        py("write to .JPEG", "aaf.write('out.JPEG', RGB)", 2, "out.JPEG"),
+        py("a 4 TB conversion fails as out of memory",
+           write % "aaf.Aovs({'Y': np.broadcast_to(np.float64(1), (1000000, 1000000))})", 2, "out of memory"),
+        py("a 3-D channel", write % "aaf.Aovs({'Y': np.zeros((8, 8, 3))})", 2, "'Y'"),
+        py("a channel with no pixels", write % "aaf.Aovs({'Y': np.zeros((0, 8))})", 2, "'Y'"),
+        py("a complex channel", write % "aaf.Aovs({'Y': np.zeros((8, 8), complex)})", 2, "'Y'"),
+        py("a channel of strings", write % "aaf.Aovs({'Y': [['a', 'b']]})", 2, "'Y'"),
+        py("channels of two shapes", write % "aaf.Aovs({'R': Y, 'G': np.zeros((4, 4))})", 2, "'G'"),
+        py("aovs that are not aaf.Aovs", write % "{'Y': Y}", 2, "aovs"),
+        py("channels that are not a dict", "aaf.Aovs(5)", 2, "channels"),
+        py("write compression unknown", "aaf.write('out.exr', RGB, compression='bogus')", 3, "bogus"),
+        py("write into a missing folder", "aaf.write('nosuch/out.exr', RGB)", 3, "nosuch/out.exr"),
+        py("write onto a folder", "aaf.write('folder.exr', RGB)", 3, "folder.exr"),
+        py("compare peak 0", "aaf.compare(RGB, RGB, peak=0)", 2, "peak"),
+        py("compare peak NaN", "aaf.compare(RGB, RGB, peak=float('nan'))", 2, "peak"),
+        py("compare peak inf", "aaf.compare(RGB, RGB, peak=float('inf'))", 2, "peak"),
+        py("compare unknown metric", "aaf.compare('good.exr', 'good2.exr', metrics=['bogus'])", 2, "bogus"),
+        py("compare a metric that is an int", "aaf.compare(RGB, RGB, metrics=[3])", 2, "metrics"),
+        py("compare a path with arrays", "aaf.compare('good.exr', RGB)", 2, "test"),
+        py("compare a missing reference", "aaf.compare('good.exr', 'nosuch.exr')", 3, "nosuch.exr"),
+        py("compare different sizes", "aaf.compare('good.exr', 'small.exr')", 3, "small.exr"),
+        py("read a path that is an int", "aaf.read(5)", 2, "path"),
+        py("read a missing file", "aaf.read('nosuch.exr')", 3, "nosuch.exr"),
+        py("read garbage", "aaf.read('garbage.exr')", 3, "garbage.exr"),
+        py("read a truncated EXR", "aaf.read('truncated.exr')", 3, "truncated.exr"),
+        py("read a header declaring 100000x100000", "aaf.read('declared_100000.exr')", 3, "declared_100000.exr"),
+        py("filter threads 2**40", "aaf.filter('gaussian', aaf.read('good.exr'), threads=2 ** 40)", 2, "threads"),
+        py("filter a parameter of None", "aaf.filter('gaussian', aaf.read('good.exr'), sigma=None)", 2, "sigma"),
+        py("filter a method name that is an int", "aaf.filter(3, RGB)", 2, "method"),
+        py("filter a map role that is an int", "aaf.filter('aaf', aaf.read('good.exr'), map={1: 'x'})", 2, "map"),
+        py("filter missing visibility", "aaf.filter('aaf', aaf.read('missing_visibility.exr'))", 3, "visibility"),
+        py("write a good file", "aaf.write('out.exr', aaf.read('good.exr'))", 0, None, creates=["out.exr"]),
+    ]
+
+
+def aaf_complete_cases():
+    """scripts/blender/aaf_complete.py (run directly, as the README says):
+    an output that is an input under any name is refused, a failure writes
+    nothing (the output goes through a temporary beside it)."""
+    cycles = {"ViewLayer.Combined." + c: aov_planes(1)["R"] for c in "RGB"}
+    cycles["ViewLayer.Depth.Z"] = np.full((SIZE, SIZE), 3.0, np.float32)
+    write_exr("cycles.exr", cycles, attributes={})
+
+    def complete(name, args, exit_code, names, **extra):
+        return case("aaf_complete: " + name, args, exit_code, names, program="aaf_complete", **extra)
+
+    return [
+        complete("output is the Cycles input", ["cycles.exr", "good.exr", "cycles.exr"], 3, "cycles.exr"),
+        complete("output is the aaf input", ["cycles.exr", "good.exr", "good.exr"], 3, "good.exr"),
+        complete("output is the input spelt ./", ["cycles.exr", "good.exr", "./cycles.exr"], 3, "./cycles.exr"),
+        complete("output is a symlink to the input", ["cycles.exr", "good.exr", "link.exr"], 3, "link.exr",
+                 setup={"symlink": {"link.exr": "cycles.exr"}}),
+        complete("output is a hard link to the input", ["cycles.exr", "good.exr", "hard.exr"], 3, "hard.exr",
+                 setup={"hardlink": {"hard.exr": "good.exr"}}),
+        complete("two arguments", ["cycles.exr", "good.exr"], 2, "usage"),
+        complete("output named .png", ["cycles.exr", "good.exr", "out.png"], 2, "out.png"),
+        complete("missing Cycles file", ["nosuch.exr", "good.exr", "out.exr"], 3, "nosuch.exr"),
+        complete("garbage Cycles file", ["garbage.exr", "good.exr", "out.exr"], 3, "garbage.exr"),
+        complete("no Combined pass", ["good.exr", "good.exr", "out.exr"], 3, "good.exr"),
+        complete("aaf AOVs of another size", ["cycles.exr", "small.exr", "out.exr"], 3, "small.exr"),
+        complete("output in a missing folder", ["cycles.exr", "good.exr", "nosuch/out.exr"], 3, "nosuch/out.exr"),
+        complete("output is a folder", ["cycles.exr", "good.exr", "folder.exr"], 3, "folder.exr"),
+        complete("completes a Cycles file", ["cycles.exr", "good.exr", "out.exr"], 0, None, creates=["out.exr"]),
+    ]
+
+
+def slurm_filter_cases():
+    """scripts/farm/slurm_filter.sh (AAF is the aaf under test): the CLI's
+    exit codes and one error line; the last frame on disk is found whatever
+    the folder is named, counting only the pattern's own frames."""
+    task = {"SLURM_ARRAY_TASK_ID": "1", "SLURM_ARRAY_TASK_STEP": "4"}
+
+    def slurm(name, args, exit_code, names, env=task, **extra):
+        return case("slurm_filter: " + name, args, exit_code, names, program="slurm_filter", env=env, **extra)
+
+    odd = "shot [1] *'s"
+    return [
+        slurm("no arguments", [], 2, "usage"),
+        slurm("one argument", ["seq.####.exr"], 2, "usage"),
+        slurm("LAST_FRAME=abc", ["seq.####.exr", "out.####.exr"], 2, "LAST_FRAME='abc'",
+              env={**task, "LAST_FRAME": "abc"}),
+        slurm("not an array task", ["seq.####.exr", "out.####.exr"], 2, "SLURM_ARRAY_TASK_ID", env={}),
+        slurm("array step 0", ["seq.####.exr", "out.####.exr"], 2, "SLURM_ARRAY_TASK_STEP",
+              env={**task, "SLURM_ARRAY_TASK_STEP": "0"}),
+        slurm("a pattern without a frame field", ["good.exr", "out.####.exr"], 2, "good.exr"),
+        slurm("no frame on disk", ["nosuch.####.exr", "out.####.exr"], 3, "nosuch.####.exr"),
+        slurm("a pattern in a missing folder", ["nosuch/seq.####.exr", "out.####.exr"], 3, "nosuch/seq.####.exr"),
+        slurm("only a stray file beside the pattern", ["noisy.####.exr", "out.####.exr"], 3, "noisy.####.exr",
+              setup={"copy": {"good.exr": "noisy.v2.exr"}}),
+        slurm("a folder with a space, brackets and a star, beside stray files",
+              [odd + "/seq.####.exr", odd + "/out.####.exr"], 0, None,
+              setup={"copy": {"seq.0001.exr": odd + "/seq.0001.exr", "seq.0002.exr": odd + "/seq.0002.exr",
+                              "good.exr": odd + "/seq.v2.exr", "good2.exr": odd + "/seq.00009.exr"}},
+              creates=[odd + "/out.0001.exr", odd + "/out.0002.exr"]),
+        slurm("a chunk past the last frame", ["seq.####.exr", "out.####.exr"], 0, None,
+              env={**task, "SLURM_ARRAY_TASK_ID": "5"}),
+    ]
+
+
+def blender_bridge_cases():
+    """scripts/blender/aaf_bridge.py in Blender's factory scene (a cube, a
+    point light, a camera): aaf's exit codes, one error line, and a failed
+    export leaves no file. Few: each starts Blender (about 2 s)."""
+    def bridge(name, args, exit_code, names):
+        return case("blender bridge: " + name, args, exit_code, names, program="blender_bridge")
+
+    return [
+        bridge("export a scene without an area light", ["export", "shot.json"], 3, "shot.json"),
+        bridge("export into a missing folder", ["export", "nosuch/shot.json"], 3, "nosuch/shot.json"),
+        bridge("load a missing file", ["load", "nosuch.exr"], 3, "nosuch.exr"),
+        bridge("load a text file", ["load", "text.exr"], 3, "text.exr"),
+        bridge("unknown command", ["frobnicate"], 2, "frobnicate"),
+    ]
+
+
 def main():
     shutil.rmtree(FILES, ignore_errors=True)
     os.makedirs(FILES)
     write_images()
     write_scenes()
     cases = render_cases() + filter_cases() + other_cases() + fuzz_cases()
+    cases += python_module_cases() + aaf_complete_cases() + slurm_filter_cases() + blender_bridge_cases()
     names = [c["name"] for c in cases]
     if len(set(names)) != len(names):
         sys.exit("duplicate case names")

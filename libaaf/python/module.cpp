@@ -4,6 +4,9 @@
 #include <pybind11/pybind11.h>
 #include <pybind11/stl.h>
 
+#include <cctype>
+#include <cmath>
+#include <filesystem>
 #include <string>
 #include <vector>
 
@@ -14,6 +17,7 @@
 #include "aaf/core/thread_count.h"
 #include "aaf/io/compare_files.h"
 #include "aaf/io/exr_io.h"
+#include "arguments.h"
 #include "numpy_aovs.h"
 
 namespace py = pybind11;
@@ -71,21 +75,19 @@ py::dict describe(const Method &method) {
 }
 
 /// `map` as the CLI's --map: a dict role -> channel(s) or a list of "role=channels".
-ChannelMap channel_map_from(const py::object &map) {
+ChannelMap channel_map_from(const py::handle &map) {
     ChannelMap channels;
     if (map.is_none()) return channels;
     if (py::isinstance<py::dict>(map)) {
-        for (const auto &entry : map.cast<py::dict>()) {
+        for (const auto &entry : py::reinterpret_borrow<py::dict>(map)) {
+            const std::string role = string_arg(entry.first, "map: a role");
             std::string names;
-            if (py::isinstance<py::str>(entry.second))
-                names = entry.second.cast<std::string>();
-            else
-                for (const auto &name : entry.second)
-                    names += (names.empty() ? "" : ",") + name.cast<std::string>();
-            channels.set_override(entry.first.cast<std::string>() + "=" + names);
+            for (const std::string &name : string_list_arg(entry.second, "map['" + role + "']"))
+                names += (names.empty() ? "" : ",") + name;
+            channels.set_override(role + "=" + names);
         }
     } else {
-        for (const auto &spec : map) channels.set_override(spec.cast<std::string>());
+        for (const std::string &spec : string_list_arg(map, "map")) channels.set_override(spec);
     }
     return channels;
 }
@@ -99,19 +101,40 @@ ParameterSet parameters_from(const Method &method, const py::kwargs &given) {
         if (py::isinstance<py::bool_>(value))
             parameters.set(name, value.cast<bool>());
         else if (py::isinstance<py::int_>(value) || py::isinstance<py::float_>(value))
-            parameters.set(name, value.cast<double>());
+            parameters.set(name, number_arg(value, "parameter '" + name + "'"));
+        else if (py::isinstance<py::str>(value))
+            parameters.set(name, value.cast<std::string>());
         else
-            parameters.set(name, py::str(value).cast<std::string>());
+            throw Error("parameter '" + name + "': expected a number, bool or str, got " +
+                        type_name_of(value));
     }
     return parameters;
 }
 
-PyAovs filter(const std::string &method_name, const PyAovs &aovs, const py::object &map, int threads,
-              const py::kwargs &given) {
-    const Method &method = find_method(method_name);
+/// `value` as the aaf.Aovs it must be.
+const PyAovs &aovs_arg(const py::handle &value, const std::string &what) {
+    if (!py::isinstance<PyAovs>(value))
+        throw Error(what + ": expected an aaf.Aovs, got " + type_name_of(value));
+    return value.cast<const PyAovs &>();
+}
+
+/// As the CLI's outputs: a name with another image format's extension is
+/// refused rather than written as OpenEXR under that name.
+void require_exr_path(const std::string &path) {
+    std::string extension = std::filesystem::path(path).extension().string();
+    for (char &c : extension) c = char(std::tolower(static_cast<unsigned char>(c)));
+    for (const char *image :
+         {".png", ".jpg", ".jpeg", ".tif", ".tiff", ".hdr", ".bmp", ".gif", ".webp", ".tga"})
+        if (extension == image) throw Error("path: '" + path + "': aaf.write writes OpenEXR; name it .exr");
+}
+
+PyAovs filter(const py::object &method_name, const py::object &aovs, const py::object &map,
+              const py::object &threads_arg, const py::kwargs &given) {
+    const Method &method = find_method(string_arg(method_name, "method"));
     const ParameterSet parameters = parameters_from(method, given);
     const ChannelMap channels = channel_map_from(map);
-    const AovSet input = from_python(aovs);
+    const int threads = int_arg(threads_arg, "threads", 0, kMaxThreads);
+    const AovSet input = from_python(aovs_arg(aovs, "aovs"));
     AovSet output;
     {
         py::gil_scoped_release release;
@@ -120,16 +143,21 @@ PyAovs filter(const std::string &method_name, const PyAovs &aovs, const py::obje
     return to_python(output);
 }
 
-io::CompareFilesOptions compare_options(const std::vector<std::string> &channels, const std::string &layer,
-                                        const std::vector<std::string> &metrics, double peak) {
+io::CompareFilesOptions compare_options(const py::object &channels_arg, const py::object &layer,
+                                        const py::object &metrics, const py::object &peak_arg) {
     io::CompareFilesOptions options;
+    const std::vector<std::string> channels = string_list_arg(channels_arg, "channels");
     if (!channels.empty()) options.channels = channels;
-    options.layer = layer;
-    for (const std::string &key : metrics) {
+    options.layer = string_arg(layer, "layer");
+    for (const std::string &key : string_list_arg(metrics, "metrics")) {
         const io::CompareMetric *metric = io::find_compare_metric(key);
-        if (!metric) throw Error("unknown metric '" + key + "'");
+        if (!metric) throw Error("metrics: unknown metric '" + key + "'");
         options.metrics.push_back(metric);
     }
+    // As the CLI's --peak: a finite number above zero (a PSNR against 0 or NaN means nothing).
+    const double peak = number_arg(peak_arg, "peak");
+    if (!std::isfinite(peak) || peak <= 0)
+        throw Error("peak: " + std::string(py::str(peak_arg)) + " is not a finite number above 0");
     options.psnr_peak = peak;
     return options;
 }
@@ -146,13 +174,13 @@ py::dict result_dict(const io::ComparePairResult &result, const io::CompareFiles
 }
 
 /// `aaf compare` of one pair: both file paths, or both AOV sets in memory.
-py::dict compare(const py::object &test, const py::object &reference,
-                 const std::vector<std::string> &channels, const std::string &layer,
-                 const std::vector<std::string> &metrics, double peak) {
+py::dict compare(const py::object &test, const py::object &reference, const py::object &channels,
+                 const py::object &layer, const py::object &metrics, const py::object &peak) {
     const io::CompareFilesOptions options = compare_options(channels, layer, metrics, peak);
     io::ComparePairResult result;
-    if (py::isinstance<py::str>(test) && py::isinstance<py::str>(reference)) {
-        const io::ImagePair pair{"", test.cast<std::string>(), reference.cast<std::string>()};
+    if (!py::isinstance<PyAovs>(test) && !py::isinstance<PyAovs>(reference)) {
+        const io::ImagePair pair{"", string_arg(test, "test", true),
+                                 string_arg(reference, "reference", true)};
         py::gil_scoped_release release;
         result = io::compare_files({pair}, options).pairs.at(0);
     } else if (py::isinstance<PyAovs>(test) && py::isinstance<PyAovs>(reference)) {
@@ -161,7 +189,9 @@ py::dict compare(const py::object &test, const py::object &reference,
         py::gil_scoped_release release;
         result = io::compare_aov_sets({"", "test", "reference"}, test_set, reference_set, options);
     } else {
-        throw py::type_error("compare: test and reference must both be paths (str) or both aaf.Aovs");
+        throw Error(std::string(py::isinstance<PyAovs>(test) ? "reference" : "test") +
+                    ": test and reference must both be paths or both aaf.Aovs, got " + type_name_of(test) +
+                    " and " + type_name_of(reference));
     }
     return result_dict(result, options);
 }
@@ -201,13 +231,19 @@ PYBIND11_MODULE(aaf, m) {
                        "attributes (int, float, str, or 3-tuples for vectors)")
         .def(py::init([](py::object channels, py::object attributes) {
                  PyAovs aovs;
-                 if (!channels.is_none()) aovs.channels = py::dict(channels);
-                 if (!attributes.is_none()) aovs.attributes = py::dict(attributes);
+                 aovs.channels = dict_arg(channels, "channels");
+                 aovs.attributes = dict_arg(attributes, "attributes");
                  return aovs;
              }),
              py::arg("channels") = py::none(), py::arg("attributes") = py::none())
-        .def_readwrite("channels", &PyAovs::channels)
-        .def_readwrite("attributes", &PyAovs::attributes)
+        .def_property(
+            "channels", [](const PyAovs &aovs) { return aovs.channels; },
+            [](PyAovs &aovs, const py::object &channels) { aovs.channels = dict_arg(channels, "channels"); })
+        .def_property(
+            "attributes", [](const PyAovs &aovs) { return aovs.attributes; },
+            [](PyAovs &aovs, const py::object &attributes) {
+                aovs.attributes = dict_arg(attributes, "attributes");
+            })
         .def("__repr__", [](const PyAovs &aovs) {
             return "<aaf.Aovs " + std::to_string(py::len(aovs.channels)) + " channels, " +
                    std::to_string(py::len(aovs.attributes)) + " attributes>";
@@ -215,7 +251,8 @@ PYBIND11_MODULE(aaf, m) {
 
     m.def(
         "read",
-        [](const std::string &path) {
+        [](const py::object &path_arg) {
+            const std::string path = string_arg(path_arg, "path", true);
             AovSet aovs;
             {
                 py::gil_scoped_release release;
@@ -228,17 +265,23 @@ PYBIND11_MODULE(aaf, m) {
         "Raises aaf.InputError '<path>: <problem>'.");
     m.def(
         "write",
-        [](const std::string &path, const PyAovs &aovs, const std::string &compression, bool half) {
-            const AovSet set = with_context(path, [&] { return from_python(aovs); });
+        [](const py::object &path_arg, const py::object &aovs, const py::object &compression,
+           const py::object &half) {
+            const std::string path = string_arg(path_arg, "path", true);
+            require_exr_path(path);
+            if (!py::isinstance<py::bool_>(half))
+                throw Error("half: expected a bool, got " + type_name_of(half));
             io::WriteOptions options;
-            options.compression = compression;
-            options.half_colour = half;
+            options.compression = string_arg(compression, "compression");
+            options.half_colour = half.cast<bool>();
+            const AovSet set = with_context(path, [&] { return from_python(aovs_arg(aovs, "aovs")); });
             py::gil_scoped_release release;
             io::write_aovs(set, path, options);
         },
         py::arg("path"), py::arg("aovs"), py::arg("compression") = "zip", py::arg("half") = false,
         "Writes `aovs` as an OpenEXR file (float channels; half=True stores colour layers as half), "
-        "atomically. Raises aaf.InputError '<path>: <problem>'.");
+        "atomically; a path named .png, .jpg, .tif or another image format is refused. Raises "
+        "aaf.InputError '<path>: <problem>', aaf.Error naming a bad argument.");
     m.def(
         "methods",
         [] {
@@ -249,7 +292,8 @@ PYBIND11_MODULE(aaf, m) {
         "Every registered method: name, title, summary, reference, roles (required, optional, outputs), "
         "parameters (name, type, default, unit, range, help, choices) and required header attributes.");
     m.def(
-        "method", [](const std::string &name) { return describe(find_method(name)); }, py::arg("name"),
+        "method", [](const py::object &name) { return describe(find_method(string_arg(name, "name"))); },
+        py::arg("name"),
         "One registered method, as methods() describes it; raises aaf.Error for an unknown name.");
     m.def("filter", &filter, py::arg("method"), py::arg("aovs"), py::kw_only(), py::arg("map") = py::none(),
           py::arg("threads") = 0, filter_doc().c_str());
@@ -262,10 +306,11 @@ PYBIND11_MODULE(aaf, m) {
         },
         "The metric keys compare() accepts (those of `aaf compare --metric`).");
     m.def("compare", &compare, py::arg("test"), py::arg("reference"), py::kw_only(),
-          py::arg("channels") = std::vector<std::string>{}, py::arg("layer") = "",
+          py::arg("channels") = py::list(), py::arg("layer") = "",
           py::arg("metrics") = std::vector<std::string>{"rmse", "mse", "psnr"}, py::arg("peak") = 1.0,
           "Error of `test` against `reference` as `aaf compare` measures it: two file paths or two "
           "aaf.Aovs. channels: names or 'test=reference' pairs (default R,G,B, the beauty); layer: "
-          "compare that layer instead. Returns a dict of the metrics, psnr_peak, channels, pixels, "
+          "compare that layer instead; peak: the PSNR's peak, finite and above 0. Returns a dict of the "
+          "metrics, psnr_peak, channels, pixels, "
           "nonfinite_pixels and spp (NaN without the spp AOVs).");
 }

@@ -20,9 +20,11 @@ struct PyAovs {
 PyAovs to_python(const AovSet &aovs);
 
 /// Copies `aovs` into an AovSet. Throws aaf::Error naming the channel or
-/// attribute at fault: no channels, an array that is not 2-D or of another
-/// shape than the first, a non-numeric array, an attribute value of another
-/// type than int, float, str or a sequence of 3 numbers.
+/// attribute at fault: no channels, a name that is not a str or is empty, an
+/// array that is not 2-D or of another shape than the first, a non-numeric
+/// array, an array too large to convert (out of memory), an attribute value
+/// of another type than int (32-bit), float (32-bit range), str or a
+/// sequence of 3 numbers.
 AovSet from_python(const PyAovs &aovs);
 
 }  // namespace aaf::python

@@ -16,8 +16,14 @@ world transforms applied; the camera with its depth of field; every area
 light, the first one the key light), OUT.light.json (the key light alone,
 for `aaf filter --light` on a Cycles render of the same shot; OUT is the
 path less .json) and prints the
-`aaf render` command with the scene's resolution. `load` puts the file in an
-Image node of the compositor, its Combined pass into the Composite node.
+`aaf render` command with the scene's resolution; everything is written into
+a temporary folder beside OUT.json first and renamed into place, so a failed
+export leaves nothing behind. `load` puts the file in an Image node of the
+compositor, its Combined pass into the Composite node.
+
+A failure is one line `aaf-bridge: error: ...` on stderr and aaf's exit code:
+2 usage, 3 a scene that cannot be exported or a file that cannot be read or
+written, 1 anything else.
 
 What is exported and what is not (README "Blender bridge"): mesh objects
 (evaluated: modifiers applied), their material's Principled BSDF base colour
@@ -30,7 +36,9 @@ volumes and textures are skipped with a warning.
 import json
 import math
 import os
+import shutil
 import sys
+import tempfile
 
 import bpy
 import mathutils
@@ -44,6 +52,14 @@ bl_info = {
     "description": "Export the scene for aaf render; load aaf's filtered EXRs into the compositor",
     "category": "Import-Export",
 }
+
+
+class UsageError(Exception):
+    """A command line the bridge does not understand (exit 2)."""
+
+
+class InputError(RuntimeError):
+    """A scene that cannot be exported, or a file that cannot be read or written (exit 3)."""
 
 
 def _vec(v):
@@ -86,10 +102,10 @@ def camera_json(scene, warnings):
     """The scene camera as aaf's camera object (world coordinates as Blender's)."""
     cam = scene.camera
     if cam is None or cam.type != "CAMERA":
-        raise RuntimeError("the scene has no camera")
+        raise InputError("the scene has no camera")
     data = cam.data
     if data.type != "PERSP":
-        raise RuntimeError(f"camera '{cam.name}': only perspective cameras can be exported")
+        raise InputError(f"camera '{cam.name}': only perspective cameras can be exported")
     if data.shift_x or data.shift_y:
         warnings.append(f"camera '{cam.name}': lens shift is not exported")
     width, height = image_size(scene)
@@ -149,14 +165,43 @@ def image_size(scene):
 
 
 def export_scene(path, scene=None):
-    """Writes the scene to `path` (aaf's JSON) and the key light to
-    PATH.light.json; returns (the aaf render command, the warnings)."""
+    """Writes the scene to `path` (aaf's JSON), its meshes to PATH_meshes/ and
+    the key light to PATH.light.json; returns (the aaf render command, the
+    warnings). Raises InputError, and writes nothing, when the scene cannot
+    be exported or the files cannot be written."""
     scene = scene or bpy.context.scene
+    base = os.path.splitext(path)[0]
+    folder = os.path.dirname(path) or "."
+    for target in (path, base + ".light.json"):
+        if os.path.isdir(target):
+            raise InputError(f"{target}: is a folder")
+    if os.path.exists(base + "_meshes") and not os.path.isdir(base + "_meshes"):
+        raise InputError(f"{base}_meshes: is not a folder")
+    if not os.path.isdir(folder):
+        raise InputError(f"{path}: no such folder {folder}")
+    try:
+        staging = tempfile.mkdtemp(dir=folder, prefix="." + os.path.basename(base) + ".tmp-")
+    except OSError as e:
+        raise InputError(f"{path}: cannot write there: {e.strerror}") from None
+    try:
+        command, warnings = _export_into(staging, path, scene)
+        _move_into_place(staging, path)
+    except InputError as e:
+        raise InputError(f"{path}: scene '{scene.name}' not exported: {e}") from None
+    except OSError as e:
+        raise InputError(f"{path}: cannot write the export: {e.strerror}") from None
+    finally:
+        shutil.rmtree(staging, ignore_errors=True)
+    return command, warnings
+
+
+def _export_into(staging, path, scene):
+    """Writes the export of `path` into the folder `staging`, under the names it will have."""
     depsgraph = bpy.context.evaluated_depsgraph_get()
     warnings = []
     base = os.path.splitext(path)[0]
-    mesh_dir = base + "_meshes"
-    os.makedirs(mesh_dir, exist_ok=True)
+    mesh_folder = os.path.basename(base) + "_meshes"
+    os.makedirs(os.path.join(staging, mesh_folder))
     lights, objects = [], []
     for obj in sorted(scene.objects, key=lambda o: o.name):
         if obj.hide_render:
@@ -169,35 +214,76 @@ def export_scene(path, scene=None):
                                 "(aaf renders area lights)")
         elif obj.type == "MESH":
             file_name = f"{len(objects) + 1:03d}_{bpy.path.clean_name(obj.name)}.obj"
-            if _write_obj(obj, depsgraph, os.path.join(mesh_dir, file_name)) == 0:
+            if _write_obj(obj, depsgraph, os.path.join(staging, mesh_folder, file_name)) == 0:
                 continue
-            objects.append({"type": "obj", "file": os.path.basename(mesh_dir) + "/" + file_name,
+            objects.append({"type": "obj", "file": mesh_folder + "/" + file_name,
                             "id": obj.pass_index if obj.pass_index > 0 else len(objects) + 1,
                             "material": {"albedo": _albedo(obj)}})
         elif obj.type not in ("CAMERA", "EMPTY"):
             warnings.append(f"object '{obj.name}': a {obj.type.lower()} is not exported")
     if not lights:
-        raise RuntimeError("the scene has no area light (aaf renders area lights)")
+        raise InputError("the scene has no area light (aaf renders area lights)")
     if not objects:
-        raise RuntimeError("the scene has no mesh")
+        raise InputError("the scene has no mesh")
     document = {"format_version": 1, "name": bpy.path.clean_name(scene.name),
                 "camera": camera_json(scene, warnings), "lights": lights, "objects": objects}
-    with open(path, "w") as out:
+    with open(os.path.join(staging, os.path.basename(path)), "w") as out:
         json.dump(document, out, indent=2)
-    with open(base + ".light.json", "w") as out:
+    with open(os.path.join(staging, os.path.basename(base) + ".light.json"), "w") as out:
         json.dump(lights[0], out, indent=2)
     width, height = image_size(scene)
     command = f"aaf render {path} --width {width} --height {height} --aovs all -o {base}.aovs.exr"
     return command, warnings
 
 
+def _move_into_place(staging, path):
+    """Renames the staged export over `path`'s: the meshes folder first (an
+    older one is moved into the staging folder, which is then removed), the
+    scene last, so a scene file always names meshes that exist."""
+    base = os.path.splitext(path)[0]
+    mesh_dir = base + "_meshes"
+    if os.path.isdir(mesh_dir):
+        os.replace(mesh_dir, os.path.join(staging, "previous_meshes"))
+    os.replace(os.path.join(staging, os.path.basename(mesh_dir)), mesh_dir)
+    os.replace(os.path.join(staging, os.path.basename(base) + ".light.json"), base + ".light.json")
+    os.replace(os.path.join(staging, os.path.basename(path)), path)
+
+
+class _quiet_stderr:
+    """Sends file descriptor 2 to /dev/null while the block runs."""
+
+    def __enter__(self):
+        sys.stderr.flush()
+        self.saved = os.dup(2)
+        null = os.open(os.devnull, os.O_WRONLY)
+        os.dup2(null, 2)
+        os.close(null)
+
+    def __exit__(self, *exc):
+        os.dup2(self.saved, 2)
+        os.close(self.saved)
+        return False
+
+
 def load_into_compositor(path, scene=None):
     """Opens aaf's output `path` in an Image node of the compositor and sends
     its Combined pass to the Composite node; returns the node's pass names."""
     scene = scene or bpy.context.scene
+    if not os.path.isfile(path):
+        raise InputError(f"{path}: no such file")
+    # Blender's image readers print their own complaints on stderr; the
+    # failure is reported once, below, naming the file.
+    with _quiet_stderr():
+        try:
+            image = bpy.data.images.load(path, check_existing=True)
+        except RuntimeError as e:
+            raise InputError(f"{path}: Blender cannot read it ({' '.join(str(e).split())})") from None
+        readable = image.has_data or (image.size[0] > 0 and image.size[1] > 0)
+    if not readable:
+        bpy.data.images.remove(image)
+        raise InputError(f"{path}: Blender cannot read it as an image")
     scene.use_nodes = True
     tree = scene.node_tree
-    image = bpy.data.images.load(path, check_existing=True)
     source = tree.nodes.new("CompositorNodeImage")
     source.image = image
     source.label = "aaf: " + os.path.basename(path)
@@ -215,7 +301,11 @@ class AAF_OT_export(bpy.types.Operator):
     filepath: bpy.props.StringProperty(subtype="FILE_PATH")
 
     def execute(self, context):
-        command, warnings = export_scene(self.filepath, context.scene)
+        try:
+            command, warnings = export_scene(self.filepath, context.scene)
+        except InputError as e:
+            self.report({"ERROR"}, str(e))
+            return {"CANCELLED"}
         for warning in warnings:
             self.report({"WARNING"}, warning)
         self.report({"INFO"}, command)
@@ -234,7 +324,11 @@ class AAF_OT_load(bpy.types.Operator):
     filepath: bpy.props.StringProperty(subtype="FILE_PATH")
 
     def execute(self, context):
-        load_into_compositor(self.filepath, context.scene)
+        try:
+            load_into_compositor(self.filepath, context.scene)
+        except InputError as e:
+            self.report({"ERROR"}, str(e))
+            return {"CANCELLED"}
         return {"FINISHED"}
 
     def invoke(self, context, event):
@@ -258,6 +352,9 @@ def unregister():
     bpy.utils.unregister_class(AAF_OT_export)
 
 
+USAGE = "usage: blender -b FILE --python aaf_bridge.py -- export OUT.json | load FILTERED.exr"
+
+
 def _main(args):
     if len(args) == 2 and args[0] == "export":
         command, warnings = export_scene(args[1])
@@ -267,9 +364,27 @@ def _main(args):
     elif len(args) == 2 and args[0] == "load":
         print("aaf-bridge: passes", load_into_compositor(args[1]))
     else:
-        print("usage: blender -b FILE --python aaf_bridge.py -- export OUT.json | load FILTERED.exr")
-        sys.exit(2)
+        raise UsageError(f"expected export OUT.json or load FILTERED.exr, got {' '.join(args) or 'nothing'}; "
+                         + USAGE)
+
+
+def _run(args):
+    """_main with aaf's exit codes: Blender itself exits 0 after a script's
+    exception, so every failure is caught here and made one line and a code."""
+    try:
+        _main(args)
+    except UsageError as e:
+        code, message = 2, str(e)
+    except InputError as e:
+        code, message = 3, str(e)
+    except Exception as e:  # a bug, not a bad input: still one line and a failing exit code
+        code, message = 1, f"{type(e).__name__}: {e}"
+    else:
+        return
+    print("aaf-bridge: error: " + " ".join(message.split()), file=sys.stderr)
+    sys.stdout.flush()
+    sys.exit(code)
 
 
 if __name__ == "__main__" and "--" in sys.argv:
-    _main(sys.argv[sys.argv.index("--") + 1:])
+    _run(sys.argv[sys.argv.index("--") + 1:])
