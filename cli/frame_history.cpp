@@ -30,6 +30,8 @@ std::string FrameHistory::frames_read(int frame) {
 }
 
 std::string FrameHistory::chain_hash(int frame) {
+    if (last_chain_ && last_chain_->first == frame)
+        return last_chain_->second;  // asked again (--skip-existing)
     const int start = start_of(frame);
     int from = start;
     std::string chain;
