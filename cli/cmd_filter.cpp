@@ -5,6 +5,8 @@
 
 #include <algorithm>
 #include <cstdio>
+#include <filesystem>
+#include <optional>
 
 #include "aaf/core/aov_contract.h"
 #include "aaf/core/error.h"
@@ -12,14 +14,18 @@
 #include "aaf/core/method_registry.h"
 #include "aaf/io/exr_io.h"
 #include "aaf/io/filter_file.h"
+#include "aaf/io/sequence.h"
 #include "channel_options.h"
 #include "commands.h"
+#include "frame_history.h"
 #include "frame_runner.h"
 #include "light_option.h"
 #include "missing_input_report.h"
 #include "provenance.h"
 
 namespace aaf::cli {
+
+namespace fs = std::filesystem;
 
 namespace {
 
@@ -95,8 +101,10 @@ void add_common_options(CLI::App &cmd, FilterOptions &options) {
                    "the input's aaf:light:* header, for renderers that write none");
     cmd.add_option("--progress", options.progress, "auto, lines, jsonl, openjd or none")
         ->capture_default_str();
-    cmd.add_flag("--skip-existing", options.skip_existing, "Skip frames whose output is complete and up to date: made by this aaf with these settings from "
-                 "inputs unchanged since (the provenance in its header); redo stale or partial ones");
+    cmd.add_flag(
+        "--skip-existing", options.skip_existing,
+        "Skip frames whose output is complete and up to date: made by this aaf with these settings from "
+        "inputs unchanged since (the provenance in its header); redo stale or partial ones");
     cmd.add_flag("--skip-bad-frames", options.skip_bad_frames,
                  "Report a failed frame and continue (the exit code is still non-zero)");
     cmd.add_flag("--replace-beauty,!--keep-beauty", options.replace_beauty,
@@ -111,6 +119,7 @@ ParameterSet parameters_from(const Method &method, const std::map<std::string, s
     ParameterSet parameters = method.default_parameters();
     try {
         for (const auto &entry : given) parameters.set(entry.first, entry.second);
+        method.check_parameters(parameters);  // values that do not go together
     } catch (const Error &e) {
         throw UsageError(e.what());
     }
@@ -137,18 +146,54 @@ void add_method_command(CLI::App &filter, const Method &method) {
                                  " half=" + (options->write.half_colour ? "true" : "false") +
                                  " compression=" + options->write.compression;
         for (const std::string &map : options->maps) provenance.parameters += " map:" + map;
+        // The files a frame is made from, besides its history's.
+        const auto own_inputs = [&](const std::string &input) {
+            std::vector<std::string> files{input};
+            if (!options->light.empty()) files.push_back(options->light);
+            return files;
+        };
+        // A method that reads the previous frame's output (ratio --temporal):
+        // frame f's history is input frame f - 1's output, back to the first
+        // frame of the run of consecutive input frames on disk that holds f.
+        std::optional<FrameHistory> history;
+        const Provenance *current = nullptr;  // the frame being filtered
+        io::FilterFileOptions file;
         const auto job_provenance = [&](const FrameJob &job) {
             Provenance p = provenance;
-            std::vector<std::string> files{job.input};
-            if (!options->light.empty()) files.push_back(options->light);
-            p.inputs_hash = inputs_hash(files);
+            if (!history) {
+                p.inputs_hash = inputs_hash(own_inputs(job.input));
+                return p;
+            }
+            p.inputs_hash = history->chain_hash(job.frame);
+            p.history = history->frames_read(job.frame);
             return p;
         };
-        const Provenance *current = nullptr;  // the frame being filtered
+        if (filter.reads_history && io::is_sequence_pattern(options->input)) {
+            const std::string pattern = options->input;
+            FrameHistory::Source source;
+            source.continues = [pattern](int frame) {
+                std::error_code error;
+                return fs::exists(io::frame_path(pattern, frame - 1), error);
+            };
+            source.identity = [pattern, own_inputs](int frame, bool first) {
+                std::vector<std::string> files = own_inputs(io::frame_path(pattern, frame));
+                // The missing frame before the first: the sequence grows back if it appears.
+                if (first) files.push_back(io::frame_path(pattern, frame - 1));
+                return inputs_hash(files);
+            };
+            source.replay = [&, pattern](int frame) {
+                current = &provenance;         // stamped on an output that is not kept
+                io::FilterFileReport ignored;  // its notes were given when it was filtered
+                io::filter_file_in_memory(io::frame_path(pattern, frame), filter, file, ignored);
+            };
+            source.forget = [&filter] { filter.forget_history(); };
+            history.emplace(std::move(source));
+        }
         // Every missing input is named at once, with its recipe, before the method runs.
         filter.run = [&method, &current, light, channels, parameters, run = filter.run](AovSet input) {
             if (light) apply_light_option(light, input);
-            // A render made for a delegate (a combined-effects render for `aaf filter aaf`) is checked as the delegate's.
+            // A render made for a delegate (a combined-effects render for `aaf filter aaf`) is checked as the
+            // delegate's.
             const Method &chosen = *choose_method(method, parameters, input, channels).method;
             const std::vector<std::string> recipes = missing_input_recipes(chosen, input, channels);
             if (!recipes.empty()) throw InputError(missing_inputs_message(chosen, recipes));
@@ -156,7 +201,6 @@ void add_method_command(CLI::App &filter, const Method &method) {
             stamp(*current, output);
             return output;
         };
-        io::FilterFileOptions file;
         file.channels = channels;
         file.keep_beauty = !options->replace_beauty;
         file.threads = options->threads;
@@ -164,16 +208,21 @@ void add_method_command(CLI::App &filter, const Method &method) {
         RunOptions run;
         run.progress = progress_from_string(options->progress);
         run.skip_existing = options->skip_existing;
-        run.up_to_date = [&](const FrameJob &job) { return output_up_to_date(job.output, job_provenance(job)); };
+        run.up_to_date = [&](const FrameJob &job) {
+            return output_up_to_date(job.output, job_provenance(job));
+        };
         run.skip_bad_frames = options->skip_bad_frames;
         const FrameJobs jobs =
             frame_jobs(options->input, options->output, given(options->frames_option, options->frames));
         // Frames stream one at a time (bounded memory); the filter itself runs on all threads.
         const std::size_t failed = run_frames(jobs, run, [&](const FrameJob &job) {
             const Provenance frame = job_provenance(job);
+            if (history) history->prepare(job.frame);
             current = &frame;
             const io::FilterFileReport report = io::filter_file(job.input, job.output, filter, file);
-            for (const std::string &note : report.notes) std::fprintf(stderr, "aaf: note: %s\n", note.c_str());
+            if (history) history->filtered(job.frame);
+            for (const std::string &note : report.notes)
+                std::fprintf(stderr, "aaf: note: %s\n", note.c_str());
             for (const std::string &warning : report.warnings)
                 std::fprintf(stderr, "aaf: warning: %s\n", warning.c_str());
         });

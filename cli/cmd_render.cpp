@@ -4,6 +4,7 @@
 #include <cerrno>
 #include <chrono>
 #include <climits>
+#include <cmath>
 #include <csignal>
 #include <cstdio>
 #include <cstdlib>
@@ -27,6 +28,7 @@
 #include "aaf/trace/render.h"
 #include "channel_options.h"
 #include "commands.h"
+#include "frame_history.h"
 #include "frame_runner.h"
 #include "missing_input_report.h"
 #include "provenance.h"
@@ -177,6 +179,11 @@ std::string render_parameters(const trace::RenderSettings &settings) {
 struct RenderFilter {
     const Method *method = nullptr;
     ParameterSet parameters;
+    /// Each --filter-param as given, with the parameter's declared name and value.
+    struct Assignment {
+        std::string text, name, value;
+    };
+    std::vector<Assignment> assignments;
 };
 
 /// The method named by --filter with its defaults and the --filter-param
@@ -204,8 +211,49 @@ RenderFilter render_filter(const std::string &name, const std::vector<std::strin
         } catch (const Error &e) {
             throw UsageError("--filter-param '" + assignment + "': " + e.what());
         }
+        filter.assignments.push_back({assignment, parameter, assignment.substr(equals + 1)});
+    }
+    try {
+        filter.method->check_parameters(filter.parameters);  // values that do not go together
+    } catch (const Error &e) {
+        throw UsageError("--filter-param: " + std::string(e.what()));
     }
     return filter;
+}
+
+/// The `--aovs` names of `groups`, comma-separated.
+std::string group_names(unsigned groups) {
+    std::string names;
+    for (const trace::AovGroupInfo &group : trace::aov_group_table())
+        if (group.group & groups) names += (names.empty() ? "" : ",") + std::string(group.name);
+    return names;
+}
+
+/// Refuses (UsageError) before anything renders a --filter whose parameters
+/// make it read groups that `aovs` (given as `aovs_text`) does not render:
+/// `--filter ratio --filter-param temporal=true` reads motion.
+void check_parameter_groups(const RenderFilter &filter, unsigned aovs, const std::string &aovs_text) {
+    const Method &method = *filter.method;
+    const unsigned missing = trace::aov_groups_writing(method.roles_needed(filter.parameters)) & ~aovs;
+    if (missing == 0) return;
+    // The assignments that ask for a missing group on their own, else all of them.
+    std::string blamed;
+    for (const RenderFilter::Assignment &assignment : filter.assignments) {
+        ParameterSet alone = method.default_parameters();
+        alone.set(assignment.name, assignment.value);
+        try {
+            if (trace::aov_groups_writing(method.roles_needed(alone)) & missing)
+                blamed += (blamed.empty() ? "" : " ") + assignment.text;
+        } catch (const Error &) {  // needs another assignment to be valid
+        }
+    }
+    if (blamed.empty())
+        for (const RenderFilter::Assignment &assignment : filter.assignments)
+            blamed += (blamed.empty() ? "" : " ") + assignment.text;
+    throw UsageError("--filter-param " + blamed + ": --filter " + method.info().name + " then reads the " +
+                     group_names(missing) + " AOVs, which --aovs " + aovs_text +
+                     " does not render (add them: --aovs " + aovs_text + "," + group_names(missing) +
+                     ", or leave --aovs out)");
 }
 
 /// The filter's settings for the output's provenance, as `aaf filter` records
@@ -230,7 +278,7 @@ void add_render_command(CLI::App &app) {
         std::string pixel_footprint = trace::RenderSettings{}.projected_pixel ? "projected" : "receiver";
         trace::RenderSettings settings;
         double checkpoint_s = 60;
-        bool list = false, skip_existing = false;
+        bool list = false, skip_existing = false, timings = false;
     };
     auto options = std::make_shared<Options>();
     CLI::App *cmd = app.add_subcommand(
@@ -298,19 +346,26 @@ void add_render_command(CLI::App &app) {
                     "lines (every 10 % and every 2 s), jsonl, openjd (per round of 1024 spp) or none; "
                     "per frame for a sequence")
         ->capture_default_str();
-    cmd->add_flag("--skip-existing", options->skip_existing,
-                  "Skip frames whose output is complete (all spp, not a checkpoint) and up to date: made by this aaf "
-                  "with these settings from the scene files unchanged since; redo stale or partial ones");
-    cmd->add_option("--filter", options->filter,
-                    "Filter each frame with this method (aaf filter METHOD) before writing it: one process, no "
-                    "intermediate file; --aovs defaults to the method's inputs");
-    cmd->add_option("--filter-param", options->filter_params,
-                    "NAME=VALUE: a parameter of the --filter method, named as its option in aaf filter METHOD "
-                    "--help (normal-threshold=30) or as declared (normal_threshold=30); repeatable");
-    cmd->add_flag("--keep-beauty", options->keep_beauty,
-                  "With --filter: R,G,B stay the render's and the filtered image is added as aaf.R/G/B (as aaf "
-                  "filter --keep-beauty)");
+    cmd->add_flag(
+        "--skip-existing", options->skip_existing,
+        "Skip frames whose output is complete (all spp, not a checkpoint) and up to date: made by this aaf "
+        "with these settings from the scene files unchanged since; redo stale or partial ones");
+    cmd->add_option(
+        "--filter", options->filter,
+        "Filter each frame with this method (aaf filter METHOD) before writing it: one process, no "
+        "intermediate file; --aovs defaults to the method's inputs");
+    cmd->add_option(
+        "--filter-param", options->filter_params,
+        "NAME=VALUE: a parameter of the --filter method, named as its option in aaf filter METHOD "
+        "--help (normal-threshold=30) or as declared (normal_threshold=30); repeatable");
+    cmd->add_flag(
+        "--keep-beauty", options->keep_beauty,
+        "With --filter: R,G,B stay the render's and the filtered image is added as aaf.R/G/B (as aaf "
+        "filter --keep-beauty)");
     add_write_options(*cmd, options->write, "a complete frame (a checkpoint stays float, zip:1)");
+    cmd->add_flag("--timings", options->timings,
+                  "Print each frame's timings on stderr (the render's passes, maaf6's sampling and "
+                  "pre-filtering, the filter); they are never written into the output");
     cmd->add_flag("--list", options->list, "List the scenes found by name and exit");
     cmd->callback([options, cmd] {
         if (options->list) {
@@ -334,6 +389,9 @@ void add_render_command(CLI::App &app) {
         if (!options->filter.empty()) {
             filter = render_filter(options->filter, options->filter_params);
             const unsigned needed = trace::aov_groups_for_method(options->filter);
+            // What the parameters add (--filter-param temporal=true: motion), decided before rendering.
+            const unsigned with_parameters =
+                needed | trace::aov_groups_writing(filter->method->roles_needed(filter->parameters));
             // A render for one of the method's delegates serves too: `--aovs maaf6 --filter aaf` runs
             // maaf6 --pairs 1 (choose_method), at the delegate's defaults.
             const MethodDelegate *served_by = nullptr;
@@ -343,15 +401,18 @@ void add_render_command(CLI::App &app) {
             }
             const bool own_inputs = (settings.aovs & needed) == needed;
             if (cmd->count("--aovs") == 0)
-                settings.aovs = needed;
+                settings.aovs = with_parameters;
+            else if (own_inputs)
+                check_parameter_groups(*filter, settings.aovs, options->aovs);
             else if (!own_inputs && !served_by)
                 throw UsageError("--filter " + options->filter + " reads AOVs that --aovs " + options->aovs +
-                                 " does not render (add " + options->filter + " to --aovs, or leave --aovs out)");
+                                 " does not render (add " + options->filter +
+                                 " to --aovs, or leave --aovs out)");
             else if (!own_inputs && !options->filter_params.empty())
-                throw UsageError("--filter-param: --aovs " + options->aovs + " renders for " + served_by->method +
-                                 ", so --filter " + options->filter + " runs `" + delegate_command(*served_by) +
-                                 "`, which takes none of " + options->filter + "'s parameters (use --filter " +
-                                 served_by->method + " --filter-param ...)");
+                throw UsageError("--filter-param: --aovs " + options->aovs + " renders for " +
+                                 served_by->method + ", so --filter " + options->filter + " runs `" +
+                                 delegate_command(*served_by) + "`, which takes none of " + options->filter +
+                                 "'s parameters (use --filter " + served_by->method + " --filter-param ...)");
         } else if (!options->filter_params.empty()) {
             throw UsageError("--filter-param needs --filter");
         } else if (options->keep_beauty) {
@@ -393,6 +454,20 @@ void add_render_command(CLI::App &app) {
         run.progress = progress_from_string(options->progress);
         run.skip_existing = options->skip_existing;
         const std::string scene_hash = inputs_hash(trace::scene_input_files(options->scene));
+        // One pipeline for the whole sequence: a method that reads the
+        // previous frame's output gets it, as in `aaf filter`.
+        std::optional<io::FrameFilter> frame_filter;
+        io::FilterFileOptions filter_options;
+        if (filter) {
+            frame_filter = io::method_filter(*filter->method, filter->parameters, filter_options.channels);
+            filter_options.threads = settings.threads;
+            filter_options.keep_beauty = options->keep_beauty;
+        }
+        // A filter that reads the previous frame's output (ratio --temporal):
+        // frame f's history is frame f - 1's, back to the sequence's start,
+        // the scene's first key frame (frame 1 without animation), whatever
+        // frames this run renders.
+        std::optional<FrameHistory> history;
         const auto job_provenance = [&](const FrameJob &job) {
             trace::RenderSettings frame_settings = settings;
             if (sequence) frame_settings.frame = job.frame;
@@ -403,34 +478,71 @@ void add_render_command(CLI::App &app) {
             if (options->write.half_colour) parameters += " half=true";
             if (options->write.compression != io::WriteOptions{}.compression)
                 parameters += " compression=" + options->write.compression;
-            return Provenance{"render", parameters, scene_hash};
+            // Every frame renders the same scene files: its history adds only the frames it reads.
+            return Provenance{"render", parameters, scene_hash,
+                              history ? history->frames_read(job.frame) : ""};
         };
-        // One pipeline for the whole sequence: a method that reads the
-        // previous frame's output gets it, as in `aaf filter`.
-        std::optional<io::FrameFilter> frame_filter;
-        io::FilterFileOptions filter_options;
-        if (filter) {
-            frame_filter = io::method_filter(*filter->method, filter->parameters, filter_options.channels);
-            filter_options.threads = settings.threads;
-            filter_options.keep_beauty = options->keep_beauty;
+        const auto frame_settings_of = [&](int frame) {
+            trace::RenderSettings frame_settings = settings;
+            if (sequence) frame_settings.frame = frame;
+            frame_settings.stop_requested = [] { return interrupt_received != 0; };
+            return frame_settings;
+        };
+        // Filters a complete render in memory; returns the seconds it took.
+        const auto filter_render = [&](AovSet &aovs, const std::string &source, bool report_notes) {
+            const Method &chosen =
+                *choose_method(*filter->method, filter->parameters, aovs, filter_options.channels).method;
+            const std::vector<std::string> recipes =
+                missing_input_recipes(chosen, aovs, filter_options.channels);
+            if (!recipes.empty()) throw InputError(missing_inputs_message(chosen, recipes));
+            const auto start = std::chrono::steady_clock::now();
+            io::FilterFileReport report;
+            aovs = io::filter_frame(std::move(aovs), source, *frame_filter, filter_options, report);
+            const double seconds =
+                std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+            if (!report_notes) return seconds;
+            for (const std::string &note : report.notes)
+                std::fprintf(stderr, "aaf: note: %s\n", note.c_str());
+            for (const std::string &warning : report.warnings)
+                std::fprintf(stderr, "aaf: warning: %s\n", warning.c_str());
+            return seconds;
+        };
+        if (sequence && frame_filter && frame_filter->reads_history) {
+            const std::optional<double> first_key = trace::scene_first_key_frame(options->scene);
+            const double start_frame = first_key ? std::floor(*first_key) : 1.0;
+            FrameHistory::Source source;
+            source.sequence_start = [start_frame](int frame) {
+                return double(frame) <= start_frame ? frame : int(start_frame);
+            };
+            source.identity = [](int, bool) { return std::string(); };  // the scene hash covers it
+            source.replay = [&](int frame) {
+                AovSet aovs = trace::render_scene(options->scene, frame_settings_of(frame));
+                if (std::get<int>(aovs.attributes.at(attr::kSppDone)) < settings.spp) throw Interrupted{};
+                filter_render(aovs, options->scene, /*report_notes=*/false);
+            };
+            source.forget = [&frame_filter] { frame_filter->forget_history(); };
+            history.emplace(std::move(source));
         }
-        run.up_to_date = [&](const FrameJob &job) { return output_up_to_date(job.output, job_provenance(job)); };
+        run.up_to_date = [&](const FrameJob &job) {
+            return output_up_to_date(job.output, job_provenance(job));
+        };
         RenderReporter reporter(sequence ? Progress::None : run.progress);
         std::signal(SIGINT, on_interrupt);
         std::signal(SIGTERM, on_interrupt);
         const std::size_t failed = run_frames(jobs, run, [&](const FrameJob &job) {
             if (interrupt_received) throw Interrupted{};  // the frames so far are complete
-            trace::RenderSettings frame_settings = settings;
-            if (sequence) frame_settings.frame = job.frame;
+            trace::RenderSettings frame_settings = frame_settings_of(job.frame);
             frame_settings.on_progress = [&](int done, int total) { reporter.round(done, total); };
-            frame_settings.on_round_progress = [&](double done, int total) { reporter.within_round(done, total); };
+            frame_settings.on_round_progress = [&](double done, int total) {
+                reporter.within_round(done, total);
+            };
             const Provenance provenance = job_provenance(job);
             frame_settings.on_checkpoint = [&](const AovSet &so_far) {
                 AovSet stamped = so_far;
                 stamp(provenance, stamped);
                 io::write_aovs(stamped, job.output);
             };
-            frame_settings.stop_requested = [] { return interrupt_received != 0; };
+            if (history) history->prepare(job.frame);
             trace::RenderTimings timings;
             // Scene and resume errors name their file themselves.
             AovSet aovs = trace::render_scene(job.input, frame_settings, &timings);
@@ -438,24 +550,14 @@ void add_render_command(CLI::App &app) {
             // Statistics of the render, taken before the filter may replace its channels.
             const ChannelMap channels;
             const double mean_spp =
-                settings.adaptive ? mean_spp_over_shaded(aovs.channel(channels.channel(Role::SamplesPerPixel)),
-                                                         aovs.channel(channels.channel(Role::ObjectId)))
-                                  : 0.0;
+                settings.adaptive
+                    ? mean_spp_over_shaded(aovs.channel(channels.channel(Role::SamplesPerPixel)),
+                                           aovs.channel(channels.channel(Role::ObjectId)))
+                    : 0.0;
             double filter_s = 0;
             // An interrupted render is written unfiltered, so that --resume can continue it.
-            if (frame_filter && done >= frame_settings.spp) {
-                const Method &chosen =
-                    *choose_method(*filter->method, filter->parameters, aovs, filter_options.channels).method;
-                const std::vector<std::string> recipes = missing_input_recipes(chosen, aovs, filter_options.channels);
-                if (!recipes.empty()) throw InputError(missing_inputs_message(chosen, recipes));
-                const auto start = std::chrono::steady_clock::now();
-                io::FilterFileReport report;
-                aovs = io::filter_frame(std::move(aovs), job.input, *frame_filter, filter_options, report);
-                filter_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-                for (const std::string &note : report.notes) std::fprintf(stderr, "aaf: note: %s\n", note.c_str());
-                for (const std::string &warning : report.warnings)
-                    std::fprintf(stderr, "aaf: warning: %s\n", warning.c_str());
-            }
+            if (frame_filter && done >= frame_settings.spp)
+                filter_s = filter_render(aovs, job.input, /*report_notes=*/true);
             stamp(provenance, aovs);
             if (done < frame_settings.spp) {
                 io::write_aovs(aovs, job.output);  // as a checkpoint: exact, for --resume
@@ -465,6 +567,7 @@ void add_render_command(CLI::App &app) {
                 throw Interrupted{};
             }
             io::write_aovs(aovs, job.output, options->write);
+            if (history) history->filtered(job.frame);
             if (settings.adaptive) {
                 std::printf(
                     "adaptive sampling: average %.2f spp over shaded pixels; first pass %.3f s, "
@@ -472,6 +575,15 @@ void add_render_command(CLI::App &app) {
                     mean_spp, timings.first_pass_s, timings.plan_s, timings.second_pass_s);
                 if (frame_filter) std::printf(", filter %.3f s", filter_s);
                 std::printf("\n");
+            }
+            if (options->timings) {
+                std::fprintf(stderr, "aaf: timings: %s: light passes %.3f s", job.output.c_str(),
+                             timings.first_pass_s + timings.plan_s + timings.second_pass_s);
+                if (settings.aovs & trace::kAovMaaf6)
+                    std::fprintf(stderr, ", maaf6 sampling %.3f s, pre-filtering %.3f s",
+                                 timings.maaf6_sampling_s, timings.maaf6_prefilter_s);
+                if (frame_filter) std::fprintf(stderr, ", filter %.3f s", filter_s);
+                std::fprintf(stderr, "\n");
             }
         });
         if (failed > 0)

@@ -40,14 +40,17 @@ const std::string *string_attribute(const AovSet &aovs, const char *name) {
 
 }  // namespace
 
-const char *aaf_version() { return "aaf 0.1.0"; }
+const char *aaf_version() {
+    return "aaf 0.1.0";
+}
 
 void set_command_line(int argc, char **argv) {
-    // Left out: what cannot change the pixels by contract (threads, progress,
-    // resumption, where it is written), so equal outputs stay equal bytes.
-    static const std::set<std::string> with_value = {"-o", "--output", "--threads", "--progress", "--resume",
-                                                     "--checkpoint"};
-    static const std::set<std::string> flags = {"--skip-existing", "--skip-bad-frames"};
+    // Left out: what cannot change a frame's bytes by contract (threads,
+    // progress, resumption, which chunk of a sequence, where it is written),
+    // so equal outputs stay equal bytes.
+    static const std::set<std::string> with_value = {"-o",         "--output", "--frames",    "--threads",
+                                                     "--progress", "--resume", "--checkpoint"};
+    static const std::set<std::string> flags = {"--skip-existing", "--skip-bad-frames", "--timings"};
     std::string &line = stored_command_line();
     line = "aaf";
     for (int i = 1; i < argc; ++i) {
@@ -61,7 +64,9 @@ void set_command_line(int argc, char **argv) {
     }
 }
 
-const std::string &command_line() { return stored_command_line(); }
+const std::string &command_line() {
+    return stored_command_line();
+}
 
 std::string inputs_hash(const std::vector<std::string> &files, const std::string &extra) {
     namespace fs = std::filesystem;
@@ -93,6 +98,10 @@ void stamp(const Provenance &provenance, AovSet &aovs) {
     aovs.attributes[provenance_attr::kParameters] = provenance.parameters;
     aovs.attributes[provenance_attr::kCommand] = command_line();
     aovs.attributes[provenance_attr::kInputsHash] = provenance.inputs_hash;
+    if (!provenance.history.empty())
+        aovs.attributes[provenance_attr::kHistory] = provenance.history;
+    else
+        aovs.attributes.erase(provenance_attr::kHistory);  // a filtered input's, not this output's
 }
 
 bool output_up_to_date(const std::string &output, const Provenance &expected) {
@@ -108,11 +117,16 @@ bool output_up_to_date(const std::string &output, const Provenance &expected) {
             !equals(provenance_attr::kParameters, expected.parameters) ||
             !equals(provenance_attr::kInputsHash, expected.inputs_hash))
             return false;
+        if (expected.history.empty() ? recorded.attributes.count(provenance_attr::kHistory) != 0
+                                     : !equals(provenance_attr::kHistory, expected.history))
+            return false;
         if (expected.method != "render") return true;
         // A progressive render's checkpoint holds fewer samples than asked for.
-        const auto done = recorded.attributes.find(attr::kSppDone), target = recorded.attributes.find(attr::kSpp);
+        const auto done = recorded.attributes.find(attr::kSppDone),
+                   target = recorded.attributes.find(attr::kSpp);
         if (done == recorded.attributes.end() || target == recorded.attributes.end()) return false;
-        const int *done_spp = std::get_if<int>(&done->second), *target_spp = std::get_if<int>(&target->second);
+        const int *done_spp = std::get_if<int>(&done->second),
+                  *target_spp = std::get_if<int>(&target->second);
         return done_spp && target_spp && *done_spp >= *target_spp;
     } catch (const std::exception &) {
         return false;

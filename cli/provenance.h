@@ -10,21 +10,25 @@ namespace aaf::cli {
 /// Header attributes every `aaf render` and `aaf filter` output records
 /// (README "Provenance and --skip-existing"); `Software` is set to aaf's.
 namespace provenance_attr {
-inline constexpr const char *kVersion = "aaf:provenance:version";          // string, "aaf 0.1.0"
-inline constexpr const char *kMethod = "aaf:provenance:method";            // string, "render" or the method
-inline constexpr const char *kParameters = "aaf:provenance:parameters";    // string, every setting, name=value
-inline constexpr const char *kCommand = "aaf:provenance:command";          // string, the command line
+inline constexpr const char *kVersion = "aaf:provenance:version";         // string, "aaf 0.1.0"
+inline constexpr const char *kMethod = "aaf:provenance:method";           // string, "render" or the method
+inline constexpr const char *kParameters = "aaf:provenance:parameters";   // string, every setting, name=value
+inline constexpr const char *kCommand = "aaf:provenance:command";         // string, the command line
 inline constexpr const char *kInputsHash = "aaf:provenance:inputs_hash";  // string, 16 hex digits
+/// Only on a frame whose method read earlier frames' outputs (ratio --temporal):
+/// the frames "S-E" its history reads; inputs_hash then covers their inputs too.
+inline constexpr const char *kHistory = "aaf:provenance:history";  // string
 }  // namespace provenance_attr
 
 /// The version `aaf --version` prints, "aaf 0.1.0".
 const char *aaf_version();
 
 /// Remembers the command line for the outputs' headers: "aaf" and the
-/// arguments joined by spaces, less those that cannot change the pixels
-/// (-o/--output, --threads, --progress, --resume, --checkpoint,
-/// --skip-existing, --skip-bad-frames), so that outputs equal by contract
-/// (any --threads, a resumed render) stay byte-identical.
+/// arguments joined by spaces, less those that cannot change a frame's
+/// bytes (-o/--output, --frames, --threads, --progress, --timings,
+/// --resume, --checkpoint, --skip-existing, --skip-bad-frames), so that
+/// outputs equal by contract (any --threads, a resumed render, a frame made
+/// in any chunk of a sequence) stay byte-identical.
 void set_command_line(int argc, char **argv);
 const std::string &command_line();
 
@@ -33,6 +37,7 @@ struct Provenance {
     std::string method;      ///< "render" or the filter method's name
     std::string parameters;  ///< every setting that changes the pixels, "name=value ..."
     std::string inputs_hash;
+    std::string history;  ///< provenance_attr::kHistory, "" for none
 };
 
 /// FNV-1a hash (16 hex digits) of each file's identity: its size, its

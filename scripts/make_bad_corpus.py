@@ -611,13 +611,152 @@ def blender_bridge_cases():
     ]
 
 
+def ratio_planes(seed, size=SIZE, motion=True):
+    """The ratio estimator's inputs (U, S_N <= U_N, their luminance, P, N, pixel.size) and, with
+    `motion`, a half-pixel camera pan: one frame of a `ratio --temporal` sequence."""
+    rng = np.random.default_rng(seed)
+    y, x = np.mgrid[0:size, 0:size].astype(np.float32)
+    unshadowed = np.full((size, size), 0.5, np.float32) + 0.1 * rng.random((size, size), np.float32)
+    shadowed = unshadowed * np.clip(x / (size - 1) + 0.2 * rng.standard_normal((size, size)), 0, 1)
+    planes = {"P.X": x * 0.1, "P.Y": np.zeros_like(x), "P.Z": y * 0.1,
+              "N.X": np.zeros_like(x), "N.Y": np.ones_like(x), "N.Z": np.zeros_like(x),
+              "pixel.size": np.full_like(x, 0.1)}
+    for c in "RGB":
+        planes["ratio.U." + c] = np.full_like(x, 0.6)
+        planes["ratio.S." + c] = shadowed.astype(np.float32)
+        planes["ratio.Un." + c] = unshadowed
+        planes[c] = shadowed.astype(np.float32)
+    planes["ratio.S.Y"], planes["ratio.Un.Y"] = shadowed.astype(np.float32), unshadowed
+    if motion:
+        planes["motion.X"], planes["motion.Y"] = np.full_like(x, 0.5), np.zeros_like(x)
+    return planes
+
+
+def write_temporal_files():
+    """Sequences for `ratio --temporal`: good frames, frames without motion, a gap, a bad history
+    frame, a history frame of another size."""
+    for frame in (1, 2, 3):
+        write_exr("rt.%04d.exr" % frame, ratio_planes(10 + frame))
+    for frame in (1, 2):
+        write_exr("rtnm.%04d.exr" % frame, ratio_planes(20 + frame, motion=False))
+    for frame in (1, 3):
+        write_exr("rtgap.%04d.exr" % frame, ratio_planes(30 + frame))
+    write_bytes("rtbad.0001.exr", open(path("rt.0001.exr"), "rb").read()[:300])
+    write_exr("rtbad.0002.exr", ratio_planes(42))
+    write_exr("rtsize.0001.exr", ratio_planes(51, size=4), size=4)
+    write_exr("rtsize.0002.exr", ratio_planes(52))
+
+
+def temporal_sequence_cases():
+    """`aaf filter ratio --temporal` over sequences: patterns, --frames, --skip-existing with stale
+    or partial outputs, histories that cannot be made."""
+    def temporal(name, pattern, code, names=None, extra_args=(), output="o.####.exr", **extra):
+        return case(name, ["filter", "ratio", "--temporal", pattern, "-o", output, "--progress", "none",
+                           *extra_args], code, names, **extra)
+
+    outputs = ["o.%04d.exr" % f for f in (1, 2, 3)]
+    return [
+        temporal("temporal sequence writes every frame", "rt.####.exr", 0, creates=outputs),
+        temporal("temporal chunk writes its frames only, its history in memory", "rt.####.exr", 0,
+                 extra_args=("--frames", "2-3"), creates=outputs[1:]),
+        temporal("temporal every other frame", "rt.####.exr", 0, extra_args=("--frames", "1-3x2"),
+                 creates=[outputs[0], outputs[2]]),
+        temporal("temporal --skip-existing redoes a stale output", "rt.####.exr", 0,
+                 extra_args=("--frames", "3-3", "--skip-existing"),
+                 setup={"copy": {"stale_output.exr": "o.0003.exr"}}, creates=outputs[2:]),
+        temporal("temporal --skip-existing redoes a killed run's partial frame and an output made elsewhere",
+                 "rt.####.exr", 0, extra_args=("--skip-existing",),
+                 setup={"copy": {"truncated.exr": "o.0001.exr", "good.exr": "o.0002.exr"}}, creates=outputs),
+        temporal("temporal --skip-existing with a temporary a killed run left", "rt.####.exr", 0,
+                 extra_args=("--frames", "2-2", "--skip-existing"),
+                 setup={"copy": {"stale_output.exr": ".o.0002.exr.tmp-999999-0"}}, creates=outputs[1:2],
+                 removes=[".o.0002.exr.tmp-999999-0"]),
+        temporal("temporal a gap in the sequence starts a new history", "rtgap.####.exr", 0,
+                 creates=[outputs[0], outputs[2]]),
+        temporal("temporal on a single file", "rt.0002.exr", 0, output="o.exr", creates=["o.exr"]),
+        temporal("temporal missing motion", "rtnm.####.exr", 3, "rtnm.0001.exr"),
+        temporal("temporal missing motion in a chunk", "rtnm.####.exr", 3, "rtnm.0001.exr",
+                 extra_args=("--frames", "2-2")),
+        temporal("temporal history frame is garbage", "rtbad.####.exr", 3, "rtbad.0001.exr",
+                 extra_args=("--frames", "2-2")),
+        temporal("temporal history frame of another size", "rtsize.####.exr", 3, "rtsize.0002.exr",
+                 extra_args=("--frames", "2-2")),
+        temporal("temporal frame missing from the sequence", "rt.####.exr", 3, "rt.0005.exr",
+                 extra_args=("--frames", "5-5")),
+        temporal("temporal missing pattern folder", "nosuch/rt.####.exr", 3, "nosuch"),
+        temporal("temporal pattern with no frames on disk", "none.####.exr", 3, "none.####.exr"),
+        temporal("temporal --frames 3-1", "rt.####.exr", 2, "3-1", extra_args=("--frames", "3-1")),
+        temporal("temporal --frames empty", "rt.####.exr", 2, "--frames", extra_args=("--frames", "")),
+        temporal("temporal --frames step 0", "rt.####.exr", 2, "--frames", extra_args=("--frames", "1-3x0")),
+        temporal("temporal --frames on a single file", "rt.0001.exr", 2, "--frames", output="o.exr",
+                 extra_args=("--frames", "1-2")),
+        temporal("temporal input pattern, output file", "rt.####.exr", 2, "o.exr", output="o.exr"),
+        temporal("temporal output pattern, input file", "rt.0001.exr", 2, "o.####.exr"),
+        temporal("temporal output pattern is the input", "rt.####.exr", 3, "rt.0001.exr", output="rt.####.exr"),
+        temporal("temporal output pattern is the input spelt %04d", "rt.####.exr", 3, "rt.0001.exr",
+                 output="rt.%04d.exr"),
+        temporal("temporal --temporal-alpha 0", "rt.####.exr", 2, "temporal_alpha",
+                 extra_args=("--temporal-alpha", "0")),
+        temporal("temporal --temporal-alpha 1.5", "rt.####.exr", 2, "temporal_alpha",
+                 extra_args=("--temporal-alpha", "1.5")),
+        temporal("temporal --temporal-alpha nan", "rt.####.exr", 2, "temporal_alpha",
+                 extra_args=("--temporal-alpha", "nan")),
+        temporal("temporal --grey with --estimator stochastic, before reading", "nosuch.####.exr", 2, "--grey",
+                 extra_args=("--grey", "--estimator", "stochastic")),
+    ]
+
+
+def render_filter_param_cases():
+    """`aaf render --filter` with bad --filter-param values: refused with exit 2 before rendering."""
+    sequence = ["render", "scene.json", "-o", "o.####.exr", "--frames", "1-2", "--width", "8", "--height", "8",
+                "--spp", "1", "--progress", "none"]
+
+    def bad(name, params, names=None, extra_args=()):
+        args = sequence + list(extra_args)
+        for p in params:
+            args += ["--filter-param", p]
+        return case(name, args, 2, names)
+
+    def ratio(name, params, names=None, extra_args=()):
+        return bad(name, params, names, ("--filter", "ratio", *extra_args))
+
+    return [
+        ratio("render --filter ratio temporal without motion in --aovs", ["temporal=true"], "--aovs ratio,motion",
+              ("--aovs", "ratio")),
+        ratio("render --filter ratio denoiser=aaf without the shadow AOVs", ["denoiser=aaf"], "denoiser=aaf",
+              ("--aovs", "ratio,motion")),
+        ratio("render --filter ratio grey with the stochastic estimator", ["grey=true", "estimator=stochastic"],
+              "--grey"),
+        ratio("render --filter ratio temporal=maybe", ["temporal=maybe"], "temporal=maybe"),
+        ratio("render --filter ratio temporal_alpha=0", ["temporal=true", "temporal_alpha=0"], "temporal_alpha=0"),
+        ratio("render --filter ratio temporal-alpha=2", ["temporal-alpha=2"], "temporal-alpha=2"),
+        ratio("render --filter ratio temporal_alpha=nan", ["temporal_alpha=nan"], "temporal_alpha=nan"),
+        ratio("render --filter ratio estimator=bogus", ["estimator=bogus"], "estimator=bogus"),
+        ratio("render --filter ratio noise_radius=0", ["noise_radius=0"], "noise_radius=0"),
+        ratio("render --filter ratio temporal without a value", ["temporal"], "temporal"),
+        ratio("render --filter ratio =true", ["=true"], "=true"),
+        bad("render --filter gaussian temporal=true", ["temporal=true"], "temporal=true", ("--filter", "gaussian")),
+        bad("render --filter aaf mu_from_spp with fixed_mu", ["mu_from_spp=true", "fixed_mu=true"], "fixed mu",
+            ("--filter", "aaf")),
+        case("render --filter ratio temporal sequence into one file",
+             ["render", "scene.json", "-o", "o.exr", "--frames", "1-2", "--width", "8", "--height", "8", "--spp",
+              "1", "--filter", "ratio", "--filter-param", "temporal=true"], 2, "--frames"),
+        case("render --filter ratio temporal sequence, frame 2 alone with a stale output",
+             sequence[:5] + ["2-2"] + sequence[6:] + ["--filter", "ratio", "--filter-param", "temporal=true",
+                                                      "--skip-existing"], 0,
+             setup={"copy": {"stale_output.exr": "o.0002.exr"}}, creates=["o.0002.exr"]),
+    ]
+
+
 def main():
     shutil.rmtree(FILES, ignore_errors=True)
     os.makedirs(FILES)
     write_images()
     write_scenes()
+    write_temporal_files()
     cases = render_cases() + filter_cases() + other_cases() + fuzz_cases()
     cases += python_module_cases() + aaf_complete_cases() + slurm_filter_cases() + blender_bridge_cases()
+    cases += temporal_sequence_cases() + render_filter_param_cases()
     names = [c["name"] for c in cases]
     if len(set(names)) != len(names):
         sys.exit("duplicate case names")

@@ -108,13 +108,15 @@ FrameFilter method_filter(const Method &method, const ParameterSet &parameters, 
     // A method that reads the previous frame's output gets the last frame
     // this pipeline filtered (frames run in order, one at a time).
     auto history = std::make_shared<AovSet>();
-    filter.run = [&method, parameters, channels, history](AovSet input) {
-        const bool has_history = method.info().uses_history && history->pixel_count() > 0;
+    filter.reads_history = method.reads_history(parameters);
+    filter.run = [&method, parameters, channels, history, keep = filter.reads_history](AovSet input) {
+        const bool has_history = keep && history->pixel_count() > 0;
         AovSet output = filter_aovs(method, std::move(input), channels, parameters, {},
                                     has_history ? history.get() : nullptr);
-        if (method.info().uses_history) *history = output;
+        if (keep) *history = output;
         return output;
     };
+    filter.forget_history = [history] { *history = AovSet(); };
     filter.note = [&method, parameters, channels](const AovSet &input) {
         return choose_method(method, parameters, input, channels).note;
     };
@@ -138,11 +140,38 @@ AovSet filter_frame(AovSet input, const std::string &source, const FrameFilter &
     const ChannelMap resolved = options.channels.resolved(input);
     AovSet output;
     // The input moves into the filter, which moves its planes into the output: a lower peak of memory.
-    run_with_threads(options.threads, [&] {
-        output = with_context(source, [&] { return filter.run(std::move(input)); });
-    });
+    run_with_threads(options.threads,
+                     [&] { output = with_context(source, [&] { return filter.run(std::move(input)); }); });
     if (options.keep_beauty) output = keep_beauty(output, resolved);
     return output;
+}
+
+namespace {
+
+/// filter_file() up to the write: the output and the input's `layout`.
+AovSet read_and_filter(const std::string &input_path, const FrameFilter &filter,
+                       const FilterFileOptions &options, FilterFileReport &report, ImageLayout &layout) {
+    AovSet input = read_aovs(input_path, &layout);
+    // AOVs the first part lacks may sit in other parts (one AOV per part);
+    // they are read for the filter and stay in their parts in the output.
+    // Scrubbing (in filter_frame) asks for the channels again: the borrowed
+    // ones may complete a synonym.
+    // Which channels depends on the input (a delegate's, choose_method()), which may refuse it: name the
+    // file.
+    const std::vector<std::string> wanted =
+        with_context(input_path, [&] { return filter.input_channels(input); });
+    report.borrowed = add_channels_from_other_parts(input_path, layout, wanted, input);
+    AovSet output = filter_frame(std::move(input), input_path, filter, options, report);
+    if (!report.borrowed.empty()) output = without_channels(output, report.borrowed);
+    return output;
+}
+
+}  // namespace
+
+AovSet filter_file_in_memory(const std::string &input_path, const FrameFilter &filter,
+                             const FilterFileOptions &options, FilterFileReport &report) {
+    ImageLayout layout;
+    return read_and_filter(input_path, filter, options, report, layout);
 }
 
 FilterFileReport filter_file(const std::string &input_path, const std::string &output_path,
@@ -152,16 +181,7 @@ FilterFileReport filter_file(const std::string &input_path, const std::string &o
     // The input's header (every attribute, the windows) and its other parts
     // go through to the output unchanged.
     ImageLayout layout;
-    AovSet input = read_aovs(input_path, &layout);
-    // AOVs the first part lacks may sit in other parts (one AOV per part);
-    // they are read for the filter and stay in their parts in the output.
-    // Scrubbing (in filter_frame) asks for the channels again: the borrowed
-    // ones may complete a synonym.
-    // Which channels depends on the input (a delegate's, choose_method()), which may refuse it: name the file.
-    const std::vector<std::string> wanted = with_context(input_path, [&] { return filter.input_channels(input); });
-    report.borrowed = add_channels_from_other_parts(input_path, layout, wanted, input);
-    AovSet output = filter_frame(std::move(input), input_path, filter, options, report);
-    if (!report.borrowed.empty()) output = without_channels(output, report.borrowed);
+    AovSet output = read_and_filter(input_path, filter, options, report, layout);
     WriteOptions write = options.write;
     write.layout = &layout;
     write_aovs(output, output_path, write);

@@ -44,24 +44,23 @@ void for_each_pixel_tiled(int width, int height, const Body &body,
     const int tiles_total = tiles_x * tiles_y;
     std::atomic<int> tiles_done{0};
     std::mutex reporting;
-    tbb::parallel_for(
-        tbb::blocked_range<int>(0, tiles_total), [&](const tbb::blocked_range<int> &tiles) {
-            // Denormals only slow the traversal down; flush them on every worker.
-            _MM_SET_FLUSH_ZERO_MODE(_MM_FLUSH_ZERO_ON);
-            _MM_SET_DENORMALS_ZERO_MODE(_MM_DENORMALS_ZERO_ON);
-            for (int tile = tiles.begin(); tile != tiles.end(); ++tile) {
-                const int x0 = (tile % tiles_x) * kTileSize, y0 = (tile / tiles_x) * kTileSize;
-                const int x1 = std::min(x0 + kTileSize, width), y1 = std::min(y0 + kTileSize, height);
-                for (int y = y0; y < y1; ++y)
-                    for (int x = x0; x < x1; ++x) body(x, y);
-                if (!on_share_done) continue;
-                // A report each time the finished share crosses a 32nd.
-                const int done = ++tiles_done;
-                if (done * 32 / tiles_total == (done - 1) * 32 / tiles_total) continue;
-                const std::lock_guard<std::mutex> lock(reporting);
-                on_share_done(double(done) / tiles_total);
-            }
-        });
+    tbb::parallel_for(tbb::blocked_range<int>(0, tiles_total), [&](const tbb::blocked_range<int> &tiles) {
+        // Denormals only slow the traversal down; flush them on every worker.
+        _MM_SET_FLUSH_ZERO_MODE(_MM_FLUSH_ZERO_ON);
+        _MM_SET_DENORMALS_ZERO_MODE(_MM_DENORMALS_ZERO_ON);
+        for (int tile = tiles.begin(); tile != tiles.end(); ++tile) {
+            const int x0 = (tile % tiles_x) * kTileSize, y0 = (tile / tiles_x) * kTileSize;
+            const int x1 = std::min(x0 + kTileSize, width), y1 = std::min(y0 + kTileSize, height);
+            for (int y = y0; y < y1; ++y)
+                for (int x = x0; x < x1; ++x) body(x, y);
+            if (!on_share_done) continue;
+            // A report each time the finished share crosses a 32nd.
+            const int done = ++tiles_done;
+            if (done * 32 / tiles_total == (done - 1) * 32 / tiles_total) continue;
+            const std::lock_guard<std::mutex> lock(reporting);
+            on_share_done(double(done) / tiles_total);
+        }
+    });
 }
 
 using Accumulators = std::vector<std::unique_ptr<AovAccumulator>>;
@@ -164,10 +163,17 @@ class Tracing {
     }
 
     RenderState state(const Camera &previous_camera) const {
-        return {
-            scene_,          previous_camera,  primaries_, stats_,        renderer_.has_separate_radiance(),
-            settings_.width, settings_.height, &renderer_, settings_.spp, settings_.seed,
-            settings_.maaf6_effects};
+        return {scene_,
+                previous_camera,
+                primaries_,
+                stats_,
+                renderer_.has_separate_radiance(),
+                settings_.width,
+                settings_.height,
+                &renderer_,
+                settings_.spp,
+                settings_.seed,
+                settings_.maaf6_effects};
     }
     std::vector<ShadowStats> &stats() { return stats_; }
 
@@ -185,17 +191,20 @@ class Tracing {
                     const std::function<void(double)> &on_share_done = {}) {
         const bool distances = stats_distances || listeners_want_distances_;
         const bool thin_lens = scene_.camera.is_thin_lens();
-        for_each_pixel_tiled(settings_.width, settings_.height, [&](int x, int y) {
-            const std::size_t i = std::size_t(y) * settings_.width + x;
-            const int samples = count(x, y);
-            if ((primaries_[i].found || thin_lens) && samples > 0) {
-                for (AovAccumulator *listener : listeners_) listener->begin_pixel(i, primaries_[i]);
-                renderer_.trace_shadows(primaries_[i], x, y, i, pass, std::uint32_t(samples), distances,
-                                        stats_[i], listeners_);
-                for (AovAccumulator *listener : listeners_) listener->end_pixel(i);
-            }
-            if (round_to_float) stats_[i].round_to_float();
-        }, on_share_done);
+        for_each_pixel_tiled(
+            settings_.width, settings_.height,
+            [&](int x, int y) {
+                const std::size_t i = std::size_t(y) * settings_.width + x;
+                const int samples = count(x, y);
+                if ((primaries_[i].found || thin_lens) && samples > 0) {
+                    for (AovAccumulator *listener : listeners_) listener->begin_pixel(i, primaries_[i]);
+                    renderer_.trace_shadows(primaries_[i], x, y, i, pass, std::uint32_t(samples), distances,
+                                            stats_[i], listeners_);
+                    for (AovAccumulator *listener : listeners_) listener->end_pixel(i);
+                }
+                if (round_to_float) stats_[i].round_to_float();
+            },
+            on_share_done);
     }
 
   private:
@@ -247,6 +256,17 @@ std::vector<std::string> scene_input_files(const std::string &scene) {
     return scene_file_inputs(resolve_scene(scene));
 }
 
+std::optional<double> scene_first_key_frame(const std::string &scene) {
+    // The size only shapes the camera's aspect, which the keys do not depend on.
+    const SceneDescription description = load_scene_file(resolve_scene(scene), 16, 16);
+    std::optional<double> first;
+    const auto consider = [&first](double frame) { first = first ? std::min(*first, frame) : frame; };
+    if (!description.animation.camera.empty()) consider(description.animation.camera.front().frame);
+    for (const std::vector<LightKey> &keys : description.animation.lights)
+        if (!keys.empty()) consider(keys.front().frame);
+    return first;
+}
+
 void validate_render_settings(const RenderSettings &settings) {
     if (settings.width < 1 || settings.width > 16384 || settings.height < 1 || settings.height > 16384)
         throw Error("image width and height must lie in [1, 16384] pixels");
@@ -266,7 +286,8 @@ void validate_render_settings(const RenderSettings &settings) {
     if ((settings.aovs & kAovMaaf) && settings.resume)
         throw Error("a render with the maaf AOVs cannot be resumed (they need every sample, kept in memory)");
     if (settings.aovs & kAovMaaf6) {
-        if (settings.resume) throw Error("a render with the maaf6 AOVs cannot be resumed (they trace their own samples)");
+        if (settings.resume)
+            throw Error("a render with the maaf6 AOVs cannot be resumed (they trace their own samples)");
         parse_maaf6_effects(settings.maaf6_effects);
     }
 }
@@ -289,19 +310,28 @@ AovSet render_scene(const std::string &scene_name, const RenderSettings &setting
                        ? restore_progress(*settings.resume, scene, settings, accumulators, tracing.stats())
                        : 0;
     // MAAF's first pass (Sec. 6.2) is a round of its own, stratified by itself.
-    const int maaf_first_pass = (groups & kAovMaaf) ? std::min(settings.maaf_first_pass_spp, settings.spp) : 0;
+    const int maaf_first_pass =
+        (groups & kAovMaaf) ? std::min(settings.maaf_first_pass_spp, settings.spp) : 0;
     // d2min/d2max are statistics of the first round, the sparse first pass
     // AAF takes d1 and d2 from (AAF Sec. 6); later rounds and the adaptive
     // second pass need visibility only, which any hit answers.
     const bool stats_distances = (groups & kAovShadow) || settings.adaptive;
+    RenderTimings measured;
     auto render_so_far = [&](int done) {
         AovSet aovs(settings.width, settings.height);
         write_aovs(state, accumulators, groups, aovs);
         write_attributes(scene, settings, done, aovs);
+        // Timings go to the caller, not into the header: equal renders are equal bytes.
+        for (auto [name, seconds] : {std::pair{attr::kMaaf6SamplingS, &measured.maaf6_sampling_s},
+                                     std::pair{attr::kMaaf6PrefilterS, &measured.maaf6_prefilter_s}}) {
+            auto it = aovs.attributes.find(name);
+            if (it == aovs.attributes.end()) continue;
+            if (const float *value = std::get_if<float>(&it->second)) *seconds = double(*value);
+            aovs.attributes.erase(it);
+        }
         return aovs;
     };
 
-    RenderTimings measured;
     // oneTBB caps its workers at the hardware's threads (and warns) unless the
     // process-wide limit is raised: raise it for this render, so `threads`
     // really run (a 1-core machine still checks 1 vs 2 threads).
@@ -319,11 +349,14 @@ AovSet render_scene(const std::string &scene_name, const RenderSettings &setting
         auto last_checkpoint = Clock::now();
         for (int round = (spp_done + kSamplesPerRound - 1) / kSamplesPerRound; spp_done < settings.spp;
              ++round) {
-            const int count = spp_done < maaf_first_pass ? maaf_first_pass - spp_done
-                                                         : std::min(kSamplesPerRound, settings.spp - spp_done);
+            const int count = spp_done < maaf_first_pass
+                                  ? maaf_first_pass - spp_done
+                                  : std::min(kSamplesPerRound, settings.spp - spp_done);
             std::function<void(double)> on_share_done;
             if (settings.on_round_progress)
-                on_share_done = [&](double share) { settings.on_round_progress(spp_done + share * count, settings.spp); };
+                on_share_done = [&](double share) {
+                    settings.on_round_progress(spp_done + share * count, settings.spp);
+                };
             tracing.trace_pass(
                 std::uint32_t(round), [&](int, int) { return count; }, true, stats_distances && round == 0,
                 on_share_done);
@@ -350,10 +383,10 @@ AovSet render_scene(const std::string &scene_name, const RenderSettings &setting
         }
     });
 
-    if (timings) *timings = measured;
     // In the arena too: a group that traces while it writes (isg) keeps to `threads`.
     AovSet result;
     arena.execute([&] { result = render_so_far(spp_done); });
+    if (timings) *timings = measured;
     return result;
 }
 

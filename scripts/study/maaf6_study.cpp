@@ -32,13 +32,6 @@ double seconds_since(Clock::time_point start) {
     return std::chrono::duration<double>(Clock::now() - start).count();
 }
 
-float attribute(const AovSet &aovs, const char *name) {
-    const auto it = aovs.attributes.find(name);
-    if (it == aovs.attributes.end() || !std::get_if<float>(&it->second))
-        throw Error(std::string("render lacks attribute ") + name);
-    return std::get<float>(it->second);
-}
-
 /// Squared error of R, G, B summed over the pixels where `mask(x, y)` holds, and their count.
 template <typename Mask>
 std::pair<double, long> squared_error(const AovSet &a, const AovSet &b, const Mask &mask) {
@@ -92,7 +85,9 @@ int main(int argc, char **argv) {
     app.add_option("--width", width)->capture_default_str();
     app.add_option("--height", height)->capture_default_str();
     app.add_option("--reference-spp", reference_spp)->capture_default_str();
-    app.add_option("--spp", spp_values, "spp of the renders both filters run on")->delimiter(',')->capture_default_str();
+    app.add_option("--spp", spp_values, "spp of the renders both filters run on")
+        ->delimiter(',')
+        ->capture_default_str();
     CLI11_PARSE(app, argc, argv);
     try {
         trace::RenderSettings settings;
@@ -108,7 +103,8 @@ int main(int argc, char **argv) {
         settings.seed = 1;
         for (int spp : spp_values) {
             settings.spp = spp;
-            const AovSet noisy = trace::render_scene("room", settings);
+            trace::RenderTimings timings;
+            const AovSet noisy = trace::render_scene("room", settings, &timings);
             const ConstPlaneView samples = noisy.channel("maaf6.spp"), id = noisy.channel("id.object");
             double spp_sum = 0;
             for (int y = 0; y < height; ++y)
@@ -124,7 +120,8 @@ int main(int argc, char **argv) {
                     }
                 return false;
             };
-            io::write_aovs(only(noisy, {"R", "G", "B", "maaf6.spp"}), out_dir + "/noisy_" + std::to_string(spp) + ".exr");
+            io::write_aovs(only(noisy, {"R", "G", "B", "maaf6.spp"}),
+                           out_dir + "/noisy_" + std::to_string(spp) + ".exr");
             for (const char *pairs : {"all", "1"}) {
                 ParameterSet parameters = method.default_parameters();
                 parameters.set("pairs", std::string(pairs));
@@ -134,21 +131,23 @@ int main(int argc, char **argv) {
                 const bool maaf = std::string(pairs) == "all";
                 const auto [focal_sum, focal_count] = squared_error(filtered, reference, focal);
                 const auto [near_sum, near_count] = squared_error(filtered, reference, neighbour);
-                rows.push_back({maaf ? "MAAF" : "AAF", spp, spp_sum / (double(width) * height), rmse(filtered, reference),
-                                attribute(noisy, attr::kMaaf6SamplingS),
-                                maaf ? attribute(noisy, attr::kMaaf6PrefilterS) : 0.0, filter_s,
+                rows.push_back({maaf ? "MAAF" : "AAF", spp, spp_sum / (double(width) * height),
+                                rmse(filtered, reference), timings.maaf6_sampling_s,
+                                maaf ? timings.maaf6_prefilter_s : 0.0, filter_s,
                                 focal_count ? std::sqrt(focal_sum / double(focal_count)) : 0.0,
                                 near_count ? std::sqrt(near_sum / double(near_count)) : 0.0});
                 const Row &r = rows.back();
-                std::fprintf(stderr,
-                             "%-4s %3d spp (mean %.1f): RMSE %.5f  sampling %.2f s  prefilter %.2f s  filter %.2f s  "
-                             "focal %.5f  neighbours %.5f\n",
-                             r.method.c_str(), spp, r.mean_spp, r.rmse, r.sampling_s, r.prefilter_s, r.filter_s,
-                             r.focal_rmse, r.neighbour_rmse);
-                io::write_aovs(only(filtered, kRgb), out_dir + "/" + (maaf ? "maaf_" : "aaf_") + std::to_string(spp) + ".exr");
+                std::fprintf(
+                    stderr,
+                    "%-4s %3d spp (mean %.1f): RMSE %.5f  sampling %.2f s  prefilter %.2f s  filter %.2f s  "
+                    "focal %.5f  neighbours %.5f\n",
+                    r.method.c_str(), spp, r.mean_spp, r.rmse, r.sampling_s, r.prefilter_s, r.filter_s,
+                    r.focal_rmse, r.neighbour_rmse);
+                io::write_aovs(only(filtered, kRgb),
+                               out_dir + "/" + (maaf ? "maaf_" : "aaf_") + std::to_string(spp) + ".exr");
             }
             rows.push_back({"input", spp, spp_sum / (double(width) * height), rmse(noisy, reference),
-                            attribute(noisy, attr::kMaaf6SamplingS), 0.0, 0.0, 0.0, 0.0});
+                            timings.maaf6_sampling_s, 0.0, 0.0, 0.0, 0.0});
         }
         const std::string output = out_dir + "/maaf6_study.csv";
         const std::string temporary = io::temporary_path_for(output);
@@ -156,8 +155,9 @@ int main(int argc, char **argv) {
             std::ofstream csv(temporary);
             csv << "method,spp,mean_spp,rmse,sampling_s,prefilter_s,filter_s,focal_rmse,neighbour_rmse\n";
             for (const Row &r : rows)
-                csv << r.method << ',' << r.spp << ',' << r.mean_spp << ',' << r.rmse << ',' << r.sampling_s << ','
-                    << r.prefilter_s << ',' << r.filter_s << ',' << r.focal_rmse << ',' << r.neighbour_rmse << '\n';
+                csv << r.method << ',' << r.spp << ',' << r.mean_spp << ',' << r.rmse << ',' << r.sampling_s
+                    << ',' << r.prefilter_s << ',' << r.filter_s << ',' << r.focal_rmse << ','
+                    << r.neighbour_rmse << '\n';
             if (!csv) throw Error(output + ": cannot write");
         }
         io::commit_temporary(temporary, output);

@@ -176,3 +176,46 @@ TEST_CASE("render --filter stopped by Ctrl-C writes the render unfiltered, and -
     CHECK(finished.has_channel("noisy.R"));
     require_same_pixels(whole, out);
 }
+
+TEST_CASE(
+    "CLI: render --filter refuses, before it renders, filter parameters that need AOVs --aovs does not "
+    "render or do not go together",
+    "[cli][render]") {
+    const fs::path dir = scratch_dir("render_filter_parameter_groups");
+    const std::string render = "render grids --width 16 --height 12 --spp 1 --progress none ";
+    struct Case {
+        const char *options, *message;
+    };
+    for (const Case &c : {
+             Case{"--frames 1-3 --aovs ratio --filter ratio --filter-param temporal=true",
+                  "--filter-param temporal=true: --filter ratio then reads the motion AOVs, which --aovs "
+                  "ratio "
+                  "does not render (add them: --aovs ratio,motion"},
+             Case{"--frames 1-2 --aovs ratio --filter ratio --filter-param denoiser=aaf",
+                  "--filter-param denoiser=aaf: --filter ratio then reads the shadow,id AOVs"},
+             Case{"--aovs ratio,motion --filter ratio --filter-param grey=true --filter-param "
+                  "estimator=stochastic",
+                  "--filter-param: ratio: --grey applies to --estimator ratio only"},
+             Case{"--filter aaf --filter-param mu_from_spp=true --filter-param fixed_mu=true",
+                  "--filter-param: AAF mu from spp and fixed mu exclude each other"},
+         }) {
+        INFO(c.options);
+        const bool sequence = std::string(c.options).find("--frames") != std::string::npos;
+        const fs::path out = dir / (sequence ? "out.####.exr" : "out.exr");
+        const auto result = run_aaf(render + c.options + " -o " + out.string());
+        CHECK(result.exit_code == 2);
+        CHECK_THAT(result.output, Catch::Contains(c.message));
+        CHECK(fs::is_empty(dir));  // nothing rendered, nothing written
+    }
+    // `aaf filter` refuses the same combination before it reads its input.
+    const auto filter = run_aaf("filter aaf --mu-from-spp --fixed-mu " + (dir / "missing.exr").string() +
+                                " -o " + (dir / "out.exr").string());
+    CHECK(filter.exit_code == 2);
+    CHECK_THAT(filter.output, Catch::Contains("AAF mu from spp and fixed mu exclude each other"));
+
+    // Without --aovs the render writes what the parameters need: a temporal sequence renders motion.
+    REQUIRE(run_aaf(render + "--frames 1-2 --filter ratio --filter-param temporal=true -o " +
+                    (dir / "rt.####.exr").string())
+                .exit_code == 0);
+    CHECK(aaf::io::read_aovs((dir / "rt.0002.exr").string()).has_channel("motion.X"));
+}

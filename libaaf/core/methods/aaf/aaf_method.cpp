@@ -5,12 +5,12 @@
 #include <vector>
 
 #include "../builtin_methods.h"
-#include "aaf_method_inputs.h"
 #include "aaf/core/aaf_filter.h"
 #include "aaf/core/error.h"
 #include "aaf/core/filter_aovs.h"
 #include "aaf/core/method_registry.h"
 #include "aaf/core/shadow_composition.h"
+#include "aaf_method_inputs.h"
 
 namespace aaf {
 
@@ -114,6 +114,16 @@ class AafMethod final : public Method {
     }
 
     const MethodInfo &info() const override { return info_; }
+
+    void check_parameters(const ParameterSet &parameters) const override {
+        params_from(parameters).validate();
+    }
+
+    std::vector<Role> roles_needed(const ParameterSet &parameters) const override {
+        std::vector<Role> roles = info_.roles.required;
+        if (params_from(parameters).mu_from_spp) roles.push_back(Role::SamplesPerPixel);
+        return roles;
+    }
 
     void run(const MethodImages &images, const ParameterSet &parameters, Progress &progress) const override {
         const AafParams params = params_from(parameters);

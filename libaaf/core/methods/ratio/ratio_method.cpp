@@ -8,8 +8,8 @@
 #include <limits>
 #include <vector>
 
-#include "../builtin_methods.h"
 #include "../aaf/aaf_method_inputs.h"
+#include "../builtin_methods.h"
 #include "aaf/core/aaf_filter.h"
 #include "aaf/core/error.h"
 #include "aaf/core/fixed_gaussian.h"
@@ -30,7 +30,8 @@ std::vector<ParameterInfo> ratio_parameters() {
         ParameterInfo::choice(
             "estimator", "ratio", {"ratio", "stochastic", "control-variate"},
             "What is denoised: ratio, U x den(S_N) / den(U_N) (ratio estimator Eq. 25); stochastic, den(S_N) "
-            "(ratio estimator Eq. 10); control-variate, den(U - U_N + S_N) (ratio estimator Eq. 11); same denoiser and widths"),
+            "(ratio estimator Eq. 10); control-variate, den(U - U_N + S_N) (ratio estimator Eq. 11); same "
+            "denoiser and widths"),
         ParameterInfo::choice(
             "denoiser", "bilateral", {"bilateral", "gaussian", "aaf"},
             "bilateral: the joint bilateral with sigma from the noise estimate (Sec. 4); "
@@ -42,11 +43,12 @@ std::vector<ParameterInfo> ratio_parameters() {
         ParameterInfo::flag("summed",
                             "Denoise the summed layers only, ignoring the per-light ratio.L<i>.* layers"),
         ParameterInfo::integer("noise_radius", "6", "pixels",
-                               "Half length of the 4 lines of the noise estimate E (ratio estimator Eq. 29)", 1, 64),
-        ParameterInfo::real(
-            "sigma_per_noise", "3", "pixels",
-            "Bilateral sigma = this x E (E: mean absolute second difference of W_N per pixel, ratio estimator Eq. 29)", 0,
-            kInf),
+                               "Half length of the 4 lines of the noise estimate E (ratio estimator Eq. 29)",
+                               1, 64),
+        ParameterInfo::real("sigma_per_noise", "3", "pixels",
+                            "Bilateral sigma = this x E (E: mean absolute second difference of W_N per "
+                            "pixel, ratio estimator Eq. 29)",
+                            0, kInf),
         ParameterInfo::real("max_sigma", "8", "pixels", "Cap on the bilateral sigma", 0, 64),
         ParameterInfo::real("plane_sigma", "1", "pixel footprints",
                             "Bilateral plane weight: Gaussian of a tap's distance from the centre's tangent "
@@ -250,6 +252,22 @@ class RatioMethod final : public Method {
     }
 
     const MethodInfo &info() const override { return info_; }
+
+    void check_parameters(const ParameterSet &parameters) const override { settings_from(parameters); }
+
+    std::vector<Role> roles_needed(const ParameterSet &parameters) const override {
+        const RatioSettings s = settings_from(parameters);
+        std::vector<Role> roles = info_.roles.required;
+        if (s.grey) roles.insert(roles.end(), {Role::RatioShadowedLuminance, Role::RatioUnshadowedLuminance});
+        if (s.denoiser == "aaf")  // aaf_guides()
+            roles.insert(roles.end(), {Role::D1, Role::D2Min, Role::D2Max, Role::ObjectId, Role::PixelSize});
+        if (s.temporal) roles.push_back(Role::Motion);  // accumulate_history()
+        return roles;
+    }
+
+    bool reads_history(const ParameterSet &parameters) const override {
+        return parameters.get_bool("temporal");
+    }
 
     void run(const MethodImages &images, const ParameterSet &parameters, Progress &progress) const override {
         const RatioSettings s = settings_from(parameters);

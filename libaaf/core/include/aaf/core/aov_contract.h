@@ -108,17 +108,19 @@ inline constexpr const char *kLightCount =
 /// Written by the tracer's ratio group: how many lights have their own
 /// ratio.L<i>.* layers beside the summed ratio.* layer (0 or absent = only the sum).
 inline constexpr const char *kRatioLights = "aaf:ratio:lights";  // int
-inline constexpr const char *kMaafPairs = "aaf:maaf:pairs";  // int, N of the MAAF sums
+inline constexpr const char *kMaafPairs = "aaf:maaf:pairs";      // int, N of the MAAF sums
 inline constexpr const char *kMaafOmegaYMax =
     "aaf:maaf:omega_y_max";  // float, rad/m, the light's Omega_y^max of the MAAF sums
 /// Written by the tracer's maaf6 group (MAAF Sec. 6.2, combined effects).
-inline constexpr const char *kMaaf6Pairs = "aaf:maaf6:pairs";                // int, N of the maaf6 sums
-inline constexpr const char *kMaaf6OmegaDirect = "aaf:maaf6:omega_y_direct";  // float, rad/m, light band
+inline constexpr const char *kMaaf6Pairs = "aaf:maaf6:pairs";                     // int, N of the maaf6 sums
+inline constexpr const char *kMaaf6OmegaDirect = "aaf:maaf6:omega_y_direct";      // float, rad/m, light band
 inline constexpr const char *kMaaf6OmegaIndirect = "aaf:maaf6:omega_y_indirect";  // float, rad, bounce band
-inline constexpr const char *kMaaf6OmegaLens = "aaf:maaf6:omega_u";          // float, rad/m, 0 = pinhole
-inline constexpr const char *kMaaf6Effects = "aaf:maaf6:effects";            // string, e.g. "defocus,shadows,indirect"
-inline constexpr const char *kMaaf6SamplingS = "aaf:maaf6:sampling_s";       // float, seconds tracing paths
-inline constexpr const char *kMaaf6PrefilterS = "aaf:maaf6:prefilter_s";     // float, seconds wedges + sums
+inline constexpr const char *kMaaf6OmegaLens = "aaf:maaf6:omega_u";               // float, rad/m, 0 = pinhole
+inline constexpr const char *kMaaf6Effects = "aaf:maaf6:effects";  // string, e.g. "defocus,shadows,indirect"
+/// The maaf6 group's timings, handed to render_scene() in memory, which
+/// moves them into trace::RenderTimings: never written to a file.
+inline constexpr const char *kMaaf6SamplingS = "aaf:maaf6:sampling_s";    // float, seconds tracing paths
+inline constexpr const char *kMaaf6PrefilterS = "aaf:maaf6:prefilter_s";  // float, seconds wedges + sums
 }  // namespace attr
 
 void write_light_attributes(const LightPlane &light, AovSet &aovs);

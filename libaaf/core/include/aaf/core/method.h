@@ -154,6 +154,23 @@ class Method {
 
     /// The parameters at their defaults.
     ParameterSet default_parameters() const { return ParameterSet(info().name, info().parameters); }
+
+    /// Throws aaf::Error when valid values of info().parameters do not go
+    /// together (a combination run() would refuse), so that a caller can say
+    /// so before it reads or renders anything.
+    virtual void check_parameters(const ParameterSet &parameters) const { (void)parameters; }
+    /// The roles run() cannot do without under `parameters`: the required
+    /// ones and the optional ones a parameter makes necessary.
+    virtual std::vector<Role> roles_needed(const ParameterSet &parameters) const {
+        (void)parameters;
+        return info().roles.required;
+    }
+    /// Whether run() reads the previous frame's output under `parameters`
+    /// (a method with MethodInfo::uses_history may read it only when asked).
+    virtual bool reads_history(const ParameterSet &parameters) const {
+        (void)parameters;
+        return info().uses_history;
+    }
 };
 
 }  // namespace aaf

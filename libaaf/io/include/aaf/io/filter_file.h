@@ -33,6 +33,11 @@ struct FrameFilter {
     /// What the user should know about how `input` is filtered, empty when
     /// nothing: a render handed to another method (choose_method()'s note).
     std::function<std::string(const AovSet &input)> note;
+    /// True when `run` reads the previous frame's output (Method::reads_history):
+    /// each run's output is kept as the next run's history.
+    bool reads_history = false;
+    /// Drops the kept output, so that the next run starts a sequence afresh.
+    std::function<void()> forget_history;
 };
 
 /// The registered method `method` with `parameters` as the pipeline runs it:
@@ -83,6 +88,13 @@ struct FilterFileReport {
 /// filtered before it is written). `options.write` is not used.
 AovSet filter_frame(AovSet input, const std::string &source, const FrameFilter &filter,
                     const FilterFileOptions &options, FilterFileReport &report);
+
+/// What filter_file() would write for `input_path`, computed in memory and
+/// not written (same reading, borrowing, scrubbing and filter): replaying a
+/// frame brings a history-reading filter's kept output up to it. Throws as
+/// filter_file() does.
+AovSet filter_file_in_memory(const std::string &input_path, const FrameFilter &filter,
+                             const FilterFileOptions &options, FilterFileReport &report);
 
 /// Filters one frame, file to file: reads `input_path` with its layout (every
 /// header attribute, the windows, the other parts), borrows the filter's input

@@ -152,6 +152,10 @@ struct RenderTimings {
     double first_pass_s = 0;   ///< primary rays and the first (or only) shadow pass
     double plan_s = 0;         ///< the sampling plan between the passes (adaptive only)
     double second_pass_s = 0;  ///< the remaining shadow samples (adaptive only)
+    /// --aovs maaf6: tracing its path samples, and the wedges and sums (MAAF
+    /// Sec. 6.2). Timings are reported here, never in the image's header,
+    /// so that equal renders stay equal bytes.
+    double maaf6_sampling_s = 0, maaf6_prefilter_s = 0;
 };
 
 /// Names of the scenes found in the scene directories (built-in: the
@@ -163,6 +167,11 @@ std::vector<std::string> builtin_scene_names();
 /// write its output over one of them. Throws aaf::InputError for an unknown
 /// name or malformed JSON.
 std::vector<std::string> scene_input_files(const std::string &scene);
+
+/// The earliest key frame of `scene`'s animation (the camera's or any
+/// light's track), none for a scene without animation. Throws
+/// aaf::InputError for an unknown name or a malformed scene.
+std::optional<double> scene_first_key_frame(const std::string &scene);
 
 /// Throws aaf::Error naming the first setting outside its range: width and
 /// height in [1, 16384], spp in [1, 1048576], threads in [0, 1024], a finite
