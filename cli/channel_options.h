@@ -36,10 +36,23 @@ inline CLI::Validator finite_number(double low, double high = HUGE_VAL, bool low
         "NUMBER" + bounds);
 }
 
+/// A CLI11 check for an unsigned seed: CLI11 would read "-1" into it as
+/// 2^64 - 1, so a negative seed is a usage error (exit 2) naming the option.
+inline CLI::Validator non_negative_seed() {
+    return CLI::Validator(
+        [](std::string &value) {
+            return value.find('-') == std::string::npos ? std::string() : "must not be negative";
+        },
+        "");
+}
+
 /// Adds the options every command that reads AOVs shares: `--map` overrides
 /// and `--threads`.
 inline void add_map_and_threads_options(CLI::App &cmd, std::vector<std::string> &maps, int &threads) {
-    cmd.add_option("--map", maps, "Override a channel name: role=channel[,channel...]");
+    cmd.add_option(
+        "--map", maps,
+        "Override a channel name: role=channel[,channel...], or role=LAYER for a multi-channel role "
+        "(LAYER replaces the role's layer: position=Pw reads Pw.X/Y/Z, ratio_u=myU myU.R/G/B)");
     cmd.add_option("--threads", threads, "Worker threads, 0 = all, at most 1024 (output is identical)")
         ->check(finite_number(0, 1024, /*low_allowed=*/true))
         ->capture_default_str();

@@ -190,9 +190,11 @@ void add_analyze_command(CLI::App &app) {
         "wedge",
         "Accuracy (MAAF Eq. 14) and coverage (MAAF Eq. 15; MAAF Eq. 16-18 for boxes) of AAF, FSF and MAAF on the "
         "flatland double wedge between slopes s_min and s_max, Omega_y^max = 1");
-    cmd->add_option("--smin", options->s_min, "Smallest wedge slope s_min (d1/d2 - 1), > 0")
-        ->check(finite_number(0));
-    cmd->add_option("--smax", options->s_max, "Largest wedge slope s_max, > s_min")->check(finite_number(0));
+    // Past 1e-100 or 1e100, the spectra's squared widths (1 / s_min - 1 / s_max)^2 leave double's range.
+    cmd->add_option("--smin", options->s_min, "Smallest wedge slope s_min (d1/d2 - 1), in [1e-100, 1e100]")
+        ->check(finite_number(1e-100, 1e100, /*low_allowed=*/true));
+    cmd->add_option("--smax", options->s_max, "Largest wedge slope s_max, > s_min, in [1e-100, 1e100]")
+        ->check(finite_number(1e-100, 1e100, /*low_allowed=*/true));
     cmd->add_option("--filters", options->pairs,
                     "MAAF's N, the component pairs counting the central filter; each N gives MAAF(2N-1), "
                     "2N-1 filters (comma-separated list)")
@@ -211,7 +213,9 @@ void add_analyze_command(CLI::App &app) {
                     "Average over this many random wedges 0 < s_min < s_max < 10 (sorted pairs of two "
                     "uniform draws)")
         ->check(CLI::Range(1, 100000));
-    cmd->add_option("--seed", options->seed, "Seed of --random")->capture_default_str();
+    cmd->add_option("--seed", options->seed, "Seed of --random")
+        ->check(non_negative_seed())
+        ->capture_default_str();
     cmd->add_option("--grid", options->grid, "Midpoint cells per axis of the integration grids (even)")
         ->check(CLI::Range(16, 16384))
         ->capture_default_str();

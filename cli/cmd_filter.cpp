@@ -117,8 +117,16 @@ void add_common_options(CLI::App &cmd, FilterOptions &options) {
 /// The method's parameters: defaults, then those given (a bad one is a usage error).
 ParameterSet parameters_from(const Method &method, const std::map<std::string, std::string> &given) {
     ParameterSet parameters = method.default_parameters();
+    for (const auto &entry : given) try {
+            parameters.set(entry.first, entry.second);
+        } catch (const Error &e) {
+            // Named as typed (--seed), as CLI11 names the options it checks itself.
+            std::string option = entry.first;
+            for (const ParameterInfo &info : method.info().parameters)
+                if (info.name == entry.first) option = info.option_name();
+            throw UsageError(option + ": " + e.what());
+        }
     try {
-        for (const auto &entry : given) parameters.set(entry.first, entry.second);
         method.check_parameters(parameters);  // values that do not go together
     } catch (const Error &e) {
         throw UsageError(e.what());

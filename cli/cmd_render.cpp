@@ -291,13 +291,8 @@ void add_render_command(CLI::App &app) {
     cmd->add_option("--spp", options->settings.spp,
                     "Light samples per pixel, stratified over the light, in rounds of 1024")
         ->capture_default_str();
-    // Unchecked, CLI11 reads "-1" into the unsigned seed as 2^64 - 1.
     cmd->add_option("--seed", options->settings.seed, "Random seed")
-        ->check(CLI::Validator(
-            [](std::string &value) {
-                return value.find('-') == std::string::npos ? std::string() : "must not be negative";
-            },
-            ""))
+        ->check(non_negative_seed())
         ->capture_default_str();
     cmd->add_option("--threads", options->settings.threads, "Worker threads, 0 = all (output is identical)")
         ->capture_default_str();
@@ -406,13 +401,13 @@ void add_render_command(CLI::App &app) {
                 check_parameter_groups(*filter, settings.aovs, options->aovs);
             else if (!own_inputs && !served_by)
                 throw UsageError("--filter " + options->filter + " reads AOVs that --aovs " + options->aovs +
-                                 " does not render (add " + options->filter +
-                                 " to --aovs, or leave --aovs out)");
-            else if (!own_inputs && !options->filter_params.empty())
-                throw UsageError("--filter-param: --aovs " + options->aovs + " renders for " +
-                                 served_by->method + ", so --filter " + options->filter + " runs `" +
-                                 delegate_command(*served_by) + "`, which takes none of " + options->filter +
-                                 "'s parameters (use --filter " + served_by->method + " --filter-param ...)");
+                                 " does not render (add " + options->filter + " to --aovs, or leave --aovs out)");
+            else if (!own_inputs && !options->filter_params.empty()) {  // as `aaf filter` refuses it
+                std::string name =
+                    options->filter_params.front().substr(0, options->filter_params.front().find('='));
+                std::replace(name.begin(), name.end(), '-', '_');  // normal-threshold is normal_threshold
+                throw UsageError(delegate_parameter_refusal(*filter->method, *served_by, name));
+            }
         } else if (!options->filter_params.empty()) {
             throw UsageError("--filter-param needs --filter");
         } else if (options->keep_beauty) {
@@ -421,9 +416,15 @@ void add_render_command(CLI::App &app) {
         check_settings(settings, !options->resume.empty());
         // Options that only shape the adaptive second pass do nothing without it.
         if (!settings.adaptive)
-            for (const char *option : {"--mu", "--max-spp"})
+            for (const char *option :
+                 {"--mu", "--max-spp", "--light-bandlimit", "--light-axes", "--pixel-footprint"})
                 if (cmd->count(option) > 0)
                     std::fprintf(stderr, "aaf: warning: %s has no effect without --adaptive\n", option);
+        // Nor do a group's options without the group.
+        if (!(settings.aovs & trace::kAovMaaf6) && cmd->count("--maaf6-effects") > 0)
+            std::fprintf(stderr,
+                         "aaf: warning: --maaf6-effects has no effect without the maaf6 group (--aovs "
+                         "maaf6)\n");
         if (!(options->checkpoint_s > 0)) throw UsageError("--checkpoint must be positive");
         settings.checkpoint_interval_s = options->checkpoint_s;
 

@@ -8,10 +8,10 @@ namespace aaf::cli {
 
 /// A command line that cannot mean anything (a bad frame range or progress
 /// mode, patterns that do not pair up); `aaf` exits with kExitUsage, as for
-/// CLI11's own parse errors.
-class UsageError : public Error {
+/// CLI11's own parse errors (and for the library's aaf::ParameterError).
+class UsageError : public ParameterError {
   public:
-    explicit UsageError(const std::string &message) : Error(message) {}
+    explicit UsageError(const std::string &message) : ParameterError(message) {}
 };
 inline constexpr int kExitUsage = 2;
 /// Thrown by a command that ran to the end but whose check failed

@@ -116,7 +116,7 @@ int run(int argc, char **argv) {
         return kExitInterrupted;
     } catch (const InputError &e) {
         return report(e.what(), kExitInputError);
-    } catch (const UsageError &e) {
+    } catch (const ParameterError &e) {  // UsageError among them
         return report(e.what(), kExitUsage);
     } catch (const CLI::ParseError &e) {
         // --help and --version print as CLI11 prints them and exit 0; a parse

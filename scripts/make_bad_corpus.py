@@ -748,13 +748,228 @@ def render_filter_param_cases():
     ]
 
 
+
+# Real 8x8 renders of each tracer group, the bases of the method cases below:
+# committed (testdata/bad/templates/), so the corpus needs no built aaf;
+# `make_bad_corpus.py --templates AAF` renders them again with that aaf.
+TEMPLATES = os.path.join(BAD, "templates")
+TEMPLATE_GROUPS = {"maaf": "maaf", "maaf6": "maaf6", "ratio": "ratio", "ratio_aaf": "ratio,shadow,all",
+                   "isg": "isg,all"}
+
+
+def render_templates(aaf):
+    import subprocess
+    os.makedirs(TEMPLATES, exist_ok=True)
+    for name, groups in TEMPLATE_GROUPS.items():
+        subprocess.run([aaf, "render", "grids", "-o", os.path.join(TEMPLATES, name + ".exr"), "--width", "8",
+                        "--height", "8", "--spp", "4", "--progress", "none", "--aovs", groups], check=True)
+
+
+def read_template(name):
+    image = oiio.ImageInput.open(os.path.join(TEMPLATES, name + ".exr"))
+    if image is None:
+        sys.exit("missing template %s (make_bad_corpus.py --templates AAF): %s" % (name, oiio.geterror()))
+    spec = oiio.ImageSpec(image.spec())
+    pixels = image.read_image(oiio.FLOAT)
+    image.close()
+    return spec, pixels
+
+
+def write_variant(name, template, attributes=None, fill=None, drop=(), rename=None):
+    """`template` with header `attributes` set ((type, value); type None for
+    OIIO's own from the value), channels matching `fill` (prefix -> value)
+    overwritten, those in `drop` removed and those in `rename` (prefix ->
+    prefix) renamed."""
+    spec, pixels = read_template(template)
+    names = list(spec.channelnames)
+    keep = [i for i, n in enumerate(names) if n not in drop]
+    for prefix, value in (fill or {}).items():
+        for i, n in enumerate(names):
+            if n.startswith(prefix):
+                pixels[:, :, i] = value
+    out_names = []
+    for i in keep:
+        n = names[i]
+        for old, new in (rename or {}).items():
+            if n.startswith(old):
+                n = new + n[len(old):]
+        out_names.append(n)
+    out_spec = oiio.ImageSpec(spec.width, spec.height, len(keep), oiio.FLOAT)
+    out_spec.channelnames = tuple(out_names)
+    out_spec.attribute("compression", "zip")
+    out_spec.attribute("DateTime", FIXED_DATE)
+    for attribute in spec.extra_attribs:
+        if attribute.name.startswith("aaf:"):
+            out_spec.attribute(attribute.name, attribute.type, attribute.value)
+    for key, (kind, value) in (attributes or {}).items():
+        if kind is None:
+            out_spec.attribute(key, value)
+        else:
+            out_spec.attribute(key, oiio.TypeDesc(kind), value)
+    out = oiio.ImageOutput.create(path(name))
+    if not out.open(path(name), out_spec) or not out.write_image(np.ascontiguousarray(pixels[:, :, keep])):
+        sys.exit("cannot write %s: %s" % (name, oiio.geterror()))
+    out.close()
+
+
+NAN = float("nan")
+
+
+def write_method_inputs():
+    for template in TEMPLATE_GROUPS:
+        write_variant(template + ".exr", template)
+    for name, value in [("1e6", 1000000), ("max", 2147483647), ("neg", -1)]:
+        write_variant("ratio_lights_%s.exr" % name, "ratio", {"aaf:ratio:lights": ("int", value)})
+    write_variant("ratio_lights_string.exr", "ratio", {"aaf:ratio:lights": (None, "three")})
+    write_variant("ratio_huge.exr", "ratio_aaf", fill={"ratio.": 3e38})
+    write_variant("ratio_myU.exr", "ratio", rename={"ratio.U.": "myU.", "ratio.L0.U.": "myU.L0."},
+                  attributes={"aaf:ratio:lights": ("int", 0)})
+    for name, value in [("zero", 0.0), ("neg", -3.0), ("nan", NAN), ("1e30", 1e30)]:
+        write_variant("isg_focal_%s.exr" % name, "isg", {"aaf:camera:focal_px": ("float", value)})
+    write_variant("isg_focal_string.exr", "isg", {"aaf:camera:focal_px": (None, "wide")})
+    write_variant("isg_eye_nan.exr", "isg", {"aaf:camera:eye": ("float[3]", (NAN, 1.0, 1.0))})
+    for name, value in [("nan", NAN), ("neg", -0.1)]:
+        write_variant("isg_aperture_%s.exr" % name, "isg", {"aaf:camera:aperture_radius_m": ("float", value)})
+    write_variant("isg_focus_zero.exr", "isg", {"aaf:camera:aperture_radius_m": ("float", 0.05),
+                                                "aaf:camera:focus_distance_m": ("float", 0.0)})
+    write_variant("isg_light_sigma_nan.exr", "isg", {"aaf:light:sigma_m": ("float", NAN)})
+    write_variant("isg_no_depth.exr", "isg", drop=("Z",))
+    write_variant("isg_huge.exr", "isg", fill={"glossy.": 3e38, "reflect.": 3e38, "pinhole.": 3e38})
+    write_variant("maaf_pairs_1e6.exr", "maaf", {"aaf:maaf:pairs": ("int", 1000000)})
+    write_variant("maaf_pairs_neg.exr", "maaf", {"aaf:maaf:pairs": ("int", -3)})
+    write_variant("maaf_omega_nan.exr", "maaf", {"aaf:maaf:omega_y_max": ("float", NAN)})
+    write_variant("maaf_light_normal_zero.exr", "maaf", {"aaf:light:normal": ("float[3]", (0.0, 0.0, 0.0))})
+    write_variant("maaf_huge.exr", "maaf", fill={"maaf.": 3e38, "unshadowed.": 3e38})
+    write_variant("maaf6_pairs_huge.exr", "maaf6", {"aaf:maaf6:pairs": ("int", 2147483647)})
+    write_variant("maaf6_omega_direct_nan.exr", "maaf6", {"aaf:maaf6:omega_y_direct": ("float", NAN)})
+    write_variant("maaf6_omega_indirect_zero.exr", "maaf6", {"aaf:maaf6:omega_y_indirect": ("float", 0.0)})
+    write_variant("maaf6_omega_u_neg.exr", "maaf6", {"aaf:maaf6:omega_u": ("float", -1.0)})
+    write_variant("maaf6_huge.exr", "maaf6", fill={"maaf6.": 3e38})
+    good = aov_planes(1)
+    write_exr("no_rgb.exr", {n: v for n, v in good.items() if n not in ("R", "G", "B")})
+    write_exr("huge_beauty.exr", {n: (np.full_like(v, 3e38) if n in ("R", "G", "B", "shadow.V") else v)
+                                  for n, v in good.items()})
+    write_exr("unshadowed_huge.exr", {n: (np.full_like(v, 3e38) if n.startswith("unshadowed.") else v)
+                                      for n, v in good.items()})
+
+
+def method_input_cases():
+    def filter_(name, method, input_file, code=3, names=None, extra_args=(), **extra):
+        return case(name, ["filter", method, input_file, "-o", "out.exr", *extra_args], code,
+                    names if names is not None else input_file, **extra)
+
+    def usage(name, args, names=None, **extra):
+        return case(name, args, 2, names, **extra)
+
+    render8 = ["--width", "8", "--height", "8", "--spp", "1", "--progress", "none"]
+    warn = lambda name, options, text: case(name, ["render", "grids", "-o", "w.exr", *render8, *options], 0,
+                                            creates=["w.exr"], warns=text)
+    return [
+        # Declared counts against the channels present (before anything is sized by them).
+        filter_("ratio aaf:ratio:lights 1e6", "ratio", "ratio_lights_1e6.exr"),
+        filter_("ratio aaf:ratio:lights 2^31-1", "ratio", "ratio_lights_max.exr"),
+        filter_("ratio aaf:ratio:lights -1", "ratio", "ratio_lights_neg.exr"),
+        filter_("ratio aaf:ratio:lights a string", "ratio", "ratio_lights_string.exr"),
+        filter_("maaf aaf:maaf:pairs 1e6", "maaf", "maaf_pairs_1e6.exr"),
+        filter_("maaf aaf:maaf:pairs -3", "maaf", "maaf_pairs_neg.exr"),
+        filter_("maaf6 aaf:maaf6:pairs 2^31-1", "maaf6", "maaf6_pairs_huge.exr"),
+        # Header attributes out of range: exit 3 naming the attribute (and the file).
+        filter_("isg-shadow focal_px 0", "isg-shadow", "isg_focal_zero.exr", names="aaf:camera:focal_px"),
+        filter_("isg-shadow focal_px negative", "isg-shadow", "isg_focal_neg.exr", names="aaf:camera:focal_px"),
+        filter_("isg-glossy focal_px NaN", "isg-glossy", "isg_focal_nan.exr", names="aaf:camera:focal_px"),
+        filter_("isg-dof focal_px 1e30", "isg-dof", "isg_focal_1e30.exr", names="aaf:camera:focal_px"),
+        filter_("isg-shadow focal_px a string", "isg-shadow", "isg_focal_string.exr",
+                names="aaf:camera:focal_px"),
+        filter_("isg-glossy eye NaN", "isg-glossy", "isg_eye_nan.exr", names="aaf:camera:eye"),
+        filter_("isg-dof aperture NaN", "isg-dof", "isg_aperture_nan.exr", names="aaf:camera:aperture_radius_m"),
+        filter_("isg-dof aperture negative", "isg-dof", "isg_aperture_neg.exr",
+                names="aaf:camera:aperture_radius_m"),
+        filter_("isg-dof focus distance 0 with a lens", "isg-dof", "isg_focus_zero.exr",
+                names="aaf:camera:focus_distance_m"),
+        filter_("isg-shadow light sigma NaN", "isg-shadow", "isg_light_sigma_nan.exr", names="aaf:light:sigma_m"),
+        filter_("maaf omega_y_max NaN", "maaf", "maaf_omega_nan.exr", names="aaf:maaf:omega_y_max"),
+        filter_("maaf light normal zero", "maaf", "maaf_light_normal_zero.exr", names="aaf:light:normal"),
+        filter_("maaf6 omega_y_direct NaN", "maaf6", "maaf6_omega_direct_nan.exr",
+                names="aaf:maaf6:omega_y_direct"),
+        filter_("maaf6 omega_y_indirect 0", "maaf6", "maaf6_omega_indirect_zero.exr",
+                names="aaf:maaf6:omega_y_indirect"),
+        filter_("maaf6 omega_u negative", "maaf6", "maaf6_omega_u_neg.exr", names="aaf:maaf6:omega_u"),
+        # A role is read only from its own name: no depth from P.Z, no beauty from unshadowed.R/G/B.
+        filter_("isg-shadow without Z (P.Z present)", "isg-shadow", "isg_no_depth.exr", names="depth"),
+        filter_("isg-dof without Z (P.Z present)", "isg-dof", "isg_no_depth.exr", names="depth"),
+        # Without R,G,B the composed beauty is written to R,G,B, unshadowed.R/G/B left as they were.
+        filter_("gaussian without R,G,B (unshadowed present)", "gaussian", "no_rgb.exr", code=0, names="",
+                creates=["out.exr"]),
+        filter_("aaf without R,G,B (unshadowed present)", "aaf", "no_rgb.exr", code=0, names="",
+                creates=["out.exr"]),
+        filter_("isg-glossy on a ratio render", "isg-glossy", "ratio.exr"),
+        filter_("maaf6 on a maaf render", "maaf6", "maaf.exr"),
+        # Finite input, finite output (or an error naming the channel).
+        filter_("ratio inputs 3e38 (aaf widths, control variate)", "ratio", "ratio_huge.exr", code=0, names="",
+                extra_args=("--denoiser", "aaf", "--estimator", "control-variate"), creates=["out.exr"]),
+        case("gaussian beauty 3e38", ["filter", "gaussian", "huge_beauty.exr", "-o", "out.exr"], 0,
+             creates=["out.exr"]),
+        case("aaf unshadowed 3e38", ["filter", "aaf", "unshadowed_huge.exr", "-o", "out.exr"], 0,
+             creates=["out.exr"]),
+        case("maaf sums 3e38", ["filter", "maaf", "maaf_huge.exr", "-o", "out.exr"], 0, creates=["out.exr"]),
+        case("maaf6 layers 3e38", ["filter", "maaf6", "maaf6_huge.exr", "-o", "out.exr"], 0, creates=["out.exr"]),
+        case("isg-glossy and isg-dof inputs 3e38", ["filter", "isg-dof", "isg_huge.exr", "-o", "out.exr"], 0,
+             creates=["out.exr"]),
+        # --map forms.
+        filter_("ratio --map ratio_u=myU reads myU.R/G/B", "ratio", "ratio_myU.exr", code=0, names="",
+                extra_args=("--map", "ratio_u=myU"), creates=["out.exr"]),
+        filter_("ratio --map ratio_u=nosuch", "ratio", "ratio.exr", names="nosuch.R",
+                extra_args=("--map", "ratio_u=nosuch")),
+        usage("--map without a channel", ["filter", "ratio", "ratio.exr", "-o", "out.exr", "--map", "ratio_u="],
+              "--map"),
+        usage("--map of an unknown role", ["filter", "gaussian", "good.exr", "-o", "out.exr", "--map", "colour=R"],
+              "colour"),
+        usage("--map with two channels for three", ["filter", "isg-shadow", "isg.exr", "-o", "out.exr", "--map",
+                                                    "position=a,b"], "--map"),
+        usage("--map without a role", ["filter", "maaf", "maaf.exr", "-o", "out.exr", "--map", "=P.X"], "--map"),
+        # Exit codes of options.
+        usage("analyze wedge --smin 1e-300 --smax 1e300 --gauss",
+              ["analyze", "wedge", "--smin", "1e-300", "--smax", "1e300", "--gauss"], "--smin"),
+        usage("analyze wedge --seed -1", ["analyze", "wedge", "--random", "2", "--grid", "16", "--seed", "-1"],
+              "--seed"),
+        usage("render --seed -1", ["render", "grids", "-o", "out.exr", *render8, "--seed", "-1"], "--seed"),
+        usage("filter ratio --seed -1", ["filter", "ratio", "ratio.exr", "-o", "out.exr", "--seed", "-1"],
+              "--seed"),
+        usage("filter maaf --k 2 on a maaf6 render", ["filter", "maaf", "maaf6.exr", "-o", "out.exr", "--k", "2"],
+              "maaf6.exr"),
+        usage("render --aovs maaf6 --filter maaf --filter-param k=2",
+              ["render", "grids", "-o", "out.exr", *render8, "--aovs", "maaf6", "--filter", "maaf",
+               "--filter-param", "k=2"], "maaf6"),
+        usage("render --filter isg-dof --filter-param aperture=-1",
+              ["render", "grids", "-o", "out.exr", *render8, "--filter", "isg-dof", "--filter-param",
+               "aperture=-1"], "aperture"),
+        usage("render --aovs maaf6 --maaf6-effects bogus",
+              ["render", "grids", "-o", "out.exr", *render8, "--aovs", "maaf6", "--maaf6-effects", "bogus"],
+              "bogus"),
+        usage("filter gaussian --sigma NaN", ["filter", "gaussian", "good.exr", "-o", "out.exr", "--sigma", "nan"],
+              "nan"),
+        # Options without effect are named in a warning.
+        warn("render --maaf6-effects without the maaf6 group", ["--maaf6-effects", "shadows"], "--maaf6-effects"),
+        warn("render --light-bandlimit without --adaptive", ["--light-bandlimit", "sigma"], "--light-bandlimit"),
+        warn("render --pixel-footprint without --adaptive", ["--pixel-footprint", "receiver"], "--pixel-footprint"),
+        # --light.
+        filter_("isg-shadow --light of a missing file", "isg-shadow", "isg.exr", names="nosuch.json",
+                extra_args=("--light", "nosuch.json")),
+        filter_("maaf --light of garbage", "maaf", "maaf.exr", names="garbage.obj",
+                extra_args=("--light", "garbage.obj")),
+    ]
+
+
 def main():
     shutil.rmtree(FILES, ignore_errors=True)
     os.makedirs(FILES)
+    if len(sys.argv) == 3 and sys.argv[1] == "--templates":
+        render_templates(sys.argv[2])
     write_images()
     write_scenes()
     write_temporal_files()
-    cases = render_cases() + filter_cases() + other_cases() + fuzz_cases()
+    write_method_inputs()
+    cases = render_cases() + filter_cases() + other_cases() + fuzz_cases() + method_input_cases()
     cases += python_module_cases() + aaf_complete_cases() + slurm_filter_cases() + blender_bridge_cases()
     cases += temporal_sequence_cases() + render_filter_param_cases()
     names = [c["name"] for c in cases]

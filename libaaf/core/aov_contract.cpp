@@ -380,6 +380,23 @@ LightPlane read_light_attributes(const std::map<std::string, AttributeValue> &ao
     return light;
 }
 
+namespace {
+
+/// The length of the dotted prefix every name in `names` starts with, dot
+/// included ("ratio.U." of ratio.U.R/G/B, "P." of P.X/Y/Z, none of R/G/B).
+std::size_t shared_layer_length(const std::vector<std::string> &names) {
+    std::size_t length = 0;
+    const std::string &first = names.front();
+    for (std::size_t dot = first.find('.'); dot != std::string::npos; dot = first.find('.', dot + 1)) {
+        for (const std::string &name : names)
+            if (name.size() <= dot + 1 || name.compare(0, dot + 1, first, 0, dot + 1) != 0) return length;
+        length = dot + 1;
+    }
+    return length;
+}
+
+}  // namespace
+
 ChannelMap::ChannelMap() {
     for (const RoleInfo &info : role_table()) names_[info.role] = info.channels;
 }
@@ -409,14 +426,13 @@ void ChannelMap::set_override(const std::string &spec) {
     }
     const std::vector<std::string> &defaults = info->channels;
     if (names.size() == 1 && defaults.size() > 1) {
-        // A layer name, dotted too (Blender's ViewLayer.Position): keep each
-        // default channel's suffix (P.X -> Pw.X, ViewLayer.Position.X).
-        std::string layer = names[0];
+        // A layer name, dotted too (Blender's ViewLayer.Position), replaces
+        // the role's layer, the dotted prefix all its channels share, and
+        // keeps only what follows it: P.X -> Pw.X, ratio.U.R -> myU.R.
+        const std::string layer = names[0];
+        const std::size_t shared = shared_layer_length(defaults);
         names.clear();
-        for (const std::string &name : defaults) {
-            std::size_t dot = name.find('.');
-            names.push_back(layer + (dot == std::string::npos ? "." + name : name.substr(dot)));
-        }
+        for (const std::string &name : defaults) names.push_back(layer + "." + name.substr(shared));
     }
     if (names.size() != defaults.size())
         throw Error("mapping '" + spec + "' names " + std::to_string(names.size()) + " channels, role '" +
@@ -461,11 +477,8 @@ const std::vector<RoleSynonym> &role_synonyms() {
 namespace {
 
 /// The channels of `patterns` as `aovs` names them, or none. A "*." prefix
-/// matches any prefix that completes every pattern; with `unique_prefix`,
-/// several such prefixes (AO.R and Combined.R for "*.R") match nothing, since
-/// guessing would filter the wrong pass.
-std::vector<std::string> match_channels(const std::vector<std::string> &patterns, const AovSet &aovs,
-                                        bool unique_prefix = false) {
+/// matches any prefix that completes every pattern (the first found).
+std::vector<std::string> match_channels(const std::vector<std::string> &patterns, const AovSet &aovs) {
     const auto complete = [&](const std::string &prefix) {
         std::vector<std::string> names;
         for (const std::string &pattern : patterns) {
@@ -477,15 +490,64 @@ std::vector<std::string> match_channels(const std::vector<std::string> &patterns
     };
     if (patterns.front().rfind("*.", 0) != 0) return complete("");
     const std::string tail = patterns.front().substr(1);  // ".Combined.R"
-    std::vector<std::string> found;
     for (const std::string &name : aovs.channel_names()) {
         if (name.size() <= tail.size() || name.compare(name.size() - tail.size(), tail.size(), tail) != 0)
             continue;
         std::vector<std::string> names = complete(name.substr(0, name.size() - tail.size()));
-        if (names.empty()) continue;
-        if (!unique_prefix) return names;
+        if (!names.empty()) return names;
+    }
+    return {};
+}
+
+/// The layer of a channel name ("P" of "P.X", "isg.reflection" of
+/// "isg.reflection.R"), empty for a bare name ("Z"); a synonym's "*." dropped.
+std::string layer_of(const std::string &name) {
+    const std::string bare = name.rfind("*.", 0) == 0 ? name.substr(2) : name;
+    const std::size_t dot = bare.rfind('.');
+    return dot == std::string::npos ? std::string() : bare.substr(0, dot);
+}
+
+/// True when `prefix` ("ViewLayer.") ends in a layer some role's channels
+/// live in ("P.", "ViewLayer.unshadowed."): such a prefix names a pass, not
+/// a view layer, and a role found under it would be another role's data.
+bool is_role_layer_prefix(const std::string &prefix) {
+    const auto ends_in = [&prefix](const std::string &layer) {
+        const std::string tail = layer + ".";
+        if (prefix == tail) return true;
+        return prefix.size() > tail.size() &&
+               prefix.compare(prefix.size() - tail.size(), tail.size(), tail) == 0 &&
+               prefix[prefix.size() - tail.size() - 1] == '.';
+    };
+    for (const RoleInfo &info : role_table())
+        for (const std::string &name : info.channels)
+            if (const std::string layer = layer_of(name); !layer.empty() && ends_in(layer)) return true;
+    for (const RoleSynonym &synonym : role_synonyms())
+        for (const std::string &name : synonym.channels)
+            if (const std::string layer = layer_of(name); !layer.empty() && ends_in(layer)) return true;
+    return false;
+}
+
+/// The contract's `names` under the file's view-layer prefix: one that every
+/// channel of `aovs` starts with (a whole file under `ViewLayer.`, as
+/// Blender writes it) and that is no role's layer. None when no such prefix
+/// completes them, or when several do.
+std::vector<std::string> under_view_layer(const std::vector<std::string> &names, const AovSet &aovs) {
+    const std::vector<std::string> &channels = aovs.channel_names();
+    if (channels.empty()) return {};
+    std::vector<std::string> found;
+    const std::string &first = channels.front();
+    for (std::size_t dot = first.find('.'); dot != std::string::npos; dot = first.find('.', dot + 1)) {
+        const std::string prefix = first.substr(0, dot + 1);
+        bool shared = true;
+        for (const std::string &channel : channels) shared = shared && channel.rfind(prefix, 0) == 0;
+        if (!shared) break;  // a longer prefix is shared by fewer channels still
+        if (is_role_layer_prefix(prefix)) continue;
+        std::vector<std::string> complete;
+        for (const std::string &name : names)
+            if (aovs.has_channel(prefix + name)) complete.push_back(prefix + name);
+        if (complete.size() != names.size()) continue;
         if (!found.empty()) return {};
-        found = names;
+        found = complete;
     }
     return found;
 }
@@ -498,15 +560,13 @@ ChannelMap ChannelMap::resolved(const AovSet &aovs) const {
         if (overridden_.count(role)) continue;
         if (!match_channels(names, aovs).empty()) continue;
         // Other renderers' names first (their pass names say what they hold),
-        // then the contract's own names under a single view-layer prefix.
+        // then the contract's own names under the file's view-layer prefix.
+        // Never another pass's channels: a missing depth Z is not P.Z, a
+        // missing beauty R is not unshadowed.R.
         std::vector<std::string> found;
         for (const RoleSynonym &synonym : role_synonyms())
             if (synonym.role == role && found.empty()) found = match_channels(synonym.channels, aovs);
-        if (found.empty()) {
-            std::vector<std::string> prefixed;
-            for (const std::string &name : role_info(role).channels) prefixed.push_back("*." + name);
-            found = match_channels(prefixed, aovs, /*unique_prefix=*/true);
-        }
+        if (found.empty()) found = under_view_layer(role_info(role).channels, aovs);
         if (!found.empty()) names = found;
     }
     // Blender's compositor shows only the layers under a file's view-layer

@@ -88,7 +88,9 @@ std::string synonyms_markdown() {
                          code_list(synonym.channels);
         if (!tried.empty()) text += "| `" + std::string(info.key) + "` | " + tried + " |\n";
     }
-    text += "| every role, last | its contract names under a single prefix: `*.shadow.V`, `*.P.X`, ... |\n";
+    text +=
+        "| every role, last | its contract names under the file's view-layer prefix (shared by every "
+        "channel, no pass's layer): `ViewLayer.shadow.V`, ... |\n";
     return text;
 }
 

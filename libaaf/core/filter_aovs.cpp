@@ -1,6 +1,8 @@
 #include "aaf/core/filter_aovs.h"
 
 #include <algorithm>
+#include <cmath>
+#include <sstream>
 
 #include "aaf/core/error.h"
 #include "aaf/core/frame_allocator.h"
@@ -76,7 +78,8 @@ void bind_inputs(const Method &method, const SplitInput &input, const ChannelMap
         images.set_input(role, views);
     }
     // The ratio roles' per-light layers, named after the summed layer's channels.
-    const int lights = ratio_light_count(input.rest.attributes);
+    const int lights = ratio_light_count(
+        input.rest.attributes, input.moved.channel_names().size() + input.rest.channel_names().size());
     images.set_light_count(lights);
     for (Role role : roles) {
         if (!is_per_light_role(role)) continue;
@@ -128,6 +131,16 @@ std::string delegate_command(const MethodDelegate &delegate) {
     return command;
 }
 
+std::string delegate_parameter_refusal(const Method &method, const MethodDelegate &delegate,
+                                       const std::string &parameter) {
+    std::string option = parameter;
+    for (const ParameterInfo &info : method.info().parameters)
+        if (info.name == parameter) option = info.option_name();
+    return delegate.why + " is filtered as `" + delegate_command(delegate) + "`, which does not take " +
+           method.info().name + "'s " + option + ": give " + delegate.method + "'s own options (aaf filter " +
+           delegate.method + " --help)";
+}
+
 MethodChoice choose_method(const Method &method, const ParameterSet &parameters, const AovSet &aovs,
                            const ChannelMap &channels) {
     MethodChoice choice{&method, parameters, {}};
@@ -144,9 +157,7 @@ MethodChoice choose_method(const Method &method, const ParameterSet &parameters,
         const ParameterSet defaults = method.default_parameters();
         for (const ParameterInfo &info : method.info().parameters)
             if (parameters.text(info.name) != defaults.text(info.name))
-                throw Error(choice.note + ", which does not take " + method.info().name + "'s " +
-                            info.option_name() + ": give " + other.info().name + "'s options to `" + command +
-                            "`");
+                throw ParameterError(delegate_parameter_refusal(method, delegate, info.name));
         return choice;
     }
     return choice;  // check_inputs() names what `method` lacks
@@ -158,6 +169,55 @@ AovSet filter_aovs(const Method &method, const AovSet &input, const ChannelMap &
 }
 
 namespace {
+
+/// The largest |value| of a plane, or NaN when it holds a non-finite value.
+float largest_magnitude(ConstPlaneView plane) {
+    float largest = 0;
+    for (int y = 0; y < plane.height; ++y)
+        for (int x = 0; x < plane.width; ++x) {
+            const float v = plane(x, y);
+            if (!std::isfinite(v)) return std::nanf("");
+            largest = std::max(largest, std::fabs(v));
+        }
+    return largest;
+}
+
+/// A finite input gives a finite output: where a method's single-precision
+/// sums of inputs near float's limit (3.4e38) overflowed, this throws
+/// aaf::InputError naming the output and the input channel with the largest
+/// values, rather than returning Inf. Inputs that were not finite to begin
+/// with (a caller that did not scrub them) pass as they are.
+void check_finite_outputs(const Method &method, const MethodImages &images, const ChannelMap &found,
+                          const AovSet &out) {
+    std::string overflowed;
+    for (Role role : method.info().roles.outputs)
+        for (const std::string &name : found.channels(role))
+            if (overflowed.empty() && out.has_channel(name) &&
+                std::isnan(largest_magnitude(out.channel(name))))
+                overflowed = name;
+    if (overflowed.empty()) return;
+    std::vector<Role> roles = method.info().roles.required;
+    roles.insert(roles.end(), method.info().roles.optional.begin(), method.info().roles.optional.end());
+    std::string largest_name;
+    float largest = -1;
+    for (Role role : roles) {
+        if (!images.has(role)) continue;
+        const std::vector<std::string> &names = found.channels(role);
+        for (std::size_t c = 0; c < names.size(); ++c) {
+            const float magnitude = largest_magnitude(images.input(role, c));
+            if (std::isnan(magnitude)) return;
+            if (magnitude > largest) {
+                largest = magnitude;
+                largest_name = names[c];
+            }
+        }
+    }
+    std::ostringstream value;
+    value << largest;
+    throw InputError("output " + quoted(overflowed) + " overflowed to a non-finite value: input channel " +
+                     quoted(largest_name) + " holds values up to " + value.str() +
+                     ", too large to filter in single precision (scale the image down)");
+}
 
 AovSet run_method(const Method &method, AovSet &&input, const ChannelMap &found, const ParameterSet &parameters,
                   const ProgressMonitor &monitor, const AovSet *history) {
@@ -225,6 +285,7 @@ AovSet run_method(const Method &method, AovSet &&input, const ChannelMap &found,
     progress.report(0.0);
     method.run(images, parameters, progress);
     images.make_deferred_outputs();  // a method that never asked still gets its channels
+    check_finite_outputs(method, images, found, out);
     // Kept for reuse, the freed scratch would add to the caller's next
     // allocations (the output file's buffers): a frame's filter returns it.
     release_frame_memory();

@@ -5,6 +5,11 @@
 
 namespace aaf {
 
+namespace {
+/// A light's own layers hold at least its analytic U's R, G, B.
+constexpr std::size_t kMinChannelsPerLight = 3;
+}  // namespace
+
 bool is_per_light_role(Role role) {
     switch (role) {
         case Role::RatioAnalytic:
@@ -29,12 +34,18 @@ std::string per_light_channel(const std::string &channel, int light) {
     return channel.substr(0, last + 1) + tag + channel.substr(last + 1);
 }
 
-int ratio_light_count(const std::map<std::string, AttributeValue> &attributes) {
+int ratio_light_count(const std::map<std::string, AttributeValue> &attributes, std::size_t channel_count) {
     const auto it = attributes.find(attr::kRatioLights);
     if (it == attributes.end()) return 0;
     const int *count = std::get_if<int>(&it->second);
     if (!count || *count < 0)
         throw InputError("header attribute " + quoted(attr::kRatioLights) + " must be a non-negative int");
+    // Checked before anything is sized by it: a few header bytes must not
+    // ask for millions of layer names.
+    if (std::size_t(*count) * kMinChannelsPerLight > channel_count)
+        throw InputError("header attribute " + quoted(attr::kRatioLights) + " is " + std::to_string(*count) +
+                         ", but the file has " + std::to_string(channel_count) + " channels (each light's " +
+                         "ratio.L<i>.* layers take at least " + std::to_string(kMinChannelsPerLight) + ")");
     return *count;
 }
 

@@ -97,7 +97,7 @@ FrameFilter method_filter(const Method &method, const ParameterSet &parameters, 
         // The ratio roles' per-light layers are inputs too (ratio_layers.h).
         std::vector<Role> roles = info.roles.required;
         roles.insert(roles.end(), info.roles.optional.begin(), info.roles.optional.end());
-        const int lights = ratio_light_count(input.attributes);
+        const int lights = ratio_light_count(input.attributes, input.channel_names().size());
         for (Role role : roles)
             if (is_per_light_role(role))
                 for (int light = 0; light < lights; ++light)

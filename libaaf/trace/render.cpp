@@ -121,6 +121,7 @@ int check_resumable(const AovSet &partial, const SceneDescription &scene, const 
         fail("the scene changed since it was rendered (header attribute 'aaf:scene_hash' differs)");
     const int *done = std::get_if<int>(&attribute(attr::kSppDone));
     if (!done) fail("header attribute 'aaf:spp_done' is not an int");
+    if (*done < 0) fail("header attribute 'aaf:spp_done' is negative");
     if (*done > settings.spp) fail("it already has " + std::to_string(*done) + " spp, more than --spp");
     return *done;
 }

@@ -51,7 +51,7 @@ const aaf::AovSet &render() {
 double bytes_moved(const aaf::Method &method, const aaf::AovSet &aovs) {
     const aaf::MethodInfo &info = method.info();
     const aaf::ChannelMap found = aaf::ChannelMap{}.resolved(aovs);
-    const int lights = aaf::ratio_light_count(aovs.attributes);
+    const int lights = aaf::ratio_light_count(aovs.attributes, aovs.channel_names().size());
     std::vector<aaf::Role> roles = info.roles.required;
     roles.insert(roles.end(), info.roles.optional.begin(), info.roles.optional.end());
     std::vector<std::string> read;

@@ -9,6 +9,7 @@ the README's promises for a bad input:
 - on failure, stderr is exactly one `aaf: error: ...` line (warnings aside;
   each program has its own prefix, e.g. `aaf.Error:` for the module),
   naming the case's file or option when it lists one;
+- a case that `warns` prints an `aaf: warning:` line naming that text;
 - no crash (a signal or a sanitizer report), no hang (--timeout per case),
   peak memory under --max-rss-mb (and an RLIMIT_AS, so a runaway allocation
   fails fast instead of filling the machine);
@@ -200,6 +201,9 @@ def run_case(case, opts):
     if code != case["exit"]:
         problems.append("exit %d, expected %d" % (code, case["exit"]))
     problems += error_line_problems(case, code, stderr)
+    if case.get("warns") and not any(l.startswith("aaf: warning:") and case["warns"] in l
+                                     for l in stderr.splitlines()):
+        problems.append("no 'aaf: warning:' line naming %r" % case["warns"])
     if rss_mb > opts.max_rss_mb:
         problems.append("peak memory %.0f MB, more than %d MB" % (rss_mb, opts.max_rss_mb))
     problems += file_problems(case, before, snapshot(scratch), opts.aaf, scratch, opts.timeout,

@@ -201,10 +201,10 @@ TEST_CASE("CLI: filter aaf and filter maaf take a combined-effects render as maa
               .exit_code == 2);
     CHECK_FALSE(fs::exists(dir / "never.exr"));
 
-    // An AAF option the delegate does not take: one line naming it, nothing written.
+    // An AAF option the delegate does not take: a usage error, as from render, one line naming it, nothing written.
     const std::string refused = (dir / "refused.exr").string();
     const RunResult run = run_aaf("filter aaf --k 2 " + render + " -o " + refused);
-    CHECK(run.exit_code == 1);
+    CHECK(run.exit_code == 2);
     CHECK_THAT(run.output, Catch::StartsWith("aaf: error: " + render) && Catch::Contains("aaf's --k"));
     CHECK(std::count(run.output.begin(), run.output.end(), '\n') == 1);
     CHECK_FALSE(fs::exists(refused));

@@ -6,6 +6,7 @@
 #include "aaf/core/error.h"
 #include "aaf/core/filter_aovs.h"
 #include "aaf/core/method_registry.h"
+#include "aaf/core/ratio_layers.h"
 
 using namespace aaf;
 
@@ -103,4 +104,84 @@ TEST_CASE("Renderer names resolve to roles, and an ambiguous layer prefix is not
         aovs.add_channel("layerB.shadow.V");
         CHECK(map.resolved(aovs).channel(Role::Visibility) == "shadow.V");
     }
+}
+
+TEST_CASE("A role is read only from its own name, a --map, or a renderer synonym, never from another pass",
+          "[contract]") {
+    const ChannelMap map;
+    SECTION("depth is not P.Z, the beauty is not unshadowed.R/G/B") {
+        AovSet aovs(1, 1);
+        for (const char *c : {"X", "Y", "Z"}) aovs.add_channel(std::string("P.") + c);
+        for (const char *c : {"R", "G", "B"}) aovs.add_channel(std::string("unshadowed.") + c);
+        aovs.add_channel("shadow.V");
+        const ChannelMap found = map.resolved(aovs);
+        CHECK(found.channel(Role::Depth) == "Z");
+        CHECK(found.channels(Role::Beauty) == std::vector<std::string>{"R", "G", "B"});
+        CHECK(found.channels(Role::Unshadowed).front() == "unshadowed.R");
+    }
+    SECTION("nor when that pass is the whole file") {
+        AovSet aovs(1, 1);
+        for (const char *c : {"X", "Y", "Z"}) aovs.add_channel(std::string("P.") + c);
+        CHECK(map.resolved(aovs).channel(Role::Depth) == "Z");
+        AovSet rgb(1, 1);
+        for (const char *c : {"R", "G", "B"}) rgb.add_channel(std::string("ViewLayer.unshadowed.") + c);
+        CHECK(map.resolved(rgb).channels(Role::Beauty).front() == "R");
+    }
+    SECTION("a whole file under one view-layer prefix still resolves") {
+        AovSet aovs(1, 1);
+        for (const char *name : {"Z", "shadow.V", "P.X", "P.Y", "P.Z", "unshadowed.R", "unshadowed.G",
+                                 "unshadowed.B", "Combined.R", "Combined.G", "Combined.B"})
+            aovs.add_channel(std::string("ViewLayer.") + name);
+        const ChannelMap found = map.resolved(aovs);
+        CHECK(found.channel(Role::Depth) == "ViewLayer.Z");
+        CHECK(found.channel(Role::Visibility) == "ViewLayer.shadow.V");
+        CHECK(found.channels(Role::Position).back() == "ViewLayer.P.Z");
+        CHECK(found.channels(Role::Beauty).front() == "ViewLayer.Combined.R");
+    }
+    SECTION("a prefix only some channels share is no view layer") {
+        AovSet aovs(1, 1);
+        aovs.add_channel("diffuse.R");
+        aovs.add_channel("diffuse.G");
+        aovs.add_channel("diffuse.B");
+        aovs.add_channel("shadow.V");
+        CHECK(map.resolved(aovs).channels(Role::Beauty).front() == "R");
+    }
+}
+
+TEST_CASE("A --map layer replaces the role's layer and keeps only the component suffix", "[contract]") {
+    ChannelMap map;
+    map.set_override("ratio_u=myU");
+    CHECK(map.channels(Role::RatioAnalytic) == std::vector<std::string>{"myU.R", "myU.G", "myU.B"});
+    map.set_override("position=Pw");
+    CHECK(map.channels(Role::Position) == std::vector<std::string>{"Pw.X", "Pw.Y", "Pw.Z"});
+    map.set_override("maaf6_direct=ViewLayer.direct");
+    CHECK(map.channels(Role::Maaf6Direct) ==
+          std::vector<std::string>{"ViewLayer.direct.R", "ViewLayer.direct.G", "ViewLayer.direct.B"});
+    // Every multi-channel role: the layer form gives distinct names, each under the layer.
+    for (const RoleInfo &info : role_table()) {
+        if (info.channels.size() < 2) continue;
+        INFO(info.key);
+        ChannelMap one;
+        one.set_override(std::string(info.key) + "=L");
+        const std::vector<std::string> &names = one.channels(info.role);
+        CHECK(std::set<std::string>(names.begin(), names.end()).size() == names.size());
+        for (const std::string &name : names) CHECK(name.rfind("L.", 0) == 0);
+    }
+}
+
+TEST_CASE("A declared light count is checked against the channels present before it sizes anything",
+          "[contract]") {
+    std::map<std::string, AttributeValue> attributes;
+    CHECK(ratio_light_count(attributes, 10) == 0);
+    attributes[attr::kRatioLights] = 2;
+    CHECK(ratio_light_count(attributes, 40) == 2);
+    for (int count : {1000000, 2147483647}) {
+        attributes[attr::kRatioLights] = count;
+        CHECK_THROWS_AS(ratio_light_count(attributes, 40), InputError);
+        CHECK_THROWS_WITH(ratio_light_count(attributes, 40), Catch::Contains("aaf:ratio:lights") &&
+                                                                 Catch::Contains(std::to_string(count)) &&
+                                                                 Catch::Contains("40 channels"));
+    }
+    attributes[attr::kRatioLights] = -1;
+    CHECK_THROWS_AS(ratio_light_count(attributes, 40), InputError);
 }

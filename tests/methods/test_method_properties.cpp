@@ -334,3 +334,42 @@ TEST_CASE("Every method with a delegate: a render made for the delegate gives th
         }
     }
 }
+
+TEST_CASE("Every method: a finite input gives a finite output, or an input error naming the channel",
+          "[methods]") {
+    // 3e38 is finite, near float's largest; single-precision products and sums of it overflow.
+    const AovSet &clean = realistic_input();
+    for (const Method *method : methods()) {
+        const AovSet reference = run_method(*method, clean);
+        for (Role role : input_roles(method->info())) {
+            if (role == Role::ObjectId || role == Role::Motion) continue;  // ids and motion are not summed
+            INFO(method->info().name << ": " << role_info(role).key << " = 3e38");
+            AovSet input = clean;
+            for (const std::string &name : role_info(role).channels) {
+                PlaneView view = input.channel(name);
+                std::fill(view.data, view.data + input.pixel_count(), 3e38f);
+            }
+            try {
+                const AovSet out = run_method(*method, input);
+                for (const std::string &written : writable_channels(method->info())) {
+                    if (!out.has_channel(written)) continue;
+                    const ConstPlaneView before = reference.channel(written), after = out.channel(written);
+                    int overflowed = 0;
+                    for (int y = 0; y < out.height(); ++y)
+                        for (int x = 0; x < out.width(); ++x)
+                            if (std::isfinite(before(x, y)) && !std::isfinite(after(x, y))) ++overflowed;
+                    INFO(written);
+                    CHECK(overflowed == 0);
+                }
+            } catch (const InputError &e) {
+                const std::string message = e.what();
+                bool names_channel = false;
+                for (const std::string &name : role_info(role).channels)
+                    names_channel = names_channel || message.find("'" + name + "'") != std::string::npos;
+                INFO(message);
+                CHECK(names_channel);
+                CHECK(message.find('\n') == std::string::npos);
+            }
+        }
+    }
+}

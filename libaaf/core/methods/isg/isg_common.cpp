@@ -2,7 +2,9 @@
 
 #include <algorithm>
 #include <limits>
+#include <sstream>
 
+#include "aaf/core/aov_contract.h"
 #include "aaf/core/error.h"
 #include "aaf/core/quoted.h"
 
@@ -43,6 +45,12 @@ CommonSettings common_settings(const ParameterSet &parameters) {
 
 namespace {
 
+std::string describe(float value) {
+    std::ostringstream text;
+    text << value;
+    return text.str();
+}
+
 const AttributeValue &attribute(const std::map<std::string, AttributeValue> &attributes, const char *name) {
     auto it = attributes.find(name);
     if (it == attributes.end())
@@ -60,8 +68,34 @@ float float_attribute(const std::map<std::string, AttributeValue> &attributes, c
 }
 
 Vec3 vec3_attribute(const std::map<std::string, AttributeValue> &attributes, const char *name) {
-    if (const Vec3 *v = std::get_if<Vec3>(&attribute(attributes, name))) return *v;
-    throw InputError("header attribute " + quoted(name) + " has the wrong type");
+    const Vec3 *v = std::get_if<Vec3>(&attribute(attributes, name));
+    if (!v) throw InputError("header attribute " + quoted(name) + " has the wrong type");
+    if (!all_finite(*v))
+        throw InputError("header attribute " + quoted(name) + " must be finite (is " + describe(v->x) + " " +
+                         describe(v->y) + " " + describe(v->z) + ")");
+    return *v;
+}
+
+float positive_attribute(const std::map<std::string, AttributeValue> &attributes, const char *name,
+                         float max_value) {
+    const float value = float_attribute(attributes, name);
+    if (!(value > 0) || !(value <= max_value))
+        throw InputError("header attribute " + quoted(name) + " must be positive and at most " +
+                         describe(max_value) + " (is " + describe(value) + ")");
+    return value;
+}
+
+float non_negative_attribute(const std::map<std::string, AttributeValue> &attributes, const char *name) {
+    const float value = float_attribute(attributes, name);
+    if (!(value >= 0) || !std::isfinite(value))
+        throw InputError("header attribute " + quoted(name) + " must be finite and not negative (is " +
+                         describe(value) + ")");
+    return value;
+}
+
+float focal_px_attribute(const std::map<std::string, AttributeValue> &attributes, int height) {
+    // A vertical field of view of at least 1e-6 rad: focal_px = height / (2 tan(fov_y / 2)).
+    return positive_attribute(attributes, attr::kCameraFocalPx, 1e6f * float(std::max(height, 1)));
 }
 
 Vec3Planes vec3_input(const MethodImages &images, Role role) {

@@ -29,9 +29,19 @@ struct CommonSettings {
 };
 CommonSettings common_settings(const ParameterSet &parameters);
 
-/// A float or Vec3 header attribute; throws aaf::InputError naming a missing or mistyped one.
+/// A float or Vec3 header attribute; throws aaf::InputError naming a missing
+/// or mistyped one (and a Vec3 with a NaN or infinite component).
 float float_attribute(const std::map<std::string, AttributeValue> &attributes, const char *name);
 Vec3 vec3_attribute(const std::map<std::string, AttributeValue> &attributes, const char *name);
+/// float_attribute() in (0, max_value]; NaN and infinity are refused, naming the attribute.
+float positive_attribute(const std::map<std::string, AttributeValue> &attributes, const char *name,
+                         float max_value);
+/// float_attribute(), finite and >= 0 (an aperture radius: 0 = a pinhole).
+float non_negative_attribute(const std::map<std::string, AttributeValue> &attributes, const char *name);
+/// attr::kCameraFocalPx of an image `height` pixels tall: positive, and at
+/// most 1e6 x height (a field of view of at least 1e-6 rad), past which the
+/// screen projections of ISG Sec. 3 overflow.
+float focal_px_attribute(const std::map<std::string, AttributeValue> &attributes, int height);
 
 /// The three channels of a role as one vector-valued view.
 struct Vec3Planes {

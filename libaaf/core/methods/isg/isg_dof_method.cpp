@@ -59,11 +59,12 @@ class IsgDofMethod final : public Method {
         const int width = images.width(), height = images.height();
         const CommonSettings common = common_settings(parameters);
         const auto &attributes = images.attributes();
-        const float focal_px = float_attribute(attributes, attr::kCameraFocalPx);
+        const float focal_px = focal_px_attribute(attributes, height);
         float aperture_m = parameters.get_float("aperture");
-        if (!(aperture_m > 0)) aperture_m = float_attribute(attributes, attr::kApertureRadius);
+        if (!(aperture_m > 0)) aperture_m = non_negative_attribute(attributes, attr::kApertureRadius);
         float focus_m = parameters.get_float("focus");
-        if (!(focus_m > 0) && aperture_m > 0) focus_m = float_attribute(attributes, attr::kFocusDistance);
+        if (!(focus_m > 0) && aperture_m > 0)
+            focus_m = positive_attribute(attributes, attr::kFocusDistance, std::numeric_limits<float>::max());
         const float transition = parameters.get_float("transition");
         // ISG Eq. 15's c_inf: the aperture seen from the plane in focus, in pixels.
         const float coc_inf_px = aperture_m > 0 && focus_m > 0 ? aperture_m / focus_m * focal_px : 0.0f;

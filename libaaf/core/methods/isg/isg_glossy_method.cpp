@@ -47,7 +47,7 @@ class IsgGlossyMethod final : public Method {
         const int width = images.width(), height = images.height();
         const CommonSettings common = common_settings(parameters);
         const Vec3 eye = vec3_attribute(images.attributes(), attr::kCameraEye);
-        const float focal_px = float_attribute(images.attributes(), attr::kCameraFocalPx);
+        const float focal_px = focal_px_attribute(images.attributes(), height);
         // ISG Sec. 3.2 projects angles by the field of view: pixels per radian.
         const float fov_y_rad = 2 * std::atan(0.5f * float(height) / focal_px);
         const float px_per_rad = float(height) / fov_y_rad;

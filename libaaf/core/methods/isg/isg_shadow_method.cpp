@@ -49,7 +49,7 @@ class IsgShadowMethod final : public Method {
         const int width = images.width(), height = images.height();
         const CommonSettings common = common_settings(parameters);
         const LightPlane light = read_light_attributes(images.attributes());
-        const float focal_px = float_attribute(images.attributes(), attr::kCameraFocalPx);
+        const float focal_px = focal_px_attribute(images.attributes(), height);
         const float light_size_m =
             parameters.get_float("light_scale") * 0.5f * std::max(light.width_m, light.height_m);
         const TapShape shape =

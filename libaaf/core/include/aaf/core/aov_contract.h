@@ -141,7 +141,8 @@ struct RoleSynonym {
     std::vector<std::string> channels;
 };
 /// The synonym table (documented in libaaf/AOV_CONTRACT.md). Besides these,
-/// every role's contract names are also found under any such prefix.
+/// every role's contract names are also found under the file's view-layer
+/// prefix (one every channel starts with and that is no role's layer).
 const std::vector<RoleSynonym> &role_synonyms();
 
 /// Role -> channel names, the defaults overridden by `--map role=channels`.
@@ -150,8 +151,10 @@ class ChannelMap {
     ChannelMap();
 
     /// Parses "role=name[,name...]". For a multi-channel role a single name
-    /// is a layer and gets the default suffixes (`position=Pw` -> Pw.X,
-    /// Pw.Y, Pw.Z; `position=ViewLayer.Position` -> ViewLayer.Position.X, ...).
+    /// is a layer: it replaces the role's layer (the dotted prefix its
+    /// default channels share) and keeps what follows (`position=Pw` ->
+    /// Pw.X, Pw.Y, Pw.Z; `ratio_u=myU` -> myU.R, myU.G, myU.B;
+    /// `position=ViewLayer.Position` -> ViewLayer.Position.X, ...).
     /// Throws aaf::Error on a bad spec.
     void set_override(const std::string &spec);
 
@@ -161,8 +164,9 @@ class ChannelMap {
 
     /// This map with each role that `aovs` lacks under its current names and
     /// that no --map override fixed, renamed to the first synonym `aovs` has
-    /// in full (role_synonyms(); the contract's names under a view-layer
-    /// prefix first). Roles found nowhere keep their names.
+    /// in full (role_synonyms(), then the contract's names under the file's
+    /// view-layer prefix). A role is never found in another role's layer
+    /// (depth Z is not P.Z). Roles found nowhere keep their names.
     ChannelMap resolved(const AovSet &aovs) const;
 
   private:

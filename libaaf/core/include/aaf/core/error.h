@@ -20,6 +20,15 @@ class InputError : public Error {
     explicit InputError(const std::string &message) : Error(message) {}
 };
 
+/// An Error caused by the call's parameters not fitting its input rather
+/// than by a file: a parameter given for a method that hands this input to a
+/// delegate, which does not take it. The CLI exits with code 2 (usage) for
+/// these, as for a bad option.
+class ParameterError : public Error {
+  public:
+    explicit ParameterError(const std::string &message) : Error(message) {}
+};
+
 /// Runs `work` and returns what it returns, prefixing any aaf::Error's
 /// message with `context` (a file name) as "<context>: <message>" and keeping
 /// its kind, so that a caller can still tell input errors apart.
@@ -29,6 +38,8 @@ auto with_context(const std::string &context, const Work &work) {
         return work();
     } catch (const InputError &e) {
         throw InputError(context + ": " + e.what());
+    } catch (const ParameterError &e) {
+        throw ParameterError(context + ": " + e.what());
     } catch (const Error &e) {
         throw Error(context + ": " + e.what());
     }

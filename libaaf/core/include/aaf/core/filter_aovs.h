@@ -32,12 +32,18 @@ struct MethodChoice {
 /// Throws aaf::Error when it names no registered method or parameter.
 std::string delegate_command(const MethodDelegate &delegate);
 
+/// Why `parameter` of `method` cannot be given for an input that `delegate`
+/// filters: one line naming both methods and the parameter, the same for
+/// `aaf filter` and `aaf render --filter`.
+std::string delegate_parameter_refusal(const Method &method, const MethodDelegate &delegate,
+                                       const std::string &parameter);
+
 /// `method` with `parameters`, unless `aovs` lacks some of its required
 /// inputs and has every input of one of its delegates (MethodInfo::delegates,
 /// the first that can run): then that delegate at its defaults with the
 /// delegate's fixed parameters. A delegate takes none of `method`'s
 /// parameters, so choosing one while a parameter differs from its default
-/// throws aaf::Error naming the parameter and the delegate to set it on.
+/// throws aaf::ParameterError (delegate_parameter_refusal()).
 /// filter_aovs() runs what this returns; file pipelines call it to know
 /// which channels will be read.
 MethodChoice choose_method(const Method &method, const ParameterSet &parameters, const AovSet &aovs,

@@ -21,7 +21,8 @@ std::string per_light_channel(const std::string &channel, int light);
 
 /// The number of lights with their own ratio layers: the int attribute
 /// attr::kRatioLights, 0 when absent. Throws aaf::InputError when it is
-/// present but not a non-negative int.
-int ratio_light_count(const std::map<std::string, AttributeValue> &attributes);
+/// present but not a non-negative int, or declares more lights than a file
+/// of `channel_count` channels can hold layers for.
+int ratio_light_count(const std::map<std::string, AttributeValue> &attributes, std::size_t channel_count);
 
 }  // namespace aaf
