@@ -7,12 +7,14 @@
 #include <cctype>
 #include <cmath>
 #include <filesystem>
+#include <optional>
 #include <string>
 #include <vector>
 
 #include "aaf/core/aov_contract.h"
 #include "aaf/core/error.h"
 #include "aaf/core/filter_aovs.h"
+#include "aaf/core/instruction_set.h"
 #include "aaf/core/method_registry.h"
 #include "aaf/core/thread_count.h"
 #include "aaf/io/compare_files.h"
@@ -295,6 +297,23 @@ PYBIND11_MODULE(aaf, m) {
         "method", [](const py::object &name) { return describe(find_method(string_arg(name, "name"))); },
         py::arg("name"),
         "One registered method, as methods() describes it; raises aaf.Error for an unknown name.");
+    m.def(
+        "set_instruction_set",
+        [](const py::object &name_arg) {
+            const std::string name = string_arg(name_arg, "name");
+            const std::optional<InstructionSet> set = parse_instruction_set(name);
+            if (!set)
+                throw Error("name: unknown instruction set '" + name + "' (" + instruction_set_choices() +
+                            ")");
+            set_instruction_set(*set);
+        },
+        py::arg("name"),
+        "Pins the widest instruction set of Embree and the filter kernels, as `aaf --isa`: 'native' (the "
+        "fastest this CPU runs, the default unless $AAF_ISA names another), 'sse4.2', 'avx2' or 'avx512'; "
+        "raises aaf.Error for an unknown name or one this CPU cannot run.");
+    m.def(
+        "instruction_set", [] { return std::string(instruction_set_name(instruction_set())); },
+        "The instruction set pinned by set_instruction_set() or $AAF_ISA ('native' when neither).");
     m.def("filter", &filter, py::arg("method"), py::arg("aovs"), py::kw_only(), py::arg("map") = py::none(),
           py::arg("threads") = 0, filter_doc().c_str());
     m.def(

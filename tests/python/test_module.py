@@ -154,5 +154,27 @@ class Errors(unittest.TestCase):
         self.assertIn("no_dir/out.exr", str(caught.exception))
 
 
+class InstructionSets(unittest.TestCase):
+    def test_a_pinned_instruction_set_gives_the_cli_bytes_under_the_same_pin(self):
+        aovs = aaf.read(scratch("noisy.exr"))
+        before = aaf.instruction_set()
+        try:
+            aaf.set_instruction_set("sse4.2")
+            self.assertEqual(aaf.instruction_set(), "sse4.2")
+            out = scratch("cli_sse42.exr")
+            subprocess.run([AAF_EXE, "filter", "aaf", scratch("noisy.exr"), "-o", out, "--isa", "sse4.2"],
+                           check=True)
+            py = aaf.filter("aaf", aovs)
+            for name, array in aaf.read(out).channels.items():
+                self.assertTrue(np.array_equal(py.channels[name], array), name)
+        finally:
+            aaf.set_instruction_set(before)
+
+    def test_an_unknown_instruction_set_raises_error_naming_it(self):
+        with self.assertRaises(aaf.Error) as caught:
+            aaf.set_instruction_set("avx9000")
+        self.assertIn("avx9000", str(caught.exception))
+
+
 if __name__ == "__main__":
     unittest.main(argv=sys.argv[:1], verbosity=2)
