@@ -64,13 +64,14 @@ inline void add_map_and_threads_options(CLI::App &cmd, std::vector<std::string> 
 /// the same for every command that writes one; `applies_to` says which images.
 inline void add_write_options(CLI::App &cmd, io::WriteOptions &write, const std::string &applies_to) {
     cmd.add_flag("--half", write.half_colour,
-                 "Store colour layers (beauty, unshadowed, albedo, unclaimed LAYER.R/G/B/A) of " + applies_to +
-                     " as half; data layers (P, N, ... whatever their names) stay float");
-    cmd.add_option("--compression", write.compression,
-                   "EXR compression of " + applies_to +
-                       ": zip:1 (ZIP at deflate level 1, fast, for intermediates), zip (level 6, smaller), zip:N "
-                       "or zips:N (level N, 1-9), zips, piz, rle, none, or the lossy dwaa/dwab (colour layers "
-                       "only: the data layers then go to a ZIP part named 'data')")
+                 "Store colour layers (beauty, unshadowed, albedo, unclaimed LAYER.R/G/B/A) of " +
+                     applies_to + " as half; data layers (P, N, ... whatever their names) stay float");
+    cmd.add_option(
+           "--compression", write.compression,
+           "EXR compression of " + applies_to +
+               ": zip:1 (ZIP at deflate level 1, fast, for intermediates), zip (level 6, smaller), zip:N "
+               "or zips:N (level N, 1-9), zips, piz, rle, none, or the lossy dwaa/dwab (colour layers "
+               "only: the data layers then go to a ZIP part named 'data')")
         ->check(CLI::Validator(
             [](const std::string &name) {
                 return io::is_known_compression(name) ? std::string() : "unknown compression '" + name + "'";

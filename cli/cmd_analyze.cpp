@@ -186,10 +186,11 @@ void add_analyze_command(CLI::App &app) {
         app.add_subcommand("analyze", "Fourier-domain analyses of the filters (no images read or written)");
     analyze_cmd->require_subcommand(1);
     auto options = std::make_shared<AnalyzeOptions>();
-    CLI::App *cmd = analyze_cmd->add_subcommand(
-        "wedge",
-        "Accuracy (MAAF Eq. 14) and coverage (MAAF Eq. 15; MAAF Eq. 16-18 for boxes) of AAF, FSF and MAAF on the "
-        "flatland double wedge between slopes s_min and s_max, Omega_y^max = 1");
+    CLI::App *cmd =
+        analyze_cmd->add_subcommand("wedge",
+                                    "Accuracy (MAAF Eq. 14) and coverage (MAAF Eq. 15; MAAF Eq. 16-18 for "
+                                    "boxes) of AAF, FSF and MAAF on the "
+                                    "flatland double wedge between slopes s_min and s_max, Omega_y^max = 1");
     // Past 1e-100 or 1e100, the spectra's squared widths (1 / s_min - 1 / s_max)^2 leave double's range.
     cmd->add_option("--smin", options->s_min, "Smallest wedge slope s_min (d1/d2 - 1), in [1e-100, 1e100]")
         ->check(finite_number(1e-100, 1e100, /*low_allowed=*/true));

@@ -84,7 +84,7 @@ void add_info_command(CLI::App &app) {
             // A render made for one of its delegates is ready too, as that delegate (choose_method).
             const MethodChoice choice = choose_method(*method, method->default_parameters(), aovs, channels);
             const std::vector<std::string> recipes = missing_input_recipes(*choice.method, aovs, channels);
-            const std::string status = !recipes.empty()     ? "missing " + std::to_string(recipes.size())
+            const std::string status = !recipes.empty()      ? "missing " + std::to_string(recipes.size())
                                        : choice.note.empty() ? std::string("ready")
                                                              : "ready: " + choice.note;
             std::printf("  %-8s %s\n", method->info().name.c_str(), status.c_str());

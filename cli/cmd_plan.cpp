@@ -32,7 +32,8 @@ void add_plan_command(CLI::App &app) {
     cmd->add_option("--mu", options->aaf.mu, "mu of AAF Eq. 21 (use the filter's)")
         ->check(finite_number(0))
         ->capture_default_str();
-    cmd->add_option("--alpha", options->aaf.alpha, "Occluder bandlimit over pixel bandlimit, (0,1] (AAF Eq. 5)")
+    cmd->add_option("--alpha", options->aaf.alpha,
+                    "Occluder bandlimit over pixel bandlimit, (0,1] (AAF Eq. 5)")
         ->check(finite_number(0, 1))
         ->capture_default_str();
     cmd->add_option("--light-bandlimit", options->light_bandlimit,

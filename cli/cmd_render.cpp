@@ -401,7 +401,8 @@ void add_render_command(CLI::App &app) {
                 check_parameter_groups(*filter, settings.aovs, options->aovs);
             else if (!own_inputs && !served_by)
                 throw UsageError("--filter " + options->filter + " reads AOVs that --aovs " + options->aovs +
-                                 " does not render (add " + options->filter + " to --aovs, or leave --aovs out)");
+                                 " does not render (add " + options->filter +
+                                 " to --aovs, or leave --aovs out)");
             else if (!own_inputs && !options->filter_params.empty()) {  // as `aaf filter` refuses it
                 std::string name =
                     options->filter_params.front().substr(0, options->filter_params.front().find('='));

@@ -72,7 +72,7 @@ Progress progress_from_string(const std::string &name);
 
 struct RunOptions {
     Progress progress = Progress::Automatic;
-    bool skip_existing = false;    ///< skip frames whose output is up to date (`up_to_date`)
+    bool skip_existing = false;  ///< skip frames whose output is up to date (`up_to_date`)
     /// With skip_existing: whether a job's output is complete and made from
     /// its inputs with these settings (provenance.h); unset, any output that
     /// reads back completely counts.

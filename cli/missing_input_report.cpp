@@ -56,8 +56,8 @@ std::vector<std::string> missing_input_recipes(const Method &method, const AovSe
 }
 
 std::string missing_inputs_message(const Method &method, const std::vector<std::string> &recipes) {
-    return "missing " + std::to_string(recipes.size()) + " input" + (recipes.size() == 1 ? "" : "s") + " of " +
-           method.info().title + ": " + joined(recipes, "; ");
+    return "missing " + std::to_string(recipes.size()) + " input" + (recipes.size() == 1 ? "" : "s") +
+           " of " + method.info().title + ": " + joined(recipes, "; ");
 }
 
 }  // namespace aaf::cli

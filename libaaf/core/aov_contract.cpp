@@ -155,17 +155,15 @@ const std::vector<RoleInfo> &role_table() {
          "linear radiance",
          "noisy shadowed shading of every light but the key light (scenes with several lights); "
          "the beauty is r(x) V(x) plus this"},
-        {Role::MaafValueSums,
-         "maaf_value",
-         maaf_channel_names("maaf.V_"),
+        {Role::MaafValueSums, "maaf_value", maaf_channel_names("maaf.V_"),
          "light weight, summed over samples",
          "MAAF Eq. 20/23 by Monte Carlo, N = 3: channel V_<a><b> is the sum over the pixel's samples of l(y) "
-         "f(x, y) phi_a(y1) phi_b(y2), with y1, y2 the sample's point on the light along its axis_u and axis_v "
+         "f(x, y) phi_a(y1) phi_b(y2), with y1, y2 the sample's point on the light along its axis_u and "
+         "axis_v "
          "(metres from its centre) and phi_c0 = 1, phi_cp = cos(C_y^p y), phi_sp = sin(C_y^p y), C_y^p = "
-         "maaf.omegay 2p / 5 rad/m (MAAF Eq. 6); `aaf::MaafLightSide::accumulate` writes it for any renderer"},
-        {Role::MaafUnoccludedSums,
-         "maaf_unoccluded",
-         maaf_channel_names("maaf.W_"),
+         "maaf.omegay 2p / 5 rad/m (MAAF Eq. 6); `aaf::MaafLightSide::accumulate` writes it for any "
+         "renderer"},
+        {Role::MaafUnoccludedSums, "maaf_unoccluded", maaf_channel_names("maaf.W_"),
          "light weight, summed over samples",
          "as maaf.V_* with every sample counted unoccluded (f = 1): the filter divides by these, filtered "
          "alike, so a fully lit region stays exactly lit"},
@@ -173,8 +171,10 @@ const std::vector<RoleInfo> &role_table() {
          "maaf_wedge",
          {"maaf.smin", "maaf.smax", "maaf.omegax", "maaf.omegay"},
          "slopes (unitless); rad/m",
-         "the wedge the MAAF sums were accumulated with (MAAF Sec. 6.2: from the first pass, averaged over 5x5): "
-         "slopes d1/d2 - 1, the pixel band-limit Omega_x^max (0 = no wedge, not filtered) and the partitioned "
+         "the wedge the MAAF sums were accumulated with (MAAF Sec. 6.2: from the first pass, averaged over "
+         "5x5): "
+         "slopes d1/d2 - 1, the pixel band-limit Omega_x^max (0 = no wedge, not filtered) and the "
+         "partitioned "
          "Omega_y^max of the light-side functions"},
         {Role::HardVisibility,
          "hard_visibility",
@@ -234,21 +234,24 @@ const std::vector<RoleInfo> &role_table() {
          {"ratio.U.R", "ratio.U.G", "ratio.U.B"},
          "linear radiance",
          "ratio estimator Eq. 20: the analytic unshadowed direct light U of every light, summed (exact "
-         "polygon irradiance for the diffuse lobe, linearly transformed cosines for GGX). Per light: the same "
+         "polygon irradiance for the diffuse lobe, linearly transformed cosines for GGX). Per light: the "
+         "same "
          "names with `ratio.` replaced by `ratio.L<i>.`, i < aaf:ratio:lights"},
         {Role::RatioShadowed,
          "ratio_s",
          {"ratio.S.R", "ratio.S.G", "ratio.S.B"},
          "linear radiance",
          "ratio estimator Eq. 21 as a mean: (1/N) sum of w R L V / p over the pixel's N samples per light "
-         "(MIS weights w), summed over lights; it is also the full-stochastic estimate (ratio estimator Eq. 10). Per light as "
+         "(MIS weights w), summed over lights; it is also the full-stochastic estimate (ratio estimator Eq. "
+         "10). Per light as "
          "ratio_u"},
         {Role::RatioUnshadowed,
          "ratio_un",
          {"ratio.Un.R", "ratio.Un.G", "ratio.Un.B"},
          "linear radiance",
          "ratio estimator Eq. 22 as a mean: the same samples and weights as ratio_s with V = 1, so S_N / U_N "
-         "stays in [0, 1]; U - U_N + S_N is the control-variate estimate (ratio estimator Eq. 11). Per light as ratio_u"},
+         "stays in [0, 1]; U - U_N + S_N is the control-variate estimate (ratio estimator Eq. 11). Per light "
+         "as ratio_u"},
         {Role::RatioShadowedLuminance,
          "ratio_s_y",
          {"ratio.S.Y"},
@@ -270,37 +273,32 @@ const std::vector<RoleInfo> &role_table() {
          "maaf6_indirect",
          {"maaf6.indirect.R", "maaf6.indirect.G", "maaf6.indirect.B"},
          "linear radiance",
-         "MAAF 6D: mean of the one-bounce diffuse indirect light (cosine-sampled bounce, one shadow ray at the "
+         "MAAF 6D: mean of the one-bounce diffuse indirect light (cosine-sampled bounce, one shadow ray at "
+         "the "
          "bounce point), 0 when the effect is off"},
-        {Role::Maaf6DirectSums,
-         "maaf6_direct_sums",
-         maaf6_channel_names("maaf6.direct.V_", true),
+        {Role::Maaf6DirectSums, "maaf6_direct_sums", maaf6_channel_names("maaf6.direct.V_", true),
          "linear radiance, summed over samples",
-         "MAAF Eq. 23 by Monte Carlo, N = 3: V_<a><b>.R/G/B is the sum over the pixel's samples of the direct "
+         "MAAF Eq. 23 by Monte Carlo, N = 3: V_<a><b>.R/G/B is the sum over the pixel's samples of the "
+         "direct "
          "radiance times phi_a(y1, u1) phi_b(y2, u2); phi_c0 = 1, phi_cp = cos(C_y^p y + C_u^p u), phi_sp = "
          "sin(...), y_i the light point and u_i the lens point along the pixel's tangent axis t_i (metres), "
          "C from `aaf::maaf6_pair_components` of maaf6_wedge; `aaf::Maaf6SampleSide::accumulate` writes it"},
-        {Role::Maaf6DirectWeights,
-         "maaf6_direct_weights",
-         maaf6_channel_names("maaf6.direct.W_", false),
+        {Role::Maaf6DirectWeights, "maaf6_direct_weights", maaf6_channel_names("maaf6.direct.W_", false),
          "luminance, summed over samples",
-         "as maaf6_direct_sums with the sample's unoccluded luminance (its radiance with visibility 1) instead of "
+         "as maaf6_direct_sums with the sample's unoccluded luminance (its radiance with visibility 1) "
+         "instead of "
          "its radiance: the filter divides by these, filtered alike, and multiplies by the pixel's own mean"},
-        {Role::Maaf6IndirectSums,
-         "maaf6_indirect_sums",
-         maaf6_channel_names("maaf6.indirect.V_", true),
+        {Role::Maaf6IndirectSums, "maaf6_indirect_sums", maaf6_channel_names("maaf6.indirect.V_", true),
          "linear radiance, summed over samples",
          "as maaf6_direct_sums for the indirect radiance, with y_i = the bounce direction's tan along t_i "
          "(unitless, the unit plane above the receiver)"},
-        {Role::Maaf6IndirectWeights,
-         "maaf6_indirect_weights",
-         maaf6_channel_names("maaf6.indirect.W_", false),
-         "samples",
+        {Role::Maaf6IndirectWeights, "maaf6_indirect_weights",
+         maaf6_channel_names("maaf6.indirect.W_", false), "samples",
          "as maaf6_direct_sums for the indirect layer with weight 1 (channel c0c0 counts the samples)"},
         {Role::Maaf6Wedge,
          "maaf6_wedge",
-         {"maaf6.direct.ymin", "maaf6.direct.ymax", "maaf6.indirect.ymin", "maaf6.indirect.ymax", "maaf6.umin",
-          "maaf6.umax", "maaf6.omegax"},
+         {"maaf6.direct.ymin", "maaf6.direct.ymax", "maaf6.indirect.ymin", "maaf6.indirect.ymax",
+          "maaf6.umin", "maaf6.umax", "maaf6.omegax"},
          "slopes: unitless (direct, u), metres (indirect); rad/m",
          "the 3D wedges of the first pass averaged over 5x5 (MAAF Sec. 6.2): direct y slopes d1/d2 - 1, "
          "indirect y slopes = reflector distance z, defocus slopes 1 - z/F (either sign), -1 in both y "

@@ -65,8 +65,8 @@ std::string methods_markdown() {
         text += "| " + role_list(info.roles.required) + " | " + role_list(info.roles.optional) + " | " +
                 role_list(info.roles.outputs) + " | " + code_list(info.required_attributes) + " |\n\n";
         for (const MethodDelegate &delegate : info.delegates)
-            text += "Given " + delegate.why + " (" + delegate.method + "'s inputs rather than its own), it runs `" +
-                    delegate_command(delegate) + "`.\n\n";
+            text += "Given " + delegate.why + " (" + delegate.method +
+                    "'s inputs rather than its own), it runs `" + delegate_command(delegate) + "`.\n\n";
         if (info.parameters.empty()) continue;
         text += "| parameter | default | unit | valid | meaning |\n| --- | --- | --- | --- | --- |\n";
         for (const ParameterInfo &p : info.parameters) {

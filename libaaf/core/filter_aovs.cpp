@@ -219,8 +219,8 @@ void check_finite_outputs(const Method &method, const MethodImages &images, cons
                      ", too large to filter in single precision (scale the image down)");
 }
 
-AovSet run_method(const Method &method, AovSet &&input, const ChannelMap &found, const ParameterSet &parameters,
-                  const ProgressMonitor &monitor, const AovSet *history) {
+AovSet run_method(const Method &method, AovSet &&input, const ChannelMap &found,
+                  const ParameterSet &parameters, const ProgressMonitor &monitor, const AovSet *history) {
     const std::vector<Role> &outputs = method.info().roles.outputs;
     const bool composes_beauty = std::find(outputs.begin(), outputs.end(), Role::Beauty) != outputs.end();
 

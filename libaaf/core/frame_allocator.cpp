@@ -23,7 +23,7 @@
 namespace aaf::detail {
 
 namespace {
-constexpr std::size_t kAlignment = 64;  // a cache line, so SIMD rows start on one
+constexpr std::size_t kAlignment = 64;                   // a cache line, so SIMD rows start on one
 constexpr std::size_t kHugePage = std::size_t(2) << 20;  // x86-64's and most ARM64 kernels'
 
 #if defined(__linux__) && defined(MADV_HUGEPAGE)

@@ -11,7 +11,8 @@ namespace aaf::ltc_ggx {
 namespace {
 
 const float *cell(int row, int column) {
-    return ltc_ggx_table::kData + 6 * (std::size_t(row) * std::size_t(ltc_ggx_table::kSize) + std::size_t(column));
+    return ltc_ggx_table::kData +
+           6 * (std::size_t(row) * std::size_t(ltc_ggx_table::kSize) + std::size_t(column));
 }
 
 /// The solid-angle-weighted mean direction of a polygon above the horizon,
@@ -20,7 +21,8 @@ const float *cell(int row, int column) {
 Vec3d mean_direction(const LocalPolygon &polygon) {
     Vec3d sum{0, 0, 0};
     for (int k = 0; k < polygon.count; ++k) {
-        const Vec3d a = polygon.vertices[std::size_t(k)], b = polygon.vertices[std::size_t((k + 1) % polygon.count)];
+        const Vec3d a = polygon.vertices[std::size_t(k)],
+                    b = polygon.vertices[std::size_t((k + 1) % polygon.count)];
         const Vec3d c = cross(a, b);
         const double sine = length(c);
         if (sine > 0) sum = sum + c * (std::atan2(sine, dot(a, b)) / sine);
@@ -64,7 +66,8 @@ PolygonIntegral integrate(const LocalPolygon &polygon, double roughness, double 
     // a light sees only its part of the lobe, and near grazing views the
     // hemispherical mean is dominated by directions the light does not cover.
     const Vec3d f = mean_direction(clipped);
-    const double det = m.a - m.b * m.d;  // M = [[1 / det, 0, -b / det], [0, 1 / c, 0], [-d / det, 0, a / det]]
+    const double det =
+        m.a - m.b * m.d;  // M = [[1 / det, 0, -b / det], [0, 1 / c, 0], [-d / det, 0, a / det]]
     const Vec3d wi = normalize(Vec3d{(f.x - m.b * f.z) / det, f.y / m.c, (m.a * f.z - m.d * f.x) / det});
     const Vec3d wo{std::sqrt(std::max(0.0, 1 - cos_view * cos_view)), 0, cos_view};
     if (wi.z > 0) result.fresnel_term = result.magnitude_term * ggx::schlick_weight(wo, wi);

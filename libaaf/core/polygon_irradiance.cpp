@@ -49,7 +49,8 @@ LocalPolygon clip_to_upper_hemisphere(const LocalPolygon &polygon) {
 double polygon_edge_integral(const LocalPolygon &polygon) {
     double sum = 0;
     for (int k = 0; k < polygon.count; ++k)
-        sum += edge_term(polygon.vertices[std::size_t(k)], polygon.vertices[std::size_t((k + 1) % polygon.count)]);
+        sum += edge_term(polygon.vertices[std::size_t(k)],
+                         polygon.vertices[std::size_t((k + 1) % polygon.count)]);
     return sum / (2 * kPi);
 }
 
@@ -69,7 +70,8 @@ ShadingFrame ShadingFrame::from(Vec3d n, Vec3d wo) {
     ShadingFrame frame;
     frame.z = n;
     Vec3d tangent = wo - n * dot(n, wo);
-    if (!(length(tangent) > 1e-9)) tangent = std::fabs(n.x) < 0.9 ? cross(n, Vec3d{1, 0, 0}) : cross(n, Vec3d{0, 1, 0});
+    if (!(length(tangent) > 1e-9))
+        tangent = std::fabs(n.x) < 0.9 ? cross(n, Vec3d{1, 0, 0}) : cross(n, Vec3d{0, 1, 0});
     frame.x = normalize(tangent);
     frame.y = cross(frame.z, frame.x);
     return frame;

@@ -273,18 +273,17 @@ void interleave(const std::vector<const float *> &planes, std::size_t count, flo
 /// float from there: a 640x480 frame of 33 float channels took 460 ms and
 /// 12900 page faults to read, natively 205 ms and 2900.
 TypeDesc float_request(const OIIO::ImageSpec &spec) {
-    const bool all_float =
-        spec.format == TypeDesc::FLOAT &&
-        std::all_of(spec.channelformats.begin(), spec.channelformats.end(),
-                    [](TypeDesc format) { return format == TypeDesc::FLOAT; });
+    const bool all_float = spec.format == TypeDesc::FLOAT &&
+                           std::all_of(spec.channelformats.begin(), spec.channelformats.end(),
+                                       [](TypeDesc format) { return format == TypeDesc::FLOAT; });
     return all_float ? TypeDesc::UNKNOWN : TypeDesc::FLOAT;
 }
 
 /// Reads every channel of the current part of `input` as float into
 /// `planes` (one width x height plane per channel), a strip of scanlines at
 /// a time: no interleaved copy of the whole image is held.
-void read_into_planes(OIIO::ImageInput &input, const OIIO::ImageSpec &spec, const std::vector<float *> &planes,
-                      const std::string &path) {
+void read_into_planes(OIIO::ImageInput &input, const OIIO::ImageSpec &spec,
+                      const std::vector<float *> &planes, const std::string &path) {
     const std::size_t channels = planes.size(), width = std::size_t(spec.width);
     const TypeDesc request = float_request(spec);
     if (spec.tile_width > 0) {  // tiled: OpenImageIO assembles the tiles
@@ -298,8 +297,8 @@ void read_into_planes(OIIO::ImageInput &input, const OIIO::ImageSpec &spec, cons
     std::vector<float> strip(width * std::size_t(rows) * channels);
     for (int row = 0; row < spec.height; row += rows) {
         const int count = std::min(rows, spec.height - row);
-        if (!input.read_scanlines(0, 0, spec.y + row, spec.y + row + count, spec.z, 0, int(channels),
-                                  request, strip.data()))
+        if (!input.read_scanlines(0, 0, spec.y + row, spec.y + row + count, spec.z, 0, int(channels), request,
+                                  strip.data()))
             throw InputError(path + ": cannot read pixels: " + pending_error(&input));
         std::vector<float *> rows_of_planes;
         for (float *plane : planes) rows_of_planes.push_back(plane + std::size_t(row) * width);
@@ -326,14 +325,16 @@ void write_pixels(const AovSet &aovs, const std::vector<std::size_t> &in_part, c
     std::vector<float> pixels;
     if (spec.tile_width > 0) {  // tiled (carried from a tiled input): OpenImageIO cuts the tiles
         interleave_rows(aovs, in_part, 0, aovs.height(), pixels);
-        if (!output.write_image(TypeDesc::FLOAT, pixels.data())) throw InputError(one_line(output.geterror()));
+        if (!output.write_image(TypeDesc::FLOAT, pixels.data()))
+            throw InputError(one_line(output.geterror()));
         return;
     }
     const int rows = strip_rows(aovs.width(), in_part.size(), aovs.height());
     for (int row = 0; row < aovs.height(); row += rows) {
         const int count = std::min(rows, aovs.height() - row);
         interleave_rows(aovs, in_part, row, count, pixels);
-        if (!output.write_scanlines(spec.y + row, spec.y + row + count, spec.z, TypeDesc::FLOAT, pixels.data()))
+        if (!output.write_scanlines(spec.y + row, spec.y + row + count, spec.z, TypeDesc::FLOAT,
+                                    pixels.data()))
             throw InputError(one_line(output.geterror()));
     }
 }

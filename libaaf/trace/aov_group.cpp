@@ -14,10 +14,13 @@ namespace {
 /// Every group's maker, in channel order; a new group adds one line here.
 using Maker = std::unique_ptr<AovAccumulator> (*)();
 constexpr Maker kGroupMakers[] = {
-    make_shadow_group, make_position_group, make_normal_group, make_object_id_group, make_unshadowed_group,
-    make_depth_group,  make_albedo_group,   make_motion_group, make_progress_group,
-    make_maaf_group,   make_isg_group,    make_maaf6_group,
-    make_ratio_group,  make_ratio_estimators_group,
+    make_shadow_group,     make_position_group,
+    make_normal_group,     make_object_id_group,
+    make_unshadowed_group, make_depth_group,
+    make_albedo_group,     make_motion_group,
+    make_progress_group,   make_maaf_group,
+    make_isg_group,        make_maaf6_group,
+    make_ratio_group,      make_ratio_estimators_group,
 };
 
 bool is_method(const std::string &name) {

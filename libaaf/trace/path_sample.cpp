@@ -1,5 +1,5 @@
-#include "concentric_disc.h"
 #include "path_sample.h"
+#include "concentric_disc.h"
 
 #include <algorithm>
 #include <cmath>
@@ -25,18 +25,22 @@ Vec3 times(Vec3 a, Vec3 b) {
     return {a.x * b.x, a.y * b.y, a.z * b.z};
 }
 
-
 }  // namespace
 
 unsigned parse_maaf6_effects(const std::string &list) {
     unsigned effects = 0;
     std::stringstream items(list);
     for (std::string item; std::getline(items, item, ',');) {
-        if (item == "defocus") effects |= kMaaf6Defocus;
-        else if (item == "shadows") effects |= kMaaf6Shadows;
-        else if (item == "indirect") effects |= kMaaf6Indirect;
-        else if (item == "all") effects |= kMaaf6Defocus | kMaaf6Shadows | kMaaf6Indirect;
-        else throw Error("unknown maaf6 effect '" + item + "' (known: defocus, shadows, indirect, all)");
+        if (item == "defocus")
+            effects |= kMaaf6Defocus;
+        else if (item == "shadows")
+            effects |= kMaaf6Shadows;
+        else if (item == "indirect")
+            effects |= kMaaf6Indirect;
+        else if (item == "all")
+            effects |= kMaaf6Defocus | kMaaf6Shadows | kMaaf6Indirect;
+        else
+            throw Error("unknown maaf6 effect '" + item + "' (known: defocus, shadows, indirect, all)");
     }
     if (effects == 0) throw Error("maaf6 effects: name at least one of defocus, shadows, indirect");
     return effects;
@@ -88,8 +92,9 @@ PathSample PathSampler::trace(int x, int y, const PathSampleNumbers &numbers) co
         lens = camera.eye + sample.lens_offset_m;
     }
     const Vec3 focus_or_direction = camera.ray_direction(x + 0.5f, y + 0.5f);
-    const Vec3 direction = camera.is_thin_lens() ? camera.eye + focus_or_direction * camera.focus_distance_m - lens
-                                                 : focus_or_direction;
+    const Vec3 direction = camera.is_thin_lens()
+                               ? camera.eye + focus_or_direction * camera.focus_distance_m - lens
+                               : focus_or_direction;
     const Hit hit = renderer_.bvh().intersect(lens, direction, 0.0f, std::numeric_limits<float>::infinity());
     if (!hit.found) return sample;
     sample.hit = true;
@@ -108,7 +113,8 @@ PathSample PathSampler::trace(int x, int y, const PathSampleNumbers &numbers) co
     sample.direct_unoccluded = direct_light(mesh, p, n, lens, light_point, visible, d2_m);
     if (visible) sample.direct = sample.direct_unoccluded;
     // A point light (the shadows effect off) has no y extent, hence no y-wedge.
-    if (d2_m > 0 && (effects_ & kMaaf6Shadows)) sample.direct_slope = std::max(0.0f, plane.plane_distance_m(p) / d2_m - 1.0f);  // MAAF Sec. 3
+    if (d2_m > 0 && (effects_ & kMaaf6Shadows))
+        sample.direct_slope = std::max(0.0f, plane.plane_distance_m(p) / d2_m - 1.0f);  // MAAF Sec. 3
 
     // Indirect: a cosine-distributed bounce with its own shadow ray.
     if (!(effects_ & kMaaf6Indirect)) return sample;
@@ -125,13 +131,13 @@ PathSample PathSampler::trace(int x, int y, const PathSampleNumbers &numbers) co
     Vec3 nq = normalize(bounce.geometric_normal);
     nq = dot(nq, omega) > 0 ? -nq : nq;
     sample.bounce_height_m = std::max(1e-4f, dot(q - p, n));  // s = z of MAAF Sec. 3 (AAF-GI)
-    const Vec3 bounce_light =
-        (effects_ & kMaaf6Shadows) ? light_.point(numbers.bounce_light) : plane.center;
+    const Vec3 bounce_light = (effects_ & kMaaf6Shadows) ? light_.point(numbers.bounce_light) : plane.center;
     bool bounce_visible;
     float bounce_d2_m;
     const Vec3 reflected =
         direct_light(scene_.meshes[bounce.mesh_index], q, nq, p, bounce_light, bounce_visible, bounce_d2_m);
-    if (bounce_visible) sample.indirect = times(mesh.material.albedo, reflected);  // (albedo / pi) cos / (cos / pi)
+    if (bounce_visible)
+        sample.indirect = times(mesh.material.albedo, reflected);  // (albedo / pi) cos / (cos / pi)
     return sample;
 }
 

@@ -29,14 +29,14 @@ struct PathSampleNumbers {
 /// ray to the key light, and a one-bounce diffuse indirect sample with its
 /// own shadow ray at the bounce point. Radiances are linear, per channel.
 struct PathSample {
-    bool hit = false;          ///< whether the lens ray hit anything
-    Vec3 direct, indirect;     ///< radiance towards the lens point
-    Vec3 direct_unoccluded;    ///< `direct` with the shadow ray's visibility taken as 1
-    Vec3 lens_offset_m;        ///< lens point minus lens centre, world metres
-    Vec3 light_offset_m;       ///< light point minus light centre, world metres
-    Vec3 bounce_direction;     ///< unit, from the hit (0 when the indirect layer is off)
-    float depth_m = 0;         ///< hit depth along the camera's forward axis
-    float direct_slope = -1;   ///< d1/d2 - 1 when the shadow ray is blocked (area light), else -1
+    bool hit = false;            ///< whether the lens ray hit anything
+    Vec3 direct, indirect;       ///< radiance towards the lens point
+    Vec3 direct_unoccluded;      ///< `direct` with the shadow ray's visibility taken as 1
+    Vec3 lens_offset_m;          ///< lens point minus lens centre, world metres
+    Vec3 light_offset_m;         ///< light point minus light centre, world metres
+    Vec3 bounce_direction;       ///< unit, from the hit (0 when the indirect layer is off)
+    float depth_m = 0;           ///< hit depth along the camera's forward axis
+    float direct_slope = -1;     ///< d1/d2 - 1 when the shadow ray is blocked (area light), else -1
     float bounce_height_m = -1;  ///< reflector distance along the hit's normal, -1 without a reflector
 };
 

@@ -45,9 +45,9 @@ double glossy_sampling_probability(const UnshadowedLight &u, bool glossy) {
     return std::clamp(luminance(u.specular) / total, kMinTechniqueProbability, 1 - kMinTechniqueProbability);
 }
 
-RatioLayers trace_ratio_layers(const Renderer &renderer, const SceneDescription &scene, const PrimaryHit &primary,
-                               std::size_t light_index, int samples, std::uint64_t seed,
-                               std::uint64_t pixel_index) {
+RatioLayers trace_ratio_layers(const Renderer &renderer, const SceneDescription &scene,
+                               const PrimaryHit &primary, std::size_t light_index, int samples,
+                               std::uint64_t seed, std::uint64_t pixel_index) {
     RatioLayers layers;
     const Vec3 p = primary.position;
     const TexturedSurface surface = texture_surface(primary.mesh->material, p, primary.normal);
@@ -116,7 +116,8 @@ RatioLayers trace_ratio_layers(const Renderer &renderer, const SceneDescription 
             if (visible) shadowed[c] += value;
         }
     }
-    layers.shadowed = Vec3{float(shadowed[0] / samples), float(shadowed[1] / samples), float(shadowed[2] / samples)};
+    layers.shadowed =
+        Vec3{float(shadowed[0] / samples), float(shadowed[1] / samples), float(shadowed[2] / samples)};
     layers.unshadowed =
         Vec3{float(unshadowed[0] / samples), float(unshadowed[1] / samples), float(unshadowed[2] / samples)};
     return layers;

@@ -8,8 +8,8 @@
 
 namespace aaf::trace {
 
-/// One light's layers at one pixel (ratio estimator Eq. 20-22), per channel, W / (m^2 sr): the analytic U and the means over the
-/// pixel's N samples of w R L V / p (S_N) and w R L / p (U_N).
+/// One light's layers at one pixel (ratio estimator Eq. 20-22), per channel, W / (m^2 sr): the analytic U and
+/// the means over the pixel's N samples of w R L V / p (S_N) and w R L / p (U_N).
 struct RatioLayers {
     Vec3 analytic;
     Vec3 shadowed;
@@ -38,8 +38,8 @@ double glossy_sampling_probability(const UnshadowedLight &u, bool glossy);
 /// one-sample model: R L / (q_light p_light + q_glossy p_glossy). S_N and U_N
 /// add the same values in the same order, so S_N == U_N bit for bit where no
 /// shadow ray is blocked. Random numbers depend only on (seed, pixel, light).
-RatioLayers trace_ratio_layers(const Renderer &renderer, const SceneDescription &scene, const PrimaryHit &primary,
-                               std::size_t light_index, int samples, std::uint64_t seed,
-                               std::uint64_t pixel_index);
+RatioLayers trace_ratio_layers(const Renderer &renderer, const SceneDescription &scene,
+                               const PrimaryHit &primary, std::size_t light_index, int samples,
+                               std::uint64_t seed, std::uint64_t pixel_index);
 
 }  // namespace aaf::trace

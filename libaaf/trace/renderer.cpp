@@ -1,5 +1,5 @@
-#include "concentric_disc.h"
 #include "renderer.h"
+#include "concentric_disc.h"
 
 #include <algorithm>
 #include <array>
@@ -31,7 +31,6 @@ Vec3 offset_origin(Vec3 p, Vec3 n) {
     const float epsilon = 1e-4f * (1.0f + std::max({std::fabs(p.x), std::fabs(p.y), std::fabs(p.z)}));
     return p + n * epsilon;
 }
-
 
 Vec3 times(Vec3 a, Vec3 b) {
     return {a.x * b.x, a.y * b.y, a.z * b.z};
@@ -85,8 +84,8 @@ Vec3 Renderer::unshadowed(std::size_t light_index, const Mesh &mesh, Vec3 p, Vec
     const float geometry = light_index == 0 && settings_.cosine_falloff
                                ? mean_falloff(p, surface.normal)
                                : falloff(light.plane, p, surface.normal, light.plane.center);
-    const Vec3 brdf =
-        evaluate_brdf(surface.material, surface.normal, normalize(eye - p), normalize(light.plane.center - p));
+    const Vec3 brdf = evaluate_brdf(surface.material, surface.normal, normalize(eye - p),
+                                    normalize(light.plane.center - p));
     return times(brdf, light.color) * (light.intensity * geometry);
 }
 
@@ -146,8 +145,8 @@ void Renderer::trace_key_light(const PrimaryHit &primary, Vec3 origin, float d1,
     const Vec3 direction = target - origin;
     if (!occluder_distances) {
         // Visibility alone: any hit answers it (rtcOccluded1), d2_m stays 0.
-        sample.visible = traced_visibility ? *traced_visibility
-                                           : !bvh_.occluded(origin, direction, 0.0f, kShadowRayReach);
+        sample.visible =
+            traced_visibility ? *traced_visibility : !bvh_.occluded(origin, direction, 0.0f, kShadowRayReach);
         return;
     }
     const Hit hit = bvh_.intersect(origin, direction, 0.0f, kShadowRayReach);
@@ -236,8 +235,8 @@ void Renderer::trace_shadows(const PrimaryHit &primary, int x, int y, std::uint6
     // Visibility only, every weight 1 and nothing else traced or listened
     // to: a sample adds 1 to the weight sums (ShadowStats::add) and nothing
     // else, so the batch is counted without building its LightSamples.
-    const bool visibility_counts = primary.found && !occluder_distances && !settings_.cosine_falloff &&
-                                   !separate && listeners.empty();
+    const bool visibility_counts =
+        primary.found && !occluder_distances && !settings_.cosine_falloff && !separate && listeners.empty();
     // The light points of a batch of samples first (random numbers, strata,
     // the warp: one tight loop each), then their rays; the same numbers in
     // the same order as one sample at a time.
@@ -256,7 +255,8 @@ void Renderer::trace_shadows(const PrimaryHit &primary, int x, int y, std::uint6
             light_samplers_[0].warp(unit_s.data(), unit_t.data(), batch, y_u_m.data(), y_v_m.data());
         // Visibility only: the batch's rays in one loop, before the samples.
         const bool batch_traced = primary.found && !occluder_distances;
-        if (batch_traced) trace_visibility_batch(primary, origin, batch, y_u_m.data(), y_v_m.data(), visible.data());
+        if (batch_traced)
+            trace_visibility_batch(primary, origin, batch, y_u_m.data(), y_v_m.data(), visible.data());
         if (visibility_counts) {
             stats.add_unit_weights(visible.data(), batch);
             continue;

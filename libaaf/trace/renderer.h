@@ -173,7 +173,7 @@ class Renderer {
     /// packets (packets_): visible[k], false for a point behind the hit's
     /// tangent plane (no ray, as in trace_key_light).
     void trace_visibility_batch(const PrimaryHit &primary, Vec3 origin, std::uint32_t count,
-                                  const float *y_u_m, const float *y_v_m, bool *visible) const;
+                                const float *y_u_m, const float *y_v_m, bool *visible) const;
     /// The radiance `sample` traces apart from r(x) V(x): the other lights'
     /// shading at the primary hit, or with a thin lens that of every light
     /// seen through a lens ray aimed at `focus` (filling the sample's lens

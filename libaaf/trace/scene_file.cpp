@@ -275,7 +275,8 @@ Material read_material(const Node &node) {
         bump->allow_only({"slope", "period_m"});
         material.bump_slope = bump->at("slope").number();
         if (auto period = bump->find("period_m")) material.bump_period_m = period->number();
-        if (!(material.bump_slope >= 0 && material.bump_slope <= 10)) bump->fail("bump slope must lie in [0, 10]");
+        if (!(material.bump_slope >= 0 && material.bump_slope <= 10))
+            bump->fail("bump slope must lie in [0, 10]");
         if (!(material.bump_period_m >= 1e-4f && material.bump_period_m <= 1e4f))
             bump->fail("bump period_m must lie in [1e-4, 1e4] metres");
     }
@@ -458,7 +459,8 @@ void read_object(const Node &node, const fs::path &scene_dir,
     if (auto material = node.find("material")) {
         if (material->is_object()) {
             if (material->keys().empty())
-                material->fail("an inline material needs albedo, specular, roughness or theta_max_deg (or give a name)");
+                material->fail(
+                    "an inline material needs albedo, specular, roughness or theta_max_deg (or give a name)");
             mesh.material = read_material(*material);
         } else if (material->is_string()) {
             auto it = materials.find(material->string());

@@ -52,8 +52,8 @@ SphericalRectangle::SphericalRectangle(const LightPlane &light, Vec3d p) : p_(p)
     b1_ = n2.z;
     k_ = 2 * kPi - g2 - g3;
     solid_angle_sr_ = g0 + g1 - k_;
-    solid_angle_mode_ = solid_angle_sr_ >= kMinSolidAngle_sr &&
-                        -z0_ >= kMinPlaneDistance * std::max(width_, height_);
+    solid_angle_mode_ =
+        solid_angle_sr_ >= kMinSolidAngle_sr && -z0_ >= kMinPlaneDistance * std::max(width_, height_);
 }
 
 Vec3d SphericalRectangle::sample(double u1, double u2) const {

@@ -24,8 +24,8 @@ inline TexturedSurface texture_surface(const Material &material, Vec3 p, Vec3 n)
         // Cell parity of the 3D checker; the small offset keeps axis-aligned
         // faces at a cell boundary (common in scenes) off the boundary.
         const float inverse = 1 / material.checker_size_m;
-        const long parity = long(std::floor(p.x * inverse + 1e-3f)) + long(std::floor(p.y * inverse + 1e-3f)) +
-                            long(std::floor(p.z * inverse + 1e-3f));
+        const long parity = long(std::floor(p.x * inverse + 1e-3f)) +
+                            long(std::floor(p.y * inverse + 1e-3f)) + long(std::floor(p.z * inverse + 1e-3f));
         if (parity & 1) surface.material.albedo = material.checker_albedo;
     }
     if (material.bump_slope > 0) {

@@ -44,8 +44,8 @@ struct Fixture {
     aaf::LightPlane light;
     double omega_y_max = 0;
     double mean_central_sigma_px = 0;  ///< at the default k (see the header comment)
-    cv::Mat visibility;                 ///< shadow.V, finite, for OpenCV
-    std::vector<cv::Mat> sum_planes;    ///< every plane MAAF reads, finite, for OpenCV
+    cv::Mat visibility;                ///< shadow.V, finite, for OpenCV
+    std::vector<cv::Mat> sum_planes;   ///< every plane MAAF reads, finite, for OpenCV
 };
 
 /// A tightly packed copy of a plane with non-finite values read as 0.

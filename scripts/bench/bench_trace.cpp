@@ -298,7 +298,8 @@ void BM_Throughput(benchmark::State &state, const std::string &scene_name) {
     Fixture &f = fixture(scene_name);
     set_flush_to_zero(true);
     const RTCScene scene = f.renderer->bvh().handle();
-    double tracer_s = 0, tracer_visibility_s = 0, tracer_packets_s = 0, occluded_s = 0, intersect_s = 0, sampling_s = 0;
+    double tracer_s = 0, tracer_visibility_s = 0, tracer_packets_s = 0, occluded_s = 0, intersect_s = 0,
+           sampling_s = 0;
     std::size_t tracer_rays = 0;
     for (auto _ : state) {
         auto sampling_start = ThreadCpuClock::now();

@@ -33,7 +33,8 @@ int main() {
                 const double ref_fresnel = ltc_reference::ggx_by_quadrature(lights[k], wo, roughness, true);
                 if (k == 0) mirror = std::fabs(ltc.magnitude_term - ref_lobe) / ref_lobe;
                 worst_lobe = std::max(worst_lobe, std::fabs(ltc.magnitude_term - ref_lobe) / magnitude);
-                worst_fresnel = std::max(worst_fresnel, std::fabs(ltc.fresnel_term - ref_fresnel) / magnitude);
+                worst_fresnel =
+                    std::max(worst_fresnel, std::fabs(ltc.fresnel_term - ref_fresnel) / magnitude);
             }
             highlight.push_back(mirror);
             lobe.push_back(worst_lobe);
@@ -41,7 +42,8 @@ int main() {
         }
     const char *titles[] = {
         "Relative error of the highlight (a 1 m square at 2 m around the mirror direction, F0 = 1)",
-        "Largest absolute error over the four placements, as a fraction of the lobe's hemispherical integral (F0 = 1)",
+        "Largest absolute error over the four placements, as a fraction of the lobe's hemispherical integral "
+        "(F0 = 1)",
         "The same for the Fresnel integral (F0 = 0), as a fraction of the lobe's hemispherical integral"};
     const std::vector<double> *tables[] = {&highlight, &lobe, &fresnel};
     for (int t = 0; t < 3; ++t) {

@@ -72,8 +72,8 @@ AovSet cached_reference(const std::string &cache_dir, const std::string &scene,
                         const trace::RenderSettings &settings) {
     if (cache_dir.empty()) return trace::render_scene(scene, settings);
     const std::string path = cache_dir + "/" + scene + "_" + std::to_string(settings.width) + "x" +
-                             std::to_string(settings.height) + "_" + std::to_string(settings.spp) + "spp_seed" +
-                             std::to_string(settings.seed) + ".exr";
+                             std::to_string(settings.height) + "_" + std::to_string(settings.spp) +
+                             "spp_seed" + std::to_string(settings.seed) + ".exr";
     if (std::ifstream(path).good()) {
         AovSet cached = io::read_aovs(path);
         if (cached.width() == settings.width && cached.height() == settings.height) return cached;

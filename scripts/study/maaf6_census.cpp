@@ -46,7 +46,8 @@ int main(int argc, char **argv) {
     Maaf6FilterParams params;
     app.add_option("input", input, "A render of `aaf render SCENE --aovs maaf6`")->required();
     app.add_option("--k", params.k, "As aaf filter maaf6 --k")->capture_default_str();
-    app.add_option("--max-radius", params.max_radius_px, "As aaf filter maaf6 --max-radius")->capture_default_str();
+    app.add_option("--max-radius", params.max_radius_px, "As aaf filter maaf6 --max-radius")
+        ->capture_default_str();
     app.add_option("--band-spp", params.band_spp, "As aaf filter maaf6 --band-spp")->capture_default_str();
     double indirect_band_spp = 128;
     app.add_option("--indirect-band-spp", indirect_band_spp, "As aaf filter maaf6 --indirect-band-spp")
@@ -70,19 +71,23 @@ int main(int argc, char **argv) {
         shared.pixel_size = aovs.channel(names.channel(Role::PixelSize));
         shared.samples = aovs.channel(names.channel(Role::Maaf6Spp));
         shared.omega_u_max = double(attribute(aovs, attr::kMaaf6OmegaLens));
-        std::printf("%s, k %g, max radius %d px: filtered pixels of each layer by the reasons for the central filter\n",
-                    input.c_str(), params.k, params.max_radius_px);
+        std::printf(
+            "%s, k %g, max radius %d px: filtered pixels of each layer by the reasons for the central "
+            "filter\n",
+            input.c_str(), params.k, params.max_radius_px);
         std::printf("%-9s %8s %8s %8s | %9s | %9s %9s %9s %9s %9s %9s %9s %9s | %9s\n", "layer", "backgr.",
-                    "no wedge", "filtered", "widened", "partition", "a", "b", "a+b", "c", "a+c", "b+c", "a+b+c", "cut");
+                    "no wedge", "filtered", "widened", "partition", "a", "b", "a+b", "c", "a+c", "b+c",
+                    "a+b+c", "cut");
         struct LayerSpec {
             const char *name;
             Role sums, weights;
             std::size_t wedge_channel;
             const char *omega;
         };
-        for (const LayerSpec &spec :
-             {LayerSpec{"direct", Role::Maaf6DirectSums, Role::Maaf6DirectWeights, 0, attr::kMaaf6OmegaDirect},
-              LayerSpec{"indirect", Role::Maaf6IndirectSums, Role::Maaf6IndirectWeights, 2, attr::kMaaf6OmegaIndirect}}) {
+        for (const LayerSpec &spec : {LayerSpec{"direct", Role::Maaf6DirectSums, Role::Maaf6DirectWeights, 0,
+                                                attr::kMaaf6OmegaDirect},
+                                      LayerSpec{"indirect", Role::Maaf6IndirectSums,
+                                                Role::Maaf6IndirectWeights, 2, attr::kMaaf6OmegaIndirect}}) {
             Maaf6LayerInputs layer;
             layer.sums = planes(aovs, names, spec.sums);
             layer.weights = planes(aovs, names, spec.weights);

@@ -59,7 +59,9 @@ int main(int argc, char **argv) {
     app.add_option("--maaf-k", maaf_k, "MAAF width scales k (the first is reported as MAAF)")
         ->delimiter(',')
         ->capture_default_str();
-    app.add_option("--mu", mu_values, "AAF adaptive-sampling mu values")->delimiter(',')->capture_default_str();
+    app.add_option("--mu", mu_values, "AAF adaptive-sampling mu values")
+        ->delimiter(',')
+        ->capture_default_str();
     CLI11_PARSE(app, argc, argv);
 
     try {
@@ -94,10 +96,11 @@ int main(int argc, char **argv) {
                     rows.push_back({scene, name, double(spp), double(spp),
                                     compare_channels(filtered, reference, kRgb).rmse, sampling_s,
                                     std::max(0.0, with_maaf_s - sampling_s), filter_s});
-                    std::fprintf(stderr,
-                                 "%-10s %s %3d spp: RMSE %.5f  sampling %.2f s  accumulation %.2f s  filter %.2f s\n",
-                                 scene.c_str(), name.c_str(), spp, rows.back().rmse, sampling_s,
-                                 rows.back().accumulation_s, filter_s);
+                    std::fprintf(
+                        stderr,
+                        "%-10s %s %3d spp: RMSE %.5f  sampling %.2f s  accumulation %.2f s  filter %.2f s\n",
+                        scene.c_str(), name.c_str(), spp, rows.back().rmse, sampling_s,
+                        rows.back().accumulation_s, filter_s);
                 }
             }
             settings.aovs = aaf_groups;
@@ -115,11 +118,14 @@ int main(int argc, char **argv) {
                 start = Clock::now();
                 const AovSet filtered = aaf_filter_aovs(noisy, ChannelMap{}, params);
                 const double filter_s = seconds_since(start);
-                const double spp = mean_spp_over_shaded(noisy.channel("pixel.spp"), noisy.channel("id.object"));
-                rows.push_back({scene, "AAF-AS", double(mu), spp, compare_channels(filtered, reference, kRgb).rmse,
-                                sampling_s, 0.0, filter_s});
-                std::fprintf(stderr, "%-10s AAF adaptive mu %.2f: avg %.1f spp  RMSE %.5f  sampling %.2f s  filter %.2f s\n",
-                             scene.c_str(), mu, spp, rows.back().rmse, sampling_s, filter_s);
+                const double spp =
+                    mean_spp_over_shaded(noisy.channel("pixel.spp"), noisy.channel("id.object"));
+                rows.push_back({scene, "AAF-AS", double(mu), spp,
+                                compare_channels(filtered, reference, kRgb).rmse, sampling_s, 0.0, filter_s});
+                std::fprintf(
+                    stderr,
+                    "%-10s AAF adaptive mu %.2f: avg %.1f spp  RMSE %.5f  sampling %.2f s  filter %.2f s\n",
+                    scene.c_str(), mu, spp, rows.back().rmse, sampling_s, filter_s);
             }
         }
         const std::string temporary = io::temporary_path_for(output);
@@ -127,8 +133,8 @@ int main(int argc, char **argv) {
             std::ofstream csv(temporary);
             csv << "scene,method,setting,avg_spp,rmse,sampling_s,accumulation_s,filter_s\n";
             for (const Row &r : rows)
-                csv << r.scene << ',' << r.method << ',' << r.setting << ',' << r.avg_spp << ',' << r.rmse << ','
-                    << r.sampling_s << ',' << r.accumulation_s << ',' << r.filter_s << '\n';
+                csv << r.scene << ',' << r.method << ',' << r.setting << ',' << r.avg_spp << ',' << r.rmse
+                    << ',' << r.sampling_s << ',' << r.accumulation_s << ',' << r.filter_s << '\n';
             if (!csv) throw Error(output + ": cannot write");
         }
         io::commit_temporary(temporary, output);

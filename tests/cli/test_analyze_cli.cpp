@@ -29,8 +29,9 @@ std::vector<std::string> keys_of(const nlohmann::json &object) {
 
 }  // namespace
 
-TEST_CASE("CLI: analyze wedge --json is keyed by the paper's method names, box coverage equal to MAAF Eq. 16-18",
-          "[cli][analyze]") {
+TEST_CASE(
+    "CLI: analyze wedge --json is keyed by the paper's method names, box coverage equal to MAAF Eq. 16-18",
+    "[cli][analyze]") {
     const nlohmann::json out =
         run_json("analyze wedge --smin 0.7 --smax 2.2 --filters 1,2,3,4,13,38,63 --box");
     CHECK(keys_of(out) == std::vector<std::string>{"AAF", "FSF", "MAAF(1)", "MAAF(125)", "MAAF(25)",

@@ -162,7 +162,8 @@ TEST_CASE("CLI: usage errors exit 2", "[cli]") {
     CHECK(run_aaf("--help").exit_code == 0);
 }
 
-TEST_CASE("CLI: filter aaf and filter maaf take a combined-effects render as maaf6 does, with a note", "[cli]") {
+TEST_CASE("CLI: filter aaf and filter maaf take a combined-effects render as maaf6 does, with a note",
+          "[cli]") {
     const fs::path dir = scratch_dir("cli_combined");
     const std::string render = (dir / "combined.exr").string();
     REQUIRE(run_aaf("render room --aovs maaf6 --width 24 --height 18 --spp 4 -o " + render).exit_code == 0);
@@ -188,7 +189,8 @@ TEST_CASE("CLI: filter aaf and filter maaf take a combined-effects render as maa
     }
     // The same in one process: render --aovs maaf6 --filter aaf (its parameters refused before rendering).
     const std::string one = (dir / "one.exr").string(), baseline = (dir / "baseline.exr").string();
-    const RunResult rendered = run_aaf("render room --aovs maaf6 --filter aaf --width 24 --height 18 --spp 4 -o " + one);
+    const RunResult rendered =
+        run_aaf("render room --aovs maaf6 --filter aaf --width 24 --height 18 --spp 4 -o " + one);
     REQUIRE(rendered.exit_code == 0);
     CHECK_THAT(rendered.output, Catch::Contains("aaf: note: room: a combined-effects render"));
     REQUIRE(run_aaf("filter maaf6 --pairs 1 " + render + " -o " + baseline).exit_code == 0);
@@ -196,12 +198,14 @@ TEST_CASE("CLI: filter aaf and filter maaf take a combined-effects render as maa
         const aaf::AovSet a = aaf::io::read_aovs(one), b = aaf::io::read_aovs(baseline);
         CHECK(a.plane(a.index_of(name)) == b.plane(b.index_of(name)));
     }
-    CHECK(run_aaf("render room --aovs maaf6 --filter aaf --filter-param mu=3 --width 24 --height 18 --spp 4 -o " +
-                  (dir / "never.exr").string())
+    CHECK(run_aaf(
+              "render room --aovs maaf6 --filter aaf --filter-param mu=3 --width 24 --height 18 --spp 4 -o " +
+              (dir / "never.exr").string())
               .exit_code == 2);
     CHECK_FALSE(fs::exists(dir / "never.exr"));
 
-    // An AAF option the delegate does not take: a usage error, as from render, one line naming it, nothing written.
+    // An AAF option the delegate does not take: a usage error, as from render, one line naming it, nothing
+    // written.
     const std::string refused = (dir / "refused.exr").string();
     const RunResult run = run_aaf("filter aaf --k 2 " + render + " -o " + refused);
     CHECK(run.exit_code == 2);

@@ -22,7 +22,8 @@ aaf::AovSet without(const aaf::AovSet &full, const std::vector<std::string> &dro
     for (const std::string &name : aaf::light_attribute_names()) out.attributes.erase(name);
     for (std::size_t c = 0; c < full.channel_names().size(); ++c)
         if (std::find(drop.begin(), drop.end(), full.channel_names()[c]) == drop.end())
-            std::copy(full.plane(c).begin(), full.plane(c).end(), out.add_channel(full.channel_names()[c]).data);
+            std::copy(full.plane(c).begin(), full.plane(c).end(),
+                      out.add_channel(full.channel_names()[c]).data);
     return out;
 }
 
@@ -55,12 +56,14 @@ TEST_CASE("aaf info and filter list every missing input at once, each with its r
     const auto filter = run_aaf("filter aaf " + bare + " -o " + out);
     CHECK(filter.exit_code == 3);
     CHECK_THAT(filter.output, Catch::Contains("missing 3 inputs of AAF: visibility [shadow.V]") &&
-                                  Catch::Contains("; d1 [shadow.d1]") && Catch::Contains("--light LIGHT.json"));
+                                  Catch::Contains("; d1 [shadow.d1]") &&
+                                  Catch::Contains("--light LIGHT.json"));
     CHECK(std::count(filter.output.begin(), filter.output.end(), '\n') == 1);
     CHECK_FALSE(fs::exists(out));
 }
 
-TEST_CASE("A file without a light header filters with --light as with the header it was rendered with", "[cli][light]") {
+TEST_CASE("A file without a light header filters with --light as with the header it was rendered with",
+          "[cli][light]") {
     const fs::path dir = scratch_dir("light_option");
     const std::string full = (dir / "full.exr").string(), bare = (dir / "bare.exr").string();
     REQUIRE(run_aaf("render grids -o " + full + " --width 24 --height 16 --spp 4").exit_code == 0);
@@ -78,7 +81,8 @@ TEST_CASE("A file without a light header filters with --light as with the header
         const std::string out = (dir / "lit.exr").string();
         REQUIRE(run_aaf("filter aaf " + bare + " -o " + out + " --light " + given).exit_code == 0);
         const aaf::AovSet lit = aaf::io::read_aovs(out), ref = aaf::io::read_aovs(reference);
-        for (const char *channel : {"R", "G", "B", "aaf.V", "aaf_beta.X"}) CHECK(max_difference(lit, ref, channel) == 0);
+        for (const char *channel : {"R", "G", "B", "aaf.V", "aaf_beta.X"})
+            CHECK(max_difference(lit, ref, channel) == 0);
         CHECK(std::get<float>(lit.attributes.at("aaf:light:width_m")) == 1.0f);
     }
 

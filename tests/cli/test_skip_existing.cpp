@@ -117,8 +117,8 @@ TEST_CASE("filter --skip-existing redoes a changed parameter, a newer input and 
 
 TEST_CASE("render --progress lines reports while a single round renders, with an ETA", "[cli][progress]") {
     const fs::path dir = scratch_dir("render_progress_lines");
-    const auto result =
-        run_aaf("render grids --width 64 --height 48 --spp 64 --progress lines -o " + (dir / "p.exr").string());
+    const auto result = run_aaf("render grids --width 64 --height 48 --spp 64 --progress lines -o " +
+                                (dir / "p.exr").string());
     REQUIRE(result.exit_code == 0);
     std::size_t lines = 0;
     for (std::size_t at = result.output.find("render: "); at != std::string::npos;

@@ -50,7 +50,8 @@ double integrate_over_area(const Rectangle &light, const Integrand &integrand, d
             for (int i = 0; i < cells; ++i)
                 for (int b = 0; b < 4; ++b)
                     for (int a = 0; a < 4; ++a) {
-                        const double s = (i + 0.5 + 0.5 * node[a]) / cells, t = (j + 0.5 + 0.5 * node[b]) / cells;
+                        const double s = (i + 0.5 + 0.5 * node[a]) / cells,
+                                     t = (j + 0.5 + 0.5 * node[b]) / cells;
                         const Vec3d y = light.corner + light.ex * s + light.ey * t;
                         const double r_sq = dot(y, y);
                         const Vec3d w = y / std::sqrt(r_sq);

@@ -86,8 +86,8 @@ inline void filter_planes(const Maaf6Planes &planes, double omega_y_max, double 
 /// lens samples (points uniform on [-0.1, 0.1] from `seed`), every other one
 /// occluded, of radiance colour[c] times the unoccluded light, accumulated
 /// for N = 3 and then scaled to `spp` samples (as `spp` / 16 repeats of them).
-inline Maaf6Planes lens_checkerboard(int width, int height, double pixel_m, double s_u, float spp, unsigned seed,
-                                     const float (&colour)[3]) {
+inline Maaf6Planes lens_checkerboard(int width, int height, double pixel_m, double s_u, float spp,
+                                     unsigned seed, const float (&colour)[3]) {
     const std::size_t n = std::size_t(width) * std::size_t(height);
     Maaf6Planes planes;
     planes.width = width;
@@ -124,12 +124,14 @@ inline Maaf6Planes lens_checkerboard(int width, int height, double pixel_m, doub
         std::vector<double> rgb(75, 0.0), weight(25, 0.0);
         for (int s = 0; s < 16; ++s) {
             const float visible = s % 2 ? 1.0f : 0.0f;
-            const float value[3] = {float(colour[0] * unoccluded) * visible, float(colour[1] * unoccluded) * visible,
+            const float value[3] = {float(colour[0] * unoccluded) * visible,
+                                    float(colour[1] * unoccluded) * visible,
                                     float(colour[2] * unoccluded) * visible};
             side.accumulate(0, lens(rng), 0, lens(rng), value, unoccluded, rgb.data(), weight.data());
         }
         for (int c = 0; c < 75; ++c) planes.sums[std::size_t(c)][i] = float(repeat * rgb[std::size_t(c)]);
-        for (int c = 0; c < 25; ++c) planes.weights[std::size_t(c)][i] = float(repeat * weight[std::size_t(c)]);
+        for (int c = 0; c < 25; ++c)
+            planes.weights[std::size_t(c)][i] = float(repeat * weight[std::size_t(c)]);
     }
     return planes;
 }

@@ -17,15 +17,18 @@ const double kViewDeg[] = {0, 30, 60, 75};
 // rows and columns above), rounded up at the 4th decimal: the highlight's
 // relative error and the largest absolute error over the placements as a
 // fraction of the lobe's hemispherical integral, F0 = 1 and F0 = 0.
-const double kHighlight[4][4] = {
-    {0.0049, 0.0025, 0.0016, 0.0296}, {0.0017, 0.0079, 0.0430, 0.1863},
-    {0.0134, 0.0202, 0.0808, 0.1264}, {0.0289, 0.0060, 0.0193, 0.0356}};
-const double kLobe[4][4] = {
-    {0.0045, 0.0018, 0.0247, 0.0636}, {0.0027, 0.0084, 0.0358, 0.0777},
-    {0.0028, 0.0090, 0.0154, 0.0232}, {0.0025, 0.0025, 0.0025, 0.0025}};
-const double kFresnel[4][4] = {
-    {0.0000, 0.0000, 0.0022, 0.0258}, {0.0000, 0.0002, 0.0057, 0.0255},
-    {0.0000, 0.0004, 0.0039, 0.0100}, {0.0000, 0.0000, 0.0004, 0.0009}};
+const double kHighlight[4][4] = {{0.0049, 0.0025, 0.0016, 0.0296},
+                                 {0.0017, 0.0079, 0.0430, 0.1863},
+                                 {0.0134, 0.0202, 0.0808, 0.1264},
+                                 {0.0289, 0.0060, 0.0193, 0.0356}};
+const double kLobe[4][4] = {{0.0045, 0.0018, 0.0247, 0.0636},
+                            {0.0027, 0.0084, 0.0358, 0.0777},
+                            {0.0028, 0.0090, 0.0154, 0.0232},
+                            {0.0025, 0.0025, 0.0025, 0.0025}};
+const double kFresnel[4][4] = {{0.0000, 0.0000, 0.0022, 0.0258},
+                               {0.0000, 0.0002, 0.0057, 0.0255},
+                               {0.0000, 0.0004, 0.0039, 0.0100},
+                               {0.0000, 0.0000, 0.0004, 0.0009}};
 constexpr double kRounding = 1e-4;
 
 }  // namespace
@@ -40,13 +43,15 @@ TEST_CASE("LTC GGX: polygon integrals match brute-force quadrature within the do
             const auto lights = ltc_reference::ggx_placements(kViewDeg[v]);
             for (std::size_t k = 0; k < lights.size(); ++k) {
                 INFO("roughness " << kRoughness[r] << ", view " << kViewDeg[v] << " deg, placement " << k);
-                const ltc_ggx::PolygonIntegral ltc = ltc_ggx::integrate(lights[k].polygon(), kRoughness[r], wo.z);
+                const ltc_ggx::PolygonIntegral ltc =
+                    ltc_ggx::integrate(lights[k].polygon(), kRoughness[r], wo.z);
                 const double lobe = ltc_reference::ggx_by_quadrature(lights[k], wo, kRoughness[r], false);
                 const double fresnel = ltc_reference::ggx_by_quadrature(lights[k], wo, kRoughness[r], true);
                 REQUIRE(lobe > 0);
                 CHECK(std::fabs(ltc.magnitude_term - lobe) <= (kLobe[r][v] + kRounding) * magnitude);
                 CHECK(std::fabs(ltc.fresnel_term - fresnel) <= (kFresnel[r][v] + kRounding) * magnitude);
-                if (k == 0) CHECK(std::fabs(ltc.magnitude_term - lobe) <= (kHighlight[r][v] + kRounding) * lobe);
+                if (k == 0)
+                    CHECK(std::fabs(ltc.magnitude_term - lobe) <= (kHighlight[r][v] + kRounding) * lobe);
             }
         }
 }

@@ -136,9 +136,10 @@ TEST_CASE("MAAF 6D tangent frame: orthonormal, the light's axis_u on a floor und
     CHECK(length(t2) == Approx(1));
 }
 
-TEST_CASE("MAAF 6D filter components: the axis-aligned filter where the window or the x band cannot hold the "
-          "partition, by hand",
-          "[maaf6]") {
+TEST_CASE(
+    "MAAF 6D filter components: the axis-aligned filter where the window or the x band cannot hold the "
+    "partition, by hand",
+    "[maaf6]") {
     // example_wedge: Omega_y^max / y_min = 10 rad/m, x band min(1e6, 100 / 0.5) = 200: the y band
     // limits the wedge; sigma_x^0 = 10 / 5 = 2 rad/m, so the central reach 3 k / sigma_x^0 is 1.5 m.
     Maaf6Wedge w = example_wedge(0.5, 1.0);
@@ -162,7 +163,8 @@ TEST_CASE("MAAF 6D filter components: the axis-aligned filter where the window o
     CHECK(maaf6_filter_components(w, 1, 1.0, 1e3).size() == 1);
 }
 
-TEST_CASE("MAAF 6D x kernel: each pair's cos part integrates to 0 (nothing passes at Omega_x = 0)", "[maaf6]") {
+TEST_CASE("MAAF 6D x kernel: each pair's cos part integrates to 0 (nothing passes at Omega_x = 0)",
+          "[maaf6]") {
     const std::vector<Maaf6Component> c = maaf6_pair_components(example_wedge(0.5, 1.0), 3);
     for (double k : {1.0, 3.0}) {
         double integral[5] = {0, 0, 0, 0, 0}, first_moment_sin = 0;
@@ -177,7 +179,7 @@ TEST_CASE("MAAF 6D x kernel: each pair's cos part integrates to 0 (nothing passe
         CHECK(integral[0] == Approx(std::sqrt(2 * 3.14159265358979) * k / c[0].sigma_x).epsilon(1e-6));
         CHECK(std::fabs(integral[1]) < 1e-6 * integral[0]);
         CHECK(std::fabs(integral[3]) < 1e-6 * integral[0]);
-        CHECK(std::fabs(integral[2]) < 1e-9);  // odd
+        CHECK(std::fabs(integral[2]) < 1e-9);       // odd
         CHECK(std::fabs(first_moment_sin) > 1e-3);  // but not zero
     }
 }
@@ -195,7 +197,8 @@ TEST_CASE("MAAF 6D filter components: the focal-plane box (u slopes of both sign
     const std::vector<Maaf6Component> partition = maaf6_pair_components(one_signed, 3);
     for (std::size_t p = 0; p < 3; ++p) CHECK(same(kept[p], partition[p]));
     CHECK(kept[2].weight > 0);
-    for (const auto &[u_min, u_max] : {std::pair{-0.01, 0.02}, std::pair{-0.5, 1.0}, std::pair{-1.0, 0.001}}) {
+    for (const auto &[u_min, u_max] :
+         {std::pair{-0.01, 0.02}, std::pair{-0.5, 1.0}, std::pair{-1.0, 0.001}}) {
         const Maaf6Wedge box = example_wedge(u_min, u_max);
         const std::vector<Maaf6Component> c = maaf6_filter_components(box, 3, 1.0, 1e3);
         REQUIRE(c.size() == 3);
@@ -217,9 +220,10 @@ TEST_CASE("MAAF 6D light attenuation: the Gaussian light model's spectrum at the
     CHECK_THROWS(maaf6_light_attenuation(1.0, 0.0));
 }
 
-TEST_CASE("MAAF 6D partition check: each of the filter's reasons for the central filter, by hand", "[maaf6]") {
-    // example_wedge(0.01, 0.02): x band min(1e6, 100 / 0.01) = 1e4 > Omega_y^max / y_min = 10, so not clipped;
-    // sigma_x^0 = 10 / 5 = 2 rad/m reaches 3 k / 2 = 1.5 m.
+TEST_CASE("MAAF 6D partition check: each of the filter's reasons for the central filter, by hand",
+          "[maaf6]") {
+    // example_wedge(0.01, 0.02): x band min(1e6, 100 / 0.01) = 1e4 > Omega_y^max / y_min = 10, so not
+    // clipped; sigma_x^0 = 10 / 5 = 2 rad/m reaches 3 k / 2 = 1.5 m.
     Maaf6Wedge w = example_wedge(0.01, 0.02);
     Maaf6PartitionCheck c = maaf6_partition_check(w, 3, 1.0, 1.6);
     CHECK(c.partition_used());
@@ -232,7 +236,8 @@ TEST_CASE("MAAF 6D partition check: each of the filter's reasons for the central
     CHECK((c.beyond_window && c.band_clipped && !c.focal_box));
     c = maaf6_partition_check(example_wedge(-0.01, 0.02), 3, 1.0, 1.6);  // (c) alone: the x band stays 1e6
     CHECK((!c.beyond_window && !c.band_clipped && c.focal_box));
-    CHECK(maaf6_partition_check(example_wedge(-0.01, 0.02), 1, 1.0, 1e-3).partition_used());  // N = 1: nothing to drop
+    CHECK(maaf6_partition_check(example_wedge(-0.01, 0.02), 1, 1.0, 1e-3)
+              .partition_used());  // N = 1: nothing to drop
     // Whatever the check says, maaf6_filter_components() keeps the offset pairs exactly where it passes.
     for (double window_m : {1.4, 1.6, 2.9, 3.1})
         for (double omega_x : {5.0, 1e6})

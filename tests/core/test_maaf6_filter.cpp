@@ -62,8 +62,8 @@ TEST_CASE("MAAF 6D filter: a fully lit region keeps each pixel's own mean exactl
         for (int s = 0; s < 16; ++s) {
             const double w_s = unit_weights ? 1.0 : 0.2 + unit(rng);
             const float lit[3] = {float(value[0] * w_s), float(value[1] * w_s), float(value[2] * w_s)};
-            side.accumulate(unit(rng) - 0.5, 0.1 * unit(rng), unit(rng) - 0.5, 0.1 * unit(rng), lit, w_s, rgb.data(),
-                            weight.data());
+            side.accumulate(unit(rng) - 0.5, 0.1 * unit(rng), unit(rng) - 0.5, 0.1 * unit(rng), lit, w_s,
+                            rgb.data(), weight.data());
         }
         for (int c = 0; c < 3; ++c) own[c][std::size_t(i)] = float(rgb[std::size_t(c)] / 16.0);
         for (int c = 0; c < 75; ++c) sums[std::size_t(c)][std::size_t(i)] = float(rgb[std::size_t(c)]);
@@ -92,16 +92,16 @@ namespace {
 /// maaf6_filter_layer(). Returns the largest |filtered - exact integral over v|
 /// over the pixels whose window lies inside the image.
 struct EdgeCase {
-    bool y_wedge = true;         ///< the slope on y (has_y) or on u (no y-wedge, lens only)
-    double slope = 1;            ///< s of the signal
+    bool y_wedge = true;                ///< the slope on y (has_y) or on u (no y-wedge, lens only)
+    double slope = 1;                   ///< s of the signal
     double wedge_lo = 1, wedge_hi = 1;  ///< the stored wedge (y or u slopes)
-    double half = 0.05;          ///< v uniform on [-half, half]
-    double omega_v = 40;         ///< Omega^max of v
-    double edge_m = 0.02;        ///< the edge's own width
-    int axis = 1;                ///< the subspace a
-    double k = 1;                ///< Maaf6FilterParams::k
+    double half = 0.05;                 ///< v uniform on [-half, half]
+    double omega_v = 40;                ///< Omega^max of v
+    double edge_m = 0.02;               ///< the edge's own width
+    int axis = 1;                       ///< the subspace a
+    double k = 1;                       ///< Maaf6FilterParams::k
     Maaf6PairWeights pair_weights = Maaf6PairWeights::Eq10;  ///< Maaf6FilterParams::pair_weights
-    double band_spp = 0;         ///< Maaf6FilterParams::band_spp (with `strata` samples per pixel)
+    double band_spp = 0;  ///< Maaf6FilterParams::band_spp (with `strata` samples per pixel)
 };
 
 double edge_error(const EdgeCase &e, int pairs_used) {
@@ -144,7 +144,8 @@ double edge_error(const EdgeCase &e, int pairs_used) {
         // On this floor (normal +y) t1 = the light's axis_u = +x and t2 = n x t1 = -z.
         pos[0][std::size_t(i)] = float(pixel_m * (i % width));
         pos[2][std::size_t(i)] = float(pixel_m * (i / width));
-        const double x_a = e.axis == 1 ? double(pos[0][std::size_t(i)]) : -double(pos[2][std::size_t(i)]) + 0.4;
+        const double x_a =
+            e.axis == 1 ? double(pos[0][std::size_t(i)]) : -double(pos[2][std::size_t(i)]) + 0.4;
         std::vector<double> rgb(75, 0.0), weight(25, 0.0);
         double mean = 0;
         for (int k = 0; k < strata; ++k) {
@@ -153,8 +154,8 @@ double edge_error(const EdgeCase &e, int pairs_used) {
             mean += f / strata;
             const float value[3] = {float(f), float(f), float(f)};
             const double y = e.y_wedge ? v : 0.0, u = e.y_wedge ? 0.0 : v;
-            side.accumulate(e.axis == 1 ? y : 0.0, e.axis == 1 ? u : 0.0, e.axis == 2 ? y : 0.0, e.axis == 2 ? u : 0.0,
-                            value, 1.0, rgb.data(), weight.data());
+            side.accumulate(e.axis == 1 ? y : 0.0, e.axis == 1 ? u : 0.0, e.axis == 2 ? y : 0.0,
+                            e.axis == 2 ? u : 0.0, value, 1.0, rgb.data(), weight.data());
         }
         exact[std::size_t(i)] = float(mean);
         for (int c = 0; c < 75; ++c) sums[std::size_t(c)][std::size_t(i)] = float(rgb[std::size_t(c)]);
@@ -179,7 +180,8 @@ double edge_error(const EdgeCase &e, int pairs_used) {
 
 }  // namespace
 
-TEST_CASE("MAAF 6D synthetic edge: no bias from pairs the window cannot resolve, in either subspace", "[maaf6]") {
+TEST_CASE("MAAF 6D synthetic edge: no bias from pairs the window cannot resolve, in either subspace",
+          "[maaf6]") {
     // Indirect light's numbers (s = z = 2 m, Omega_y^max = 2.8 per unit tan): the Omega_x extent is
     // 1.4 rad/m, the central component's 3 std 11 m against a 12 cm window. Inside it cos(C_x dx) ~ 1,
     // so the pairs would weight each pixel's samples by 1 + 2 mu_p cos(C_y^p y): 7e-3 off before.
@@ -257,9 +259,10 @@ TEST_CASE("MAAF 6D synthetic edge: the tap - centre displacement matches the wed
     }
 }
 
-TEST_CASE("MAAF 6D synthetic soft edge at k = 0.5: the light-attenuated pair weights over-sharpen less than "
-          "Eq. 10's",
-          "[maaf6]") {
+TEST_CASE(
+    "MAAF 6D synthetic soft edge at k = 0.5: the light-attenuated pair weights over-sharpen less than "
+    "Eq. 10's",
+    "[maaf6]") {
     // A y-wedge the partition covers (as in the orientation test above), v uniform on [-5, 5] cm
     // with Omega_y^max = 2 / 5 cm: the light of the toolkit's sigma = half its side. At k = 0.5 (wider
     // Fourier Gaussians, which overlap along the wedge) Eq. 10's weights over-sharpen: 0.020 against
@@ -277,12 +280,14 @@ TEST_CASE("MAAF 6D synthetic soft edge at k = 0.5: the light-attenuated pair wei
     CHECK(light < eq10);
 }
 
-TEST_CASE("MAAF 6D partition census: the filter's choice per pixel, with its window of max radius times the "
-          "pixel size",
-          "[maaf6]") {
+TEST_CASE(
+    "MAAF 6D partition census: the filter's choice per pixel, with its window of max radius times the "
+    "pixel size",
+    "[maaf6]") {
     // Seven pixels in a row: background; a hit without a wedge (no y-wedge, u slopes of both signs);
-    // the partition; (a); (b); (a) and (b); (c) (a y-wedge, u slopes of both signs). example_wedge's y-wedge [1, 2] at Omega_y^max 10
-    // (central reach 1.5 m unclipped, 3 m clipped to the x band 5); windows 12 px times the pixel size.
+    // the partition; (a); (b); (a) and (b); (c) (a y-wedge, u slopes of both signs). example_wedge's y-wedge
+    // [1, 2] at Omega_y^max 10 (central reach 1.5 m unclipped, 3 m clipped to the x band 5); windows 12 px
+    // times the pixel size.
     const int width = 7, height = 1, n = width * height;
     Maaf6Planes planes;
     planes.width = width;
@@ -317,9 +322,10 @@ TEST_CASE("MAAF 6D partition census: the filter's choice per pixel, with its win
     CHECK(census.by_reasons == std::array<long, 8>{5, 0, 0, 0, 0, 0, 0, 0});
 }
 
-TEST_CASE("MAAF 6D filter: with a lens wedge the unoccluded light is filtered with the lens band, not kept per "
-          "pixel",
-          "[maaf6]") {
+TEST_CASE(
+    "MAAF 6D filter: with a lens wedge the unoccluded light is filtered with the lens band, not kept per "
+    "pixel",
+    "[maaf6]") {
     // Defocus spreads a pixel's samples over whatever surfaces the lens rays hit, so the unoccluded light of
     // its samples differs from pixel to pixel: here a checkerboard of 0.5 and 1.5 (mean 1), every other
     // sample occluded (ratio 0.5). Taking the pixel's own mean of it (AAF's r(x) V(x) factoring) would keep
@@ -347,9 +353,10 @@ TEST_CASE("MAAF 6D filter: with a lens wedge the unoccluded light is filtered wi
     }
 }
 
-TEST_CASE("MAAF 6D filter: where the guides or the border cut the window, the pixel gets the axis-aligned "
-          "filter's own bits; over a whole window the partition",
-          "[maaf6]") {
+TEST_CASE(
+    "MAAF 6D filter: where the guides or the border cut the window, the pixel gets the axis-aligned "
+    "filter's own bits; over a whole window the partition",
+    "[maaf6]") {
     // A floor (normal +y, 30 columns of 1 cm) meets a wall (normal +x) that its taps reject; noisy
     // visibility on a y-wedge whose partition is active (s 0.25-0.35, Omega_y^max 40, central 3 std
     // 8-9 cm inside the 12 cm window). The pairs' cos and sin kernels cancel only over a whole window.
@@ -395,7 +402,8 @@ TEST_CASE("MAAF 6D filter: where the guides or the border cut the window, the pi
                             weight.data());
         }
         for (int c = 0; c < 75; ++c) planes.sums[std::size_t(c)][std::size_t(i)] = float(rgb[std::size_t(c)]);
-        for (int c = 0; c < 25; ++c) planes.weights[std::size_t(c)][std::size_t(i)] = float(weight[std::size_t(c)]);
+        for (int c = 0; c < 25; ++c)
+            planes.weights[std::size_t(c)][std::size_t(i)] = float(weight[std::size_t(c)]);
     }
     std::vector<float> n3[3], n1[3];
     for (int pairs : {3, 1}) {
@@ -422,8 +430,9 @@ TEST_CASE("MAAF 6D filter: where the guides or the border cut the window, the pi
     CHECK(census.window_cut > 2 * height);  // the border columns and the wall's neighbours at least
 }
 
-TEST_CASE("MAAF 6D filter: with band_spp the filter narrows as samples are added, down to each pixel's own mean",
-          "[maaf6]") {
+TEST_CASE(
+    "MAAF 6D filter: with band_spp the filter narrows as samples are added, down to each pixel's own mean",
+    "[maaf6]") {
     // A lens-only wedge (s_u 0.5, Omega_u^max 10) over 1 cm pixels: the lens band 20 rad/m, a std of
     // k / 20 = 5 px, averages a checkerboard of unoccluded light (0.5 / 1.5) to its mean 1. With band_spp
     // 16 the bands widen as sqrt(spp / 16), the pixel band with them: at 1296 spp the std is 0.56 px
@@ -451,9 +460,9 @@ TEST_CASE("MAAF 6D filter: with band_spp the filter narrows as samples are added
             }
         return left / count;
     };
-    CHECK(std::abs(checker_left(16, 0)) < 0.01);     // the paper's filter: averaged out
-    CHECK(std::abs(checker_left(16, 16)) < 0.01);    // band_spp 16 at 16 spp: the same
-    CHECK(std::abs(checker_left(1600, 0)) < 0.01);   // fixed bands ignore the samples
+    CHECK(std::abs(checker_left(16, 0)) < 0.01);    // the paper's filter: averaged out
+    CHECK(std::abs(checker_left(16, 16)) < 0.01);   // band_spp 16 at 16 spp: the same
+    CHECK(std::abs(checker_left(1600, 0)) < 0.01);  // fixed bands ignore the samples
     const double at_1296 = checker_left(1296, 16);  // std 0.56 px: the checkerboard partly kept
     CHECK(at_1296 > 0.05);
     CHECK(at_1296 < 0.95);
@@ -464,9 +473,10 @@ TEST_CASE("MAAF 6D filter: with band_spp the filter narrows as samples are added
     CHECK(checker_left(25600, 16) == Approx(1.0).epsilon(1e-4));  // std 0.125 px: each pixel's own mean
 }
 
-TEST_CASE("MAAF 6D synthetic soft edge: the pair weights fitted to the light's spectrum bias converged "
-          "penumbrae less than Eq. 10's and than the axis-aligned filter",
-          "[maaf6]") {
+TEST_CASE(
+    "MAAF 6D synthetic soft edge: the pair weights fitted to the light's spectrum bias converged "
+    "penumbrae less than Eq. 10's and than the axis-aligned filter",
+    "[maaf6]") {
     // A uniform light (v on [-5, 5] cm, Omega_y^max = 2 / 5 cm) over a y-wedge the partition covers,
     // narrow (slopes 0.25-0.35) and twice as wide (0.22-0.44); 256 strata, so the error is the bias.
     // Measured: N = 1 0.0125 / 0.0093, Eq. 10 0.0167 / 0.0082, light-attenuated 0.044 / 0.047,
@@ -482,15 +492,16 @@ TEST_CASE("MAAF 6D synthetic soft edge: the pair weights fitted to the light's s
             const double eq10 = edge_error(e, 3);
             e.pair_weights = Maaf6PairWeights::Fitted;
             const double fitted = edge_error(e, 3);
-            INFO("axis " << axis << ", slopes from " << lo << ": N = 1 " << aaf << ", Eq. 10 " << eq10 << ", fitted "
-                         << fitted);
+            INFO("axis " << axis << ", slopes from " << lo << ": N = 1 " << aaf << ", Eq. 10 " << eq10
+                         << ", fitted " << fitted);
             CHECK(fitted < eq10);
             CHECK(fitted < aaf);
             if (lo == 0.25) CHECK(fitted < 0.7 * eq10);
         }
 }
 
-TEST_CASE("MAAF 6D filter: a pixel whose bands band_spp widens gets the axis-aligned filter's bits", "[maaf6]") {
+TEST_CASE("MAAF 6D filter: a pixel whose bands band_spp widens gets the axis-aligned filter's bits",
+          "[maaf6]") {
     // The stored phases belong to the render's bands; pairs laid out for the widened band would sit
     // off the wedge (on this edge: N = 3 0.057 against N = 1 0.0076 before). 256 strata against
     // band_spp 64 widen both bands 2x; the partition would otherwise be used (x extent 160 rad/m).

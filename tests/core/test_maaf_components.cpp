@@ -54,7 +54,8 @@ TEST_CASE("MAAF components match hand-computed MAAF Eq. 6-10 for N = 2", "[maaf]
     CHECK(c[0].weight == Approx(c[2].weight));
 }
 
-TEST_CASE("MAAF with N = 1 is AAF's single filter (MAAF Eq. 2), clipped by the pixel band-limit", "[maaf][components]") {
+TEST_CASE("MAAF with N = 1 is AAF's single filter (MAAF Eq. 2), clipped by the pixel band-limit",
+          "[maaf][components]") {
     const auto free = maaf_components(0.5, 2.0, kInf, 4.0, 1);
     REQUIRE(free.size() == 1);
     CHECK(free[0].sigma_x == Approx(4.0 / 0.5));  // Omega_y^max / s_min
@@ -135,6 +136,7 @@ TEST_CASE("MAAF Eq. 9 sums the weighted components", "[maaf][components]") {
     const double from_mirror = c[0].weight * std::exp(-std::pow(2 * c[2].centre_x / c[0].sigma_x, 2) / 2) *
                                std::exp(-std::pow(2 * c[2].centre_y / c[0].sigma_y, 2) / 2);
     CHECK(at == Approx(c[2].weight + from_centre + from_mirror));
-    CHECK(aaf::maaf_fourier_filter(c, 0, 0) == Approx(1.0 + 2 * c[2].weight * std::exp(-std::pow(c[2].centre_x / c[2].sigma_x, 2) / 2) *
-                                                              std::exp(-std::pow(c[2].centre_y / c[2].sigma_y, 2) / 2)));
+    CHECK(aaf::maaf_fourier_filter(c, 0, 0) ==
+          Approx(1.0 + 2 * c[2].weight * std::exp(-std::pow(c[2].centre_x / c[2].sigma_x, 2) / 2) *
+                           std::exp(-std::pow(c[2].centre_y / c[2].sigma_y, 2) / 2)));
 }

@@ -72,7 +72,8 @@ struct FlatScene {
         for (int y = 0; y < height; ++y)
             for (int x = 0; x < width; ++x) {
                 const std::size_t i = index(x, y);
-                const double omega = maaf_partitioned_omega_y_max(s_min[i], s_max[i], omega_x_max[i], omega_y_max());
+                const double omega =
+                    maaf_partitioned_omega_y_max(s_min[i], s_max[i], omega_x_max[i], omega_y_max());
                 const MaafLightSide side(pairs, omega);
                 std::vector<double> v(value_sums.size(), 0.0), u(value_sums.size(), 0.0);
                 for (int a = 0; a < grid; ++a)
@@ -80,8 +81,9 @@ struct FlatScene {
                         const double y1 = (a + 0.5) / grid - 0.5, y2 = (b + 0.5) / grid - 0.5;
                         const double f = value(x, y, y1, y2);
                         const double sign = flip ? -1.0 : 1.0;
-                        side.accumulate(sign * y1 * light_side_scale, sign * (same_axis ? y1 : y2) * light_side_scale,
-                                        f, 1.0, v.data(), u.data());
+                        side.accumulate(sign * y1 * light_side_scale,
+                                        sign * (same_axis ? y1 : y2) * light_side_scale, f, 1.0, v.data(),
+                                        u.data());
                     }
                 for (std::size_t c = 0; c < v.size(); ++c) {
                     value_sums[c][i] = float(v[c]);
@@ -201,7 +203,8 @@ TEST_CASE("MAAF Eq. 12-13: two offset Fourier Gaussians are a cos-modulated Gaus
                 s_re += signal(t) * std::cos(omega * t) * 4e-3;
                 s_im -= signal(t) * std::sin(omega * t) * 4e-3;
             }
-            spectral += fourier_pair(omega) * (s_re * std::cos(omega * x0) - s_im * std::sin(omega * x0)) * step;
+            spectral +=
+                fourier_pair(omega) * (s_re * std::cos(omega * x0) - s_im * std::sin(omega * x0)) * step;
         }
         CHECK(spectral / (2 * kPi) == Approx(primal).margin(1e-6));
     }
@@ -217,9 +220,9 @@ TEST_CASE("MAAF: a constant image stays that constant, a fully lit one exactly l
         for (int y = 0; y < scene.height; ++y)
             for (int x = 0; x < scene.width; ++x) {
                 const std::size_t i = scene.index(x, y);
-                const MaafLightSide side(scene.pairs, maaf_partitioned_omega_y_max(scene.s_min[i], scene.s_max[i],
-                                                                                   scene.omega_x_max[i],
-                                                                                   scene.omega_y_max()));
+                const MaafLightSide side(
+                    scene.pairs, maaf_partitioned_omega_y_max(scene.s_min[i], scene.s_max[i],
+                                                              scene.omega_x_max[i], scene.omega_y_max()));
                 std::vector<double> v(scene.value_sums.size(), 0.0), u(v.size(), 0.0);
                 for (int k = 0; k < 9; ++k) {
                     const double weight = 0.5 + jitter(rng) + 0.5;
@@ -295,7 +298,7 @@ TEST_CASE("MAAF with N = 1 is AAF's filter (same beta, taps and rejection)", "[m
     // (the paper's widths).
     AafParams paper_widths;
     paper_widths.k = 1.0f;
-    paper_widths.mu = 2.0f;  // FlatScene's light band
+    paper_widths.mu = 2.0f;                             // FlatScene's light band
     CHECK(n1_against_aaf(1.0, paper_widths) <= 1e-5f);  // float rounding of beta and of the weights' sums
 }
 
@@ -308,13 +311,15 @@ TEST_CASE("MAAF's width scale k: N = 1 with the default k = 3 is AAF's default f
     CHECK(n1_against_aaf(1.0, AafParams{}) > 1e-2f);
 }
 
-TEST_CASE("MAAF reconstructs a dense-sampled soft shadow, a wrong light coordinate does not", "[maaf][filter]") {
+TEST_CASE("MAAF reconstructs a dense-sampled soft shadow, a wrong light coordinate does not",
+          "[maaf][filter]") {
     // An occluder half-plane x + z < x0 at light-plane distance d2 = 1.2 m (s = 2/1.2 - 1 = 2/3) under a
-    // uniform light of side 0.2 m (sampled on a 24 x 24 grid), pixels 3 cm apart: the shadow at receiver (X, Z) from light point (y1, y2) is
-    // v(X + Z + s (y1 + y2)) (MAAF Sec. 3), a diagonal edge involving both light axes. With a dense grid
-    // of light samples every pixel holds the exact soft shadow, so the filter's error is its bias; the
-    // light-side functions evaluated at -y (the wrong orientation) or at y1 twice (a public port's bug)
-    // must do worse. The error is measured away from the image's edges, where taps are cut off.
+    // uniform light of side 0.2 m (sampled on a 24 x 24 grid), pixels 3 cm apart: the shadow at receiver (X,
+    // Z) from light point (y1, y2) is v(X + Z + s (y1 + y2)) (MAAF Sec. 3), a diagonal edge involving both
+    // light axes. With a dense grid of light samples every pixel holds the exact soft shadow, so the filter's
+    // error is its bias; the light-side functions evaluated at -y (the wrong orientation) or at y1 twice (a
+    // public port's bug) must do worse. The error is measured away from the image's edges, where taps are cut
+    // off.
     const double s = 2.0 / 1.2 - 1.0;
     FlatScene scene(64, 64);
     scene.spacing_m = 0.03f;
@@ -365,7 +370,7 @@ TEST_CASE("MAAF reconstructs a dense-sampled soft shadow, a wrong light coordina
     scene.accumulate(shadow, grid, false, /*same_axis=*/true);
     const std::vector<float> same_axis = scene.run();
     INFO("rmse right " << rmse(right) << ", flipped " << rmse(flipped) << ", y1 twice " << rmse(same_axis)
-                        << ", k = 1: N = 3 " << paper_n3 << ", N = 1 " << n1);
+                       << ", k = 1: N = 3 " << paper_n3 << ", N = 1 " << n1);
     // Measured with k = 1 (the paper's widths): N = 3 0.027, N = 1 0.025: with exact input, MAAF's bias is
     // about AAF's with the same widths. With the default k = 3: right 0.0089, flipped 0.056, y1 twice
     // 0.018, N = 1 0.0013 (the offset components keep a bias N = 1 does not have; README "MAAF").
@@ -411,20 +416,25 @@ TEST_CASE("MAAF gives the same bytes for 1 and 3 threads", "[maaf][filter]") {
     CHECK(one == three);
 }
 
-TEST_CASE("Separable MAAF equals MAAF Eq. 21 over the full window when the wedge is constant", "[maaf][filter]") {
+TEST_CASE("Separable MAAF equals MAAF Eq. 21 over the full window when the wedge is constant",
+          "[maaf][filter]") {
     // On the flat receiver image rows and columns run along the light's two axes and every pixel has the
     // same kernels, so the complex exponentials and the per-axis Gaussians split exactly over two passes.
     FlatScene scene(40, 32);
     scene.set_wedge(0.3, 1.2);
     std::mt19937 rng(13);
     std::uniform_real_distribution<double> unit(0.0, 1.0);
-    scene.accumulate([&](int x, int, double y1, double y2) { return x + 8 * (y1 - y2) + 3 * unit(rng) > 20 ? 1.0 : 0.0; }, 4);
+    scene.accumulate(
+        [&](int x, int, double y1, double y2) { return x + 8 * (y1 - y2) + 3 * unit(rng) > 20 ? 1.0 : 0.0; },
+        4);
     // The default widths and the paper's (k = 1, wider kernels: more taps per term, all 13 terms reaching
     // different radii within one traversal).
     for (const double k : {MaafParams{}.k, 1.0}) {
-        const std::vector<float> separable = scene.run(0, 20.0f, true, k), full = scene.run(0, 20.0f, false, k);
+        const std::vector<float> separable = scene.run(0, 20.0f, true, k),
+                                 full = scene.run(0, 20.0f, false, k);
         float worst = 0;
-        for (std::size_t i = 0; i < full.size(); ++i) worst = std::max(worst, std::abs(separable[i] - full[i]));
+        for (std::size_t i = 0; i < full.size(); ++i)
+            worst = std::max(worst, std::abs(separable[i] - full[i]));
         INFO("k = " << k);
         CHECK(worst <= 1e-4f);
     }

@@ -124,7 +124,8 @@ TEST_CASE("MAAF fitted weights: the process-wide tables equal fresh ones, shared
     std::vector<std::shared_ptr<const MaafFittedWeights>> got(8);
     std::vector<std::thread> threads;
     for (std::size_t i = 0; i < got.size(); ++i)
-        threads.emplace_back([&, i] { got[i] = shared_fitted_weights(gaussian, 5.0 + double(i % 2), 3, 1.0); });
+        threads.emplace_back(
+            [&, i] { got[i] = shared_fitted_weights(gaussian, 5.0 + double(i % 2), 3, 1.0); });
     for (std::thread &thread : threads) thread.join();
     for (std::size_t i = 0; i < got.size(); ++i)
         CHECK(same_weights(*got[i], MaafFittedWeights(gaussian, 5.0 + double(i % 2), 3, 1.0)));

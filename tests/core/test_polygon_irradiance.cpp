@@ -57,8 +57,10 @@ TEST_CASE("Lambert U: the horizon-clipped edge integral equals a converged quadr
     }
 }
 
-TEST_CASE("Lambert U: a parallel rectangle matches the closed form, also where vertex directions are nearly opposite",
-          "[ratio][polygon]") {
+TEST_CASE(
+    "Lambert U: a parallel rectangle matches the closed form, also where vertex directions are nearly "
+    "opposite",
+    "[ratio][polygon]") {
     for (double a_over_h : {0.1, 1.0, 10.0, 1e3, 1e6}) {
         INFO("a / h = " << a_over_h);
         const double h = 1e-3, a = a_over_h * h;
@@ -80,8 +82,8 @@ TEST_CASE("Lambert U: non-negative, zero below the horizon and behind the emitte
     CHECK(polygon_form_factor(Rectangle{{1.0, -0.5, -1.0}, {0, 0, 1.0}, {0, 1.0, 0}}.polygon()) == 0);
     for (int k = 0; k < 50; ++k) {
         const double angle = k * 0.13;
-        const Rectangle light = ltc_reference::facing_square({std::cos(angle), std::sin(angle), std::sin(3 * angle)},
-                                                             1 + k * 0.1, 0.5 + 0.03 * k);
+        const Rectangle light = ltc_reference::facing_square(
+            {std::cos(angle), std::sin(angle), std::sin(3 * angle)}, 1 + k * 0.1, 0.5 + 0.03 * k);
         const double u = polygon_form_factor(light.polygon());
         CHECK(u >= 0);
         CHECK(u <= 1);
@@ -90,7 +92,8 @@ TEST_CASE("Lambert U: non-negative, zero below the horizon and behind the emitte
     // facing it the albedo times the radiance times the form factor.
     LightPlane plane = LightPlane::square({0, 2, 0}, {0, -1, 0}, 1.0f);
     const SurfaceReflectance lambert{{0.5f, 0.25f, 1.0f}, {0, 0, 0}, 0.5f};
-    const UnshadowedLight lit = rect_light_unshadowed({plane, {2, 2, 2}}, {0, 0, 0}, {0, 1, 0}, {0, 1, 0}, lambert);
+    const UnshadowedLight lit =
+        rect_light_unshadowed({plane, {2, 2, 2}}, {0, 0, 0}, {0, 1, 0}, {0, 1, 0}, lambert);
     const double ff = 4 * corner_rectangle_form_factor(0.5, 0.5, 2.0);
     CHECK(lit.diffuse.x == Approx(0.5 * 2 * ff).epsilon(1e-6));
     CHECK(lit.diffuse.y == Approx(0.25 * 2 * ff).epsilon(1e-6));

@@ -29,7 +29,8 @@ TEST_CASE("Wedge: MAAF Eq. 18 (central box 4 sigma_x^0 sigma_y^0) equals the int
         for (int pairs : {1, 2, 3, 4, 13}) {
             CAPTURE(wedge.s_min, wedge.s_max, pairs);
             const SpectralFilter filter = aaf::maaf_spectral_filter(wedge, pairs, SpectralShape::Box);
-            CHECK(filter.integral() == Approx(aaf::maaf_box_area(wedge, pairs)).epsilon(1e-12));  // MAAF Eq. 17
+            CHECK(filter.integral() ==
+                  Approx(aaf::maaf_box_area(wedge, pairs)).epsilon(1e-12));  // MAAF Eq. 17
             const aaf::FilterMetrics m = aaf::integrate_filter_metrics(filter, wedge, grid_of(cells));
             const double expected = aaf::maaf_box_coverage(wedge, pairs);
             CHECK(std::abs(m.coverage - expected) <=
@@ -37,7 +38,8 @@ TEST_CASE("Wedge: MAAF Eq. 18 (central box 4 sigma_x^0 sigma_y^0) equals the int
             // The boxes hold all of T and do not overlap inside it: W = 1 there.
             CHECK(m.accuracy == Approx(1.0).margin(1e-12));
         }
-    // MAAF Eq. 18 as printed (1/s_min^2 in the central term) is refused by the integral where s_min is far from 1.
+    // MAAF Eq. 18 as printed (1/s_min^2 in the central term) is refused by the integral where s_min is far
+    // from 1.
     for (const DoubleWedge &wedge : {DoubleWedge{0.2, 9.0, 1}, DoubleWedge{4.0, 9.5, 1}}) {
         const SpectralFilter filter = aaf::maaf_spectral_filter(wedge, 3, SpectralShape::Box);
         const double measured = aaf::integrate_filter_metrics(filter, wedge, grid_of(cells)).coverage;
@@ -125,7 +127,8 @@ TEST_CASE("Wedge: the integration converges as the grid is refined", "[wedge][co
 }
 
 TEST_CASE(
-    "Wedge: Gaussian MAAF is MAAF Eq. 9 with mu_p of MAAF Eq. 10 and covers more of T than AAF and FSF on the Table 2 "
+    "Wedge: Gaussian MAAF is MAAF Eq. 9 with mu_p of MAAF Eq. 10 and covers more of T than AAF and FSF on "
+    "the Table 2 "
     "wedges",
     "[wedge][gaussian]") {
     for (const DoubleWedge &wedge :

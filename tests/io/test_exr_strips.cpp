@@ -47,7 +47,8 @@ std::vector<float> write_source(const std::string &path, bool tiled) {
     for (int y = 0; y < kHeight; ++y)
         for (int x = 0; x < kWidth; ++x)
             for (int c = 0; c < kChannels; ++c)
-                pixels[(std::size_t(y) * kWidth + std::size_t(x)) * kChannels + std::size_t(c)] = pattern(x, y, c);
+                pixels[(std::size_t(y) * kWidth + std::size_t(x)) * kChannels + std::size_t(c)] =
+                    pattern(x, y, c);
     std::unique_ptr<OIIO::ImageOutput> out = OIIO::ImageOutput::create(path);
     REQUIRE(out);
     REQUIRE(out->open(path, spec));

@@ -38,7 +38,8 @@ double rmse(const AovSet &a, const AovSet &b) {
     for (const char *name : {"R", "G", "B"}) {
         const ConstPlaneView va = a.channel(name), vb = b.channel(name);
         for (int y = 0; y < a.height(); ++y)
-            for (int x = 0; x < a.width(); ++x) sum += double(va(x, y) - vb(x, y)) * double(va(x, y) - vb(x, y));
+            for (int x = 0; x < a.width(); ++x)
+                sum += double(va(x, y) - vb(x, y)) * double(va(x, y) - vb(x, y));
     }
     return std::sqrt(sum / (3.0 * a.width() * a.height()));
 }
@@ -58,7 +59,8 @@ TEST_CASE("maaf6: the group's channels follow the contract and the beauty is dir
     for (Role role : {Role::Maaf6DirectSums, Role::Maaf6IndirectWeights, Role::Maaf6Wedge, Role::Maaf6Spp})
         for (const std::string &name : role_info(role).channels) REQUIRE(render.has_channel(name));
     const ConstPlaneView r = render.channel("R"), direct = render.channel("maaf6.direct.R"),
-                         indirect = render.channel("maaf6.indirect.R"), w00 = render.channel("maaf6.indirect.W_c0c0"),
+                         indirect = render.channel("maaf6.indirect.R"),
+                         w00 = render.channel("maaf6.indirect.W_c0c0"),
                          v00 = render.channel("maaf6.direct.V_c0c0.R"), spp = render.channel("maaf6.spp");
     bool extra_seen = false;
     for (int y = 0; y < render.height(); ++y)
@@ -84,8 +86,9 @@ TEST_CASE("maaf6: each effect alone converges to its reference as spp grows", "[
     }
 }
 
-TEST_CASE("maaf6: with the default band_spp the filtered image of each effect alone converges to its reference",
-          "[maaf6]") {
+TEST_CASE(
+    "maaf6: with the default band_spp the filtered image of each effect alone converges to its reference",
+    "[maaf6]") {
     // AAF Sec. 5.2's consistency: the bands (the pixel band too) widen as sqrt(spp / 16), so the
     // filter's bias shrinks as samples are added. With the paper's fixed bands (band_spp 0) it does
     // not, and this test fails: shadows alone go 0.0159, 0.0152, 0.0152 at 16, 64, 256 spp, all
@@ -104,9 +107,10 @@ TEST_CASE("maaf6: with the default band_spp the filtered image of each effect al
     }
 }
 
-TEST_CASE("maaf6: the axis-aligned baseline (--pairs 1) reduces the error of indirect light alone and of all "
-          "effects together at 16 spp; a noise-free layer is left as it is",
-          "[maaf6]") {
+TEST_CASE(
+    "maaf6: the axis-aligned baseline (--pairs 1) reduces the error of indirect light alone and of all "
+    "effects together at 16 spp; a noise-free layer is left as it is",
+    "[maaf6]") {
     // Shadows alone and defocus alone carry too little noise at this size to gain; they are checked
     // at 160x120 below.
     for (const char *effects : {"indirect", "all"}) {
@@ -151,7 +155,8 @@ TEST_CASE("maaf6: the render and both filters give the same bytes for any thread
     }
 }
 
-TEST_CASE("maaf6: a band header attribute that is infinite, negative or NaN is an input error naming it", "[maaf6]") {
+TEST_CASE("maaf6: a band header attribute that is infinite, negative or NaN is an input error naming it",
+          "[maaf6]") {
     const AovSet render = render_room("all", 4, 1, 16, 12);
     const float bad[] = {INFINITY, -1.0f, NAN};
     for (const char *name : {attr::kMaaf6OmegaLens, attr::kMaaf6OmegaDirect, attr::kMaaf6OmegaIndirect})
@@ -168,9 +173,10 @@ TEST_CASE("maaf6: a band header attribute that is infinite, negative or NaN is a
         }
 }
 
-TEST_CASE("maaf6: `aaf filter aaf` and `aaf filter maaf` on a combined render run maaf6 --pairs 1 and maaf6, "
-          "and refuse their own options",
-          "[maaf6]") {
+TEST_CASE(
+    "maaf6: `aaf filter aaf` and `aaf filter maaf` on a combined render run maaf6 --pairs 1 and maaf6, "
+    "and refuse their own options",
+    "[maaf6]") {
     const AovSet render = render_room("all", 8, 1, 32, 24);
     const auto same = [](const AovSet &a, const AovSet &b) {
         REQUIRE(a.channel_names() == b.channel_names());

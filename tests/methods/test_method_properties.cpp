@@ -287,7 +287,8 @@ TEST_CASE("Every method: a missing required input is named in a one-line input e
                 for (Role other : find_method(delegate.method).info().roles.required)
                     if (std::find(info.roles.required.begin(), info.roles.required.end(), other) ==
                         info.roles.required.end())
-                        drop.insert(drop.end(), role_info(other).channels.begin(), role_info(other).channels.end());
+                        drop.insert(drop.end(), role_info(other).channels.begin(),
+                                    role_info(other).channels.end());
             for (std::size_t c = 0; c < full.channel_names().size(); ++c)
                 if (std::find(drop.begin(), drop.end(), full.channel_names()[c]) == drop.end())
                     std::copy(full.plane(c).begin(), full.plane(c).end(),
@@ -299,8 +300,9 @@ TEST_CASE("Every method: a missing required input is named in a one-line input e
     }
 }
 
-TEST_CASE("Every method with a delegate: a render made for the delegate gives the delegate's output, byte for byte",
-          "[methods]") {
+TEST_CASE(
+    "Every method with a delegate: a render made for the delegate gives the delegate's output, byte for byte",
+    "[methods]") {
     for (const Method *method : methods()) {
         const MethodInfo &info = method->info();
         for (const MethodDelegate &delegate : info.delegates) {

@@ -37,7 +37,7 @@ TEST_CASE("A registered plug-in gets its filter subcommand, help and info line",
 
     const RunResult info = run_aaf("info " + input, AAF_TOY_EXECUTABLE);
     CHECK_THAT(info.output, Catch::Contains("toy_box  ready") && Catch::Contains("aaf      missing") &&
-                                    Catch::Contains("- d1 [shadow.d1]: aaf render SCENE --aovs shadow"));
+                                Catch::Contains("- d1 [shadow.d1]: aaf render SCENE --aovs shadow"));
 
     const RunResult run =
         run_aaf("filter toy_box " + input + " -o " + output + " --radius 1", AAF_TOY_EXECUTABLE);

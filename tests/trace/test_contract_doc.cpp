@@ -65,7 +65,8 @@ TEST_CASE("The generated contract names every role and every registered method",
     // Visibility is read by both visibility filters, its filtered version written by both.
     CHECK_THAT(roles, Catch::Contains("| `visibility` | `shadow.V` |") &&
                           Catch::Contains("the unoccluded fraction) | `aaf`, `gaussian` | - |\n"));
-    CHECK_THAT(roles, Catch::Contains("filtered visibility | - | `aaf`, `gaussian`, `maaf`, `isg-shadow` |\n"));
+    CHECK_THAT(roles,
+               Catch::Contains("filtered visibility | - | `aaf`, `gaussian`, `maaf`, `isg-shadow` |\n"));
     const std::string methods = aaf::methods_markdown();
     CHECK_THAT(methods, Catch::Contains("### `aaf filter aaf`") &&
                             Catch::Contains("### `aaf filter gaussian`") &&

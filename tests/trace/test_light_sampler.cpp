@@ -1,5 +1,5 @@
-#include <catch2/catch.hpp>
 #include <hwy/targets.h>
+#include <catch2/catch.hpp>
 
 #include <algorithm>
 #include <cmath>

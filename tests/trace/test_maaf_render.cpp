@@ -52,7 +52,8 @@ double rmse(const std::vector<float> &a, const std::vector<float> &b) {
 
 }  // namespace
 
-TEST_CASE("The maaf group's sums are the samples' light-side sums: c0c0 is AAF's visibility", "[trace][maaf]") {
+TEST_CASE("The maaf group's sums are the samples' light-side sums: c0c0 is AAF's visibility",
+          "[trace][maaf]") {
     const AovSet aovs = render_maaf(20);  // a first pass of 16, then 4 more
     REQUIRE(aovs.attributes.count(attr::kMaafPairs));
     CHECK(std::get<int>(aovs.attributes.at(attr::kMaafPairs)) == kMaafContractPairs);
@@ -109,7 +110,8 @@ TEST_CASE("MAAF with N = 1 on a render is AAF with k mu = the light band times M
             worst = std::max(worst, std::abs(double(maaf1[i]) - aaf[i]));
         }
         mean_abs /= double(aaf.size());
-        INFO("MAAF k = " << maaf_k_and_aaf.first << ": mean |MAAF(1) - AAF| " << mean_abs << ", worst " << worst);
+        INFO("MAAF k = " << maaf_k_and_aaf.first << ": mean |MAAF(1) - AAF| " << mean_abs << ", worst "
+                         << worst);
         CHECK(mean_abs < 0.01);
     }
 }
@@ -125,7 +127,8 @@ TEST_CASE("MAAF's error against a reference falls as samples are added", "[trace
     for (int spp : {4, 16, 64}) {
         const AovSet aovs = render_maaf(spp, 0, 7);
         const double error = rmse(filtered(aovs, "maaf"), reference);
-        INFO(spp << " spp: MAAF rmse " << error << ", unfiltered " << rmse(plane(aovs, "shadow.V"), reference));
+        INFO(spp << " spp: MAAF rmse " << error << ", unfiltered "
+                 << rmse(plane(aovs, "shadow.V"), reference));
         CHECK(error < previous);
         // Measured 0.063, 0.046, 0.043 against 0.136, 0.051, 0.023 unfiltered: the filter's width does
         // not shrink with the samples (no consistency scaling), so at 64 spp its bias dominates.

@@ -9,7 +9,8 @@ using namespace aaf;
 
 // The analytic U (LTC, fitted to aaf/core/ggx.h) and the tracer's S_N, U_N
 // and beauty (libaaf/trace/shading.h) must integrate the same lobe.
-TEST_CASE("Ratio: the LTC's GGX lobe is the tracer's BRDF (specular part times the cosine)", "[trace][ratio]") {
+TEST_CASE("Ratio: the LTC's GGX lobe is the tracer's BRDF (specular part times the cosine)",
+          "[trace][ratio]") {
     for (float roughness : {0.1f, 0.3f, 0.6f, 1.0f})
         for (int k = 0; k < 200; ++k) {
             // Directions spread over the upper hemisphere, deterministic.
@@ -23,8 +24,8 @@ TEST_CASE("Ratio: the LTC's GGX lobe is the tracer's BRDF (specular part times t
             const Vec3 n{0, 1, 0};
             const float tracer = trace::evaluate_brdf(material, n, wo, wi).x * dot(n, wi);
             // The same directions in a frame whose z is the normal.
-            const double lobe = ggx::cosine_weighted({wo.x, wo.z, wo.y}, {wi.x, wi.z, wi.y},
-                                                     double(roughness) * roughness);
+            const double lobe =
+                ggx::cosine_weighted({wo.x, wo.z, wo.y}, {wi.x, wi.z, wi.y}, double(roughness) * roughness);
             INFO("roughness " << roughness << ", k " << k);
             // The tracer evaluates in float: D's 1 + cos^2 (alpha^2 - 1) cancels
             // digits at the peak of a sharp lobe.

@@ -89,8 +89,8 @@ TEST_CASE("Ratio: U_N converges to the analytic U as N grows, per light, on a te
             REQUIRE(count > 100);
             errors.push_back(std::sqrt(squared / count) / (sum_u / count));
         }
-        INFO("relative RMS errors at 1, 4, 16, 64, 256 spp: " << errors[0] << " " << errors[1] << " " << errors[2]
-                                                              << " " << errors[3] << " " << errors[4]);
+        INFO("relative RMS errors at 1, 4, 16, 64, 256 spp: "
+             << errors[0] << " " << errors[1] << " " << errors[2] << " " << errors[3] << " " << errors[4]);
         // Monte Carlo halves its error per quadrupling; allow some slack per step.
         for (std::size_t k = 1; k < errors.size(); ++k) CHECK(errors[k] < 0.7 * errors[k - 1]);
         CHECK(errors.back() < errors.front() / 8);
@@ -192,8 +192,8 @@ TEST_CASE("Ratio: E[S_N] (MIS of light and GGX samples) equals an independent ar
                 double sum = 0, sum_sq = 0;
                 int seeds = 0, hits = 0;
                 for (; seeds < kSeeds || (hits < kMinHits && seeds < kMaxSeeds); ++seeds) {
-                    const trace::RatioLayers layers =
-                        trace::trace_ratio_layers(renderer, scene, primary, light, 4, std::uint64_t(seeds), 0);
+                    const trace::RatioLayers layers = trace::trace_ratio_layers(
+                        renderer, scene, primary, light, 4, std::uint64_t(seeds), 0);
                     sum += layers.shadowed.x;
                     sum_sq += double(layers.shadowed.x) * layers.shadowed.x;
                     if (layers.shadowed.x > 0) ++hits;
@@ -244,8 +244,9 @@ TEST_CASE("Ratio: --aovs all leaves the ratio groups out, they are asked for by 
     CHECK(trace::parse_aov_groups("ratio_estimators") == trace::kAovRatioEstimators);
 }
 
-TEST_CASE("Ratio: with both techniques in use U_N converges per pixel at a fixed seed, also when N fills the grid",
-          "[trace][ratio]") {
+TEST_CASE(
+    "Ratio: with both techniques in use U_N converges per pixel at a fixed seed, also when N fills the grid",
+    "[trace][ratio]") {
     // A glossy floor draws from the light and from the GGX lobe. At a perfect
     // square N the stratified grid is filled in sample order, so a technique
     // choice stratified over the sample index alone gave each technique a
@@ -297,8 +298,8 @@ TEST_CASE("Ratio: with both techniques in use U_N converges per pixel at a fixed
         REQUIRE(count > 60);
         double errors[4];
         for (int k = 0; k < 4; ++k) errors[k] = std::sqrt(squared[k] / count) / (sum_reference / count);
-        INFO("light " << light << ": relative RMS errors of U_N at 16, 64, 256, 1024 spp: " << errors[0] << " "
-                      << errors[1] << " " << errors[2] << " " << errors[3]);
+        INFO("light " << light << ": relative RMS errors of U_N at 16, 64, 256, 1024 spp: " << errors[0]
+                      << " " << errors[1] << " " << errors[2] << " " << errors[3]);
         // Monte Carlo at least halves its error per quadrupling (stratified,
         // faster); allow slack per step, not over the whole range.
         for (int k = 1; k < 4; ++k) CHECK(errors[k] < 0.8 * errors[k - 1]);

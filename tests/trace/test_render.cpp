@@ -316,7 +316,7 @@ std::string write_probe_scene(const std::string &extra_lights = "") {
   "camera": {"position": [0.9, 2.5, 0], "look_at": [0.9, 0, 0], "up": [0, 0, -1], "fov_y_deg": 45},
   "lights": [{"center": [0, 3, 0], "edge_u": [0.5, 0, 0], "edge_v": [0, 0, 0.5], "intensity": 10,
               "profile": "uniform"})" +
-                               extra_lights + R"(],
+                                    extra_lights + R"(],
   "objects": [
     {"type": "plane", "size": [10, 10], "id": 1, "material": {"albedo": 0.5}},
     {"type": "box", "min": [0.6, 1.0, -0.1], "max": [0.7, 1.01, 0.1], "id": 2}

@@ -244,7 +244,8 @@ TEST_CASE("Scene file: colours, integers, inline materials and empty OBJs are va
                Contains("scene.json: objects[0].segments: integer out of range"));
     CHECK_THAT(
         load_error("empty_material", scene_text(R"([{"type": "sphere", "radius": 1, "material": {}}])")),
-        Contains("scene.json: objects[0].material: an inline material needs albedo, specular, roughness or theta_max_deg"));
+        Contains("scene.json: objects[0].material: an inline material needs albedo, specular, roughness or "
+                 "theta_max_deg"));
     CHECK_THAT(
         load_error("number_material", scene_text(R"([{"type": "sphere", "radius": 1, "material": 3}])")),
         Contains("scene.json: objects[0].material: expected a material name or an object"));
@@ -393,9 +394,8 @@ TEST_CASE("Scene file: the files a scene reads are the scene and each OBJ it loa
 }
 
 TEST_CASE("Scene names resolve to the shipped scene files", "[trace][scene]") {
-    for (const char *name :
-         {"grids", "spheres", "tentacles", "bench", "studio", "gallery", "tilted", "grazing", "contact",
-          "livingroom", "room"}) {
+    for (const char *name : {"grids", "spheres", "tentacles", "bench", "studio", "gallery", "tilted",
+                             "grazing", "contact", "livingroom", "room"}) {
         const std::string path = trace::resolve_scene(name);
         INFO(name);
         CHECK(fs::path(path).filename() == std::string(name) + ".json");

@@ -18,7 +18,8 @@ TEST_CASE("Shadow rays in packets give the same samples as one at a time", "[tra
         // With the falloff every sample has its own weight, so equal sums
         // mean the same samples were found visible, not just as many.
         settings.cosine_falloff = falloff;
-        const SceneDescription scene = load_scene_file(resolve_scene("grids"), settings.width, settings.height);
+        const SceneDescription scene =
+            load_scene_file(resolve_scene("grids"), settings.width, settings.height);
         const Renderer single(scene, settings, ShadowRayGrouping::Single);
         const Renderer packets(scene, settings, ShadowRayGrouping::Packets);
         std::size_t differing = 0, penumbra_pixels = 0;

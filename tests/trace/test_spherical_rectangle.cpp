@@ -10,12 +10,14 @@ namespace {
 
 /// Samples on a g x g grid of the unit square whose light point lies at u
 /// below `u_limit_m` metres (from the light's centre along axis_u).
-double share_below(const trace::SphericalRectangle &rectangle, const LightPlane &light, double u_limit_m, int g) {
+double share_below(const trace::SphericalRectangle &rectangle, const LightPlane &light, double u_limit_m,
+                   int g) {
     int below = 0;
     for (int j = 0; j < g; ++j)
         for (int i = 0; i < g; ++i) {
             const Vec3d y = rectangle.sample((i + 0.5) / g, (j + 0.5) / g);
-            const double u = (y.x - light.center.x) * light.axis_u.x + (y.y - light.center.y) * light.axis_u.y +
+            const double u = (y.x - light.center.x) * light.axis_u.x +
+                             (y.y - light.center.y) * light.axis_u.y +
                              (y.z - light.center.z) * light.axis_u.z;
             below += u < u_limit_m;
         }

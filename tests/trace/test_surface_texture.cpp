@@ -39,12 +39,15 @@ TEST_CASE("Textures: checker and bump are read, bad values are one line naming t
     CHECK(material_error("ok", R"({"checker": {"size_m": 0.2, "albedo": [0.1, 0.2, 0.3]},
                                   "bump": {"slope": 0.4, "period_m": 0.05}})") == "");
     const std::pair<const char *, const char *> bad[] = {
-        {R"({"checker": {"size_m": 0}})", "objects[0].material.checker.size_m: checker size_m must lie in [1e-4, 1e4]"},
+        {R"({"checker": {"size_m": 0}})",
+         "objects[0].material.checker.size_m: checker size_m must lie in [1e-4, 1e4]"},
         {R"({"checker": {"albedo": 0.5}})", "objects[0].material.checker: missing required field 'size_m'"},
-        {R"({"checker": {"size_m": 1, "albedo": 1.5}})", "objects[0].material.checker: checker albedo must lie in [0, 1]"},
+        {R"({"checker": {"size_m": 1, "albedo": 1.5}})",
+         "objects[0].material.checker: checker albedo must lie in [0, 1]"},
         {R"({"checker": {"size_m": 1, "colour": 0.5}})", "objects[0].material.checker.colour: unknown field"},
         {R"({"bump": {"slope": -1}})", "objects[0].material.bump: bump slope must lie in [0, 10]"},
-        {R"({"bump": {"slope": 1, "period_m": 0}})", "objects[0].material.bump: bump period_m must lie in [1e-4, 1e4]"},
+        {R"({"bump": {"slope": 1, "period_m": 0}})",
+         "objects[0].material.bump: bump period_m must lie in [1e-4, 1e4]"},
         {R"({"bump": {"period_m": 1}})", "objects[0].material.bump: missing required field 'slope'"},
     };
     for (const auto &[material, message] : bad) {

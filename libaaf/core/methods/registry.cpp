@@ -12,14 +12,14 @@ namespace {
 std::vector<std::unique_ptr<Method>> &registry() {
     static std::vector<std::unique_ptr<Method>> methods = [] {
         std::vector<std::unique_ptr<Method>> builtin;
-        builtin.push_back(make_aaf_method());       // Mehta et al. 2012
-        builtin.push_back(make_gaussian_method());  // fixed-width baseline
-        builtin.push_back(make_maaf_method());      // Wu et al. 2017
+        builtin.push_back(make_aaf_method());         // Mehta et al. 2012
+        builtin.push_back(make_gaussian_method());    // fixed-width baseline
+        builtin.push_back(make_maaf_method());        // Wu et al. 2017
         builtin.push_back(make_isg_shadow_method());  // Robison, Shirley 2009
         builtin.push_back(make_isg_glossy_method());
         builtin.push_back(make_isg_dof_method());
         builtin.push_back(make_ratio_method());  // Heitz, Hill, McGuire 2018
-        builtin.push_back(make_maaf6_method());     // Wu et al. 2017, Sec. 6.2
+        builtin.push_back(make_maaf6_method());  // Wu et al. 2017, Sec. 6.2
         return builtin;
     }();
     return methods;

@@ -17,8 +17,8 @@ namespace {
 
 /// Random-number stream of the maaf6 path samples, apart from the render's own passes.
 constexpr std::uint64_t kMaaf6Stream = 0x6d616166365f7374ull;
-constexpr int kFirstPassSpp = 16;    ///< MAAF Sec. 6.2 "Sampling": 16 path samples
-constexpr int kMaxExtraSpp = 100;    ///< MAAF Sec. 6.2: up to 100 more at the focal plane
+constexpr int kFirstPassSpp = 16;      ///< MAAF Sec. 6.2 "Sampling": 16 path samples
+constexpr int kMaxExtraSpp = 100;      ///< MAAF Sec. 6.2: up to 100 more at the focal plane
 constexpr int kPrefilterRadiusPx = 2;  ///< MAAF Sec. 6.2 "Pre-filtering": 5x5
 constexpr float kNormalThresholdDeg = 20;
 constexpr double kIndirectOmegaMax = 2.8;  ///< MAAF Sec. 3 (from AAF-GI), rad per unit tan
@@ -59,13 +59,15 @@ struct RawWedge {
 class Maaf6Group final : public AovAccumulator {
   public:
     AovGroupInfo info() const override {
-        return {kAovMaaf6, "maaf6",
-                "maaf6.direct.*, maaf6.indirect.* (75 sums + 25 weights each, N = 3), maaf6 wedges, maaf6.spp; "
-                "traces its own path samples (lens, area light, one diffuse bounce) and replaces R, G, B"};
+        return {
+            kAovMaaf6, "maaf6",
+            "maaf6.direct.*, maaf6.indirect.* (75 sums + 25 weights each, N = 3), maaf6 wedges, maaf6.spp; "
+            "traces its own path samples (lens, area light, one diffuse bounce) and replaces R, G, B"};
     }
     std::vector<Role> roles() const override {
-        return {Role::Maaf6Direct,        Role::Maaf6Indirect,      Role::Maaf6DirectSums, Role::Maaf6DirectWeights,
-                Role::Maaf6IndirectSums, Role::Maaf6IndirectWeights, Role::Maaf6Wedge,   Role::Maaf6Spp};
+        return {Role::Maaf6Direct,        Role::Maaf6Indirect,     Role::Maaf6DirectSums,
+                Role::Maaf6DirectWeights, Role::Maaf6IndirectSums, Role::Maaf6IndirectWeights,
+                Role::Maaf6Wedge,         Role::Maaf6Spp};
     }
 
     void write(const RenderState &state, AovSet &aovs) const override;
@@ -88,7 +90,8 @@ void Maaf6Group::write(const RenderState &state, AovSet &aovs) const {
     // Each pixel's tangent frame (maaf6_tangent_frame), from the central primary hit's normal.
     std::vector<Vec3> t1(count), t2(count);
     for (std::size_t i = 0; i < count; ++i)
-        if (state.primaries[i].found) maaf6_tangent_frame(state.primaries[i].normal, light.axis_u, light.axis_v, t1[i], t2[i]);
+        if (state.primaries[i].found)
+            maaf6_tangent_frame(state.primaries[i].normal, light.axis_u, light.axis_v, t1[i], t2[i]);
 
     std::vector<std::vector<Stored>> samples(count);
     std::vector<RawWedge> raw(count);
@@ -145,7 +148,8 @@ void Maaf6Group::write(const RenderState &state, AovSet &aovs) const {
     };
     // MAAF Sec. 6.2 "Sampling": the first pass.
     parallel_for_rows(height, [&](int y) {
-        for (int x = 0; x < width; ++x) trace(std::size_t(y) * std::size_t(width) + std::size_t(x), x, y, 0, first_spp);
+        for (int x = 0; x < width; ++x)
+            trace(std::size_t(y) * std::size_t(width) + std::size_t(x), x, y, 0, first_spp);
     });
 
     // MAAF Sec. 6.2 "Pre-filtering": slopes averaged over 5x5 (pixels with a
@@ -160,9 +164,10 @@ void Maaf6Group::write(const RenderState &state, AovSet &aovs) const {
             if (!centre.found) continue;
             double sums[6] = {0, 0, 0, 0, 0, 0};
             int used_direct = 0, used_indirect = 0, used_u = 0;
-            for (int ty = std::max(0, y - kPrefilterRadiusPx); ty <= std::min(height - 1, y + kPrefilterRadiusPx); ++ty)
-                for (int tx = std::max(0, x - kPrefilterRadiusPx); tx <= std::min(width - 1, x + kPrefilterRadiusPx);
-                     ++tx) {
+            for (int ty = std::max(0, y - kPrefilterRadiusPx);
+                 ty <= std::min(height - 1, y + kPrefilterRadiusPx); ++ty)
+                for (int tx = std::max(0, x - kPrefilterRadiusPx);
+                     tx <= std::min(width - 1, x + kPrefilterRadiusPx); ++tx) {
                     const std::size_t t = std::size_t(ty) * std::size_t(width) + std::size_t(tx);
                     const RawWedge &w = raw[t];
                     if (w.u_min <= w.u_max) {
@@ -170,7 +175,8 @@ void Maaf6Group::write(const RenderState &state, AovSet &aovs) const {
                         sums[5] += w.u_max;
                         ++used_u;
                     }
-                    if (!state.primaries[t].found || dot(state.primaries[t].normal, centre.normal) < cos_threshold)
+                    if (!state.primaries[t].found ||
+                        dot(state.primaries[t].normal, centre.normal) < cos_threshold)
                         continue;
                     if (w.direct_min <= w.direct_max) {
                         sums[0] += w.direct_min;
@@ -201,7 +207,7 @@ void Maaf6Group::write(const RenderState &state, AovSet &aovs) const {
 
     // The rest of the samples, and the focal-plane pixels' extra ones.
     const double omega_u = lens ? 4.0 / double(camera.aperture_radius_m) : 0.0;  // MAAF Sec. 3, L = A
-    const double omega_direct = 2.0 / double(light.sigma_m);                      // MAAF Sec. 3: 2 / sigma_y
+    const double omega_direct = 2.0 / double(light.sigma_m);                     // MAAF Sec. 3: 2 / sigma_y
     std::vector<int> extra(count, 0);
     parallel_for_rows(height, [&](int y) {
         for (int x = 0; x < width; ++x) {
@@ -211,7 +217,8 @@ void Maaf6Group::write(const RenderState &state, AovSet &aovs) const {
                 // Stand-in for MYRD14 Sec. 7's rate (not among the shared papers): the box
                 // spans the whole lens band, so the samples scale with the lens band's
                 // periods across the aperture, (1 + A Omega_u^max / (2 pi))^2, capped at +100.
-                const double scale = 1.0 + double(camera.aperture_radius_m) * omega_u / (2.0 * 3.14159265358979);
+                const double scale =
+                    1.0 + double(camera.aperture_radius_m) * omega_u / (2.0 * 3.14159265358979);
                 extra[i] = std::min(kMaxExtraSpp, int(std::ceil(state.spp * scale * scale)) - state.spp);
                 trace(i, x, y, 2, extra[i]);
             }
@@ -232,7 +239,8 @@ void Maaf6Group::write(const RenderState &state, AovSet &aovs) const {
     const int channels = maaf6_channel_count(kMaafContractPairs);
     // MAAF Eq. 23: each layer's sums with its pixel's parameters.
     parallel_for_rows(height, [&](int y) {
-        std::vector<double> rgb(static_cast<std::size_t>(3 * channels)), weight(static_cast<std::size_t>(channels));
+        std::vector<double> rgb(static_cast<std::size_t>(3 * channels)),
+            weight(static_cast<std::size_t>(channels));
         for (int x = 0; x < width; ++x) {
             const std::size_t i = std::size_t(y) * std::size_t(width) + std::size_t(x);
             const std::vector<Stored> &mine = samples[i];
@@ -276,19 +284,21 @@ void Maaf6Group::write(const RenderState &state, AovSet &aovs) const {
                     wedge.omega_x_max = double(omega_x[i]);
                     pairs = maaf6_pair_components(wedge, kMaafContractPairs);
                 } else {
-                    pairs.resize(std::size_t(kMaafContractPairs));  // background: phases 0, only the mean matters
+                    pairs.resize(
+                        std::size_t(kMaafContractPairs));  // background: phases 0, only the mean matters
                 }
                 const Maaf6SampleSide side(pairs);
                 for (const Stored &s : mine)
-                    side.accumulate(is_direct ? s.y1_direct : s.y1_indirect, s.u1,
-                                    is_direct ? s.y2_direct : s.y2_indirect, s.u2,
-                                    is_direct ? s.direct : s.indirect, is_direct ? double(s.direct_unoccluded_y) : 1.0,
-                                    rgb.data(), weight.data());
+                    side.accumulate(
+                        is_direct ? s.y1_direct : s.y1_indirect, s.u1,
+                        is_direct ? s.y2_direct : s.y2_indirect, s.u2, is_direct ? s.direct : s.indirect,
+                        is_direct ? double(s.direct_unoccluded_y) : 1.0, rgb.data(), weight.data());
                 const std::vector<PlaneView> &sums = is_direct ? direct_sums : indirect_sums;
                 const std::vector<PlaneView> &weights = is_direct ? direct_weights : indirect_weights;
                 for (int c = 0; c < channels; ++c) {
                     weights[std::size_t(c)](x, y) = float(weight[std::size_t(c)]);
-                    for (int k = 0; k < 3; ++k) sums[std::size_t(3 * c + k)](x, y) = float(rgb[std::size_t(3 * c + k)]);
+                    for (int k = 0; k < 3; ++k)
+                        sums[std::size_t(3 * c + k)](x, y) = float(rgb[std::size_t(3 * c + k)]);
                 }
             }
         }

@@ -38,8 +38,8 @@ class MaafGroup final : public AovAccumulator {
     void add_sample(std::size_t pixel, const LightSample &sample) override {
         if (!sample.has_receiver) return;
         const float weight = float(sample.weight);
-        samples_[pixel].push_back(
-            {sample.y_u_m, sample.y_v_m, sample.visible ? weight : 0.0f, weight, sample.visible ? 0.0f : sample.d2_m});
+        samples_[pixel].push_back({sample.y_u_m, sample.y_v_m, sample.visible ? weight : 0.0f, weight,
+                                   sample.visible ? 0.0f : sample.d2_m});
     }
     void end_pixel(std::size_t pixel) override {
         if (batches_[pixel]++ == 0) first_batch_size_[pixel] = std::uint32_t(samples_[pixel].size());
@@ -93,7 +93,8 @@ class MaafGroup final : public AovAccumulator {
         for (int y = 0; y < height; ++y)
             for (int x = 0; x < width; ++x) {
                 const std::size_t i = std::size_t(y) * std::size_t(width) + std::size_t(x);
-                // MAAF Sec. 6.2 "Pre-filtering": MAAF Eq. 20/23 with the pixel's parameters, over all its samples.
+                // MAAF Sec. 6.2 "Pre-filtering": MAAF Eq. 20/23 with the pixel's parameters, over all its
+                // samples.
                 const MaafLightSide light_side(kMaafContractPairs, double(wedges.omega_y[i]));
                 std::fill(value_sums.begin(), value_sums.end(), 0.0);
                 std::fill(unoccluded_sums.begin(), unoccluded_sums.end(), 0.0);

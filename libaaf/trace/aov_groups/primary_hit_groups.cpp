@@ -75,7 +75,9 @@ std::unique_ptr<AovAccumulator> make_depth_group() {
 std::unique_ptr<AovAccumulator> make_albedo_group() {
     return std::make_unique<PrimaryHitGroup<Vec3>>(
         AovGroupInfo{kAovAlbedo, "albedo", "albedo.R, albedo.G, albedo.B"}, Role::Albedo, Precision::Half,
-        [](const PrimaryHit &p) { return texture_surface(p.mesh->material, p.position, p.normal).material.albedo; });
+        [](const PrimaryHit &p) {
+            return texture_surface(p.mesh->material, p.position, p.normal).material.albedo;
+        });
 }
 
 }  // namespace aaf::trace

@@ -33,8 +33,8 @@ std::vector<RatioLayers> trace_all_ratio_layers(const RenderState &state) {
                 const PrimaryHit &primary = state.primaries[pixel];
                 if (!primary.found) continue;
                 for (std::size_t l = 0; l < lights; ++l)
-                    layers[pixel * lights + l] =
-                        trace_ratio_layers(*state.renderer, state.scene, primary, l, samples, state.seed, pixel);
+                    layers[pixel * lights + l] = trace_ratio_layers(*state.renderer, state.scene, primary, l,
+                                                                    samples, state.seed, pixel);
             }
     });
     return layers;
@@ -146,7 +146,8 @@ class RatioEstimatorsGroup final : public AovAccumulator {
                 for (int c = 0; c < 3; ++c) {
                     sto[c] += double(light.shadowed[c]);  // ratio estimator Eq. 10
                     // ratio estimator Eq. 11: U minus the estimated shadowed-away part.
-                    cv[c] += double(light.analytic[c]) - double(light.unshadowed[c]) + double(light.shadowed[c]);
+                    cv[c] +=
+                        double(light.analytic[c]) - double(light.unshadowed[c]) + double(light.shadowed[c]);
                 }
             }
             set3(stochastic, x, y, Vec3{float(sto[0]), float(sto[1]), float(sto[2])});

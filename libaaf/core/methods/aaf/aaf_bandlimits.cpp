@@ -43,8 +43,8 @@ namespace {
 
 /// The part of aaf_bandlimits() that does not depend on mu: AAF Eq. 4, 6, 7, 8
 /// (omega_x_f, beta_m and samples_per_pixel left 0).
-AafBandlimits mu_free_bandlimits(float d1_m, float d2_min_m, float d2_max_m, float pixel_size_m, float sigma_m,
-                                 const AafParams &params) {
+AafBandlimits mu_free_bandlimits(float d1_m, float d2_min_m, float d2_max_m, float pixel_size_m,
+                                 float sigma_m, const AafParams &params) {
     AafBandlimits b;
     b.s1 = std::max(0.0f, d1_m / d2_min_m - 1.0f);               // AAF Eq. 4
     b.s2 = std::max(0.0f, d1_m / d2_max_m - 1.0f);               // AAF Eq. 4

@@ -20,8 +20,8 @@ double peak_one_gaussian(double t, double s) {
 void check_arguments(double s_min, double s_max, double omega_x_max, double omega_y_max, int pairs) {
     if (pairs < 1) throw Error("MAAF needs at least one filter pair (N >= 1), got " + std::to_string(pairs));
     if (!(s_min >= 0) || !(s_max >= s_min))
-        throw Error("MAAF wedge slopes must satisfy 0 <= s_min <= s_max (got " + std::to_string(s_min) + ", " +
-                    std::to_string(s_max) + ")");
+        throw Error("MAAF wedge slopes must satisfy 0 <= s_min <= s_max (got " + std::to_string(s_min) +
+                    ", " + std::to_string(s_max) + ")");
     if (!(omega_x_max > 0)) throw Error("MAAF pixel band-limit Omega_x^max must be positive");
     if (!(omega_y_max > 0) || !std::isfinite(omega_y_max))
         throw Error("MAAF light band-limit Omega_y^max must be positive and finite");

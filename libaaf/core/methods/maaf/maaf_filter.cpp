@@ -37,8 +37,8 @@ void check_inputs(const MaafInputs &in, const LightPlane &light, const MaafParam
     if (width <= 0 || height <= 0) throw Error("MAAF input 'pixel_size' is missing or empty");
     const std::size_t channels = std::size_t(maaf_channel_count(in.pairs));
     if (in.value_sums.size() != channels || in.unoccluded_sums.size() != channels)
-        throw Error("MAAF needs " + std::to_string(channels) + " value and unoccluded sums for N = " +
-                    std::to_string(in.pairs));
+        throw Error("MAAF needs " + std::to_string(channels) +
+                    " value and unoccluded sums for N = " + std::to_string(in.pairs));
     for (std::size_t c = 0; c < channels; ++c) {
         check_size(in.value_sums[c], width, height, "maaf value sum " + std::to_string(c));
         check_size(in.unoccluded_sums[c], width, height, "maaf unoccluded sum " + std::to_string(c));
@@ -55,8 +55,8 @@ void check_inputs(const MaafInputs &in, const LightPlane &light, const MaafParam
 
 /// True when the stored wedge is one maaf_components() accepts.
 bool usable_wedge(float s_min, float s_max, float omega_x_max, float pixel_size) {
-    return s_min >= 0 && s_max >= s_min && std::isfinite(s_max) && omega_x_max > 0 && std::isfinite(omega_x_max) &&
-           pixel_size > 0 && std::isfinite(pixel_size);
+    return s_min >= 0 && s_max >= s_min && std::isfinite(s_max) && omega_x_max > 0 &&
+           std::isfinite(omega_x_max) && pixel_size > 0 && std::isfinite(pixel_size);
 }
 
 MaafPixelKernel pixel_kernels(const MaafInputs &in, const MaafParams &params, int pairs, int x, int y) {
@@ -71,7 +71,8 @@ MaafPixelKernel pixel_kernels(const MaafInputs &in, const MaafParams &params, in
         // The Fourier Gaussian's std is k sigma_x^p (MaafParams::k; the paper's reading is k = 1).
         const double fourier_sigma = params.k * c.sigma_x;
         const double sigma_m = 1.0 / fourier_sigma;  // primal width of G(.; k sigma_x) (MAAF Eq. 12)
-        const double radius = std::min(std::ceil(kCutoffSigmas * sigma_m / pixel_size), double(params.max_radius_px));
+        const double radius =
+            std::min(std::ceil(kCutoffSigmas * sigma_m / pixel_size), double(params.max_radius_px));
         k.omega_x[p] = float(c.centre_x);
         k.inv_two_sigma_sq[p] =
             float(std::min(0.5 * fourier_sigma * fourier_sigma, double(std::numeric_limits<float>::max())));
@@ -172,10 +173,12 @@ void maaf_filter(const MaafInputs &in, const LightPlane &light, const MaafParams
             }
         }
     };
-    auto channel = [&](int function_u, int function_v) { return std::size_t(function_u * per_axis + function_v); };
+    auto channel = [&](int function_u, int function_v) {
+        return std::size_t(function_u * per_axis + function_v);
+    };
     if (params.separable) {
-        MaafFilteredSums sums =
-            maaf_separable_filter(guides, params.normal_threshold_deg, kernels, in.pairs, pairs, values, unoccludeds);
+        MaafFilteredSums sums = maaf_separable_filter(guides, params.normal_threshold_deg, kernels, in.pairs,
+                                                      pairs, values, unoccludeds);
         numerator = std::move(sums.numerator);
         denominator = std::move(sums.denominator);
         central_num = std::move(sums.central_numerator);
@@ -200,9 +203,11 @@ void maaf_filter(const MaafInputs &in, const LightPlane &light, const MaafParams
             for (const Function &fu : functions_of(pu))
                 for (const Function &fv : functions_of(pv)) {
                     const std::size_t c = channel(fu.index, fv.index);
-                    const AxisModulation along_u{fu.kind, plane_view<const float>(omega_u.data(), width, height),
+                    const AxisModulation along_u{fu.kind,
+                                                 plane_view<const float>(omega_u.data(), width, height),
                                                  plane_view<const float>(inv_u.data(), width, height)};
-                    const AxisModulation along_v{fv.kind, plane_view<const float>(omega_v.data(), width, height),
+                    const AxisModulation along_v{fv.kind,
+                                                 plane_view<const float>(omega_v.data(), width, height),
                                                  plane_view<const float>(inv_v.data(), width, height)};
                     gather_modulated(guides, settings,
                                      {plane_view<const float>(values[c].data(), width, height),

@@ -23,24 +23,27 @@ std::vector<ParameterInfo> maaf_parameters() {
         ParameterInfo::choice("pairs", "all", {"all", "1"},
                               "Filter pairs N per 2D subspace: all of the sums' (the tracer writes N = 3, 25 "
                               "filters in 4D) or 1, the central filter alone (AAF)"),
-        ParameterInfo::real("k", "3", "",
-                            "Width scale: each component's Fourier-domain std is k times its half-width sigma_x^p "
-                            "(1 = the paper's reading of MAAF Eq. 8-9; 3 = AAF's k, N = 1 then equals AAF's "
-                            "default filter)",
-                            0.01, 100),
+        ParameterInfo::real(
+            "k", "3", "",
+            "Width scale: each component's Fourier-domain std is k times its half-width sigma_x^p "
+            "(1 = the paper's reading of MAAF Eq. 8-9; 3 = AAF's k, N = 1 then equals AAF's "
+            "default filter)",
+            0.01, 100),
         ParameterInfo::real("normal_threshold", "20", "degrees",
                             "Reject taps whose normal turns more (MAAF Sec. 6.2)", 0, 180),
         ParameterInfo::integer("max_radius", "64", "pixels", "Largest filter radius", 0, 1 << 16),
-        ParameterInfo::choice("filter", "separable", {"separable", "2d"},
-                              "separable: two 1D passes per component pair (complex exponentials, as AAF Sec. 6 "
-                              "separates); 2d: every tap of MAAF Eq. 21, to measure the approximation"),
+        ParameterInfo::choice(
+            "filter", "separable", {"separable", "2d"},
+            "separable: two 1D passes per component pair (complex exponentials, as AAF Sec. 6 "
+            "separates); 2d: every tap of MAAF Eq. 21, to measure the approximation"),
     };
 }
 
 template <typename T>
 T header_value(const MethodImages &images, const char *name) {
     const auto it = images.attributes().find(name);
-    if (it == images.attributes().end()) throw InputError(std::string("missing header attribute '") + name + "'");
+    if (it == images.attributes().end())
+        throw InputError(std::string("missing header attribute '") + name + "'");
     const T *value = std::get_if<T>(&it->second);
     if (!value) throw InputError(std::string("header attribute '") + name + "' has the wrong type");
     return *value;
@@ -55,8 +58,9 @@ class MaafMethod final : public Method {
         info_.reference =
             "Wu, Yan, Kuznetsov, Ramamoorthi: Multiple Axis-Aligned Filters for Rendering of Combined "
             "Distribution Effects, 2017";
-        info_.roles.required = {Role::MaafValueSums, Role::MaafUnoccludedSums, Role::MaafWedge, Role::Position,
-                                Role::Normal,        Role::ObjectId,           Role::PixelSize, Role::Unshadowed};
+        info_.roles.required = {
+            Role::MaafValueSums, Role::MaafUnoccludedSums, Role::MaafWedge, Role::Position,
+            Role::Normal,        Role::ObjectId,           Role::PixelSize, Role::Unshadowed};
         info_.roles.optional = {Role::OtherLights};
         info_.roles.outputs = {Role::FilteredVisibility, Role::Beauty};
         info_.parameters = maaf_parameters();
@@ -72,9 +76,9 @@ class MaafMethod final : public Method {
     void run(const MethodImages &images, const ParameterSet &parameters, Progress &progress) const override {
         const int pairs = header_value<int>(images, attr::kMaafPairs);
         if (pairs != kMaafContractPairs)
-            throw InputError("header attribute '" + std::string(attr::kMaafPairs) + "' is " +
-                             std::to_string(pairs) + "; the MAAF channels of the contract hold N = " +
-                             std::to_string(kMaafContractPairs));
+            throw InputError(
+                "header attribute '" + std::string(attr::kMaafPairs) + "' is " + std::to_string(pairs) +
+                "; the MAAF channels of the contract hold N = " + std::to_string(kMaafContractPairs));
         MaafInputs in;
         in.pairs = pairs;
         for (int c = 0; c < maaf_channel_count(pairs); ++c) {

@@ -40,9 +40,11 @@ std::vector<Term> terms_for(int sum_pairs, int pairs) {
             if (pu == 0 && pv == 0) {
                 terms.push_back({0, 0, 1.0f, 1.0, {{1.0f, channel(0, 0)}}, {}});
             } else if (pv == 0) {
-                terms.push_back({pu, 0, 1.0f, 1.0, {{1.0f, channel(2 * pu - 1, 0)}}, {{1.0f, channel(2 * pu, 0)}}});
+                terms.push_back(
+                    {pu, 0, 1.0f, 1.0, {{1.0f, channel(2 * pu - 1, 0)}}, {{1.0f, channel(2 * pu, 0)}}});
             } else if (pu == 0) {
-                terms.push_back({0, pv, 1.0f, 1.0, {{1.0f, channel(0, 2 * pv - 1)}}, {{1.0f, channel(0, 2 * pv)}}});
+                terms.push_back(
+                    {0, pv, 1.0f, 1.0, {{1.0f, channel(0, 2 * pv - 1)}}, {{1.0f, channel(0, 2 * pv)}}});
             } else {
                 const std::size_t cc = channel(2 * pu - 1, 2 * pv - 1), cs = channel(2 * pu - 1, 2 * pv),
                                   sc = channel(2 * pu, 2 * pv - 1), ss = channel(2 * pu, 2 * pv);
@@ -59,7 +61,8 @@ struct TermTable {
     std::size_t count = 0, padded = 0;
     std::vector<int> pu, pv;
     std::vector<float> sign_v;
-    explicit TermTable(const std::vector<Term> &terms) : count(terms.size()), padded((terms.size() + 7) / 8 * 8) {
+    explicit TermTable(const std::vector<Term> &terms)
+        : count(terms.size()), padded((terms.size() + 7) / 8 * 8) {
         for (const Term &t : terms) {
             pu.push_back(t.pu);
             pv.push_back(t.pv);
@@ -136,8 +139,8 @@ MaafFilteredSums maaf_separable_filter(const GatherGuides &g, float normal_thres
 
     const float cos_threshold = std::cos(normal_threshold_deg * kPi / 180.0f);
     auto accepted = [&](std::size_t c, std::size_t t) {
-        const float cos_angle = g.normal_x[c] * g.normal_x[t] + g.normal_y[c] * g.normal_y[t] +
-                                g.normal_z[c] * g.normal_z[t];
+        const float cos_angle =
+            g.normal_x[c] * g.normal_x[t] + g.normal_y[c] * g.normal_y[t] + g.normal_z[c] * g.normal_z[t];
         return t == c || (g.object_id[t] == g.object_id[c] && cos_angle >= cos_threshold);
     };
     // Each term's reach at a pixel: max(radius_p, radius_q); 0 where it is not filtered.

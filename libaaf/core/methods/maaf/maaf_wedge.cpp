@@ -24,7 +24,8 @@ void check_size(ConstPlaneView view, int width, int height, const char *what) {
 }  // namespace
 
 void MaafWedgeParams::validate() const {
-    if (!(light_band > 0) || !std::isfinite(light_band)) throw Error("MAAF light band must be positive and finite");
+    if (!(light_band > 0) || !std::isfinite(light_band))
+        throw Error("MAAF light band must be positive and finite");
     if (fill_radius_px < 0) throw Error("MAAF fill radius must be >= 0 pixels");
     if (prefilter_radius_px < 0) throw Error("MAAF prefilter radius must be >= 0 pixels");
     if (!(normal_threshold_deg >= 0 && normal_threshold_deg <= 180))
@@ -35,7 +36,8 @@ double maaf_light_omega_y_max(const LightPlane &light, double light_band) {
     return light_band / double(light.sigma_m);  // MAAF Sec. 3: Omega_y^max = 2 / sigma_y for light_band 2
 }
 
-MaafWedges maaf_pixel_wedges(const MaafWedgeInputs &in, const LightPlane &light, const MaafWedgeParams &params) {
+MaafWedges maaf_pixel_wedges(const MaafWedgeInputs &in, const LightPlane &light,
+                             const MaafWedgeParams &params) {
     params.validate();
     light.validate();
     const int width = in.d1.width, height = in.d1.height;
@@ -49,7 +51,8 @@ MaafWedges maaf_pixel_wedges(const MaafWedgeInputs &in, const LightPlane &light,
     const std::size_t count = std::size_t(width) * std::size_t(height);
     const double omega_y_light = maaf_light_omega_y_max(light, params.light_band);
     // AAF Sec. 6: unoccluded pixels take the occluder distances of their neighbours.
-    const FilledOccluders occluders = fill_occluder_distances(in.d2_min, in.d2_max, in.object_id, params.fill_radius_px);
+    const FilledOccluders occluders =
+        fill_occluder_distances(in.d2_min, in.d2_max, in.object_id, params.fill_radius_px);
 
     // Raw slopes (MAAF Sec. 3: s = d1/d2 - 1), NaN where a pixel has no wedge.
     const float no_wedge = std::nanf("");
@@ -106,12 +109,14 @@ MaafWedges maaf_pixel_wedges(const MaafWedgeInputs &in, const LightPlane &light,
                 }
             const double s_min = sum_min / used, s_max = std::max(s_min, sum_max / used);
             // AAF Eq. 6 on MAAF's scale (MaafWedgeParams::light_band), rad/m.
-            const double omega_x_max = std::min(params.light_band / ((1.0 + s_min) * double(in.pixel_size(x, y))),
-                                                double(std::numeric_limits<float>::max()));
+            const double omega_x_max =
+                std::min(params.light_band / ((1.0 + s_min) * double(in.pixel_size(x, y))),
+                         double(std::numeric_limits<float>::max()));
             w.s_min[i] = float(s_min);
             w.s_max[i] = float(s_max);
             w.omega_x_max[i] = float(omega_x_max);
-            // Stored as floats: the partition is computed from the stored values, as a filter reading them will.
+            // Stored as floats: the partition is computed from the stored values, as a filter reading them
+            // will.
             w.omega_y[i] = float(maaf_partitioned_omega_y_max(double(w.s_min[i]), double(w.s_max[i]),
                                                               double(w.omega_x_max[i]), omega_y_light));
         }

@@ -42,7 +42,8 @@ std::vector<Maaf6Component> maaf6_pair_components(const Maaf6Wedge &w, int pairs
         // MAAF Sec. 6.2, the "simple optimization": the x band every wedge allows.
         double omega_x = w.omega_x_max;
         if (one_signed(w)) omega_x = std::min(omega_x, w.omega_u_max / u_abs_min);
-        const std::vector<MaafComponent> xy = maaf_pair_components(w.y_min, w.y_max, omega_x, w.omega_y_max, pairs);
+        const std::vector<MaafComponent> xy =
+            maaf_pair_components(w.y_min, w.y_max, omega_x, w.omega_y_max, pairs);
         for (int p = 0; p < pairs; ++p) {
             const MaafComponent &c = xy[std::size_t(p)];
             Maaf6Component &o = out[std::size_t(p)];
@@ -57,7 +58,8 @@ std::vector<Maaf6Component> maaf6_pair_components(const Maaf6Wedge &w, int pairs
             const double products[4] = {w.u_min * a, w.u_min * b, w.u_max * a, w.u_max * b};
             const double lo = std::max(-w.omega_u_max, *std::min_element(products, products + 4));
             const double hi = std::min(w.omega_u_max, *std::max_element(products, products + 4));
-            o.centre_u = hi > lo ? 0.5 * (lo + hi) : std::clamp(0.5 * (lo + hi), -w.omega_u_max, w.omega_u_max);
+            o.centre_u =
+                hi > lo ? 0.5 * (lo + hi) : std::clamp(0.5 * (lo + hi), -w.omega_u_max, w.omega_u_max);
             o.sigma_u = hi > lo ? 0.5 * (hi - lo) : 0.0;
         }
         return out;
@@ -103,7 +105,8 @@ Maaf6PartitionCheck maaf6_partition_check(const Maaf6Wedge &w, int pairs, double
     return check;
 }
 
-std::vector<Maaf6Component> maaf6_filter_components(const Maaf6Wedge &w, int pairs, double k, double window_m) {
+std::vector<Maaf6Component> maaf6_filter_components(const Maaf6Wedge &w, int pairs, double k,
+                                                    double window_m) {
     std::vector<Maaf6Component> out = maaf6_pair_components(w, pairs);
     if (maaf6_partition_check(w, pairs, k, window_m).partition_used()) return out;
     const Maaf6Component central = maaf6_pair_components(w, 1)[0];  // MYRD14's axis-aligned filter
@@ -120,7 +123,8 @@ double maaf6_lens_band(const Maaf6Wedge &w) {
 }
 
 double maaf6_light_attenuation(double centre_y, double omega_y_max) {
-    if (!(omega_y_max > 0) || !std::isfinite(omega_y_max)) throw Error("MAAF 6D: the y band must be positive and finite");
+    if (!(omega_y_max > 0) || !std::isfinite(omega_y_max))
+        throw Error("MAAF 6D: the y band must be positive and finite");
     const double t = centre_y / (0.5 * omega_y_max);  // sigma C_y with Omega_y^max = 2 / sigma (MAAF Sec. 3)
     return std::exp(-0.5 * t * t);
 }
@@ -148,8 +152,8 @@ void Maaf6SampleSide::evaluate(double y, double u, double *phi) const {
     }
 }
 
-void Maaf6SampleSide::accumulate(double y1, double u1, double y2, double u2, const float value[3], double weight,
-                                 double *rgb_sums, double *weight_sums) const {
+void Maaf6SampleSide::accumulate(double y1, double u1, double y2, double u2, const float value[3],
+                                 double weight, double *rgb_sums, double *weight_sums) const {
     const int n = 2 * pairs_ - 1;
     double phi1[16], phi2[16];
     evaluate(y1, u1, phi1);  // each subspace with its own coordinates
@@ -178,7 +182,7 @@ void maaf6_x_kernel(const std::vector<Maaf6Component> &pairs, double k, double d
         const double dc_ratio = c.sigma_x > 0 ? c.centre_x * k / c.sigma_x : 0.0;
         const double dc = c.sigma_x > 0 ? std::exp(-0.5 * dc_ratio * dc_ratio) : 0.0;
         kernel[2 * p - 1] = 2.0 * c.weight * (std::cos(phase) - dc) * envelope;  // MAAF Eq. 13, cos x cos
-        kernel[2 * p] = -2.0 * c.weight * std::sin(phase) * envelope;      // MAAF Eq. 13, - sin x sin
+        kernel[2 * p] = -2.0 * c.weight * std::sin(phase) * envelope;            // MAAF Eq. 13, - sin x sin
     }
 }
 

@@ -57,7 +57,8 @@ double window_envelope(double std_px, int r, std::vector<double> &envelope) {
 }
 
 /// The window of maaf6_filter_layer() around (x, y) for a central std of std_m.
-int window_radius(const Maaf6SharedInputs &shared, const Maaf6FilterParams &params, int x, int y, double std_m) {
+int window_radius(const Maaf6SharedInputs &shared, const Maaf6FilterParams &params, int x, int y,
+                  double std_m) {
     const double reach_px = 3.0 * std_m / std::max(1e-12, double(shared.pixel_size(x, y)));
     return int(std::min(double(params.max_radius_px), std::ceil(reach_px)));
 }
@@ -84,8 +85,8 @@ int pixel_pairs(const Maaf6SharedInputs &shared, const Maaf6FilterParams &params
 
 /// The wedge of pixel (x, y) of a hit; false where there is none to filter
 /// along (no y-wedge and no one-signed u-wedge, or no finite positive pixel band).
-bool pixel_wedge(const Maaf6LayerInputs &layer, const Maaf6SharedInputs &shared, const Maaf6FilterParams &params,
-                 int x, int y, Maaf6Wedge &wedge) {
+bool pixel_wedge(const Maaf6LayerInputs &layer, const Maaf6SharedInputs &shared,
+                 const Maaf6FilterParams &params, int x, int y, Maaf6Wedge &wedge) {
     // Non-finite inputs (a broken pixel) count as no wedge: they stay in their own pixel.
     wedge.has_y = layer.y_max(x, y) >= 0 && layer.y_min(x, y) >= 0 && std::isfinite(layer.y_max(x, y)) &&
                   layer.y_max(x, y) >= layer.y_min(x, y);
@@ -95,8 +96,8 @@ bool pixel_wedge(const Maaf6LayerInputs &layer, const Maaf6SharedInputs &shared,
     const double samples = double(shared.samples(x, y));
     const double widening = band_widened(shared, params, x, y) ? std::sqrt(samples / params.band_spp) : 1.0;
     wedge.omega_y_max = layer.omega_y_max * widening;
-    wedge.has_u = shared.omega_u_max > 0 && std::isfinite(shared.u_min(x, y)) && std::isfinite(shared.u_max(x, y)) &&
-                  shared.u_max(x, y) >= shared.u_min(x, y);
+    wedge.has_u = shared.omega_u_max > 0 && std::isfinite(shared.u_min(x, y)) &&
+                  std::isfinite(shared.u_max(x, y)) && shared.u_max(x, y) >= shared.u_min(x, y);
     wedge.u_min = double(shared.u_min(x, y));
     wedge.u_max = double(shared.u_max(x, y));
     wedge.omega_u_max = shared.omega_u_max * widening;
@@ -113,7 +114,8 @@ bool pixel_wedge(const Maaf6LayerInputs &layer, const Maaf6SharedInputs &shared,
     return maaf6_lens_band(wedge) > 0;
 }
 
-void check_inputs(const Maaf6LayerInputs &layer, const Maaf6SharedInputs &shared, const Maaf6FilterParams &params) {
+void check_inputs(const Maaf6LayerInputs &layer, const Maaf6SharedInputs &shared,
+                  const Maaf6FilterParams &params) {
     const int width = shared.object_id.width, height = shared.object_id.height;
     const int stored_n = 2 * params.stored_pairs - 1;
     if (params.pairs_used != 1 && params.pairs_used != params.stored_pairs)
@@ -138,8 +140,9 @@ void check_inputs(const Maaf6LayerInputs &layer, const Maaf6SharedInputs &shared
 
 }  // namespace
 
-void maaf6_filter_layer(const Maaf6LayerInputs &layer, const Maaf6SharedInputs &shared, const LightPlane &light,
-                        const Maaf6FilterParams &params, const std::array<PlaneView, 3> &out) {
+void maaf6_filter_layer(const Maaf6LayerInputs &layer, const Maaf6SharedInputs &shared,
+                        const LightPlane &light, const Maaf6FilterParams &params,
+                        const std::array<PlaneView, 3> &out) {
     check_inputs(layer, shared, params);
     const int width = shared.object_id.width, height = shared.object_id.height;
     const int stored_n = 2 * params.stored_pairs - 1;
@@ -159,9 +162,12 @@ void maaf6_filter_layer(const Maaf6LayerInputs &layer, const Maaf6SharedInputs &
         std::vector<double> envelope_px;  // the central envelope per pixel offset, for the window's mass
         for (int x = 0; x < width; ++x) {
             const float own_count = shared.samples(x, y);
-            auto own_mean = [&](int c) { return own_count > 0 ? layer.sums[std::size_t(c)](x, y) / own_count : 0.0f; };
+            auto own_mean = [&](int c) {
+                return own_count > 0 ? layer.sums[std::size_t(c)](x, y) / own_count : 0.0f;
+            };
             // The filtered ratio times the pixel's own mean weight (AAF's r(x) V(x) factoring).
-            const double own_weight = own_count > 0 ? double(layer.weights[0](x, y)) / double(own_count) : 0.0;
+            const double own_weight =
+                own_count > 0 ? double(layer.weights[0](x, y)) / double(own_count) : 0.0;
             if (shared.object_id(x, y) == 0) {
                 for (int c = 0; c < 3; ++c) out[std::size_t(c)](x, y) = own_mean(c);
                 continue;
@@ -178,11 +184,12 @@ void maaf6_filter_layer(const Maaf6LayerInputs &layer, const Maaf6SharedInputs &
                 maaf6_filter_components(wedge, pixel_pairs(shared, params, x, y), params.k, window_m);
             // Where the offset pairs have weight 0 (the axis-aligned fallback) their kernels are 0:
             // only the central channel is gathered, with the same result.
-            const bool offsets_used =
-                std::any_of(pairs.begin() + 1, pairs.end(), [](const Maaf6Component &c) { return c.weight != 0; });
+            const bool offsets_used = std::any_of(pairs.begin() + 1, pairs.end(),
+                                                  [](const Maaf6Component &c) { return c.weight != 0; });
             if (!offsets_used) pairs.resize(1);
             if (params.pair_weights == Maaf6PairWeights::Light && offsets_used)
-                for (Maaf6Component &c : pairs) c.weight *= maaf6_light_attenuation(c.centre_y, wedge.omega_y_max);
+                for (Maaf6Component &c : pairs)
+                    c.weight *= maaf6_light_attenuation(c.centre_y, wedge.omega_y_max);
             if (params.pair_weights == Maaf6PairWeights::Fitted && offsets_used) {
                 // The partition is used, so the wedge is neither clipped by the x band nor
                 // widened (pixel_pairs): its slope ratio is all the fit depends on.
@@ -206,7 +213,8 @@ void maaf6_filter_layer(const Maaf6LayerInputs &layer, const Maaf6SharedInputs &
             // is filtered with the lens wedge's own axis-aligned band (never wider than the ratio's).
             const double lens_band = maaf6_lens_band(wedge);
             const double lens_std_m = lens_band > 0 ? params.k / lens_band : 0.0;
-            double num[3] = {0, 0, 0}, den = 0, num0[3] = {0, 0, 0}, den0 = 0, unoccluded = 0, unoccluded_den = 0;
+            double num[3] = {0, 0, 0}, den = 0, num0[3] = {0, 0, 0}, den0 = 0, unoccluded = 0,
+                   unoccluded_den = 0;
             // With the partition: the axis-aligned filter alongside (MYRD14's, maaf6_pair_components(w, 1)),
             // and how much of the central envelope's mass the window keeps (kMinWindowMass).
             // It is computed as `--pairs 1` computes it, over its own window, so that it gives the same bits.
@@ -217,7 +225,8 @@ void maaf6_filter_layer(const Maaf6LayerInputs &layer, const Maaf6SharedInputs &
             const int axis_aligned_r = window_radius(shared, params, x, y, axis_aligned_std_m);
             double num1[3] = {0, 0, 0}, den1 = 0, mass_kept = 0;
             const double mass_all =
-                offsets_used ? window_envelope(std_m / std::max(1e-12, double(shared.pixel_size(x, y))), r, envelope_px)
+                offsets_used ? window_envelope(std_m / std::max(1e-12, double(shared.pixel_size(x, y))), r,
+                                               envelope_px)
                              : 0.0;
             for (int ty = std::max(0, y - r); ty <= std::min(height - 1, y + r); ++ty)
                 for (int tx = std::max(0, x - r); tx <= std::min(width - 1, x + r); ++tx) {
@@ -242,7 +251,8 @@ void maaf6_filter_layer(const Maaf6LayerInputs &layer, const Maaf6SharedInputs &
                         unoccluded_den += lens_kernel;
                     }
                     if (offsets_used) {
-                        mass_kept += envelope_px[std::size_t(std::abs(tx - x))] * envelope_px[std::size_t(std::abs(ty - y))];
+                        mass_kept += envelope_px[std::size_t(std::abs(tx - x))] *
+                                     envelope_px[std::size_t(std::abs(ty - y))];
                         if (std::abs(tx - x) <= axis_aligned_r && std::abs(ty - y) <= axis_aligned_r) {
                             double a1, a2;  // the steps of the gather below, for N = 1
                             maaf6_x_kernel(axis_aligned, params.k, double(dot(d, t1)), &a1);
@@ -266,16 +276,16 @@ void maaf6_filter_layer(const Maaf6LayerInputs &layer, const Maaf6SharedInputs &
                         }
                     const double central = k1[0] * k2[0];
                     den0 += central * double(layer.weights[0](tx, ty));
-                    for (int col = 0; col < 3; ++col) num0[col] += central * double(layer.sums[std::size_t(col)](tx, ty));
+                    for (int col = 0; col < 3; ++col)
+                        num0[col] += central * double(layer.sums[std::size_t(col)](tx, ty));
                 }
             const double unoccluded_mean = unoccluded_den > 0 ? unoccluded / unoccluded_den : own_weight;
             // The offset components can cancel most of the normalisation: below a tenth of the
             // central term's, fall back to the central term rather than amplify noise.
             const bool partition_kept = offsets_used && mass_kept >= kMinWindowMass * mass_all;
             for (int col = 0; col < 3; ++col) {
-                double v = offsets_used && !partition_kept ? (den1 > 1e-12
-                                                                  ? unoccluded_mean * num1[col] / den1
-                                                                  : double(own_mean(col)))
+                double v = offsets_used && !partition_kept
+                               ? (den1 > 1e-12 ? unoccluded_mean * num1[col] / den1 : double(own_mean(col)))
                            : den > 0.1 * den0 && den0 > 1e-12 ? unoccluded_mean * num[col] / den
                            : den0 > 1e-12                     ? unoccluded_mean * num0[col] / den0
                                                               : double(own_mean(col));
@@ -307,13 +317,16 @@ Maaf6PartitionCensus maaf6_partition_census(const Maaf6LayerInputs &layer, const
                     continue;
                 }
                 const double window_m = double(params.max_radius_px) * double(shared.pixel_size(x, y));
-                const Maaf6PartitionCheck c = maaf6_partition_check(wedge, params.pairs_used, params.k, window_m);
-                ++census.by_reasons[std::size_t(int(c.beyond_window) + 2 * int(c.band_clipped) + 4 * int(c.focal_box))];
+                const Maaf6PartitionCheck c =
+                    maaf6_partition_check(wedge, params.pairs_used, params.k, window_m);
+                ++census.by_reasons[std::size_t(int(c.beyond_window) + 2 * int(c.band_clipped) +
+                                                4 * int(c.focal_box))];
                 if (params.pairs_used == 1 || !c.partition_used()) continue;
                 // The window the filter gathers over, and how much of it the guides and the border keep.
                 const std::vector<Maaf6Component> pairs =
                     maaf6_filter_components(wedge, params.pairs_used, params.k, window_m);
-                const double std_m = pairs[0].sigma_x > 0 ? params.k / pairs[0].sigma_x : 1e30;  // as the filter
+                const double std_m =
+                    pairs[0].sigma_x > 0 ? params.k / pairs[0].sigma_x : 1e30;  // as the filter
                 const int r = window_radius(shared, params, x, y, std_m);
                 const double mass_all =
                     window_envelope(std_m / std::max(1e-12, double(shared.pixel_size(x, y))), r, envelope_px);
@@ -322,7 +335,8 @@ Maaf6PartitionCensus maaf6_partition_census(const Maaf6LayerInputs &layer, const
                 for (int ty = std::max(0, y - r); ty <= std::min(shared.object_id.height - 1, y + r); ++ty)
                     for (int tx = std::max(0, x - r); tx <= std::min(shared.object_id.width - 1, x + r); ++tx)
                         if (tap_accepted(shared, n, cos_threshold, tx, ty))
-                            mass_kept += envelope_px[std::size_t(std::abs(tx - x))] * envelope_px[std::size_t(std::abs(ty - y))];
+                            mass_kept += envelope_px[std::size_t(std::abs(tx - x))] *
+                                         envelope_px[std::size_t(std::abs(ty - y))];
                 census.window_cut += mass_kept < kMinWindowMass * mass_all;
             }
         }

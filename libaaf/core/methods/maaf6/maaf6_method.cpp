@@ -20,7 +20,8 @@ namespace {
 template <typename T>
 T header_value(const MethodImages &images, const char *name) {
     const auto it = images.attributes().find(name);
-    if (it == images.attributes().end()) throw InputError(std::string("missing header attribute '") + name + "'");
+    if (it == images.attributes().end())
+        throw InputError(std::string("missing header attribute '") + name + "'");
     const T *value = std::get_if<T>(&it->second);
     if (!value) throw InputError(std::string("header attribute '") + name + "' has the wrong type");
     return *value;
@@ -40,50 +41,58 @@ class Maaf6Method final : public Method {
         info_.name = "maaf6";
         info_.title = "MAAF 6D";
         info_.summary =
-            "MAAF for combined soft shadows, defocus and indirect light (Wu et al. 2017, Sec. 6.2); --pairs 1 is "
+            "MAAF for combined soft shadows, defocus and indirect light (Wu et al. 2017, Sec. 6.2); --pairs "
+            "1 is "
             "the axis-aligned baseline (MYRD14)";
         info_.reference =
             "Wu, Yan, Kuznetsov, Ramamoorthi: Multiple Axis-Aligned Filters for Rendering of Combined "
             "Distribution Effects, 2017";
-        info_.roles.required = {Role::Maaf6DirectSums, Role::Maaf6DirectWeights, Role::Maaf6IndirectSums,
-                                Role::Maaf6IndirectWeights, Role::Maaf6Wedge, Role::Maaf6Spp, Role::Position, Role::Normal,
-                                Role::ObjectId, Role::PixelSize};
+        info_.roles.required = {Role::Maaf6DirectSums,   Role::Maaf6DirectWeights,
+                                Role::Maaf6IndirectSums, Role::Maaf6IndirectWeights,
+                                Role::Maaf6Wedge,        Role::Maaf6Spp,
+                                Role::Position,          Role::Normal,
+                                Role::ObjectId,          Role::PixelSize};
         info_.roles.outputs = {Role::Maaf6Direct, Role::Maaf6Indirect, Role::Beauty};
         info_.parameters = {
-            ParameterInfo::choice("pairs", "all", {"all", "1"},
-                                  "Filter pairs N per 3D subspace: all of the sums' (N = 3, 25 filters in 6D) or "
-                                  "1, the central axis-aligned filter alone (AAF for combined effects, MYRD14)"),
-            ParameterInfo::choice("pair_weights", "fitted", {"fitted", "eq10", "light"},
-                                  "mu_p of the offset pairs: fitted: least squares so that the filter passes the "
-                                  "sampling density's spectrum along the wedge, as the light integral does (not in "
-                                  "the paper; measured better than MAAF Eq. 10 on room, see the README); eq10: MAAF "
-                                  "Eq. 10, the paper's; light: MAAF Eq. 10 times the Gaussian light model's spectrum at "
-                                  "the pair's y centre"),
-            ParameterInfo::real("k", "1", "",
-                                "Width scale: each component's Fourier std is its half-width divided by k (as "
-                                "`aaf filter maaf --k`; 1 = the paper's reading, measured best on room for both "
-                                "N = 3 and N = 1)",
-                                0.01, 100),
+            ParameterInfo::choice(
+                "pairs", "all", {"all", "1"},
+                "Filter pairs N per 3D subspace: all of the sums' (N = 3, 25 filters in 6D) or "
+                "1, the central axis-aligned filter alone (AAF for combined effects, MYRD14)"),
+            ParameterInfo::choice(
+                "pair_weights", "fitted", {"fitted", "eq10", "light"},
+                "mu_p of the offset pairs: fitted: least squares so that the filter passes the "
+                "sampling density's spectrum along the wedge, as the light integral does (not in "
+                "the paper; measured better than MAAF Eq. 10 on room, see the README); eq10: MAAF "
+                "Eq. 10, the paper's; light: MAAF Eq. 10 times the Gaussian light model's spectrum at "
+                "the pair's y centre"),
+            ParameterInfo::real(
+                "k", "1", "",
+                "Width scale: each component's Fourier std is its half-width divided by k (as "
+                "`aaf filter maaf --k`; 1 = the paper's reading, measured best on room for both "
+                "N = 3 and N = 1)",
+                0.01, 100),
             ParameterInfo::real("normal_threshold", "20", "degrees",
                                 "Reject taps whose normal turns more (MAAF Sec. 6.2)", 0, 180),
             ParameterInfo::integer("max_radius", "12", "pixels", "Largest filter radius", 0, 1 << 12),
-            ParameterInfo::real("band_spp", "16", "spp",
-                                "Samples per pixel at which the direct layer's light and lens bands are MAAF "
-                                "Sec. 3's; past it they widen as sqrt(spp / band_spp), the pixel band with them, "
-                                "and the pixel gets the axis-aligned filter, so the filter narrows as samples are "
-                                "added and converges to the reference (AAF Sec. 5.2's consistency; 16 = the first "
-                                "pass); 0 = the paper's fixed bands, whose bias stays whatever the samples",
-                                0),
-            ParameterInfo::real("indirect_band_spp", "128", "spp",
-                                "As band_spp, for the indirect layer: its noise is several times the direct "
-                                "layer's at equal samples, so its filter stays wide for longer (on room fixed bands "
-                                "were best for it up to 256 spp; 128 is the smallest that lost nothing up to 128 "
-                                "spp, see the README); 0 = fixed bands",
-                                0),
+            ParameterInfo::real(
+                "band_spp", "16", "spp",
+                "Samples per pixel at which the direct layer's light and lens bands are MAAF "
+                "Sec. 3's; past it they widen as sqrt(spp / band_spp), the pixel band with them, "
+                "and the pixel gets the axis-aligned filter, so the filter narrows as samples are "
+                "added and converges to the reference (AAF Sec. 5.2's consistency; 16 = the first "
+                "pass); 0 = the paper's fixed bands, whose bias stays whatever the samples",
+                0),
+            ParameterInfo::real(
+                "indirect_band_spp", "128", "spp",
+                "As band_spp, for the indirect layer: its noise is several times the direct "
+                "layer's at equal samples, so its filter stays wide for longer (on room fixed bands "
+                "were best for it up to 256 spp; 128 is the smallest that lost nothing up to 128 "
+                "spp, see the README); 0 = fixed bands",
+                0),
         };
         info_.required_attributes = light_attribute_names();
-        for (const char *name : {attr::kMaaf6Pairs, attr::kMaaf6OmegaDirect, attr::kMaaf6OmegaIndirect,
-                                 attr::kMaaf6OmegaLens})
+        for (const char *name :
+             {attr::kMaaf6Pairs, attr::kMaaf6OmegaDirect, attr::kMaaf6OmegaIndirect, attr::kMaaf6OmegaLens})
             info_.required_attributes.push_back(name);
     }
 
@@ -92,9 +101,9 @@ class Maaf6Method final : public Method {
     void run(const MethodImages &images, const ParameterSet &parameters, Progress &progress) const override {
         const int pairs = header_value<int>(images, attr::kMaaf6Pairs);
         if (pairs != kMaafContractPairs)
-            throw InputError("header attribute '" + std::string(attr::kMaaf6Pairs) + "' is " +
-                             std::to_string(pairs) + "; the maaf6 channels of the contract hold N = " +
-                             std::to_string(kMaafContractPairs));
+            throw InputError(
+                "header attribute '" + std::string(attr::kMaaf6Pairs) + "' is " + std::to_string(pairs) +
+                "; the maaf6 channels of the contract hold N = " + std::to_string(kMaafContractPairs));
         Maaf6SharedInputs shared;
         shared.u_min = images.input(Role::Maaf6Wedge, 4);
         shared.u_max = images.input(Role::Maaf6Wedge, 5);
@@ -140,16 +149,20 @@ class Maaf6Method final : public Method {
         for (int l = 0; l < 2; ++l) {
             const Layer &spec = layers[l];
             Maaf6LayerInputs layer;
-            for (int c = 0; c < 3 * channels; ++c) layer.sums.push_back(images.input(spec.sums, std::size_t(c)));
-            for (int c = 0; c < channels; ++c) layer.weights.push_back(images.input(spec.weights, std::size_t(c)));
+            for (int c = 0; c < 3 * channels; ++c)
+                layer.sums.push_back(images.input(spec.sums, std::size_t(c)));
+            for (int c = 0; c < channels; ++c)
+                layer.weights.push_back(images.input(spec.weights, std::size_t(c)));
             layer.y_min = images.input(Role::Maaf6Wedge, spec.wedge_channel);
             layer.y_max = images.input(Role::Maaf6Wedge, spec.wedge_channel + 1);
             layer.omega_y_max = double(header_value<float>(images, spec.omega));
-            layer.y_density = l == 0 ? light_density(light) : SampleDensity{DensityShape::CosineLobe, 1.0, 1.0};
+            layer.y_density =
+                l == 0 ? light_density(light) : SampleDensity{DensityShape::CosineLobe, 1.0, 1.0};
             if (!(layer.omega_y_max > 0) || !std::isfinite(layer.omega_y_max))
-                throw InputError("header attribute '" + std::string(spec.omega) + "' must be positive and finite");
-            const std::array<PlaneView, 3> out = {images.output(spec.output, 0), images.output(spec.output, 1),
-                                                  images.output(spec.output, 2)};
+                throw InputError("header attribute '" + std::string(spec.omega) +
+                                 "' must be positive and finite");
+            const std::array<PlaneView, 3> out = {
+                images.output(spec.output, 0), images.output(spec.output, 1), images.output(spec.output, 2)};
             Maaf6FilterParams layer_params = params;
             if (l == 1) layer_params.band_spp = indirect_band_spp;
             maaf6_filter_layer(layer, shared, light, layer_params, out);

@@ -65,7 +65,8 @@ std::vector<std::vector<float>> RatioComposition::sources() const {
             }
             break;
         case RatioEstimator::Stochastic:
-            for (int c = 0; c < 3; ++c) planes.push_back(plane_of(layers_.shadowed[c]));  // ratio estimator Eq. 10
+            for (int c = 0; c < 3; ++c)
+                planes.push_back(plane_of(layers_.shadowed[c]));  // ratio estimator Eq. 10
             break;
         case RatioEstimator::ControlVariate:
             for (int c = 0; c < 3; ++c) {

@@ -54,14 +54,12 @@ MethodChoice choose_method(const Method &method, const ParameterSet &parameters,
 /// pipeline borrows from other parts and scrubs of NaN before filtering.
 std::vector<std::string> method_input_channels(const Method &method, const ChannelMap &channels);
 
-/// Runs `method` (or the delegate choose_method() picks) on an AOV set that follows the contract (other renderers'
-/// names are found through the synonym table) and returns every input channel
-/// and attribute plus the method's outputs. Output policy, the same for every
-/// method: channels the method writes replace earlier ones of the same name
-/// rather than piling up beside them; outputs follow the kept inputs in the
-/// method's declared order; when the method composes a new beauty, the input
-/// beauty is kept as Role::NoisyBeauty. Throws aaf::InputError naming the
-/// first missing input or attribute, aaf::Error for bad parameters,
+/// Runs `method` (or the delegate choose_method() picks) on an AOV set that follows the contract (other
+/// renderers' names are found through the synonym table) and returns every input channel and attribute plus
+/// the method's outputs. Output policy, the same for every method: channels the method writes replace earlier
+/// ones of the same name rather than piling up beside them; outputs follow the kept inputs in the method's
+/// declared order; when the method composes a new beauty, the input beauty is kept as Role::NoisyBeauty.
+/// Throws aaf::InputError naming the first missing input or attribute, aaf::Error for bad parameters,
 /// aaf::Cancelled when `monitor` asks to stop. `history`, when given, is the
 /// previous frame's output of the same method (MethodImages::history), of
 /// the same size (else aaf::InputError).

@@ -90,7 +90,8 @@ std::vector<Maaf6Component> maaf6_pair_components(const Maaf6Wedge &wedge, int p
 ///    used the partition was 0.061, against 0.011 with the central filter;
 ///    centring their u phases on 0 changed nothing, 0.061).
 /// k: the filter's width scale (Maaf6FilterParams::k). Throws as maaf6_pair_components().
-std::vector<Maaf6Component> maaf6_filter_components(const Maaf6Wedge &wedge, int pairs, double k, double window_m);
+std::vector<Maaf6Component> maaf6_filter_components(const Maaf6Wedge &wedge, int pairs, double k,
+                                                    double window_m);
 
 /// Which of maaf6_filter_components()'s reasons hold at one pixel (several can):
 /// beyond_window (a), band_clipped (b), focal_box (c), in the order listed there.

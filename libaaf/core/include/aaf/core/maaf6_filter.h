@@ -25,22 +25,24 @@ struct Maaf6SharedInputs {
     std::array<ConstPlaneView, 3> position, normal;
     ConstPlaneView object_id;  ///< 0 = background (no primary hit)
     ConstPlaneView pixel_size;
-    ConstPlaneView samples;  ///< path samples per pixel (maaf6.spp)
-    double omega_u_max = 0;  ///< 0 = pinhole (no u-wedge)
+    ConstPlaneView samples;      ///< path samples per pixel (maaf6.spp)
+    double omega_u_max = 0;      ///< 0 = pinhole (no u-wedge)
     SampleDensity lens_density;  ///< what u is drawn from (Maaf6PairWeights::Fitted only)
 };
 
 /// The offset pairs' weights mu_p.
 enum class Maaf6PairWeights {
-    Eq10,   ///< MAAF Eq. 10, as the paper
-    Light,  ///< MAAF Eq. 10 times maaf6_light_attenuation() at C_y^p (a Gaussian light model; not in the paper)
-    Fitted, ///< MaafFittedWeights: fitted to the sampling density's spectrum along the wedge (not in the paper)
+    Eq10,    ///< MAAF Eq. 10, as the paper
+    Light,   ///< MAAF Eq. 10 times maaf6_light_attenuation() at C_y^p (a Gaussian light model; not in the
+             ///< paper)
+    Fitted,  ///< MaafFittedWeights: fitted to the sampling density's spectrum along the wedge (not in the
+             ///< paper)
 };
 
 struct Maaf6FilterParams {
-    int stored_pairs = 3;  ///< N of the sums
-    int pairs_used = 3;    ///< N of the filter: stored_pairs, or 1 (the central filter alone: AAF)
-    double k = 1;          ///< width scale, as `aaf filter maaf --k` (1: the paper's reading)
+    int stored_pairs = 3;             ///< N of the sums
+    int pairs_used = 3;               ///< N of the filter: stored_pairs, or 1 (the central filter alone: AAF)
+    double k = 1;                     ///< width scale, as `aaf filter maaf --k` (1: the paper's reading)
     float normal_threshold_deg = 20;  ///< MAAF Sec. 6.2: taps whose normal turns more are rejected
     int max_radius_px = 12;
     /// The offset pairs' mu_p. Fitted: per pixel from the y-wedge's slope ratio
@@ -63,13 +65,11 @@ struct Maaf6FilterParams {
 /// Filters one layer (MAAF Eq. 21-22 with the 6D product of MAAF Sec. 6.2):
 /// for every pixel i, with t1, t2 its maaf6_tangent_frame() and components
 /// maaf6_filter_components() of its wedge (window: max_radius times its pixel
-/// size; the axis-aligned filter where the partition cannot be realised), out = sum_j g_j sum_ab K_a(d1) K_b(d2)
-/// sums_j[ab] / (the same with weights_j[ab]), d_k = (P_j - P_i) . t_k (the
-/// tap minus the centre: see the README for the orientation),
-/// g_j = exp(-d_n^2 / (2 s^2)) / samples_j with d_n = (P_i - P_j) . n
-/// the distance off the tangent plane and s the central component's primal
-/// std (so taps are per-pixel means, as AAF filters, and a step in depth
-/// counts as AAF's world distance does), times the pixel's own mean weight
+/// size; the axis-aligned filter where the partition cannot be realised), out = sum_j g_j sum_ab K_a(d1)
+/// K_b(d2) sums_j[ab] / (the same with weights_j[ab]), d_k = (P_j - P_i) . t_k (the tap minus the centre: see
+/// the README for the orientation), g_j = exp(-d_n^2 / (2 s^2)) / samples_j with d_n = (P_i - P_j) . n the
+/// distance off the tangent plane and s the central component's primal std (so taps are per-pixel means, as
+/// AAF filters, and a step in depth counts as AAF's world distance does), times the pixel's own mean weight
 /// weights_i[c0c0] / samples_i (1 with unit weights; the mean unoccluded
 /// luminance for direct light: AAF's r(x) V(x) factoring), over
 /// the window of radius min(max_radius, ceil(3 k / sigma_x^0 / pixel size)),
@@ -94,8 +94,9 @@ struct Maaf6FilterParams {
 /// not the pixel's own mean: its samples see whatever surface the lens ray
 /// hits, so the own mean would carry the defocus noise through.
 /// Writes `out` (3 planes). Throws aaf::Error on mismatched sizes.
-void maaf6_filter_layer(const Maaf6LayerInputs &layer, const Maaf6SharedInputs &shared, const LightPlane &light,
-                        const Maaf6FilterParams &params, const std::array<PlaneView, 3> &out);
+void maaf6_filter_layer(const Maaf6LayerInputs &layer, const Maaf6SharedInputs &shared,
+                        const LightPlane &light, const Maaf6FilterParams &params,
+                        const std::array<PlaneView, 3> &out);
 
 /// Where maaf6_filter_layer() uses the partition, and why not elsewhere
 /// (maaf6_partition_check() of each pixel's wedge, window and k as the filter has them).

@@ -11,11 +11,15 @@ inline constexpr int kMaafMaxPairs = 8;
 /// Light-side functions per light axis, 2N - 1: function 0 is the central
 /// component's, 2p - 1 its cosine and 2p its sine for p = 1 .. N-1 (MAAF
 /// MAAF Eq. 20, the primal pair of MAAF Eq. 13).
-inline int maaf_functions_per_axis(int pairs) { return 2 * pairs - 1; }
+inline int maaf_functions_per_axis(int pairs) {
+    return 2 * pairs - 1;
+}
 /// Channels per pixel, (2N - 1)^2: channel a (2N - 1) + b holds light-side
 /// function a of the first light axis times function b of the second (the 4D
 /// filter as the product of the two 2D subspaces, MAAF Sec. 6.1, Fig. 7).
-inline int maaf_channel_count(int pairs) { return maaf_functions_per_axis(pairs) * maaf_functions_per_axis(pairs); }
+inline int maaf_channel_count(int pairs) {
+    return maaf_functions_per_axis(pairs) * maaf_functions_per_axis(pairs);
+}
 /// Short name of light-side function `function`: "c0", then "c1", "s1", "c2", "s2", ...
 std::string maaf_function_name(int function);
 /// Name of channel `channel` within a layer: function names of axis 1 and axis 2, e.g. "c1s2".

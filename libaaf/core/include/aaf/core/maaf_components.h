@@ -14,13 +14,13 @@ namespace aaf {
 /// C_x * (displacement in metres). Read as boxes (Sec. 5), sigma_x and sigma_y
 /// are the half-widths.
 struct MaafComponent {
-    int index = 0;          ///< p, from -(N-1) to N-1
-    int sign = 0;           ///< sgn_p: 0 for p = 0, +1 or -1 otherwise (MAAF Eq. 7)
-    double centre_x = 0;    ///< C_x^p, rad/m (MAAF Eq. 7)
-    double centre_y = 0;    ///< C_y^p, rad/m (MAAF Eq. 6)
-    double sigma_x = 0;     ///< sigma_x^p, rad/m (MAAF Eq. 8; sigma_x^0 for p = 0)
-    double sigma_y = 0;     ///< sigma_y^p, rad/m (MAAF Eq. 8)
-    double weight = 0;      ///< mu_p (MAAF Eq. 10); 1 for p = 0
+    int index = 0;        ///< p, from -(N-1) to N-1
+    int sign = 0;         ///< sgn_p: 0 for p = 0, +1 or -1 otherwise (MAAF Eq. 7)
+    double centre_x = 0;  ///< C_x^p, rad/m (MAAF Eq. 7)
+    double centre_y = 0;  ///< C_y^p, rad/m (MAAF Eq. 6)
+    double sigma_x = 0;   ///< sigma_x^p, rad/m (MAAF Eq. 8; sigma_x^0 for p = 0)
+    double sigma_y = 0;   ///< sigma_y^p, rad/m (MAAF Eq. 8)
+    double weight = 0;    ///< mu_p (MAAF Eq. 10); 1 for p = 0
 };
 
 /// The band a pixel's wedge is partitioned over, after MAAF Sec. 6.2's

@@ -98,7 +98,7 @@ class MaafFittedWeights {
 /// has the bits a fresh one would. The last 32 argument sets are kept;
 /// thread-safe. Throws as the constructor.
 std::shared_ptr<const MaafFittedWeights> shared_fitted_weights(const SampleDensity &density, double omega_max,
-                                                              int pairs, double k);
+                                                               int pairs, double k);
 
 /// One fit (MaafFittedWeights' "The fit"): mu_1 .. mu_{N-1} for slope ratio
 /// t in [0, 1], the density's spectrum `spectrum` and the band omega_max it is

@@ -48,9 +48,9 @@ struct MaafWedgeInputs {
 /// serve as taps of its neighbours).
 struct MaafWedges {
     int width = 0, height = 0;
-    std::vector<float> s_min, s_max;     ///< slopes d1/d2 - 1 (MAAF Sec. 3), prefiltered
-    std::vector<float> omega_x_max;      ///< pixel band-limit, rad/m; 0 = no wedge
-    std::vector<float> omega_y;          ///< partitioned Omega_y^max (maaf_components.h), rad/m
+    std::vector<float> s_min, s_max;  ///< slopes d1/d2 - 1 (MAAF Sec. 3), prefiltered
+    std::vector<float> omega_x_max;   ///< pixel band-limit, rad/m; 0 = no wedge
+    std::vector<float> omega_y;       ///< partitioned Omega_y^max (maaf_components.h), rad/m
 };
 
 /// MAAF Sec. 6.2's parameter estimate: slopes from the occluder distances

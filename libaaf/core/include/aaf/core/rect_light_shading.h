@@ -9,9 +9,9 @@ namespace aaf {
 /// Lambertian lobe plus an optional GGX lobe (aaf/core/ggx.h) with Schlick's
 /// Fresnel, the tracer's BRDF (libaaf/trace/shading.h).
 struct SurfaceReflectance {
-    Vec3 albedo;            ///< diffuse reflectance per channel, [0, 1]
-    Vec3 specular;          ///< Fresnel reflectance at normal incidence F0 per channel; 0 = no GGX lobe
-    float roughness = 0.5f; ///< GGX alpha = roughness^2, (0, 1]
+    Vec3 albedo;             ///< diffuse reflectance per channel, [0, 1]
+    Vec3 specular;           ///< Fresnel reflectance at normal incidence F0 per channel; 0 = no GGX lobe
+    float roughness = 0.5f;  ///< GGX alpha = roughness^2, (0, 1]
 };
 
 /// A one-sided rectangular light of uniform radiance: its rectangle

@@ -10,11 +10,11 @@ namespace aaf {
 /// One pixel's x-side kernels for maaf_separable_filter(), per component
 /// p = 0 .. N-1 (p >= 0 of a pair; maaf_components.h).
 struct MaafPixelKernel {
-    bool filtered = false;                        ///< false: the pixel keeps its value (and is a plain tap)
-    float omega_x[kMaafMaxPairs] = {};            ///< C_x^p, rad/m
-    float inv_two_sigma_sq[kMaafMaxPairs] = {};   ///< 1 / (2 s^2) of the primal Gaussian of std s, m^-2
-    int radius_px[kMaafMaxPairs] = {};            ///< 3 primal standard deviations, capped; pixels
-    double weight[kMaafMaxPairs] = {};            ///< mu_0 sigma_x^0, 2 mu_p sigma_x^p (MAAF Eq. 21)
+    bool filtered = false;                       ///< false: the pixel keeps its value (and is a plain tap)
+    float omega_x[kMaafMaxPairs] = {};           ///< C_x^p, rad/m
+    float inv_two_sigma_sq[kMaafMaxPairs] = {};  ///< 1 / (2 s^2) of the primal Gaussian of std s, m^-2
+    int radius_px[kMaafMaxPairs] = {};           ///< 3 primal standard deviations, capped; pixels
+    double weight[kMaafMaxPairs] = {};           ///< mu_0 sigma_x^0, 2 mu_p sigma_x^p (MAAF Eq. 21)
 };
 
 /// What maaf_separable_filter() returns per pixel (row-major): the filtered

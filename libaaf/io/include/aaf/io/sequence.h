@@ -58,7 +58,6 @@ class FrameRange {
     bool disjoint_ = true;  ///< no two items' [first, last] spans overlap: no duplicates possible
 };
 
-
 /// True when `path` names a sequence: a run of `#` or `@`, or a printf
 /// `%d` / `%0Nd` field.
 bool is_sequence_pattern(const std::string &path);
