@@ -46,10 +46,12 @@ const char *aaf_version() {
 
 void set_command_line(int argc, char **argv) {
     // Left out: what cannot change a frame's bytes by contract (threads,
-    // progress, resumption, which chunk of a sequence, where it is written),
-    // so equal outputs stay equal bytes.
-    static const std::set<std::string> with_value = {"-o",         "--output", "--frames",    "--threads",
-                                                     "--progress", "--resume", "--checkpoint"};
+    // progress, resumption, which chunk of a sequence, where it is written,
+    // the memory limit), so equal outputs stay equal bytes; and the
+    // instruction set, which changes no render and a filter's last bits only.
+    static const std::set<std::string> with_value = {"-o",           "--output",   "--frames",
+                                                     "--threads",    "--progress", "--resume",
+                                                     "--checkpoint", "--isa",      "--memory-limit-gb"};
     static const std::set<std::string> flags = {"--skip-existing", "--skip-bad-frames", "--timings"};
     std::string &line = stored_command_line();
     line = "aaf";

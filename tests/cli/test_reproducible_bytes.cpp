@@ -8,6 +8,7 @@
 #include <iterator>
 #include <string>
 
+#include "aaf/core/instruction_set.h"
 #include "aaf/io/exr_io.h"
 #include "run_aaf.h"
 
@@ -76,4 +77,26 @@ TEST_CASE("CLI: a frame gives the same bytes whichever chunk of the sequence mad
     REQUIRE_FALSE(filtered.empty());
     CHECK(filtered == bytes_of(dir / "f_one.0002.exr"));
     CHECK(filtered == bytes_of(dir / "f_disk.0002.exr"));  // every frame on disk, no --frames
+}
+
+TEST_CASE("CLI: a render gives the same file under every instruction set this CPU runs",
+          "[cli][render][provenance][isa]") {
+    const fs::path dir = scratch_dir("reproducible_isa");
+    std::string first;
+    for (aaf::InstructionSet set : aaf::kInstructionSets) {
+        if (!aaf::cpu_supports(set)) continue;
+        const std::string name = aaf::instruction_set_name(set);
+        INFO("--isa " << name);
+        const fs::path out = dir / (name + ".exr");
+        // Every tracer group, so every channel's bits and every attribute count.
+        REQUIRE(
+            run_aaf("render studio --width 24 --height 16 --spp 4 --aovs all,maaf,isg,maaf6 --progress none "
+                    "--isa " +
+                    name + " -o " + out.string())
+                .exit_code == 0);
+        const std::string bytes = bytes_of(out);
+        REQUIRE_FALSE(bytes.empty());
+        if (first.empty()) first = bytes;
+        CHECK(bytes == first);
+    }
 }
