@@ -15,6 +15,7 @@
 #include <utility>
 #include <vector>
 
+#include "../unpinned_instruction_set.h"
 #include "aaf/core/fast_exp.h"
 #include "aaf/core/gather.h"
 #include "aaf/core/gather_rows.h"
@@ -130,6 +131,7 @@ double reference_along_x(const GatherGuides &g, const std::vector<float> &source
 
 TEST_CASE("Gather SIMD: instruction sets that fuse alike give the same bits, the two kinds agree to rounding",
           "[gather][simd]") {
+    const aaf_test::UnpinnedInstructionSet every_target;  // the test walks Highway's targets itself
     const std::vector<std::int64_t> targets = hwy::SupportedAndGeneratedTargets();
     REQUIRE(!targets.empty());
     for (const bool anisotropic : {false, true})
@@ -166,6 +168,7 @@ TEST_CASE("Gather SIMD: instruction sets that fuse alike give the same bits, the
 }
 
 TEST_CASE("Gather SIMD: one 1D pass equals the documented weights summed in double", "[gather][simd]") {
+    const aaf_test::UnpinnedInstructionSet every_target;  // the test walks Highway's targets itself
     // gather_row along x alone: the horizontal pass of the separable gather.
     const GatherGuides g = varied_guides(29, 13, false);
     const std::size_t n = std::size_t(g.width) * g.height;
@@ -251,6 +254,7 @@ float reference_pass(const GatherGuides &g, const float *source, int x, int y, b
 
 TEST_CASE("Gather SIMD: the vertical pass and the separable gather give the scalar definition's bits",
           "[gather][simd]") {
+    const aaf_test::UnpinnedInstructionSet every_target;  // the test walks Highway's targets itself
     // 29 x 23: a partial vector at each row's end for every lane count; radii
     // up to 7 reach past the top and bottom rows.
     const float cos_threshold = std::cos(25.0f * 3.14159265358979323846f / 180.0f);  // gather()'s default

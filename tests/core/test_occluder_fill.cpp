@@ -11,6 +11,7 @@
 #include <utility>
 #include <vector>
 
+#include "../unpinned_instruction_set.h"
 #include "aaf/core/occluder_fill.h"
 #include "aaf/core/thread_count.h"
 
@@ -54,6 +55,7 @@ FilledOccluders reference_fill(ConstPlaneView d2_min, ConstPlaneView d2_max, Con
 }  // namespace
 
 TEST_CASE("Occluder fill: the disc's mean of same-object occluded neighbours, bit for bit", "[aaf][fill]") {
+    const aaf_test::UnpinnedInstructionSet every_target;  // the test walks Highway's targets itself
     // The fill searches bands of rows in parallel, each with r rows of scratch
     // either side: 150 rows are several bands, whose seams the disc must cross,
     // and the band height follows the thread count.

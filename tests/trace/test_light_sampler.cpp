@@ -8,6 +8,7 @@
 #include <limits>
 #include <vector>
 
+#include "../unpinned_instruction_set.h"
 #include "aaf/core/error.h"
 #include "light_sampler.h"
 #include "random.h"
@@ -195,6 +196,7 @@ TEST_CASE("Stratified grid finds a stratum's row without integer division, exact
 }
 
 TEST_CASE("The batched light warp gives warp_u and warp_v's bits", "[trace][light]") {
+    const aaf_test::UnpinnedInstructionSet every_target;  // the test walks Highway's targets itself
     // Inputs over every interval of the inverse-CDF table, with the edges and
     // invalid values sample() maps to the truncation limits.
     std::vector<float> s, t;
