@@ -42,8 +42,8 @@ int main() {
         }
     const char *titles[] = {
         "Relative error of the highlight (a 1 m square at 2 m around the mirror direction, F0 = 1)",
-        "Largest absolute error over the four placements, as a fraction of the lobe's hemispherical integral "
-        "(F0 = 1)",
+        ("Largest absolute error over the four placements, as a fraction of the lobe's hemispherical "
+         "integral (F0 = 1)"),
         "The same for the Fresnel integral (F0 = 0), as a fraction of the lobe's hemispherical integral"};
     const std::vector<double> *tables[] = {&highlight, &lobe, &fresnel};
     for (int t = 0; t < 3; ++t) {
