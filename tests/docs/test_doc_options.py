@@ -20,7 +20,7 @@ help_cache = {}
 def help_text(words):
     key = tuple(words)
     if key not in help_cache:
-        run = subprocess.run([aaf_exe] + words + ["--help"], capture_output=True, text=True)
+        run = subprocess.run([aaf_exe] + words + ["--help"], capture_output=True, text=True, timeout=60)
         if run.returncode != 0:
             help_cache[key] = None
         else:
@@ -60,6 +60,8 @@ for page in pages:
         if words[0] in ("filter", "analyze") and len(words) > 1 and not words[1].startswith("-"):
             command.append(words[1])
         helped = help_text(command)
+        if helped is not None:
+            helped += help_text([])  # --isa, --memory-limit-gb: any command takes them
         if helped is None:
             failures.append("%s:%d: `aaf %s --help` fails" % (page, line_no, " ".join(command)))
             continue
