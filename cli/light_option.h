@@ -13,7 +13,7 @@ namespace aaf::cli {
 /// file), or none when `path` is empty. Throws aaf::InputError naming the file.
 std::optional<std::map<std::string, AttributeValue>> light_option(const std::string &path);
 
-/// Applies `--light` to an input as read. Precedence (README "Light without a
+/// Applies `--light` to an input as read. Precedence (libaaf/RENDERERS.md "A light without a
 /// header"): the file's own `aaf:light:*` header is used when there is no
 /// `--light`; a `--light` replaces all eight of them (never a mix of the two).
 /// Returns true when the file had a light header of its own that was replaced.

@@ -8,7 +8,7 @@
 namespace aaf::cli {
 
 /// Header attributes every `aaf render` and `aaf filter` output records
-/// (README "Provenance and --skip-existing"); `Software` is set to aaf's.
+/// (cli/README.md "Provenance and --skip-existing"); `Software` is set to aaf's.
 namespace provenance_attr {
 inline constexpr const char *kVersion = "aaf:provenance:version";         // string, "aaf 0.1.0"
 inline constexpr const char *kMethod = "aaf:provenance:method";           // string, "render" or the method

@@ -451,7 +451,7 @@ def analyze_cases():
 
 
 def fuzz_cases():
-    """What the libFuzzer harnesses found (README "Reliability"), as command lines."""
+    """What the libFuzzer harnesses found (tests/README.md), as command lines."""
     for name in os.listdir(FINDINGS):
         shutil.copyfile(os.path.join(FINDINGS, name), path(name))
     string_attribute = "read_aovs-string_attribute_1_7GB.exr"  # OpenEXR fills the declared 1.7 GB string

@@ -91,7 +91,7 @@ def reduction(rows, scene, row):
 
 
 def print_tables(rows, scenes):
-    """The study's tables (README "The study"): the CLI defaults first, then
+    """The study's tables (scripts/study/RESULTS.md): the CLI defaults first, then
     each departure from the paper switched back alone, then the paper's
     whole pipeline."""
     print("CLI defaults (aaf render --adaptive; aaf filter aaf):")

@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# The ratio estimator study (README "Ratio estimator"): on the textured
+# The ratio estimator study (scripts/ratio_study/RESULTS.md): on the textured
 # multi-light scene `livingroom` at 320x240, 1, 2, 4 and 8 shadow rays per
 # light, RMSE and FLIP against a 1024-rays-per-light reference of the ratio,
 # full-stochastic and control-variate estimators, each with the bilateral,

@@ -4,7 +4,7 @@
 # tests most exposed to bad input under them; any report fails the run.
 #
 # The subset (CI is 2 cores and the whole .ci/run must stay well under 15
-# minutes; README "Reliability" has the timings): every core, io and methods
+# minutes; tests/README.md has the timings): every core, io and methods
 # test, the CLI tests of errors, refusals and interrupted writes, and the
 # bad-input corpus through the sanitized `aaf`. Left out: the tracer's golden
 # and convergence renders and the CLI's end-to-end and consistency renders

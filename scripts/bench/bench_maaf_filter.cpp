@@ -14,7 +14,7 @@
 // pixels of each pixel's footprint, capped like the filter's radius.
 // (The full-window variant, --filter 2d, is about 20x slower again and is left
 // out: it would take minutes per iteration here.)
-// Run: ./build/scripts/bench/bench_maaf_filter (see README "Benchmarks").
+// Run: ./build/scripts/bench/bench_maaf_filter (see scripts/bench/RESULTS.md).
 #include <benchmark/benchmark.h>
 
 #include <opencv2/core.hpp>

@@ -25,7 +25,7 @@ A failure is one line `aaf-bridge: error: ...` on stderr and aaf's exit code:
 2 usage, 3 a scene that cannot be exported or a file that cannot be read or
 written, 1 anything else.
 
-What is exported and what is not (README "Blender bridge"): mesh objects
+What is exported and what is not (libaaf/RENDERERS.md "Blender"): mesh objects
 (evaluated: modifiers applied), their material's Principled BSDF base colour
 as albedo (0.75 without one); perspective cameras (sensor fit and shift-free
 framing; Blender's shift is not exported); area lights (square, rectangle; a

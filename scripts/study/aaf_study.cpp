@@ -49,10 +49,9 @@ std::pair<double, float> best_fixed_filter(const AovSet &noisy, const AovSet &re
     return {best_rmse, best_beta};
 }
 
-/// The paper's reading where this implementation departs from it (README,
-/// "AAF in this implementation"): one mu everywhere, AAF Eq. 12's orthogonal
-/// projection, one-sided windows at the image edge (Omega_L = 1/sigma and the
-/// receiver's pixel footprint are the defaults too).
+/// The paper's reading where this implementation departs from it (libaaf/core/methods/aaf/README.md): one mu
+/// everywhere, AAF Eq. 12's orthogonal projection, one-sided windows at the image edge (Omega_L = 1/sigma and
+/// the receiver's pixel footprint are the defaults too).
 AafParams paper_params(float mu) {
     AafParams p;
     p.mu = mu;

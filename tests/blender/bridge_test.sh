@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# The Blender bridge end to end (README "Blender bridge"), with Debian's
+# The Blender bridge end to end (libaaf/RENDERERS.md "Blender"), with Debian's
 # Blender 3.4 headless:
 #  1. a shot built by script in Blender is exported (scripts/blender/aaf_bridge.py),
 #     rendered by `aaf render --aovs all`, filtered by `aaf filter aaf`, and

@@ -1,4 +1,4 @@
-// The exit codes of README's "The `aaf` tool", one table over every command:
+// The exit codes of README's "Errors and exit codes", one table over every command:
 // 0 success, 2 usage (a bad option or value), 3 input (a file, channel or
 // header problem), 4 a failed compare check.
 #include <catch2/catch.hpp>

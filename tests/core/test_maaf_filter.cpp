@@ -373,8 +373,9 @@ TEST_CASE("MAAF reconstructs a dense-sampled soft shadow, a wrong light coordina
                        << ", k = 1: N = 3 " << paper_n3 << ", N = 1 " << n1);
     // Measured with k = 1 (the paper's widths): N = 3 0.027, N = 1 0.025: with exact input, MAAF's bias is
     // about AAF's with the same widths. With the default k = 3: right 0.0089, flipped 0.056, y1 twice
-    // 0.018, N = 1 0.0013 (the offset components keep a bias N = 1 does not have; README "MAAF").
-    // The wrong orientation and the shared coordinate each add their own error.
+    // 0.018, N = 1 0.0013 (the offset components keep a bias N = 1 does not have;
+    // libaaf/core/methods/maaf/README.md). The wrong orientation and the shared coordinate each add their own
+    // error.
     CHECK(paper_n3 < 1.25 * n1);
     CHECK(rmse(flipped) > 2 * rmse(right));
     CHECK(rmse(same_axis) > 1.5 * rmse(right));

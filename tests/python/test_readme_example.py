@@ -15,9 +15,11 @@ import numpy as np
 
 aaf_exe, readme, scratch = (os.path.abspath(a) for a in sys.argv[1:4])
 text = open(readme, encoding="utf-8").read()
-section = text[text.index("## Using libaaf from Python"):]
-shell = re.search(r"```sh\n(.*?)```", section, re.S).group(1)
-python = re.search(r"<!-- python-example[^>]*-->\n```python\n(.*?)```", section, re.S).group(1)
+# The example is the ```python block after the marker; its shell lines the
+# last ```sh block before it (README "Quick start", "Python").
+marker = text.index("<!-- python-example")
+shell = re.findall(r"```sh\n(.*?)```", text[:marker], re.S)[-1]
+python = re.search(r"<!-- python-example[^>]*-->\n```python\n(.*?)```", text[marker:], re.S).group(1)
 
 shutil.rmtree(scratch, ignore_errors=True)
 os.makedirs(scratch)

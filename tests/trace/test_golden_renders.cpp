@@ -199,7 +199,7 @@ TEST_CASE("An adaptive render gives the golden bytes", "[trace][golden]") {
     // only shadow.d2min/d2max differed), when the plan began measuring the
     // pixel footprint in the light plane's units, and when the plan's
     // defaults went back to the paper's band-limit 1/sigma and the receiver's
-    // footprint (README, "AAF in this implementation": fewer samples), and
+    // footprint (libaaf/core/methods/aaf/README.md: fewer samples), and
     // when hits began to be computed by the tracer (the same on every CPU).
     check_golden([&] { return trace::render_scene("grids", settings); }, 0x00d8de2112aa3d62);
     // The former defaults still give their bytes: the truncated profile's

@@ -141,7 +141,8 @@ void Maaf6Group::write(const RenderState &state, AovSet &aovs) const {
                 w.indirect_min = std::min(w.indirect_min, s.bounce_height_m);
                 w.indirect_max = std::max(w.indirect_max, s.bounce_height_m);
             }
-            const float u_slope = 1.0f - s.depth_m / camera.focus_distance_m;  // s_u = 1 - z/F (README)
+            const float u_slope =
+                1.0f - s.depth_m / camera.focus_distance_m;  // s_u = 1 - z/F (methods/maaf6/README.md)
             w.u_min = std::min(w.u_min, u_slope);
             w.u_max = std::max(w.u_max, u_slope);
         }

@@ -233,7 +233,7 @@ void maaf6_filter_layer(const Maaf6LayerInputs &layer, const Maaf6SharedInputs &
                     if (!tap_accepted(shared, n, cos_threshold, tx, ty)) continue;
                     // The tap minus the centre: h(x) = sum f(x', y, u) w(x - x', y, u) sees the
                     // spectrum at (Omega_x, -Omega_y, -Omega_u), and our y, u axes point the way
-                    // that puts the wedge at positive slopes (README, "MAAF for combined effects").
+                    // that puts the wedge at positive slopes (README.md beside this file, "Filter").
                     const Vec3 d = read3(shared.position, tx, ty) - p;
                     maaf6_x_kernel(pairs, params.k, double(dot(d, t1)), k1.data());
                     maaf6_x_kernel(pairs, params.k, double(dot(d, t2)), k2.data());

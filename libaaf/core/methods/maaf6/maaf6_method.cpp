@@ -62,7 +62,7 @@ class Maaf6Method final : public Method {
                 "pair_weights", "fitted", {"fitted", "eq10", "light"},
                 "mu_p of the offset pairs: fitted: least squares so that the filter passes the "
                 "sampling density's spectrum along the wedge, as the light integral does (not in "
-                "the paper; measured better than MAAF Eq. 10 on room, see the README); eq10: MAAF "
+                "the paper; measured better than MAAF Eq. 10 on room, see its README); eq10: MAAF "
                 "Eq. 10, the paper's; light: MAAF Eq. 10 times the Gaussian light model's spectrum at "
                 "the pair's y centre"),
             ParameterInfo::real(
@@ -87,7 +87,7 @@ class Maaf6Method final : public Method {
                 "As band_spp, for the indirect layer: its noise is several times the direct "
                 "layer's at equal samples, so its filter stays wide for longer (on room fixed bands "
                 "were best for it up to 256 spp; 128 is the smallest that lost nothing up to 128 "
-                "spp, see the README); 0 = fixed bands",
+                "spp, see its README); 0 = fixed bands",
                 0),
         };
         info_.required_attributes = light_attribute_names();

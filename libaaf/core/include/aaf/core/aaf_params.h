@@ -22,7 +22,7 @@ enum class AafLightDistance {
     /// but a tilted light no longer shrinks displacements towards it. The
     /// default: to first order, a receiver moved along the ray to the light
     /// keeps its shadow, and one moved along the light's normal shifts it by
-    /// the ray's slope (README, "AAF in this implementation").
+    /// the ray's slope (libaaf/core/methods/aaf/README.md).
     AlongLightDirection,
     /// AAF Eq. 12 as printed: the orthogonal projection onto the light's plane.
     OrthogonalProjection,
@@ -83,7 +83,7 @@ struct AafParams {
     /// uses the same. The default is the paper's reading: with tap distances
     /// measured along the ray (light_distance), the truncated profile's wider
     /// spectrum (EquivalentWidth, Spectrum) makes the filter too narrow on the
-    /// study scenes (README, "AAF in this implementation").
+    /// study scenes (libaaf/core/methods/aaf/README.md).
     LightBandlimit light_bandlimit = LightBandlimit::Sigma;
     AafLightAxes light_axes = AafLightAxes::PerAxis;
     /// Baseline "non-adaptive filter" of AAF Fig. 6 (NAF): when > 0, every pixel

@@ -27,7 +27,7 @@ struct Maaf6Wedge {
     double y_min = 0, y_max = 0;
     /// u-wedge slopes: s_u = 1 - z/F (z the receiver's depth, F the focus
     /// distance), the world-unit form of MAAF Sec. 3's V(F/z - 1)/S (derived in
-    /// the README; it is that slope times the pixel footprint z/F S/V, with
+    /// methods/maaf6/README.md; it is that slope times the pixel footprint z/F S/V, with
     /// the sign of the lens axis). May have either sign; u_min u_max < 0 is the
     /// focal-plane box (MAAF Sec. 6.2). has_u false: a pinhole camera.
     bool has_u = false;

@@ -58,7 +58,7 @@ struct Maaf6FilterParams {
     /// render's bands. 16 (the default): the first pass's samples; the maaf6
     /// method passes 128 for the indirect layer (`--indirect-band-spp`). 0: the bands
     /// whatever the samples, as the paper has them, whose bias no sample count
-    /// removes (README, "Consistency").
+    /// removes (libaaf/core/methods/maaf6/README.md, "Consistency").
     double band_spp = 16;
 };
 
@@ -67,31 +67,24 @@ struct Maaf6FilterParams {
 /// maaf6_filter_components() of its wedge (window: max_radius times its pixel
 /// size; the axis-aligned filter where the partition cannot be realised), out = sum_j g_j sum_ab K_a(d1)
 /// K_b(d2) sums_j[ab] / (the same with weights_j[ab]), d_k = (P_j - P_i) . t_k (the tap minus the centre: see
-/// the README for the orientation), g_j = exp(-d_n^2 / (2 s^2)) / samples_j with d_n = (P_i - P_j) . n the
-/// distance off the tangent plane and s the central component's primal std (so taps are per-pixel means, as
-/// AAF filters, and a step in depth counts as AAF's world distance does), times the pixel's own mean weight
-/// weights_i[c0c0] / samples_i (1 with unit weights; the mean unoccluded
-/// luminance for direct light: AAF's r(x) V(x) factoring), over
-/// the window of radius min(max_radius, ceil(3 k / sigma_x^0 / pixel size)),
-/// taps on the background or beyond the normal threshold rejected. A
-/// constant radiance stays exactly constant. Where the denominator is below
-/// a tenth of the central term's alone, the central term alone is used (AAF's
-/// filter), then the pixel's own mean; negative results are clamped to 0; the
-/// background keeps its mean, and so does a pixel without a y-wedge whose
-/// u-wedge is absent (pinhole), the focal-plane box (MAAF Sec. 6.2 gives
-/// it more samples instead: its pixel band is the pixel itself) or clipped
-/// by the pixel band (Omega_u^max >= min |s_u| Omega_x^max: a circle of
-/// confusion of about a pixel, whose filter would only blur). No NaN or Inf
-/// leaves it (inputs finite).
-/// Where the partition is used but the guides (another normal, no hit) or the
-/// image's border take away more than 20% of the central envelope's mass
-/// from the window, the pixel gets the axis-aligned filter (`--pairs 1`'s
-/// bits): the pairs' cos and sin kernels cancel only over a whole window,
-/// and over a cut one they bias the pixel (room: indirect light at 128 spp
-/// 28% above N = 1 without this rule, 5% with it). With a filtered lens
-/// wedge (maaf6_lens_band() > 0) the unoccluded light that multiplies the
-/// filtered ratio is the Gaussian mean of the taps' own with the lens band,
-/// not the pixel's own mean: its samples see whatever surface the lens ray
+/// methods/maaf6/README.md for the orientation), g_j = exp(-d_n^2 / (2 s^2)) / samples_j with d_n = (P_i -
+/// P_j) . n the distance off the tangent plane and s the central component's primal std (so taps are
+/// per-pixel means, as AAF filters, and a step in depth counts as AAF's world distance does), times the
+/// pixel's own mean weight weights_i[c0c0] / samples_i (1 with unit weights; the mean unoccluded luminance
+/// for direct light: AAF's r(x) V(x) factoring), over the window of radius min(max_radius, ceil(3 k /
+/// sigma_x^0 / pixel size)), taps on the background or beyond the normal threshold rejected. A constant
+/// radiance stays exactly constant. Where the denominator is below a tenth of the central term's alone, the
+/// central term alone is used (AAF's filter), then the pixel's own mean; negative results are clamped to 0;
+/// the background keeps its mean, and so does a pixel without a y-wedge whose u-wedge is absent (pinhole),
+/// the focal-plane box (MAAF Sec. 6.2 gives it more samples instead: its pixel band is the pixel itself) or
+/// clipped by the pixel band (Omega_u^max >= min |s_u| Omega_x^max: a circle of confusion of about a pixel,
+/// whose filter would only blur). No NaN or Inf leaves it (inputs finite). Where the partition is used but
+/// the guides (another normal, no hit) or the image's border take away more than 20% of the central
+/// envelope's mass from the window, the pixel gets the axis-aligned filter (`--pairs 1`'s bits): the pairs'
+/// cos and sin kernels cancel only over a whole window, and over a cut one they bias the pixel (room:
+/// indirect light at 128 spp 28% above N = 1 without this rule, 5% with it). With a filtered lens wedge
+/// (maaf6_lens_band() > 0) the unoccluded light that multiplies the filtered ratio is the Gaussian mean of
+/// the taps' own with the lens band, not the pixel's own mean: its samples see whatever surface the lens ray
 /// hits, so the own mean would carry the defocus noise through.
 /// Writes `out` (3 planes). Throws aaf::Error on mismatched sizes.
 void maaf6_filter_layer(const Maaf6LayerInputs &layer, const Maaf6SharedInputs &shared,

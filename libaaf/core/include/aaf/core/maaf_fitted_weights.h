@@ -62,7 +62,7 @@ class SampleSpectrum {
 /// as the target). MAAF Eq. 10's mu_p ignore that the components overlap through
 /// phi and that each realised component's Fourier peak is a_p / a_0 of the
 /// central's: on room's converged shadows they darkened smooth penumbrae by
-/// about 2% (README, issue 15).
+/// about 2% (scripts/study/RESULTS_MAAF6.md).
 ///
 /// The fit. mu minimises sum over slopes s and frequencies W of
 /// (H_s(W) - phi(W s))^2 / W^2 (the 1 / W^2: an edge's spectrum, so this is

@@ -122,7 +122,7 @@ struct RenderSettings {
     /// AAF Eq. 21's largest rate). True: it gives no occluder distance, as the AAF
     /// authors' code skips it; the study measured that no better on any scene
     /// and worse on curved receivers (their terminators then keep the first
-    /// pass's 9 samples unfiltered), README "The study".
+    /// pass's 9 samples unfiltered), scripts/study/RESULTS.md.
     bool skip_self_occluded = false;
 
     /// Progressive rendering: a render already holding some rounds (the
