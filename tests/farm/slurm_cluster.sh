@@ -159,6 +159,15 @@ job_processes() {
   echo "${found[@]}"
 }
 
+task_processes() {  # task_processes ARRAY_JOB TASK: the PIDs of that array task's own processes
+  local pid
+  for pid in $(job_processes); do
+    [ "$(cat "/proc/$pid/comm" 2> /dev/null)" != slurmstepd ] || continue
+    { tr '\0' '\n' < "/proc/$pid/environ"; } 2> /dev/null \
+      | grep -xF -e "SLURM_ARRAY_JOB_ID=$1" -e "SLURM_ARRAY_TASK_ID=$2" | grep -c . | grep -qx 2 && echo "$pid"
+  done
+}
+
 kill_job_processes() {  # as a node that loses power: every job process dies at once
   local pids
   pids=$(job_processes)

@@ -50,7 +50,7 @@ wait_for() {  # wait_for SECONDS DESCRIPTION COMMAND...: until COMMAND succeeds
   for _ in $(seq $((limit * 10))); do "$@" && return 0; sleep 0.1; done
   fail "waited ${limit}s for $what"
 }
-has_file() { compgen -G "$1" > /dev/null; }
+has_file() { [ -n "$(find "$1" -maxdepth 1 -name "$2")" ]; }  # has_file DIR NAME_GLOB (DIR literal)
 task_state() { scontrol show job -o "$1" | sed -n 's/.* JobState=\([A-Z_]*\) .*/\1/p'; }
 
 case $case in
@@ -87,27 +87,44 @@ requeue)
   mkdir -p ref
   "$aaf" render grids -o "ref/noisy.####.exr" --frames 1-6 "${size[@]}" --progress none
   # aaf's test hook holds each finished temporary for 2 s before renaming it,
-  # so the cancel lands while a frame is written, its bytes not yet in place.
+  # so the kill lands while a frame is written, its bytes not yet in place.
   job=$(AAF_TEST_HOLD_BEFORE_RENAME_S=2 "$submit" --aaf "$aaf" --frames 1-6 --chunk 3 \
     --logs "$shot/logs" render grids "$shot/noisy.####.exr" "${size[@]}")
-  # Task 1 (frames 4-6): frame 4 in place, frame 5 being written.
-  wait_for 60 "task 1 to write frame 5" has_file "$shot/.noisy.0005.exr.tmp-*"
-  [ -f "$shot/noisy.0004.exr" ] || fail "frame 4 is not in place while frame 5 is written"
-  before=$(stamp "$shot/noisy.0004.exr")
+  # Task 0 (frames 1-3) and task 1 (frames 4-6) each writing its second frame.
+  writing() { has_file "$shot" ".noisy.0002.exr.tmp-*" && has_file "$shot" ".noisy.0005.exr.tmp-*"; }
+  wait_for 60 "tasks 0 and 1 to write frames 2 and 5" writing
+  before1=$(stamp "$shot/noisy.0001.exr") before4=$(stamp "$shot/noisy.0004.exr")
+  # Task 0's aaf killed outright (SIGKILL, as the out-of-memory killer does:
+  # scancel --signal=KILL is a plain cancel to Slurm); task 1 cancelled with
+  # scancel (SIGTERM, then SIGKILL after KillWait).
+  victims=$(task_processes "$job" 0)
+  [ -n "$victims" ] || fail "no process of task 0 found"
+  # shellcheck disable=SC2086
+  kill -KILL $victims
   scancel "${job}_1"
-  is_cancelled() { [ "$(task_state "${job}_1")" = CANCELLED ]; }
-  wait_for 30 "task 1 to be cancelled" is_cancelled
-  [ ! -e "$shot/noisy.0005.exr" ] && [ ! -e "$shot/noisy.0006.exr" ] \
-    || fail "a frame the cancelled task had not finished is under its final name"
-  scontrol requeue "${job}_1"
+  ended() { [ -z "$(squeue -h -j "${job}_0,${job}_1" -t all -o '%T' | grep -v -e FAILED -e CANCELLED)" ]; }
+  wait_for 30 "tasks 0 and 1 to end" ended
+  [ "$(task_state "${job}_0")" != COMPLETED ] && [ "$(task_state "${job}_1")" = CANCELLED ] \
+    || fail "the tasks' states are $(task_state "${job}_0") and $(task_state "${job}_1")"
+  # Nothing partial under a final name: the killed frame 2 is not there; the
+  # cancelled frame 5, whose bytes were all written, may have been put in
+  # place by aaf's SIGTERM handling, whole.
+  [ ! -e "$shot/noisy.0002.exr" ] && [ ! -e "$shot/noisy.0003.exr" ] && [ ! -e "$shot/noisy.0006.exr" ] \
+    || fail "a frame the killed tasks had not finished is under its final name"
+  [ ! -e "$shot/noisy.0005.exr" ] || cmp -s "ref/noisy.0005.exr" "$shot/noisy.0005.exr" \
+    || fail "frame 5, cancelled while written, is under its final name but not whole"
+  scontrol requeue "${job}_0,${job}_1"
+  # Slurm makes a requeued job eligible 2 minutes later; now, here.
+  scontrol update JobId="${job}_0,${job}_1" StartTime=now
   wait_job "$job" 120
   expect_completed "$job" 2
-  [ "$(stamp "$shot/noisy.0004.exr")" = "$before" ] || fail "the requeued task rewrote its finished frame 4"
-  grep -q "noisy.0004.exr: skipped" "$shot/logs/aaf-render.${job}_1.log" \
-    || { cat "$shot/logs/aaf-render.${job}_1.log"; fail "the requeued task did not skip frame 4"; }
+  [ "$(stamp "$shot/noisy.0001.exr")" = "$before1" ] && [ "$(stamp "$shot/noisy.0004.exr")" = "$before4" ] \
+    || fail "a requeued task rewrote a frame it had finished"
+  grep -q "noisy.0001.exr: skipped" "$shot/logs/aaf-render.${job}_0.log" \
+    || { cat "$shot/logs/aaf-render.${job}_0.log"; fail "the requeued task 0 did not skip frame 1"; }
   same_frames ref "$shot" noisy 1 6
   no_temporaries "$shot"
-  echo "OK: a task cancelled mid-frame left nothing partial; requeued, it skipped frame 4 and finished 5-6"
+  echo "OK: tasks killed and cancelled mid-frame left nothing partial; requeued, they skipped their finished frames and completed"
   ;;
 resubmit)
   "$aaf" render grids -o "$shot/noisy.####.exr" --frames 1-12 "${size[@]}" --progress none
