@@ -105,6 +105,10 @@ ReturnToService=2
 SlurmdTimeout=30
 InactiveLimit=0
 KillWait=5
+# A batch job the node no longer runs when it registers again is taken for
+# lost (and requeued) once it has run BatchStartTimeout + MessageTimeout.
+BatchStartTimeout=2
+MessageTimeout=5
 MinJobAge=600
 NodeName=localhost NodeAddr=127.0.0.1 CPUs=$cpus RealMemory=$memory_mb State=UNKNOWN
 PartitionName=farm Nodes=localhost Default=YES MaxTime=INFINITE State=UP

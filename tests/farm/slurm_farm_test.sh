@@ -151,6 +151,7 @@ resubmit)
       grep -q "$name: skipped" "$shot"/logs/aaf-filter."$second"_*.log || fail "up-to-date $name was not reported skipped"
     fi
   done
+  mkdir -p local
   "$aaf" filter aaf "$shot/noisy.####.exr" -o "local/aaf.####.exr" --frames 1-12 --progress none --map position=P
   same_frames local "$shot" aaf 1 12
   no_temporaries "$shot"
@@ -158,15 +159,16 @@ resubmit)
   ;;
 node)
   mkdir -p ref
-  "$aaf" render grids -o "ref/noisy.####.exr" --frames 1-8 "${size[@]}" --progress none
-  job=$(AAF_TEST_HOLD_BEFORE_RENAME_S=1 "$submit" --aaf "$aaf" --frames 1-8 --chunk 4 \
+  "$aaf" render grids -o "ref/noisy.####.exr" --frames 1-12 "${size[@]}" --progress none
+  job=$(AAF_TEST_HOLD_BEFORE_RENAME_S=2 "$submit" --aaf "$aaf" --frames 1-12 --chunk 6 \
     --logs "$shot/logs" render grids "$shot/noisy.####.exr" "${size[@]}")
-  # Both tasks (frames 1-4, 5-8) past their second frame.
-  past_second() { [ -f "$shot/noisy.0002.exr" ] && [ -f "$shot/noisy.0006.exr" ]; }
-  wait_for 60 "frames 2 and 6" past_second
+  # Both tasks (frames 1-6, 7-12) past their fourth frame, running for longer
+  # than the controller's BatchStartTimeout + MessageTimeout (7 s).
+  past_fourth() { [ -f "$shot/noisy.0004.exr" ] && [ -f "$shot/noisy.0010.exr" ]; }
+  wait_for 60 "frames 4 and 10" past_fourth
   # The node fails: its slurmd and every process of its tasks die at once.
   finished=()
-  for frame in 1 2 3 4 5 6 7 8; do
+  for frame in $(seq 1 12); do
     name=$(printf "noisy.%04d.exr" "$frame")
     [ -f "$shot/$name" ] && finished+=("$name")
   done
@@ -174,15 +176,20 @@ node)
   kill_job_processes
   declare -A kept
   for name in "${finished[@]}"; do kept[$name]=$(stamp "$shot/$name"); done
-  [ ${#finished[@]} -lt 8 ] || fail "the tasks ended before the node failed"
+  [ ${#finished[@]} -lt 12 ] || fail "the tasks ended before the node failed"
   start_slurmd
-  # The controller finds the tasks gone from the node and requeues them.
+  # The controller finds the tasks gone from the node when it registers
+  # again and requeues them; Slurm makes a requeued job eligible 2 minutes
+  # later: now, here.
+  requeued() { [ "$(squeue -h -j "$job" -t PENDING -o '%i' | grep -c .)" -eq 2 ]; }
+  wait_for 60 "the controller to requeue both tasks" requeued
+  scontrol update JobId="${job}_0,${job}_1" StartTime=now
   wait_job "$job" 150
   expect_completed "$job" 2
   for name in "${finished[@]}"; do
     [ "$(stamp "$shot/$name")" = "${kept[$name]}" ] || fail "$name, finished before the failure, was lost or rewritten"
   done
-  same_frames ref "$shot" noisy 1 8
+  same_frames ref "$shot" noisy 1 12
   no_temporaries "$shot"
   echo "OK: after the node failed with ${#finished[@]} frames finished, the requeued tasks kept them and finished the rest"
   ;;
