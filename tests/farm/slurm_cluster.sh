@@ -170,6 +170,7 @@ task_processes() {  # task_processes ARRAY_JOB TASK: the PIDs of that array task
     { tr '\0' '\n' < "/proc/$pid/environ"; } 2> /dev/null \
       | grep -xF -e "SLURM_ARRAY_JOB_ID=$1" -e "SLURM_ARRAY_TASK_ID=$2" | grep -c . | grep -qx 2 && echo "$pid"
   done
+  return 0  # not the last process's test
 }
 
 kill_job_processes() {  # as a node that loses power: every job process dies at once
