@@ -48,18 +48,19 @@ echo "OK: chunks by index, options passed through, the same bytes as a local run
 line=$(head -n 1 "$work/dry.txt")
 eval "words=($line)"
 # shellcheck disable=SC2154
+listed=$(printf '%s\n' "${words[@]}")
 [ "${words[0]}" = FIRST_FRAME=1001 ] && [ "${words[1]}" = LAST_FRAME=1005 ] && [ "${words[2]}" = CHUNK_SIZE=2 ] \
   || fail "the dry run's environment is not FIRST_FRAME=1001 LAST_FRAME=1005 CHUNK_SIZE=2: $line"
-printf '%s\n' "${words[@]}" | grep -qx -- "--array=0-2" || fail "no --array=0-2 in: $line"
-printf '%s\n' "${words[@]}" | grep -qx -- "--cpus-per-task=2" || fail "no --cpus-per-task=2 in: $line"
-printf '%s\n' "${words[@]}" | grep -qxF -- "--output=$shot/aaf-filter.%A_%a.log" || fail "the log path is not kept in: $line"
-printf '%s\n' "${words[@]}" | grep -qxF -- "$work/key light.json" || fail "the --light path is not one word in: $line"
-printf '%s\n' "${words[@]}" | grep -qxF -- "$shot/noisy.####.exr" || fail "the input pattern is not one word in: $line"
+grep -qx -- "--array=0-2" <<< "$listed" || fail "no --array=0-2 in: $line"
+grep -qx -- "--cpus-per-task=2" <<< "$listed" || fail "no --cpus-per-task=2 in: $line"
+grep -qxF -- "--output=$shot/aaf-filter.%A_%a.log" <<< "$listed" || fail "the log path is not kept in: $line"
+grep -qxF -- "$work/key light.json" <<< "$listed" || fail "the --light path is not one word in: $line"
+grep -qxF -- "$shot/noisy.####.exr" <<< "$listed" || fail "the input pattern is not one word in: $line"
 [ "$(tail -n +2 "$work/dry.txt" | tr '\n' '|')" = "task 0: frames 1001-1002|task 1: frames 1003-1004|task 2: frames 1005-1005|" ] \
   || { cat "$work/dry.txt"; fail "the dry run's tasks are not 1001-1002, 1003-1004, 1005"; }
 mkdir -p "$work/100%"
-"$submit" --dry-run --aaf "$aaf" --frames 1-3 --logs "$work/100%" render grids "o.####.exr" | head -n 1 \
-  | grep -qF -- "--output=$work/100%%/aaf-render.%A_%a.log" || fail "a % in the log folder is not escaped as %%"
+dry=$("$submit" --dry-run --aaf "$aaf" --frames 1-3 --logs "$work/100%" render grids "o.####.exr")
+grep -qF -- "--output=$work/100%%/aaf-render.%A_%a.log" <<< "$dry" || fail "a % in the log folder is not escaped as %%"
 echo "OK: the dry run prints a runnable sbatch line and each task's frames"
 
 expect() {  # expect CODE SCRIPT_NAME NAMED -- ENV... -- ARGS...: exit code and the one stderr line
@@ -102,5 +103,5 @@ expect 2 aaf_submit.sh "backslash" -- -- --logs 'a\b' --frames 1-2 render grids 
 expect 2 aaf_submit.sh "--aaf '/nonexistent/aaf'" -- -- --aaf /nonexistent/aaf --frames 1-2 render grids "$out"
 expect 3 slurm_aaf.sh "no input frames match" -- -- filter aaf "$work/noisy.####.exr" "$out"
 expect 3 submit:slurm_aaf.sh "no input frames match" -- -- --dry-run filter aaf "$work/noisy.####.exr" "$out"
-! ls "$work" | grep -q "^bad\." || fail "a refused command wrote output"
+[ -z "$(find "$work" -maxdepth 1 -name 'bad.*')" ] || fail "a refused command wrote output"
 echo "OK: bad command lines refused with the CLI's codes and one error line"
