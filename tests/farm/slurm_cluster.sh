@@ -97,6 +97,9 @@ MpiDefault=none
 SelectType=select/cons_tres
 SelectTypeParameters=CR_CPU
 SchedulerType=sched/builtin
+# The main scheduler runs every second (default 60 s): a requeued task
+# whose start time has come starts without waiting.
+SchedulerParameters=sched_interval=1
 AccountingStorageType=accounting_storage/none
 JobAcctGatherType=jobacct_gather/none
 JobCompType=jobcomp/filetxt
@@ -150,7 +153,7 @@ job_processes() {
     parent=$(awk '{print $4}' "$proc/stat" 2> /dev/null) || continue
     parent_of[$pid]=$parent
     [ "$(cat "$proc/comm" 2> /dev/null)" = slurmstepd ] || continue
-    { tr '\0' '\n' < "$proc/environ"; } 2> /dev/null | grep -qxF "SLURM_CONF=${SLURM_CONF:-none}" && roots+=("$pid")
+    grep -qxF "SLURM_CONF=${SLURM_CONF:-none}" <<< "$({ tr '\0' '\n' < "$proc/environ"; } 2> /dev/null)" && roots+=("$pid")
   done
   local found=("${roots[@]}") grew=1
   while [ "$grew" -eq 1 ]; do
@@ -198,7 +201,7 @@ job_states() {
 
 wait_job() {  # wait_job JOB SECONDS: until no task of JOB is pending or running
   local job=$1 limit=$2 waited=0
-  while squeue -h -j "$job" -o '%T' 2> /dev/null | grep -q .; do
+  while [ -n "$(squeue -h -j "$job" -o '%T' 2> /dev/null)" ]; do
     sleep 0.5
     waited=$((waited + 1))
     [ "$waited" -le $((limit * 2)) ] || { job_states "$job"; cluster_fail "job $job still running after ${limit}s"; }

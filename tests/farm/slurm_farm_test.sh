@@ -114,8 +114,9 @@ requeue)
   [ ! -e "$shot/noisy.0005.exr" ] || cmp -s "ref/noisy.0005.exr" "$shot/noisy.0005.exr" \
     || fail "frame 5, cancelled while written, is under its final name but not whole"
   scontrol requeue "${job}_0,${job}_1"
-  # Slurm makes a requeued job eligible 2 minutes later; now, here.
-  scontrol update JobId="${job}_0,${job}_1" StartTime=now
+  # Slurm makes a requeued job eligible 2 minutes later; here in 3 s (a task
+  # started within the second its old credential was revoked is refused).
+  scontrol update JobId="${job}_0,${job}_1" StartTime=now+3
   wait_job "$job" 120
   expect_completed "$job" 2
   [ "$(stamp "$shot/noisy.0001.exr")" = "$before1" ] && [ "$(stamp "$shot/noisy.0004.exr")" = "$before4" ] \
@@ -180,10 +181,10 @@ node)
   start_slurmd
   # The controller finds the tasks gone from the node when it registers
   # again and requeues them; Slurm makes a requeued job eligible 2 minutes
-  # later: now, here.
+  # later: here in 3 s (not within the second its credential was revoked).
   requeued() { [ "$(squeue -h -j "$job" -t PENDING -o '%i' | grep -c .)" -eq 2 ]; }
   wait_for 60 "the controller to requeue both tasks" requeued
-  scontrol update JobId="${job}_0,${job}_1" StartTime=now
+  scontrol update JobId="${job}_0,${job}_1" StartTime=now+3
   wait_job "$job" 150
   expect_completed "$job" 2
   for name in "${finished[@]}"; do
