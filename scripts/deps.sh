@@ -11,6 +11,8 @@ packages=(
   python3-openimageio python3-numpy   # scripts/make_bad_corpus.py (run with /usr/bin/python3)
   python3-dev python3-pybind11         # the Python module aaf (libaaf/python), built for /usr/bin/python3
   python3-matplotlib                   # the studies' plots (scripts/plot_*.py, ratio_study.py)
+  python3-yaml                         # tests/farm/openjd_template_test.py reads the OpenJD template
+  slurm-wlm munge                      # the farm tests' one-node Slurm cluster (tests/farm/slurm_cluster.sh)
 )
 missing=()
 for p in "${packages[@]}"; do
