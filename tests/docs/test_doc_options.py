@@ -44,9 +44,14 @@ def commands(text):
                 words = shlex.split(pending, comments=True)
             except ValueError:
                 words = pending.split("#")[0].split()
-            # A line may run aaf after other words (AAF_ISA=sse4.2 aaf ...).
-            if "aaf" in words:
-                yield start, words[words.index("aaf") + 1:]
+            # aaf is the program: the first word after any VAR=value
+            # assignments (AAF_ISA=sse4.2 aaf ...), not a method's name
+            # in another program's arguments (aaf_submit.sh ... filter aaf).
+            program = 0
+            while program < len(words) and re.match(r"^[A-Za-z_][A-Za-z0-9_]*=", words[program]):
+                program += 1
+            if program < len(words) and (words[program] == "aaf" or words[program].endswith("/aaf")):
+                yield start, words[program + 1:]
             pending, start = "", None
 
 
