@@ -13,6 +13,7 @@
 #include <variant>
 #include <vector>
 
+#include "../golden_hash.h"
 #include "aaf/core/aov_contract.h"
 #include "aaf/core/instruction_set.h"
 #include "aaf/trace/render.h"
@@ -30,72 +31,11 @@
 // for this build (GCC or Clang, Release, Embree 3).
 
 using namespace aaf;
+using aaf_test::golden_hash;
+using aaf_test::hex;
+using aaf_test::instruction_sets_here;
 
 namespace {
-
-/// FNV-1a, 64 bits.
-class Fnv1a {
-  public:
-    void add(const void *data, std::size_t size) {
-        const auto *bytes = static_cast<const unsigned char *>(data);
-        for (std::size_t i = 0; i < size; ++i) hash_ = (hash_ ^ bytes[i]) * 0x100000001b3ull;
-    }
-    void add(const std::string &text) { add(text.data(), text.size() + 1); }  // with the terminator
-    void add(float value) {
-        std::uint32_t bits;
-        std::memcpy(&bits, &value, sizeof bits);
-        add(&bits, sizeof bits);
-    }
-    void add(int value) { add(&value, sizeof value); }
-    std::uint64_t value() const { return hash_; }
-
-  private:
-    std::uint64_t hash_ = 0xcbf29ce484222325ull;
-};
-
-/// Hash of every channel (name, precision, float bits, in order) and every
-/// attribute. The scene file's path depends on the checkout, so only its
-/// file name counts.
-std::uint64_t golden_hash(const AovSet &aovs) {
-    Fnv1a hash;
-    hash.add(aovs.width());
-    hash.add(aovs.height());
-    for (std::size_t c = 0; c < aovs.channel_names().size(); ++c) {
-        hash.add(aovs.channel_names()[c]);
-        hash.add(int(aovs.precision(c)));
-        for (float value : aovs.plane(c)) hash.add(value);
-    }
-    for (const auto &attribute : aovs.attributes) {
-        hash.add(attribute.first);
-        const AttributeValue &value = attribute.second;
-        hash.add(int(value.index()));
-        if (const int *i = std::get_if<int>(&value)) hash.add(*i);
-        if (const float *f = std::get_if<float>(&value)) hash.add(*f);
-        if (const Vec3 *v = std::get_if<Vec3>(&value)) {
-            hash.add(v->x);
-            hash.add(v->y);
-            hash.add(v->z);
-        }
-        if (const std::string *s = std::get_if<std::string>(&value))
-            hash.add(attribute.first == attr::kSceneFile ? std::filesystem::path(*s).filename().string()
-                                                         : *s);
-    }
-    return hash.value();
-}
-
-std::string hex(std::uint64_t value) {
-    std::ostringstream out;
-    out << "0x" << std::hex << std::setw(16) << std::setfill('0') << value;
-    return out.str();
-}
-
-/// The instruction sets to check: every pinned one this CPU runs.
-std::vector<InstructionSet> instruction_sets_here() {
-    std::vector<InstructionSet> sets;
-    for (InstructionSet set : kInstructionSets)
-        if (set != InstructionSet::Native && cpu_supports(set)) sets.push_back(set);
-    return sets;
-}
 
 /// Checks the hash of `render()` under every instruction set this CPU runs;
 /// the process's own setting is restored afterwards.

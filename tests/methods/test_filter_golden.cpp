@@ -1,0 +1,132 @@
+// Golden hashes of every method's output on every shipped scene, taken
+// before the methods' inputs, parameters and folders were restructured: the
+// filtered channels (name, precision, float bits) and attributes of
+// `filter_aovs` at each method's defaults, and of `aaf filter` as a file,
+// must stay byte-identical through such refactors. A failing check prints
+// the new hashes; update one only when an output is meant to change.
+//
+// The tracer's bytes do not depend on the instruction set (the golden
+// renders); the filters' do by rounding where fused multiply-adds exist
+// (avx2 and avx512 agree, sse4.2 has none), so each method has one hash per
+// family.
+#include <catch2/catch.hpp>
+
+#include <cstdint>
+#include <filesystem>
+#include <map>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "../cli/run_aaf.h"
+#include "../golden_hash.h"
+#include "aaf/core/error.h"
+#include "aaf/core/filter_aovs.h"
+#include "aaf/core/instruction_set.h"
+#include "aaf/core/method_registry.h"
+#include "aaf/io/exr_io.h"
+#include "aaf/trace/render.h"
+
+using namespace aaf;
+using aaf_test::Fnv1a;
+using aaf_test::hex;
+
+namespace {
+
+struct Golden {
+    const char *method;
+    std::uint64_t sse42, fma;  ///< filter_aovs on every scene: without fused multiply-adds, avx2/avx512
+    std::uint64_t file_sse42, file_fma;  ///< aaf filter's file of grids
+};
+
+const Golden kGolden[] = {
+    {"aaf", 0x365e1d13a340e530, 0xe21ee875cb854e1a, 0xece1f0ce2d944f6d, 0x6998987c0339da2c},
+    {"gaussian", 0x78e37bbe0855e1ee, 0x78e37bbe0855e1ee, 0xe563c08506aa4719, 0xe563c08506aa4719},
+    {"maaf", 0xa9930e294626ac62, 0xa9930e294626ac62, 0xdd53ae2de611c078, 0xdd53ae2de611c078},
+    {"isg-shadow", 0x1c9191c854784c13, 0x1c9191c854784c13, 0x5ac78786cabfa543, 0x5ac78786cabfa543},
+    {"isg-glossy", 0x03bcbdd2b445a2e3, 0x03bcbdd2b445a2e3, 0xe47911939bb27072, 0xe47911939bb27072},
+    {"isg-dof", 0x3b1e3bc85ecdacc3, 0x3b1e3bc85ecdacc3, 0x7d8dad3c1c092267, 0x7d8dad3c1c092267},
+    {"ratio", 0x0186c19a1ae62c2c, 0x0186c19a1ae62c2c, 0xcea4c88bc999299b, 0xcea4c88bc999299b},
+    {"maaf6", 0x97df58ce73d022ff, 0x97df58ce73d022ff, 0xec10987962380a48, 0xec10987962380a48},
+};
+
+bool without_fma(InstructionSet set) {
+    return set == InstructionSet::Sse42 ||
+           (set == InstructionSet::Native && !cpu_supports(InstructionSet::Avx2));
+}
+
+/// The render a method's own `--aovs METHOD` makes of `scene`, small.
+trace::RenderSettings settings_for(const std::string &method) {
+    trace::RenderSettings settings;
+    settings.width = 32;
+    settings.height = 24;
+    settings.spp = 4;
+    settings.seed = 7;
+    settings.threads = 2;
+    settings.aovs = trace::aov_groups_for_method(method);
+    return settings;
+}
+
+/// Hash of `method` at its defaults over every shipped scene: each scene's
+/// output (or, where the method refuses the render, its message) in turn.
+std::uint64_t method_hash(const Method &method, std::map<std::string, AovSet> &renders) {
+    Fnv1a hash;
+    int filtered = 0;
+    for (const std::string &scene : trace::builtin_scene_names()) {
+        const trace::RenderSettings settings = settings_for(method.info().name);
+        const std::string key = scene + "/" + std::to_string(settings.aovs);
+        if (!renders.count(key)) renders.emplace(key, trace::render_scene(scene, settings));
+        hash.add(scene);
+        try {
+            hash.add(aaf_test::golden_hash(
+                filter_aovs(method, renders.at(key), ChannelMap{}, method.default_parameters())));
+            ++filtered;
+        } catch (const Error &error) {
+            hash.add(std::string("refused: ") + error.what());
+        }
+    }
+    CHECK(filtered > 0);  // a method that refuses every render would check nothing
+    return hash.value();
+}
+
+}  // namespace
+
+TEST_CASE("Every method filters every shipped scene to the golden bytes", "[methods][golden]") {
+    std::map<std::string, AovSet> renders;  // the tracer's bytes are the same under every set
+    const InstructionSet before = instruction_set();
+    for (const Golden &golden : kGolden) {
+        const Method &method = find_method(golden.method);
+        for (InstructionSet set : aaf_test::instruction_sets_here()) {
+            set_instruction_set(set);
+            const std::uint64_t hash = method_hash(method, renders);
+            INFO("method " << golden.method << ", instruction set " << instruction_set_name(set) << ": hash "
+                           << hex(hash) << ", golden "
+                           << hex((without_fma(set) ? golden.sse42 : golden.fma)));
+            CHECK(hash == (without_fma(set) ? golden.sse42 : golden.fma));
+        }
+    }
+    set_instruction_set(before);
+}
+
+TEST_CASE("aaf filter writes every method's golden channels as a file", "[methods][golden][cli]") {
+    namespace fs = std::filesystem;
+    const fs::path dir = aaf_test::scratch_dir("filter_golden");
+    // The process's own setting (AAF_ISA under scripts/test_isa.sh) picks the family.
+    const bool plain = without_fma(instruction_set());
+    for (const Golden &golden : kGolden) {
+        INFO("method " << golden.method);
+        const fs::path input = dir / (std::string(golden.method) + ".in.exr");
+        const fs::path output = dir / (std::string(golden.method) + ".out.exr");
+        REQUIRE(
+            aaf_test::run_aaf("render grids --width 32 --height 24 --spp 4 --seed 7 --progress none --aovs " +
+                              std::string(golden.method) + " -o " + input.string())
+                .exit_code == 0);
+        const auto filtered = aaf_test::run_aaf("filter " + std::string(golden.method) + " " +
+                                                input.string() + " --progress none -o " + output.string());
+        REQUIRE(filtered.exit_code == 0);
+        Fnv1a hash;
+        aaf_test::add_channels(hash, io::read_aovs(output.string()));
+        INFO("file hash " << hex(hash.value()));
+        CHECK(hash.value() == (plain ? golden.file_sse42 : golden.file_fma));
+    }
+}
