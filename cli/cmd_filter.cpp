@@ -134,6 +134,48 @@ ParameterSet parameters_from(const Method &method, const std::map<std::string, s
     return parameters;
 }
 
+/// What the output records and --skip-existing compares: every setting that changes the pixels.
+Provenance filter_provenance(const Method &method, const ParameterSet &parameters,
+                             const FilterOptions &options) {
+    Provenance provenance;
+    provenance.method = method.info().name;
+    for (const ParameterInfo &parameter : method.info().parameters)
+        provenance.parameters += parameter.name + "=" + parameters.text(parameter.name) + " ";
+    provenance.parameters += std::string("keep_beauty=") + (options.replace_beauty ? "false" : "true") +
+                             " half=" + (options.write.half_colour ? "true" : "false") +
+                             " compression=" + options.write.compression;
+    for (const std::string &map : options.maps) provenance.parameters += " map:" + map;
+    return provenance;
+}
+
+/// `filter` as `aaf filter` runs it: a frame's plan that lacks inputs is
+/// refused with every missing input and its recipe, before anything is
+/// scrubbed or run; each output is stamped with `*current` (the frame being filtered).
+void report_and_stamp(io::FrameFilter &filter, const Provenance *const &current) {
+    filter.prepare = [prepare = filter.prepare](const AovSet &frame) {
+        FilterPlan plan = prepare(frame);
+        require_plan_inputs(plan);
+        return plan;
+    };
+    filter.run = [&current, run = filter.run](const FilterPlan &plan, AovSet input) {
+        AovSet output = run(plan, std::move(input));
+        stamp(*current, output);
+        return output;
+    };
+}
+
+/// The file pipeline's policies as the options set them; --light completes each frame's header.
+io::FilterFileOptions file_options(const FilterOptions &options, const ChannelMap &channels,
+                                   const std::optional<std::map<std::string, AttributeValue>> &light) {
+    io::FilterFileOptions file;
+    if (light) file.complete_header = [light](AovSet &frame) { apply_light_option(light, frame); };
+    file.channels = channels;
+    file.keep_beauty = !options.replace_beauty;
+    file.threads = options.threads;
+    file.write = options.write;
+    return file;
+}
+
 void add_method_command(CLI::App &filter, const Method &method) {
     auto options = std::make_shared<FilterOptions>();
     CLI::App *cmd = filter.add_subcommand(method.info().name, method.info().summary);
@@ -145,27 +187,18 @@ void add_method_command(CLI::App &filter, const Method &method) {
         const auto light = light_option(options->light);
         const ParameterSet parameters = parameters_from(method, options->parameters);
         io::FrameFilter filter = io::method_filter(method, parameters, channels);
-        // What the output records and --skip-existing compares: every setting that changes the pixels.
-        Provenance provenance;
-        provenance.method = method.info().name;
-        for (const ParameterInfo &parameter : method.info().parameters)
-            provenance.parameters += parameter.name + "=" + parameters.text(parameter.name) + " ";
-        provenance.parameters += std::string("keep_beauty=") + (options->replace_beauty ? "false" : "true") +
-                                 " half=" + (options->write.half_colour ? "true" : "false") +
-                                 " compression=" + options->write.compression;
-        for (const std::string &map : options->maps) provenance.parameters += " map:" + map;
+        const Provenance provenance = filter_provenance(method, parameters, *options);
         // The files a frame is made from, besides its history's.
         const auto own_inputs = [&](const std::string &input) {
             std::vector<std::string> files{input};
             if (!options->light.empty()) files.push_back(options->light);
             return files;
         };
-        // A method that reads the previous frame's output (ratio --temporal):
-        // frame f's history is input frame f - 1's output, back to the first
-        // frame of the run of consecutive input frames on disk that holds f.
+        // A method reading the previous frame's output (ratio --temporal): frame f's history is input
+        // frame f - 1's output, back to the first of the run of consecutive frames on disk holding f.
         std::optional<FrameHistory> history;
         const Provenance *current = nullptr;  // the frame being filtered
-        io::FilterFileOptions file;
+        const io::FilterFileOptions file = file_options(*options, channels, light);
         const auto job_provenance = [&](const FrameJob &job) {
             Provenance p = provenance;
             if (!history) {
@@ -197,22 +230,7 @@ void add_method_command(CLI::App &filter, const Method &method) {
             source.forget = [&filter] { filter.forget_history(); };
             history.emplace(std::move(source));
         }
-        // Every missing input is named at once, with its recipe, before the method runs.
-        filter.run = [&method, &current, light, channels, parameters, run = filter.run](AovSet input) {
-            if (light) apply_light_option(light, input);
-            // A render made for a delegate (a combined-effects render for `aaf filter aaf`) is checked as the
-            // delegate's.
-            const Method &chosen = *choose_method(method, parameters, input, channels).method;
-            const std::vector<std::string> recipes = missing_input_recipes(chosen, input, channels);
-            if (!recipes.empty()) throw InputError(missing_inputs_message(chosen, recipes));
-            AovSet output = run(std::move(input));
-            stamp(*current, output);
-            return output;
-        };
-        file.channels = channels;
-        file.keep_beauty = !options->replace_beauty;
-        file.threads = options->threads;
-        file.write = options->write;
+        report_and_stamp(filter, current);
         RunOptions run;
         run.progress = progress_from_string(options->progress);
         run.skip_existing = options->skip_existing;

@@ -492,14 +492,11 @@ void add_render_command(CLI::App &app) {
         };
         // Filters a complete render in memory; returns the seconds it took.
         const auto filter_render = [&](AovSet &aovs, const std::string &source, bool report_notes) {
-            const Method &chosen =
-                *choose_method(*filter->method, filter->parameters, aovs, filter_options.channels).method;
-            const std::vector<std::string> recipes =
-                missing_input_recipes(chosen, aovs, filter_options.channels);
-            if (!recipes.empty()) throw InputError(missing_inputs_message(chosen, recipes));
+            const FilterPlan plan = frame_filter->prepare(aovs);
+            require_plan_inputs(plan);
             const auto start = std::chrono::steady_clock::now();
             io::FilterFileReport report;
-            aovs = io::filter_frame(std::move(aovs), source, *frame_filter, filter_options, report);
+            aovs = io::filter_frame(std::move(aovs), plan, source, *frame_filter, filter_options, report);
             const double seconds =
                 std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
             if (!report_notes) return seconds;

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 
+#include "aaf/core/error.h"
 #include "aaf/core/filter_aovs.h"
 #include "aaf/trace/render.h"
 
@@ -28,8 +29,10 @@ std::string joined(const std::vector<std::string> &names, const char *separator)
 
 std::vector<std::string> missing_input_recipes(const Method &method, const AovSet &aovs,
                                                const ChannelMap &channels) {
-    const ChannelMap found = channels.resolved(aovs);
-    const MissingInputs missing = missing_inputs(method, aovs, channels);
+    return missing_input_recipes(missing_inputs(method, aovs, channels), channels.resolved(aovs));
+}
+
+std::vector<std::string> missing_input_recipes(const MissingInputs &missing, const ChannelMap &found) {
     std::vector<std::string> recipes;
     for (Role role : missing.roles) {
         const RoleInfo &info = role_info(role);
@@ -58,6 +61,11 @@ std::vector<std::string> missing_input_recipes(const Method &method, const AovSe
 std::string missing_inputs_message(const Method &method, const std::vector<std::string> &recipes) {
     return "missing " + std::to_string(recipes.size()) + " input" + (recipes.size() == 1 ? "" : "s") +
            " of " + method.info().title + ": " + joined(recipes, "; ");
+}
+
+void require_plan_inputs(const FilterPlan &plan) {
+    const std::vector<std::string> recipes = missing_input_recipes(plan.missing, plan.channels);
+    if (!recipes.empty()) throw InputError(missing_inputs_message(*plan.method, recipes));
 }
 
 }  // namespace aaf::cli

@@ -52,15 +52,37 @@ struct SplitInput {
     }
 };
 
-void check_inputs(const Method &method, const AovSet &input, const ChannelMap &channels) {
-    const MissingInputs missing = missing_inputs(method, input, channels);
-    if (!missing.roles.empty()) {
-        const RoleInfo &info = role_info(missing.roles.front());
-        throw InputError("missing " + method.info().title + " input '" + info.key + "' (channels " +
-                         joined(channels.resolved(input).channels(info.role)) + ")");
+/// Refuses a plan that is not ready, naming the first input it lacks, and a
+/// frame that is not the one it was prepared for.
+void check_inputs(const FilterPlan &plan, const AovSet &input) {
+    if (!plan.missing.roles.empty()) {
+        const RoleInfo &info = role_info(plan.missing.roles.front());
+        throw InputError("missing " + plan.method->info().title + " input '" + info.key + "' (channels " +
+                         joined(plan.channels.channels(info.role)) + ")");
     }
-    if (!missing.attributes.empty())
-        throw InputError("missing header attribute " + quoted(missing.attributes.front()));
+    if (!plan.missing.attributes.empty())
+        throw InputError("missing header attribute " + quoted(plan.missing.attributes.front()));
+    for (Role role : plan.method->info().roles.required)
+        for (const std::string &name : plan.channels.channels(role))
+            if (!input.has_channel(name))
+                throw Error("the filter plan was prepared for another frame: this one lacks channel " +
+                            quoted(name));
+}
+
+/// The per-light layers of `method`'s ratio roles (ratio_layers.h) in
+/// `frame`, as `found` names the summed layers.
+std::vector<std::string> per_light_channels(const Method &method, const AovSet &frame,
+                                            const ChannelMap &found) {
+    std::vector<Role> roles = method.info().roles.required;
+    roles.insert(roles.end(), method.info().roles.optional.begin(), method.info().roles.optional.end());
+    const int lights = ratio_light_count(frame.attributes, frame.channel_names().size());
+    std::vector<std::string> names;
+    for (Role role : roles)
+        if (is_per_light_role(role))
+            for (int light = 0; light < lights; ++light)
+                for (const std::string &name : found.channels(role))
+                    names.push_back(per_light_channel(name, light));
+    return names;
 }
 
 /// The read-only views of every declared input role present in `input`.
@@ -160,12 +182,58 @@ MethodChoice choose_method(const Method &method, const ParameterSet &parameters,
                 throw ParameterError(delegate_parameter_refusal(method, delegate, info.name));
         return choice;
     }
-    return choice;  // check_inputs() names what `method` lacks
+    return choice;  // the plan lists what `method` lacks
+}
+
+FilterPlan prepare_filter(const Method &method, const ParameterSet &parameters, const AovSet &frame,
+                          const ChannelMap &channels) {
+    FilterPlan plan;
+    plan.asked = &method;
+    // Other renderers' names are found through the synonym table.
+    plan.channels = channels.resolved(frame);
+    MethodChoice choice = choose_method(method, parameters, frame, plan.channels);
+    plan.method = choice.method;
+    plan.parameters = std::move(choice.parameters);
+    plan.note = std::move(choice.note);
+    plan.missing = missing_inputs(*plan.method, frame, plan.channels);
+    plan.input_channels = method_input_channels(*plan.method, plan.channels);
+    for (const std::string &name : per_light_channels(*plan.method, frame, plan.channels))
+        plan.input_channels.push_back(name);
+    plan.reads_history = plan.method->reads_history(plan.parameters);
+    return plan;
+}
+
+std::vector<std::string> filter_input_candidates(const Method &method, const AovSet &frame,
+                                                 const ChannelMap &channels) {
+    const ChannelMap found = channels.resolved(frame);
+    std::vector<const Method *> candidates{&method};
+    for (const MethodDelegate &delegate : method.info().delegates)
+        candidates.push_back(&find_method(delegate.method));
+    std::vector<std::string> names;
+    for (const Method *candidate : candidates) {
+        std::vector<std::string> more = method_input_channels(*candidate, found);
+        for (const std::string &name : per_light_channels(*candidate, frame, found)) more.push_back(name);
+        for (const std::string &name : more)
+            if (!contains(names, name)) names.push_back(name);
+    }
+    return names;
 }
 
 AovSet filter_aovs(const Method &method, const AovSet &input, const ChannelMap &channels,
                    const ParameterSet &parameters, const ProgressMonitor &monitor, const AovSet *history) {
-    return filter_aovs(method, AovSet(input), channels, parameters, monitor, history);
+    return run_filter(prepare_filter(method, parameters, input, channels), input, monitor, history);
+}
+
+AovSet filter_aovs(const Method &method, AovSet &&input, const ChannelMap &channels,
+                   const ParameterSet &parameters, const ProgressMonitor &monitor, const AovSet *history) {
+    const FilterPlan plan = prepare_filter(method, parameters, input, channels);
+    return run_filter(plan, std::move(input), monitor, history);
+}
+
+AovSet run_filter(const FilterPlan &plan, const AovSet &input, const ProgressMonitor &monitor,
+                  const AovSet *history) {
+    check_inputs(plan, input);  // before the copy
+    return run_filter(plan, AovSet(input), monitor, history);
 }
 
 namespace {
@@ -295,13 +363,10 @@ AovSet run_method(const Method &method, AovSet &&input, const ChannelMap &found,
 
 }  // namespace
 
-AovSet filter_aovs(const Method &method, AovSet &&input, const ChannelMap &channels,
-                   const ParameterSet &parameters, const ProgressMonitor &monitor, const AovSet *history) {
-    // Other renderers' names are found through the synonym table.
-    const ChannelMap found = channels.resolved(input);
-    const MethodChoice choice = choose_method(method, parameters, input, found);
-    check_inputs(*choice.method, input, found);
-    return run_method(*choice.method, std::move(input), found, choice.parameters, monitor, history);
+AovSet run_filter(const FilterPlan &plan, AovSet &&input, const ProgressMonitor &monitor,
+                  const AovSet *history) {
+    check_inputs(plan, input);
+    return run_method(*plan.method, std::move(input), plan.channels, plan.parameters, monitor, history);
 }
 
 }  // namespace aaf

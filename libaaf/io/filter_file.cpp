@@ -6,7 +6,6 @@
 
 #include "aaf/core/error.h"
 #include "aaf/core/filter_aovs.h"
-#include "aaf/core/ratio_layers.h"
 #include "aaf/core/thread_count.h"
 #include "aaf/io/atomic_file.h"
 
@@ -88,60 +87,42 @@ void warn_if_non_finite(const std::string &path, FilterFileReport &report) {
 
 FrameFilter method_filter(const Method &method, const ParameterSet &parameters, const ChannelMap &channels) {
     FrameFilter filter;
-    filter.input_channels = [&method, parameters, channels](const AovSet &input) {
-        const ChannelMap found = channels.resolved(input);
-        // The method that will run: `method` or the delegate it hands this input to.
-        const Method &chosen = *choose_method(method, parameters, input, found).method;
-        const MethodInfo &info = chosen.info();
-        std::vector<std::string> names = method_input_channels(chosen, found);
-        // The ratio roles' per-light layers are inputs too (ratio_layers.h).
-        std::vector<Role> roles = info.roles.required;
-        roles.insert(roles.end(), info.roles.optional.begin(), info.roles.optional.end());
-        const int lights = ratio_light_count(input.attributes, input.channel_names().size());
-        for (Role role : roles)
-            if (is_per_light_role(role))
-                for (int light = 0; light < lights; ++light)
-                    for (const std::string &name : found.channels(role))
-                        names.push_back(per_light_channel(name, light));
-        return names;
+    filter.candidate_channels = [&method, channels](const AovSet &first_part) {
+        return filter_input_candidates(method, first_part, channels);
+    };
+    filter.prepare = [&method, parameters, channels](const AovSet &frame) {
+        return prepare_filter(method, parameters, frame, channels);
     };
     // A method that reads the previous frame's output gets the last frame
     // this pipeline filtered (frames run in order, one at a time).
     auto history = std::make_shared<AovSet>();
     filter.reads_history = method.reads_history(parameters);
-    filter.run = [&method, parameters, channels, history, keep = filter.reads_history](AovSet input) {
+    filter.run = [history, keep = filter.reads_history](const FilterPlan &plan, AovSet input) {
         const bool has_history = keep && history->pixel_count() > 0;
-        AovSet output = filter_aovs(method, std::move(input), channels, parameters, {},
-                                    has_history ? history.get() : nullptr);
+        AovSet output = run_filter(plan, std::move(input), {}, has_history ? history.get() : nullptr);
         if (keep) *history = output;
         return output;
     };
     filter.forget_history = [history] { *history = AovSet(); };
-    filter.note = [&method, parameters, channels](const AovSet &input) {
-        return choose_method(method, parameters, input, channels).note;
-    };
     const std::vector<Role> &outputs = method.info().roles.outputs;
     if (std::find(outputs.begin(), outputs.end(), Role::Beauty) != outputs.end())
         filter.composes_beauty = method.info().name;
     return filter;
 }
 
-AovSet filter_frame(AovSet input, const std::string &source, const FrameFilter &filter,
-                    const FilterFileOptions &options, FilterFileReport &report) {
-    if (filter.note) {
-        const std::string note = with_context(source, [&] { return filter.note(input); });
-        if (!note.empty()) report.notes.push_back(source + ": " + note);
-    }
+AovSet filter_frame(AovSet input, const FilterPlan &plan, const std::string &source,
+                    const FrameFilter &filter, const FilterFileOptions &options, FilterFileReport &report) {
+    if (!plan.note.empty()) report.notes.push_back(source + ": " + plan.note);
     warn_if_defocused(source, input, filter, report);
-    if (options.replace_non_finite)
-        report.non_finite = replace_non_finite(input, filter.input_channels(input));
+    if (options.replace_non_finite) report.non_finite = replace_non_finite(input, plan.input_channels);
     warn_if_non_finite(source, report);
 
     const ChannelMap resolved = options.channels.resolved(input);
     AovSet output;
     // The input moves into the filter, which moves its planes into the output: a lower peak of memory.
-    run_with_threads(options.threads,
-                     [&] { output = with_context(source, [&] { return filter.run(std::move(input)); }); });
+    run_with_threads(options.threads, [&] {
+        output = with_context(source, [&] { return filter.run(plan, std::move(input)); });
+    });
     if (options.keep_beauty) output = keep_beauty(output, resolved);
     return output;
 }
@@ -152,16 +133,20 @@ namespace {
 AovSet read_and_filter(const std::string &input_path, const FrameFilter &filter,
                        const FilterFileOptions &options, FilterFileReport &report, ImageLayout &layout) {
     AovSet input = read_aovs(input_path, &layout);
+    if (options.complete_header) options.complete_header(input);
     // AOVs the first part lacks may sit in other parts (one AOV per part);
     // they are read for the filter and stay in their parts in the output.
-    // Scrubbing (in filter_frame) asks for the channels again: the borrowed
-    // ones may complete a synonym.
-    // Which channels depends on the input (a delegate's, choose_method()), which may refuse it: name the
-    // file.
-    const std::vector<std::string> wanted =
-        with_context(input_path, [&] { return filter.input_channels(input); });
-    report.borrowed = add_channels_from_other_parts(input_path, layout, wanted, input);
-    AovSet output = filter_frame(std::move(input), input_path, filter, options, report);
+    // Which ones depends on the input (those of the method or of a
+    // delegate), which may refuse it: name the file.
+    if (filter.candidate_channels) {
+        const std::vector<std::string> wanted =
+            with_context(input_path, [&] { return filter.candidate_channels(input); });
+        report.borrowed = add_channels_from_other_parts(input_path, layout, wanted, input);
+    }
+    // The frame is complete: its one plan decides what is scrubbed, noted and run.
+    const FilterPlan plan =
+        filter.prepare ? with_context(input_path, [&] { return filter.prepare(input); }) : FilterPlan{};
+    AovSet output = filter_frame(std::move(input), plan, input_path, filter, options, report);
     if (!report.borrowed.empty()) output = without_channels(output, report.borrowed);
     return output;
 }

@@ -136,11 +136,13 @@ PyAovs filter(const py::object &method_name, const py::object &aovs, const py::o
     const ParameterSet parameters = parameters_from(method, given);
     const ChannelMap channels = channel_map_from(map);
     const int threads = int_arg(threads_arg, "threads", 0, kMaxThreads);
-    const AovSet input = from_python(aovs_arg(aovs, "aovs"));
+    AovSet input = from_python(aovs_arg(aovs, "aovs"));
+    // The same plan as `aaf filter` makes for this frame: the same method (or delegate) and channels.
+    const FilterPlan plan = prepare_filter(method, parameters, input, channels);
     AovSet output;
     {
         py::gil_scoped_release release;
-        run_with_threads(threads, [&] { output = filter_aovs(method, input, channels, parameters); });
+        run_with_threads(threads, [&] { output = run_filter(plan, std::move(input)); });
     }
     return to_python(output);
 }

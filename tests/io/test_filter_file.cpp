@@ -57,8 +57,13 @@ AovSet toy_frame() {
 /// the current arena; records the arena's concurrency when asked.
 io::FrameFilter doubling_filter(int *concurrency = nullptr) {
     io::FrameFilter filter;
-    filter.input_channels = [](const AovSet &) { return std::vector<std::string>{"toy.in"}; };
-    filter.run = [concurrency](const AovSet &input) {
+    filter.candidate_channels = [](const AovSet &) { return std::vector<std::string>{"toy.in"}; };
+    filter.prepare = [](const AovSet &) {
+        FilterPlan plan;
+        plan.input_channels = {"toy.in"};
+        return plan;
+    };
+    filter.run = [concurrency](const FilterPlan &, const AovSet &input) {
         if (concurrency) *concurrency = tbb::this_task_arena::max_concurrency();
         AovSet output = input;
         const ConstPlaneView in = input.channel("toy.in");
@@ -127,7 +132,9 @@ TEST_CASE("filter_file: a failing filter leaves no output, no temporary, an olde
     const std::string input = (dir / "in.exr").string(), output = (dir / "out.exr").string();
     io::write_aovs(toy_frame(), input);
     io::FrameFilter failing = doubling_filter();
-    failing.run = [](const AovSet &) -> AovSet { throw InputError("missing channel 'toy.d1'"); };
+    failing.run = [](const FilterPlan &, const AovSet &) -> AovSet {
+        throw InputError("missing channel 'toy.d1'");
+    };
 
     // The error names the file and keeps its kind (the CLI's exit code).
     CHECK_THROWS_AS(io::filter_file(input, output, failing), InputError);
@@ -221,7 +228,7 @@ TEST_CASE("filter_file: keep_beauty leaves R,G,B as they were and adds the filte
     io::write_aovs(toy_frame(), input);
     // As a method does: the beauty becomes the filtered image, the input's kept as noisy.R/G/B.
     io::FrameFilter brighten = doubling_filter();
-    brighten.run = [](const AovSet &input) {
+    brighten.run = [](const FilterPlan &, const AovSet &input) {
         AovSet output = input;
         for (const char *c : {"R", "G", "B"}) {
             std::copy(input.plane(input.index_of(c)).begin(), input.plane(input.index_of(c)).end(),

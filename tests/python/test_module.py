@@ -84,6 +84,22 @@ class Methods(unittest.TestCase):
             for name in cli.channels:
                 self.assertTrue(np.array_equal(py.channels[name], cli.channels[name]), (method, name))
 
+    def test_a_render_made_for_a_delegate_is_filtered_by_the_plan_aaf_filter_makes(self):
+        # `aaf filter aaf` hands a combined-effects render to maaf6 --pairs 1 (a note says so);
+        # the module runs the same prepared plan, so the same method and pixels.
+        render, out = scratch("combined.exr"), scratch("combined_aaf.exr")
+        subprocess.run([AAF_EXE, "render", "room", "-o", render, "--aovs", "maaf6", "--width", "24",
+                        "--height", "18", "--spp", "4"], check=True)
+        run = subprocess.run([AAF_EXE, "filter", "aaf", render, "-o", out], capture_output=True, text=True)
+        self.assertEqual(run.returncode, 0, run.stderr)
+        self.assertEqual(run.stderr.count("aaf: note: "), 1)
+        self.assertIn("aaf filter maaf6 --pairs 1", run.stderr)
+        cli = aaf.read(out)
+        py = aaf.filter("aaf", aaf.read(render), threads=1)
+        self.assertEqual(sorted(py.channels), sorted(cli.channels))
+        for name in cli.channels:
+            self.assertTrue(np.array_equal(py.channels[name], cli.channels[name]), name)
+
     def test_map_renames_a_role_as_the_cli_map_does(self):
         aovs = aaf.read(scratch("noisy.exr"))
         renamed = aaf.Aovs({("vis.Y" if k == "shadow.V" else k): v for k, v in aovs.channels.items()},

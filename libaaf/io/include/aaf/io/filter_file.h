@@ -6,33 +6,36 @@
 
 #include "aaf/core/aov_contract.h"
 #include "aaf/core/aov_set.h"
+#include "aaf/core/filter_aovs.h"
 #include "aaf/core/method.h"
 #include "aaf/core/non_finite.h"
 #include "aaf/io/exr_io.h"
 
 namespace aaf::io {
 
-/// A filter method as the file pipeline sees it: which channels it reads and
-/// how it turns an in-memory AOV set into its output. filter_file() knows
-/// nothing else about it.
+/// A filter method as the file pipeline sees it: which channels it may read,
+/// the plan it makes for a frame and how it runs that plan on the frame in
+/// memory. filter_file() knows nothing else about it.
 struct FrameFilter {
-    /// Channel names, as resolved in `input`, that the filter reads: these
-    /// are borrowed from the file's other parts when the first part lacks
-    /// them, and scrubbed of NaN/Inf. Called again after borrowing, since a
-    /// borrowed channel may complete a renderer's synonym.
-    std::function<std::vector<std::string>(const AovSet &input)> input_channels;
-    /// Runs the filter: returns the full output set (the input channels kept,
-    /// the beauty roles as aov_contract.h names them, plus the outputs). The
-    /// input is its own (filter_file moves the frame in), so it may take the
-    /// input's planes into the output instead of copying them.
-    std::function<AovSet(AovSet input)> run;
+    /// Channel names, as resolved in `first_part`, that a plan may read
+    /// (filter_input_candidates()): borrowed from the file's other parts when
+    /// the first part lacks them, before the plan is prepared. Unset: none.
+    std::function<std::vector<std::string>(const AovSet &first_part)> candidate_channels;
+    /// The frame's plan (prepare_filter()), made once per frame from its
+    /// channel names and header attributes (its pixels are not read), after
+    /// borrowing: its input_channels are scrubbed of NaN/Inf and its note is
+    /// reported. The pipeline calls it with the frame's name as context.
+    std::function<FilterPlan(const AovSet &frame)> prepare;
+    /// Runs the plan on the frame it was made for: returns the full output set
+    /// (the input channels kept, the beauty roles as aov_contract.h names
+    /// them, plus the outputs). The input is its own (filter_file moves the
+    /// frame in), so it may take the input's planes into the output instead
+    /// of copying them.
+    std::function<AovSet(const FilterPlan &plan, AovSet input)> run;
     /// The method's name when it composes a new beauty from the in-focus
     /// shadow (a defocused input's beauty then loses its defocus, which the
     /// pipeline warns about); empty when it leaves the beauty alone.
     std::string composes_beauty;
-    /// What the user should know about how `input` is filtered, empty when
-    /// nothing: a render handed to another method (choose_method()'s note).
-    std::function<std::string(const AovSet &input)> note;
     /// True when `run` reads the previous frame's output (Method::reads_history):
     /// each run's output is kept as the next run's history.
     bool reads_history = false;
@@ -41,8 +44,8 @@ struct FrameFilter {
 };
 
 /// The registered method `method` with `parameters` as the pipeline runs it:
-/// it reads method_input_channels() and runs filter_aovs() (filter_aovs.h).
-/// `method` must outlive the result.
+/// it borrows filter_input_candidates(), prepares with prepare_filter() and
+/// runs with run_filter() (filter_aovs.h). `method` must outlive the result.
 FrameFilter method_filter(const Method &method, const ParameterSet &parameters, const ChannelMap &channels);
 
 /// Every policy of the file pipeline; the defaults are `aaf filter`'s.
@@ -54,12 +57,15 @@ struct FilterFileOptions {
     /// (as FrameFilter::run returns it). true: R,G,B stay the input's and the
     /// filtered image is added as the FilteredBeauty role (aaf.R/G/B).
     bool keep_beauty = false;
-    /// Replace NaN and +-Inf in FrameFilter::input_channels by 0 before the
+    /// Replace NaN and +-Inf in the plan's input_channels by 0 before the
     /// filter runs (counted in the report), so one bad value cannot spread.
     bool replace_non_finite = true;
     /// oneTBB workers FrameFilter::run gets, 0 = all; the output does not
     /// depend on it.
     int threads = 0;
+    /// Completes a frame's header as read, before anything is borrowed or
+    /// planned (the CLI's --light replaces the light attributes); unset: none.
+    std::function<void(AovSet &frame)> complete_header;
     /// Compression and half storage of the output; its `layout` is ignored
     /// (the input's header and other parts are always carried over).
     WriteOptions write;
@@ -68,7 +74,7 @@ struct FilterFileOptions {
 /// What filter_file() did besides writing the output.
 struct FilterFileReport {
     /// Messages for the user that are not warnings, each "<input>: <note>":
-    /// the input was handed to another method (FrameFilter::note).
+    /// the input was handed to another method (FilterPlan::note).
     std::vector<std::string> notes;
     /// Messages for the user, each "<input>: <problem>", in the order found:
     /// a thin-lens input (AAF's output has no defocus), NaN/Inf replaced.
@@ -80,14 +86,16 @@ struct FilterFileReport {
     std::vector<std::string> borrowed;
 };
 
-/// Filters one frame in memory, as filter_file() does between reading and
-/// writing: warns (into `report`, each message prefixed with `source`) of a
-/// thin-lens input and of NaN/Inf, scrubs them, runs `filter` under
-/// `options.threads` workers and optionally keeps the beauty. `source`
-/// names the frame in messages and errors (a file, or a scene for a render
-/// filtered before it is written). `options.write` is not used.
-AovSet filter_frame(AovSet input, const std::string &source, const FrameFilter &filter,
-                    const FilterFileOptions &options, FilterFileReport &report);
+/// Filters one frame in memory with the plan prepared for it
+/// (FrameFilter::prepare), as filter_file() does between reading and
+/// writing: reports `plan`'s note, warns (into `report`, each message
+/// prefixed with `source`) of a thin-lens input and of NaN/Inf, scrubs them,
+/// runs `filter` under `options.threads` workers and optionally keeps the
+/// beauty. `source` names the frame in messages and errors (a file, or a
+/// scene for a render filtered before it is written). `options.write` and
+/// `options.complete_header` are not used.
+AovSet filter_frame(AovSet input, const FilterPlan &plan, const std::string &source,
+                    const FrameFilter &filter, const FilterFileOptions &options, FilterFileReport &report);
 
 /// What filter_file() would write for `input_path`, computed in memory and
 /// not written (same reading, borrowing, scrubbing and filter): replaying a
@@ -97,8 +105,9 @@ AovSet filter_file_in_memory(const std::string &input_path, const FrameFilter &f
                              const FilterFileOptions &options, FilterFileReport &report);
 
 /// Filters one frame, file to file: reads `input_path` with its layout (every
-/// header attribute, the windows, the other parts), borrows the filter's input
-/// channels the first part lacks from the other parts, scrubs NaN/Inf, runs
+/// header attribute, the windows, the other parts), completes its header,
+/// borrows the filter's candidate channels the first part lacks from the
+/// other parts, prepares the frame's plan, scrubs NaN/Inf, runs
 /// `filter` under `options.threads` workers, optionally keeps the beauty, and
 /// writes `output_path` atomically (a temporary renamed into place) with the
 /// input's layout. The input is never modified and a failure leaves no
