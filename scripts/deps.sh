@@ -3,6 +3,7 @@
 set -euo pipefail
 packages=(
   cmake ninja-build g++ pkg-config
+  clang-format-14        # tests/format/check_format.sh: every C++ file formatted by .clang-format
   libopenimageio-dev openimageio-tools libopenexr-dev libimath-dev
   libopencv-dev          # OpenImageIO's CMake target names /usr/include/opencv4; bench_aaf_filter's GaussianBlur yardstick
   libopencolorio-dev libcli11-dev catch2 libembree-dev libtbb-dev
