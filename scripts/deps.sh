@@ -14,6 +14,7 @@ packages=(
   python3-matplotlib                   # the studies' plots (scripts/plot_*.py, ratio_study.py)
   python3-yaml                         # tests/farm/openjd_template_test.py reads the OpenJD template
   slurm-wlm munge                      # the farm tests' one-node Slurm cluster (tests/farm/slurm_cluster.sh)
+  slurmdbd mariadb-server              # its accounting (slurmdbd on a private MariaDB), read with sacct
 )
 missing=()
 for p in "${packages[@]}"; do

@@ -1,11 +1,13 @@
 #!/usr/bin/env bash
 # The farm scripts (scripts/farm/aaf_submit.sh, slurm_aaf.sh) on a real
 # one-node Slurm cluster started by this test (tests/farm/slurm_cluster.sh:
-# slurm-wlm and munge, installed with apt-get when missing).
+# slurm-wlm, slurmdbd, munge and mariadb-server, installed with apt-get when
+# missing).
 #
 # Usage: slurm_farm_test.sh CASE AAF_EXECUTABLE WORK_DIR, CASE one of
 #   sequence  a 24-frame render and a filter after it, 4 tasks each: every
-#             task COMPLETED, the frames byte-identical to local runs
+#             task COMPLETED (controller, completion log and sacct), the
+#             frames byte-identical to local runs
 #   requeue   a task cancelled while a frame is written, then requeued:
 #             nothing partial under a final name, its frames then finished
 #   resubmit  the same filter job submitted again skips the up-to-date
@@ -70,6 +72,8 @@ sequence)
   wait_job "$filter" 120
   expect_completed "$render" 4
   expect_completed "$filter" 4
+  expect_accounted "$render" 4
+  expect_accounted "$filter" 4
   for task in 0 1 2 3; do
     [ -f "$shot/logs/aaf-filter.${filter}_$task.log" ] || fail "no log of filter task $task"
   done
@@ -81,7 +85,7 @@ sequence)
     --map position=P --mu 2.5
   same_frames local "$shot" aaf 1 24
   no_temporaries "$shot"
-  echo "OK: 4 render and 4 filter tasks COMPLETED on the one-node cluster; 24 frames each, byte-identical to local runs"
+  echo "OK: 4 render and 4 filter tasks COMPLETED on the one-node cluster (sacct agrees); 24 frames each, byte-identical to local runs"
   ;;
 requeue)
   mkdir -p ref
