@@ -12,11 +12,7 @@ namespace {
 
 /// The names of the `aaf render --aovs` groups that write `role`, comma-separated.
 std::string groups_writing(Role role) {
-    const unsigned groups = trace::aov_groups_writing({role});
-    std::string names;
-    for (const trace::AovGroupInfo &group : trace::aov_group_table())
-        if (group.group & groups) names += (names.empty() ? "" : ",") + std::string(group.name);
-    return names;
+    return trace::aov_groups_writing({role}).text();
 }
 
 std::string joined(const std::vector<std::string> &names, const char *separator) {

@@ -960,6 +960,22 @@ def method_input_cases():
     ]
 
 
+def aov_group_option_cases():
+    """The options of the AOV groups' own parameters (--maaf-first-pass-spp, --maaf6-effects)."""
+    render8 = ["render", "grids", "-o", "out.exr", "--width", "8", "--height", "8", "--spp", "1",
+               "--progress", "none"]
+    return [
+        case("render --aovs maaf --maaf-first-pass-spp 0", [*render8, "--aovs", "maaf", "--maaf-first-pass-spp", "0"],
+             2, "--maaf-first-pass-spp"),
+        case("render --maaf-first-pass-spp 2.5", [*render8, "--aovs", "maaf", "--maaf-first-pass-spp", "2.5"], 2,
+             "--maaf-first-pass-spp"),
+        case("render --maaf-first-pass-spp not a number", [*render8, "--maaf-first-pass-spp", "many"], 2,
+             "--maaf-first-pass-spp"),
+        case("render --maaf-first-pass-spp without the maaf group", [*render8, "--maaf-first-pass-spp", "4"], 0,
+             creates=["out.exr"], warns="--maaf-first-pass-spp has no effect without the maaf group"),
+    ]
+
+
 def main():
     shutil.rmtree(FILES, ignore_errors=True)
     os.makedirs(FILES)
@@ -971,7 +987,7 @@ def main():
     write_method_inputs()
     cases = render_cases() + filter_cases() + other_cases() + fuzz_cases() + method_input_cases()
     cases += python_module_cases() + aaf_complete_cases() + slurm_filter_cases() + blender_bridge_cases()
-    cases += temporal_sequence_cases() + render_filter_param_cases()
+    cases += temporal_sequence_cases() + render_filter_param_cases() + aov_group_option_cases()
     names = [c["name"] for c in cases]
     if len(set(names)) != len(names):
         sys.exit("duplicate case names")

@@ -33,6 +33,8 @@ std::string ParameterInfo::range_text() const {
     switch (type) {
         case ParameterType::Bool:
             return "true|false";
+        case ParameterType::Text:
+            return "text";
         case ParameterType::Choice: {
             std::string text;
             for (const std::string &choice : choices) text += (text.empty() ? "" : "|") + choice;
@@ -101,6 +103,14 @@ ParameterInfo ParameterInfo::choice(std::string name, std::string default_value,
     return p;
 }
 
+ParameterInfo ParameterInfo::text(std::string name, std::string default_value, std::string unit,
+                                  std::string help) {
+    ParameterInfo p =
+        declared(std::move(name), ParameterType::Text, std::move(default_value), std::move(help));
+    p.unit = std::move(unit);
+    return p;
+}
+
 ParameterSet::ParameterSet(std::string owner, std::vector<ParameterInfo> infos)
     : owner_(std::move(owner)), infos_(std::move(infos)) {
     for (const ParameterInfo &info : infos_) set(info.name, info.default_value);
@@ -143,6 +153,9 @@ void ParameterSet::set(const std::string &name, const std::string &text) {
                     return;
                 }
             throw bad("one of " + p.range_text());
+        case ParameterType::Text:
+            values_[name] = text;
+            return;
         default: {
             double value = 0;
             if (!parse_number(text, value))
@@ -190,11 +203,15 @@ const std::string &ParameterSet::get_choice(const std::string &name) const {
     return std::get<std::string>(value(name, ParameterType::Choice));
 }
 
+const std::string &ParameterSet::get_text(const std::string &name) const {
+    return std::get<std::string>(value(name, ParameterType::Text));
+}
+
 std::string ParameterSet::text(const std::string &name) const {
     const ParameterInfo &p = info(name);
     const Value &v = values_.at(name);
     if (p.type == ParameterType::Bool) return std::get<bool>(v) ? "true" : "false";
-    if (p.type == ParameterType::Choice) return std::get<std::string>(v);
+    if (p.type == ParameterType::Choice || p.type == ParameterType::Text) return std::get<std::string>(v);
     return number_text(std::get<double>(v));
 }
 

@@ -38,6 +38,8 @@ const char *type_name(ParameterType type) {
             return "bool";
         case ParameterType::Choice:
             return "choice";
+        case ParameterType::Text:
+            return "text";
     }
     return "?";
 }

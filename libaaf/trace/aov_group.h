@@ -3,6 +3,7 @@
 #include <cstddef>
 #include <memory>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "aaf/core/aov_contract.h"
@@ -30,7 +31,6 @@ struct RenderState {
     const Renderer *renderer = nullptr;
     int spp = 0;
     std::uint64_t seed = 0;
-    std::string maaf6_effects = "defocus,shadows,indirect";  ///< RenderSettings::maaf6_effects
 
     /// Calls `body(x, y, primary, stats)` for every pixel, row by row.
     template <typename Body>
@@ -43,7 +43,7 @@ struct RenderState {
     }
 };
 
-/// One AOV group (render.h's AovGroup flags, `aaf render --aovs`) as an
+/// One AOV group (aov_group_registry.h, `aaf render --aovs`) as an
 /// accumulator: it may gather per-pixel state from every light sample, and
 /// it writes its channels into the render's AovSet. An accumulator lives for
 /// one render, so state it owns persists across the progressive rounds.
@@ -54,12 +54,20 @@ class AovAccumulator {
   public:
     virtual ~AovAccumulator() = default;
 
-    /// Its flag (0 for the beauty, which every render writes), `--aovs` name
-    /// and contents, as aov_group_table() lists them.
+    /// Its declaration, as aov_group_table() lists it: `--aovs` name,
+    /// contents, roles (those of roles()), parameters.
     virtual AovGroupInfo info() const = 0;
     /// The aaf::Roles whose channels it writes (aov_contract.h); empty for a
     /// group whose channels are the tracer's own (progress).
     virtual std::vector<Role> roles() const = 0;
+
+    /// Takes the values of its declared parameters (info().parameters),
+    /// before begin_render(); throws aaf::Error for a value it cannot use
+    /// (validate_render_settings() asks this of every group of a render).
+    virtual void set_parameters(const ParameterSet &values) { (void)values; }
+    /// Samples of a first pass it needs traced as a round of its own (its
+    /// own stratification) before the rest, e.g. MAAF's (Sec. 6.2); 0 for none.
+    virtual int first_pass_spp() const { return 0; }
 
     /// Whether begin_pixel, add_sample and end_pixel are to be called.
     virtual bool wants_samples() const { return false; }
@@ -102,9 +110,33 @@ class AovAccumulator {
     }
 };
 
-/// The beauty's accumulator followed by those of the groups set in `groups`
-/// (AovGroup flags), in aov_group_table()'s order: the order of the channels.
-std::vector<std::unique_ptr<AovAccumulator>> make_aov_accumulators(unsigned groups);
+/// A declaration of the group `name` writing `contents` (in words) through
+/// `roles`; parameters none, in `--aovs all`, resumable.
+inline AovGroupInfo group_info(std::string name, std::string contents, std::vector<Role> roles) {
+    AovGroupInfo info;
+    info.name = std::move(name);
+    info.contents = std::move(contents);
+    info.roles = std::move(roles);
+    return info;
+}
+
+/// The beauty's accumulator followed by those of `groups`, in
+/// aov_group_table()'s order (the order of the channels), each given its
+/// values from `parameters`.
+std::vector<std::unique_ptr<AovAccumulator>> make_aov_accumulators(const AovGroups &groups,
+                                                                   const AovGroupParameters &parameters = {});
+
+/// Registers a group from outside the tracer's list (a plug-in, a test): one
+/// line at namespace scope of the group's own file,
+/// `static const AovGroupRegistration r([] { return std::unique_ptr<AovAccumulator>(new MyGroup); });`.
+/// Its channels follow the built-in groups'. Throws aaf::Error (at start-up)
+/// when its name is taken, "all", or not lower-case [a-z0-9_-], or one of its
+/// parameters is named as another group's.
+class AovGroupRegistration {
+  public:
+    using Maker = std::unique_ptr<AovAccumulator> (*)();
+    explicit AovGroupRegistration(Maker make);
+};
 
 /// Writable views of the contract's channels for one role, stored at `precision`.
 std::vector<PlaneView> add_role_channels(AovSet &aovs, Role role, Precision precision = Precision::Float);

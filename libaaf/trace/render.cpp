@@ -19,7 +19,6 @@
 #include "aaf/core/error.h"
 #include "aaf/core/sampling_plan.h"
 #include "aov_group.h"
-#include "path_sample.h"
 #include "renderer.h"
 #include "scene_description.h"
 #include "scene_file.h"
@@ -65,12 +64,11 @@ void for_each_pixel_tiled(int width, int height, const Body &body,
 
 using Accumulators = std::vector<std::unique_ptr<AovAccumulator>>;
 
-/// Writes the beauty and those of `accumulators`' groups set in `groups`, in order.
-void write_aovs(const RenderState &state, const Accumulators &accumulators, unsigned groups, AovSet &aovs) {
-    for (const std::unique_ptr<AovAccumulator> &accumulator : accumulators) {
-        const unsigned group = accumulator->info().group;
-        if (group == 0 || (groups & group)) accumulator->write(state, aovs);
-    }
+/// Writes the beauty (the first) and those of `accumulators`' groups in `groups`, in order.
+void write_aovs(const RenderState &state, const Accumulators &accumulators, const AovGroups &groups,
+                AovSet &aovs) {
+    for (std::size_t i = 0; i < accumulators.size(); ++i)
+        if (i == 0 || groups.contains(accumulators[i]->info().name)) accumulators[i]->write(state, aovs);
 }
 
 void write_attributes(const SceneDescription &scene, const RenderSettings &settings, int spp_done,
@@ -164,17 +162,9 @@ class Tracing {
     }
 
     RenderState state(const Camera &previous_camera) const {
-        return {scene_,
-                previous_camera,
-                primaries_,
-                stats_,
-                renderer_.has_separate_radiance(),
-                settings_.width,
-                settings_.height,
-                &renderer_,
-                settings_.spp,
-                settings_.seed,
-                settings_.maaf6_effects};
+        return {
+            scene_,          previous_camera,  primaries_, stats_,        renderer_.has_separate_radiance(),
+            settings_.width, settings_.height, &renderer_, settings_.spp, settings_.seed};
     }
     std::vector<ShadowStats> &stats() { return stats_; }
 
@@ -219,13 +209,25 @@ class Tracing {
 };
 
 /// The groups a render writes: those asked for, plus what resuming needs.
-unsigned groups_to_write(const RenderSettings &settings) {
-    unsigned groups = settings.aovs;
+AovGroups groups_to_write(const RenderSettings &settings) {
+    AovGroups groups = settings.aovs;
     // A reference (a round or more) can always be resumed to more samples.
-    if (!settings.adaptive && (settings.spp >= kSamplesPerRound || settings.resume)) groups |= kAovProgress;
+    if (!settings.adaptive && (settings.spp >= kSamplesPerRound || settings.resume))
+        groups.insert("progress");
     // Resuming needs the spp and occluder distances beside the sums.
-    if (groups & kAovProgress) groups |= kAovShadow;
+    if (groups.contains("progress")) groups.insert("shadow");
     return groups;
+}
+
+/// Samples of the first round: the largest first pass a written group asks
+/// for (MAAF's, Sec. 6.2, is a round of its own, stratified by itself), at
+/// most spp; 0 for none.
+int first_pass_spp(const Accumulators &accumulators, const AovGroups &groups, int spp) {
+    int first_pass = 0;
+    for (const std::unique_ptr<AovAccumulator> &accumulator : accumulators)
+        if (groups.contains(accumulator->info().name))
+            first_pass = std::max(first_pass, accumulator->first_pass_spp());
+    return std::min(first_pass, spp);
 }
 
 /// Per-pixel totals of AAF's adaptive sampling (Sec. 6) from the first pass's distances.
@@ -249,6 +251,39 @@ using Clock = std::chrono::steady_clock;
 
 double seconds_since(Clock::time_point start) {
     return std::chrono::duration<double>(Clock::now() - start).count();
+}
+
+/// Traces rounds of at most kSamplesPerRound samples from `spp_done` on (the
+/// first `first_pass` of them a round of their own) until settings.spp or a
+/// stop, reporting and checkpointing (`render_so_far`) between them; returns
+/// the samples per pixel done. Round k uses pass k: a partial render that
+/// ends inside a round (a finished render of fewer samples) has used passes
+/// [0, ceil(done / round)); fresh rounds follow them, so no sample is
+/// dropped and no random number used twice.
+int trace_rounds(Tracing &tracing, const RenderSettings &settings, int spp_done, int first_pass,
+                 bool stats_distances, const std::function<AovSet(int)> &render_so_far) {
+    auto last_checkpoint = Clock::now();
+    for (int round = (spp_done + kSamplesPerRound - 1) / kSamplesPerRound; spp_done < settings.spp; ++round) {
+        const int count = spp_done < first_pass ? first_pass - spp_done
+                                                : std::min(kSamplesPerRound, settings.spp - spp_done);
+        std::function<void(double)> on_share_done;
+        if (settings.on_round_progress)
+            on_share_done = [&](double share) {
+                settings.on_round_progress(spp_done + share * count, settings.spp);
+            };
+        tracing.trace_pass(
+            std::uint32_t(round), [&](int, int) { return count; }, true, stats_distances && round == 0,
+            on_share_done);
+        spp_done += count;
+        if (settings.on_progress) settings.on_progress(spp_done, settings.spp);
+        if (settings.on_checkpoint && spp_done < settings.spp &&
+            seconds_since(last_checkpoint) >= settings.checkpoint_interval_s) {
+            settings.on_checkpoint(render_so_far(spp_done));
+            last_checkpoint = Clock::now();
+        }
+        if (settings.stop_requested && spp_done < settings.spp && settings.stop_requested()) break;
+    }
+    return spp_done;
 }
 
 }  // namespace
@@ -282,15 +317,13 @@ void validate_render_settings(const RenderSettings &settings) {
             throw Error("adaptive mu must be positive and finite");
         if (settings.resume) throw Error("an adaptive render cannot be resumed");
     }
-    if (settings.maaf_first_pass_spp < 1 || settings.maaf_first_pass_spp > (1 << 20))
-        throw Error("MAAF first-pass spp must lie in [1, 1048576]");
-    if ((settings.aovs & kAovMaaf) && settings.resume)
-        throw Error("a render with the maaf AOVs cannot be resumed (they need every sample, kept in memory)");
-    if (settings.aovs & kAovMaaf6) {
-        if (settings.resume)
-            throw Error("a render with the maaf6 AOVs cannot be resumed (they trace their own samples)");
-        parse_maaf6_effects(settings.maaf6_effects);
+    for (const std::string &group : settings.aovs.names()) {
+        const std::string &why = find_aov_group(group).not_resumable_because;
+        if (settings.resume && !why.empty())
+            throw Error("a render with the " + group + " AOVs cannot be resumed (" + why + ")");
     }
+    // Each group refuses values of its parameters it cannot use.
+    make_aov_accumulators(settings.aovs, settings.group_parameters);
 }
 
 AovSet render_scene(const std::string &scene_name, const RenderSettings &settings, RenderTimings *timings) {
@@ -301,22 +334,20 @@ AovSet render_scene(const std::string &scene_name, const RenderSettings &setting
         for (SceneLight &light : scene.lights) light.plane.profile = *settings.light_profile;
     const Camera previous_camera = scene.camera_at(settings.frame - 1);
 
-    const unsigned groups = groups_to_write(settings);
+    const AovGroups groups = groups_to_write(settings);
     // The adaptive plan reads the AAF groups, whether written or not.
-    const Accumulators accumulators =
-        make_aov_accumulators(groups | (settings.adaptive ? aov_groups_for_method("aaf") : 0));
+    const Accumulators accumulators = make_aov_accumulators(
+        settings.adaptive ? groups | aov_groups_for_method("aaf") : groups, settings.group_parameters);
     Tracing tracing(scene, settings, accumulators);
     const RenderState state = tracing.state(previous_camera);
     int spp_done = settings.resume
                        ? restore_progress(*settings.resume, scene, settings, accumulators, tracing.stats())
                        : 0;
-    // MAAF's first pass (Sec. 6.2) is a round of its own, stratified by itself.
-    const int maaf_first_pass =
-        (groups & kAovMaaf) ? std::min(settings.maaf_first_pass_spp, settings.spp) : 0;
+    const int first_pass = first_pass_spp(accumulators, groups, settings.spp);
     // d2min/d2max are statistics of the first round, the sparse first pass
     // AAF takes d1 and d2 from (AAF Sec. 6); later rounds and the adaptive
     // second pass need visibility only, which any hit answers.
-    const bool stats_distances = (groups & kAovShadow) || settings.adaptive;
+    const bool stats_distances = groups.contains("shadow") || settings.adaptive;
     RenderTimings measured;
     auto render_so_far = [&](int done) {
         AovSet aovs(settings.width, settings.height);
@@ -343,33 +374,7 @@ AovSet render_scene(const std::string &scene_name, const RenderSettings &setting
     arena.execute([&] {
         auto start = Clock::now();
         tracing.trace_primaries();
-        // Rounds of at most kSamplesPerRound samples, round k with pass k. A
-        // partial render that ends inside a round (a finished render of fewer
-        // samples) has used passes [0, ceil(done / round)); fresh rounds follow
-        // them, so no sample is dropped and no random number used twice.
-        auto last_checkpoint = Clock::now();
-        for (int round = (spp_done + kSamplesPerRound - 1) / kSamplesPerRound; spp_done < settings.spp;
-             ++round) {
-            const int count = spp_done < maaf_first_pass
-                                  ? maaf_first_pass - spp_done
-                                  : std::min(kSamplesPerRound, settings.spp - spp_done);
-            std::function<void(double)> on_share_done;
-            if (settings.on_round_progress)
-                on_share_done = [&](double share) {
-                    settings.on_round_progress(spp_done + share * count, settings.spp);
-                };
-            tracing.trace_pass(
-                std::uint32_t(round), [&](int, int) { return count; }, true, stats_distances && round == 0,
-                on_share_done);
-            spp_done += count;
-            if (settings.on_progress) settings.on_progress(spp_done, settings.spp);
-            if (settings.on_checkpoint && spp_done < settings.spp &&
-                seconds_since(last_checkpoint) >= settings.checkpoint_interval_s) {
-                settings.on_checkpoint(render_so_far(spp_done));
-                last_checkpoint = Clock::now();
-            }
-            if (settings.stop_requested && spp_done < settings.spp && settings.stop_requested()) break;
-        }
+        spp_done = trace_rounds(tracing, settings, spp_done, first_pass, stats_distances, render_so_far);
         measured.first_pass_s = seconds_since(start);
         if (settings.adaptive) {
             start = Clock::now();

@@ -28,7 +28,7 @@ const aaf::AovSet &gallery() {
         settings.width = 1024;
         settings.height = 768;
         settings.spp = 1;
-        settings.aovs = aaf::trace::kAovIsg | aaf::trace::parse_aov_groups("aaf,depth");
+        settings.aovs = aaf::trace::parse_aov_groups("isg,aaf,depth");
         return aaf::trace::render_scene("gallery", settings);
     }();
     return aovs;

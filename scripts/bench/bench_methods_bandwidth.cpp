@@ -38,8 +38,7 @@ const aaf::AovSet &render() {
         settings.width = 640;
         settings.height = 480;
         settings.spp = 9;
-        settings.aovs = aaf::trace::kAovsAll | aaf::trace::kAovMaaf | aaf::trace::kAovIsg |
-                        aaf::trace::kAovRatio | aaf::trace::kAovMaaf6;
+        settings.aovs = aaf::trace::parse_aov_groups("all,maaf,isg,ratio,maaf6");
         return aaf::trace::render_scene("grids", settings);
     }();
     return aovs;

@@ -74,7 +74,7 @@ int main(int argc, char **argv) {
             settings.seed = 1000;  // independent of the test renders
             const AovSet reference = trace::render_scene(scene, settings);
             settings.seed = 1;
-            const unsigned aaf_groups = trace::aov_groups_for_method("aaf");
+            const trace::AovGroups aaf_groups = trace::aov_groups_for_method("aaf");
             for (int spp : maaf_spp) {
                 settings.spp = spp;
                 settings.aovs = aaf_groups;  // the same rays without MAAF's group: sampling alone

@@ -74,7 +74,7 @@ std::uint64_t method_hash(const Method &method, std::map<std::string, AovSet> &r
     int filtered = 0;
     for (const std::string &scene : trace::builtin_scene_names()) {
         const trace::RenderSettings settings = settings_for(method.info().name);
-        const std::string key = scene + "/" + std::to_string(settings.aovs);
+        const std::string key = scene + "/" + settings.aovs.text();
         if (!renders.count(key)) renders.emplace(key, trace::render_scene(scene, settings));
         hash.add(scene);
         try {

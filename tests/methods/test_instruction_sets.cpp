@@ -45,7 +45,7 @@ std::vector<InstructionSet> wider_sets_here() {
 }
 
 /// Every AOV group the tracer writes (kAovsAll leaves out the method-specific passes).
-constexpr unsigned kEveryGroup = trace::kAovsAll | trace::kAovMaaf | trace::kAovIsg | trace::kAovMaaf6;
+const trace::AovGroups kEveryGroup = trace::parse_aov_groups("all,maaf,isg,maaf6");
 
 AovSet render(const std::string &scene, InstructionSet set) {
     const PinnedInstructionSet pin(set);

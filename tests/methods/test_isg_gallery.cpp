@@ -22,7 +22,7 @@ AovSet render_gallery(const std::string &scene, int spp) {
     settings.width = 64;
     settings.height = 48;
     settings.spp = spp;
-    settings.aovs = trace::kAovIsg | trace::parse_aov_groups("aaf,depth");
+    settings.aovs = trace::parse_aov_groups("isg,aaf,depth");
     return trace::render_scene(scene, settings);
 }
 
@@ -100,7 +100,7 @@ TEST_CASE("The isg group's maps and glossy reference do not depend on the thread
     settings.width = 24;
     settings.height = 18;
     settings.spp = 4;
-    settings.aovs = trace::kAovIsg;
+    settings.aovs = {"isg"};
     settings.threads = 1;
     const AovSet one = trace::render_scene("gallery", settings);
     settings.threads = 3;

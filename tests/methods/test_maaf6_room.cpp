@@ -27,8 +27,8 @@ AovSet render_room(const std::string &effects, int spp, int seed, int width = kW
     settings.height = height;
     settings.spp = spp;
     settings.seed = std::uint32_t(seed);
-    settings.maaf6_effects = effects;
     settings.aovs = trace::parse_aov_groups("maaf6");
+    settings.group_parameters.of("maaf6").set("maaf6_effects", effects);
     return trace::render_scene("room", settings);
 }
 

@@ -30,8 +30,7 @@ const AovSet &realistic_input() {
         settings.width = 40;
         settings.height = 30;
         settings.spp = 4;
-        settings.aovs = trace::kAovsAll | trace::kAovMaaf | trace::kAovIsg |
-                        trace::kAovMaaf6;  // "all" leaves out maaf, isg, maaf6
+        settings.aovs = trace::AovGroups::every();  // every registered group, a plug-in's too
         AovSet rendered = trace::render_scene("grids", settings);
         for (const RoleInfo &role : role_table())
             for (const std::string &name : role.channels)

@@ -43,7 +43,7 @@ struct TwoPixels {
         primaries[0].pixel_size_m = 0.01f;
     }
     RenderState state() const { return {scene, scene.camera, primaries, stats, false, 2, 1}; }
-    AovSet write(unsigned groups) const {
+    AovSet write(const AovGroups &groups) const {
         AovSet aovs(2, 1);
         for (const auto &accumulator : make_aov_accumulators(groups)) accumulator->write(state(), aovs);
         return aovs;
@@ -62,7 +62,7 @@ TEST_CASE("The shadow group writes the light-weighted visibility and occluder ra
     for (const LightSample &sample :
          {visible_sample(1), occluded_sample(1, 0.5f), visible_sample(2), occluded_sample(4, 0.25f)})
         pixels.stats[0].add(sample);
-    const AovSet aovs = pixels.write(kAovShadow);
+    const AovSet aovs = pixels.write({"shadow"});
     // AAF Eq. 1: V = (1 + 2) / (1 + 1 + 2 + 4), the unoccluded weight over all.
     CHECK(aovs.channel("shadow.V")(0, 0) == Approx(3.0 / 8.0));
     CHECK(aovs.channel("shadow.d2min")(0, 0) == 0.25f);
@@ -84,10 +84,10 @@ TEST_CASE("Progress written and restored continues to the same sums as one rende
     const LightSample later[] = {visible_sample(0.7), occluded_sample(0.9, 0.1f)};
     for (const LightSample &sample : first) pixels.stats[0].add(sample);
     pixels.stats[0].round_to_float();  // as after every round
-    const AovSet partial = pixels.write(kAovShadow | kAovProgress);
+    const AovSet partial = pixels.write({"shadow", "progress"});
 
     std::vector<ShadowStats> resumed(2);
-    for (const auto &accumulator : make_aov_accumulators(kAovShadow | kAovProgress)) {
+    for (const auto &accumulator : make_aov_accumulators({"shadow", "progress"})) {
         for (const std::string &name : accumulator->resume_channels()) CHECK(partial.has_channel(name));
         accumulator->restore(partial, resumed);
     }
@@ -109,7 +109,7 @@ namespace {
 /// A group that wants every sample: counts them and sums their weights.
 class CountingGroup final : public AovAccumulator {
   public:
-    AovGroupInfo info() const override { return {1u << 20, "counting", "none"}; }
+    AovGroupInfo info() const override { return group_info("counting", "none", roles()); }
     std::vector<Role> roles() const override { return {}; }
     bool wants_samples() const override { return true; }
     void add_sample(std::size_t pixel, const LightSample &sample) override {
@@ -152,16 +152,17 @@ TEST_CASE("A group that wants samples sees every sample the shadow sums see", "[
 }
 
 TEST_CASE("The groups AAF reads follow from the roles it declares", "[trace][groups]") {
-    const unsigned aaf_groups = kAovShadow | kAovPosition | kAovNormal | kAovObjectId | kAovUnshadowed;
+    const AovGroups aaf_groups = {"shadow", "position", "normal", "id", "unshadowed"};
     CHECK(aov_groups_writing(find_method("aaf").info().roles.required) == aaf_groups);
     CHECK(aov_groups_for_method("aaf") == aaf_groups);
     CHECK(parse_aov_groups("aaf") == aaf_groups);
-    CHECK(parse_aov_groups("gaussian") == (kAovShadow | kAovUnshadowed));
-    CHECK(aov_groups_writing({}) == 0);
-    unsigned all = 0;
-    for (const AovGroupInfo &info : aov_group_table()) all |= info.group;
+    CHECK(parse_aov_groups("gaussian") == AovGroups{"shadow", "unshadowed"});
+    CHECK(aov_groups_writing({}).empty());
     // "all" leaves out maaf, whose first pass restratifies the samples, and isg,
     // the ratio groups and maaf6, which trace rays of their own
-    CHECK(all == (kAovsAll | kAovMaaf | kAovIsg | kAovRatio | kAovRatioEstimators | kAovMaaf6));
-    CHECK((kAovsAll & kAovMaaf6) == 0);
+    CHECK(AovGroups::every() ==
+          (AovGroups::all() | AovGroups{"maaf", "isg", "ratio", "ratio_estimators", "maaf6"}));
+    CHECK(!AovGroups::all().contains("maaf6"));
+    CHECK(parse_aov_groups("all").text() ==
+          "shadow,position,normal,id,unshadowed,depth,albedo,motion,progress");
 }

@@ -59,7 +59,7 @@ trace::RenderSettings small_settings() {
     settings.spp = 4;
     settings.seed = 7;
     settings.threads = 2;
-    settings.aovs = trace::kAovsAll;
+    settings.aovs = trace::AovGroups::all();
     return settings;
 }
 
@@ -177,6 +177,6 @@ TEST_CASE("A stopped reference and its resumption give the golden bytes", "[trac
 
 TEST_CASE("The isg group renders the gallery to the golden bytes", "[trace][golden]") {
     trace::RenderSettings settings = small_settings();
-    settings.aovs = trace::kAovsAll | trace::kAovIsg;
+    settings.aovs = trace::parse_aov_groups("all,isg");
     check_golden([&] { return trace::render_scene("gallery", settings); }, 0xecad16e67a4ecfcc);
 }

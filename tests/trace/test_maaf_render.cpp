@@ -121,7 +121,7 @@ TEST_CASE("MAAF's error against a reference falls as samples are added", "[trace
     settings.width = kWidth;
     settings.height = kHeight;
     settings.spp = 1024;
-    settings.aovs = trace::kAovShadow;
+    settings.aovs = {"shadow"};
     const std::vector<float> reference = plane(trace::render_scene("grids", settings), "shadow.V");
     double previous = 1e9;
     for (int spp : {4, 16, 64}) {
@@ -139,11 +139,10 @@ TEST_CASE("MAAF's error against a reference falls as samples are added", "[trace
 
 TEST_CASE("A render with the maaf AOVs is not resumable", "[trace][maaf]") {
     trace::RenderSettings settings;
-    settings.aovs = trace::kAovMaaf;
+    settings.aovs = {"maaf"};
     AovSet partial(4, 4);
     settings.resume = &partial;
     CHECK_THROWS_WITH(trace::validate_render_settings(settings), Catch::Contains("maaf"));
     settings.resume = nullptr;
-    settings.maaf_first_pass_spp = 0;
-    CHECK_THROWS_AS(trace::validate_render_settings(settings), Error);
+    CHECK_THROWS_AS(settings.group_parameters.of("maaf").set("maaf_first_pass_spp", 0.0), Error);
 }

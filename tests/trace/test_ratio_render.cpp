@@ -54,7 +54,7 @@ trace::RenderSettings ratio_settings(int spp) {
     settings.spp = spp;
     settings.seed = 5;
     settings.threads = 2;
-    settings.aovs = trace::kAovRatio;
+    settings.aovs = {"ratio"};
     return settings;
 }
 
@@ -114,7 +114,7 @@ TEST_CASE("Ratio: S_N <= U_N, both >= 0, W in [0, 1], background zero, the estim
     trace::RenderSettings settings = ratio_settings(2);
     settings.width = 48;
     settings.height = 36;
-    settings.aovs = trace::kAovRatio | trace::kAovRatioEstimators | trace::kAovObjectId;
+    settings.aovs = {"ratio", "ratio_estimators", "id"};
     const AovSet aovs = trace::render_scene("livingroom", settings);
     const int lights = std::get<int>(aovs.attributes.at(attr::kRatioLights));
     REQUIRE(lights == 3);
@@ -235,13 +235,13 @@ TEST_CASE("Ratio: E[S_N] (MIS of light and GGX samples) equals an independent ar
 }
 
 TEST_CASE("Ratio: --aovs all leaves the ratio groups out, they are asked for by name", "[trace][ratio]") {
-    CHECK((trace::parse_aov_groups("all") & (trace::kAovRatio | trace::kAovRatioEstimators)) == 0u);
+    CHECK(trace::parse_aov_groups("all").without({"ratio", "ratio_estimators"}) == trace::AovGroups::all());
     // "ratio" is also a method's name: it asks for every group the method reads (the ratio layer,
     // positions and normals), as `--aovs aaf` does for AAF.
     CHECK(trace::parse_aov_groups("ratio") == trace::aov_groups_for_method("ratio"));
-    CHECK((trace::parse_aov_groups("ratio") & trace::kAovRatio) != 0u);
-    CHECK((trace::parse_aov_groups("ratio") & trace::kAovRatioEstimators) == 0u);
-    CHECK(trace::parse_aov_groups("ratio_estimators") == trace::kAovRatioEstimators);
+    CHECK(trace::parse_aov_groups("ratio").contains("ratio"));
+    CHECK(!trace::parse_aov_groups("ratio").contains("ratio_estimators"));
+    CHECK(trace::parse_aov_groups("ratio_estimators") == trace::AovGroups{"ratio_estimators"});
 }
 
 TEST_CASE(

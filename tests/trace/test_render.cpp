@@ -121,7 +121,7 @@ TEST_CASE("Render writes every AAF AOV with consistent values", "[trace]") {
     const ChannelMap map;
     // Every method whose groups the default render writes (maaf and isg read their own: `--aovs maaf`).
     for (const Method *method : methods())
-        if ((trace::aov_groups_for_method(method->info().name) & ~trace::RenderSettings{}.aovs) == 0)
+        if (trace::RenderSettings{}.aovs.contains(trace::aov_groups_for_method(method->info().name)))
             CHECK(missing_inputs(*method, aovs, map).empty());
     const LightPlane light = read_light_attributes(aovs);
     CHECK(light.sigma_m == Approx(0.5f * light.width_m));
@@ -332,7 +332,7 @@ TEST_CASE("AOVs of a hand-checkable scene match its geometry", "[trace][geometry
     trace::RenderSettings settings;
     settings.width = settings.height = 33;  // odd: the centre pixel's ray is the view axis
     settings.spp = 1024;
-    settings.aovs = trace::kAovsAll;
+    settings.aovs = trace::AovGroups::all();
     const AovSet aovs = trace::render_scene(write_probe_scene(), settings);
     const int c = 16;
     const Vec3 p = position(aovs, c, c);
@@ -517,7 +517,7 @@ TEST_CASE("Motion vectors of a sideways camera move match the pinhole projection
     trace::RenderSettings settings;
     settings.width = settings.height = 33;
     settings.spp = 1;
-    settings.aovs = trace::kAovMotion | trace::kAovPosition;
+    settings.aovs = {"motion", "position"};
     settings.frame = 2;
     const AovSet aovs = trace::render_scene(path, settings);
     // The point under the centre, (1.0, 0, 0), sat 0.1 m right of the old
@@ -649,7 +649,7 @@ TEST_CASE("A receiver on the light's centre gets finite shading", "[trace][light
     settings.width = 9;
     settings.height = 9;
     settings.spp = 4;
-    settings.aovs = trace::kAovShadow | trace::kAovUnshadowed | trace::kAovPosition;
+    settings.aovs = {"shadow", "unshadowed", "position"};
     const AovSet aovs = trace::render_scene(path, settings);
     REQUIRE(aovs.channel("P.X")(4, 4) == 0.0f);  // the pixel that hits the centre exactly
     REQUIRE(aovs.channel("P.Z")(4, 4) == 0.0f);

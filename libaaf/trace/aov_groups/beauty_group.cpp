@@ -6,7 +6,7 @@ namespace {
 
 class BeautyGroup final : public AovAccumulator {
   public:
-    AovGroupInfo info() const override { return {0, "beauty", "R, G, B (always written)"}; }
+    AovGroupInfo info() const override { return group_info("beauty", "R, G, B (always written)", roles()); }
     std::vector<Role> roles() const override { return {Role::Beauty}; }
 
     void write(const RenderState &state, AovSet &aovs) const override {

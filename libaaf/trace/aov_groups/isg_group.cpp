@@ -33,9 +33,12 @@ Vec3 around(Vec3 w, float cos_theta, float phi) {
 class IsgGroup final : public AovAccumulator {
   public:
     AovGroupInfo info() const override {
-        return {kAovIsg, "isg",
-                "isg.V, isg.occluder_m, reflect.R/G/B, reflect.E, gloss.theta_max, glossy.R/G/B, "
-                "pinhole.R/G/B"};
+        AovGroupInfo info = group_info("isg",
+                                       "isg.V, isg.occluder_m, reflect.R/G/B, reflect.E, gloss.theta_max, "
+                                       "glossy.R/G/B, pinhole.R/G/B",
+                                       roles());
+        info.in_all = false;  // traces rays of its own (a glossy reference of spp rays)
+        return info;
     }
     std::vector<Role> roles() const override {
         return {Role::HardVisibility, Role::OccluderDistance, Role::Reflection,   Role::ReflectionDistance,

@@ -59,10 +59,17 @@ struct RawWedge {
 class Maaf6Group final : public AovAccumulator {
   public:
     AovGroupInfo info() const override {
-        return {
-            kAovMaaf6, "maaf6",
+        AovGroupInfo info = group_info(
+            "maaf6",
             "maaf6.direct.*, maaf6.indirect.* (75 sums + 25 weights each, N = 3), maaf6 wedges, maaf6.spp; "
-            "traces its own path samples (lens, area light, one diffuse bounce) and replaces R, G, B"};
+            "traces its own path samples (lens, area light, one diffuse bounce) and replaces R, G, B",
+            roles());
+        info.parameters = {
+            ParameterInfo::text("maaf6_effects", "defocus,shadows,indirect", "",
+                                "the effects its path samples trace, any of defocus,shadows,indirect")};
+        info.in_all = false;  // traces path samples of its own
+        info.not_resumable_because = "they trace their own samples";
+        return info;
     }
     std::vector<Role> roles() const override {
         return {Role::Maaf6Direct,        Role::Maaf6Indirect,     Role::Maaf6DirectSums,
@@ -70,7 +77,15 @@ class Maaf6Group final : public AovAccumulator {
                 Role::Maaf6Wedge,         Role::Maaf6Spp};
     }
 
+    /// The effects' names are parsed here, so that a bad list is refused before anything renders.
+    void set_parameters(const ParameterSet &values) override {
+        effects_ = parse_maaf6_effects(values.get_text("maaf6_effects"));
+    }
+
     void write(const RenderState &state, AovSet &aovs) const override;
+
+  private:
+    unsigned effects_ = kMaaf6Defocus | kMaaf6Shadows | kMaaf6Indirect;
 };
 
 void Maaf6Group::write(const RenderState &state, AovSet &aovs) const {
@@ -82,7 +97,7 @@ void Maaf6Group::write(const RenderState &state, AovSet &aovs) const {
     const SceneDescription &scene = state.scene;
     const Camera &camera = scene.camera;
     const LightPlane &light = scene.key_light();
-    const unsigned effects = parse_maaf6_effects(state.maaf6_effects);
+    const unsigned effects = effects_;
     const PathSampler sampler(scene, *state.renderer, effects);
     const bool lens = (effects & kMaaf6Defocus) && camera.is_thin_lens();
     const int first_spp = std::min(kFirstPassSpp, state.spp);

@@ -12,7 +12,7 @@ namespace {
 
 /// MAAF's light-side sums (Wu et al. 2017, MAAF Eq. 20/23) in two passes as the
 /// paper's Sec. 6: the pixel's first batch of samples (render.cpp traces
-/// RenderSettings::maaf_first_pass_spp of them as their own stratified pass)
+/// first_pass_spp() of them, the group's parameter, as their own stratified pass)
 /// gives the occluder distances, hence the wedge (prefiltered over 5x5,
 /// Sec. 6.2) and the light-side frequencies C_y^p; then every sample of the
 /// pixel, the first batch's included, is accumulated with those. The samples
@@ -21,14 +21,27 @@ namespace {
 class MaafGroup final : public AovAccumulator {
   public:
     AovGroupInfo info() const override {
-        return {kAovMaaf, "maaf",
-                "maaf.V_<a><b> and maaf.W_<a><b> (25 each, N = 3), maaf.smin, maaf.smax, maaf.omegax, "
-                "maaf.omegay; two passes (the first of min(16, spp) samples gives the wedges)"};
+        AovGroupInfo info =
+            group_info("maaf",
+                       "maaf.V_<a><b> and maaf.W_<a><b> (25 each, N = 3), maaf.smin, maaf.smax, maaf.omegax, "
+                       "maaf.omegay; two passes (the first of min(16, spp) samples gives the wedges)",
+                       roles());
+        info.parameters = {ParameterInfo::integer(
+            "maaf_first_pass_spp", "16", "samples per pixel",
+            "the samples of MAAF's first pass (Sec. 6.2), a pass of their own that sets the wedges", 1,
+            1 << 20)};
+        info.in_all = false;  // its first pass changes how the samples are stratified
+        info.not_resumable_because = "they need every sample, kept in memory";
+        return info;
     }
     std::vector<Role> roles() const override {
         return {Role::MaafValueSums, Role::MaafUnoccludedSums, Role::MaafWedge};
     }
     bool wants_samples() const override { return true; }
+    void set_parameters(const ParameterSet &values) override {
+        first_pass_spp_ = values.get_int("maaf_first_pass_spp");
+    }
+    int first_pass_spp() const override { return first_pass_spp_; }
 
     void begin_render(std::size_t pixel_count) override {
         samples_.assign(pixel_count, {});
@@ -125,6 +138,7 @@ class MaafGroup final : public AovAccumulator {
     std::vector<std::vector<Stored>> samples_;
     std::vector<std::uint32_t> first_batch_size_;
     std::vector<std::uint32_t> batches_;
+    int first_pass_spp_ = 16;
 };
 
 }  // namespace

@@ -7,7 +7,7 @@ namespace {
 /// Screen motion of each pixel's surface point since the previous frame.
 class MotionGroup final : public AovAccumulator {
   public:
-    AovGroupInfo info() const override { return {kAovMotion, "motion", "motion.X, motion.Y"}; }
+    AovGroupInfo info() const override { return group_info("motion", "motion.X, motion.Y", roles()); }
     std::vector<Role> roles() const override { return {Role::Motion}; }
 
     void write(const RenderState &state, AovSet &aovs) const override {

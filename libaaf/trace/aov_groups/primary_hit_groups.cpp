@@ -13,10 +13,10 @@ template <typename Value>
 class PrimaryHitGroup final : public AovAccumulator {
   public:
     using Getter = Value (*)(const PrimaryHit &);
-    PrimaryHitGroup(AovGroupInfo info, Role role, Precision precision, Getter value)
-        : info_(info), role_(role), precision_(precision), value_(value) {}
+    PrimaryHitGroup(const char *name, const char *contents, Role role, Precision precision, Getter value)
+        : name_(name), contents_(contents), role_(role), precision_(precision), value_(value) {}
 
-    AovGroupInfo info() const override { return info_; }
+    AovGroupInfo info() const override { return group_info(name_, contents_, roles()); }
     std::vector<Role> roles() const override { return {role_}; }
 
     void write(const RenderState &state, AovSet &aovs) const override {
@@ -31,7 +31,7 @@ class PrimaryHitGroup final : public AovAccumulator {
     }
 
   private:
-    AovGroupInfo info_;
+    const char *name_, *contents_;
     Role role_;
     Precision precision_;
     Getter value_;
@@ -40,32 +40,30 @@ class PrimaryHitGroup final : public AovAccumulator {
 }  // namespace
 
 std::unique_ptr<AovAccumulator> make_position_group() {
-    return std::make_unique<PrimaryHitGroup<Vec3>>(AovGroupInfo{kAovPosition, "position", "P.X, P.Y, P.Z"},
-                                                   Role::Position, Precision::Float,
+    return std::make_unique<PrimaryHitGroup<Vec3>>("position", "P.X, P.Y, P.Z", Role::Position,
+                                                   Precision::Float,
                                                    [](const PrimaryHit &p) { return p.position; });
 }
 
 std::unique_ptr<AovAccumulator> make_normal_group() {
-    return std::make_unique<PrimaryHitGroup<Vec3>>(AovGroupInfo{kAovNormal, "normal", "N.X, N.Y, N.Z"},
-                                                   Role::Normal, Precision::Float,
+    return std::make_unique<PrimaryHitGroup<Vec3>>("normal", "N.X, N.Y, N.Z", Role::Normal, Precision::Float,
                                                    [](const PrimaryHit &p) { return p.normal; });
 }
 
 std::unique_ptr<AovAccumulator> make_object_id_group() {
     return std::make_unique<PrimaryHitGroup<float>>(
-        AovGroupInfo{kAovObjectId, "id", "id.object"}, Role::ObjectId, Precision::Float,
+        "id", "id.object", Role::ObjectId, Precision::Float,
         [](const PrimaryHit &p) { return float(p.mesh->object_id); });
 }
 
 std::unique_ptr<AovAccumulator> make_unshadowed_group() {
-    return std::make_unique<PrimaryHitGroup<Vec3>>(
-        AovGroupInfo{kAovUnshadowed, "unshadowed", "unshadowed.R, unshadowed.G, unshadowed.B"},
-        Role::Unshadowed, Precision::Float, [](const PrimaryHit &p) { return p.unshadowed; });
+    return std::make_unique<PrimaryHitGroup<Vec3>>("unshadowed", "unshadowed.R, unshadowed.G, unshadowed.B",
+                                                   Role::Unshadowed, Precision::Float,
+                                                   [](const PrimaryHit &p) { return p.unshadowed; });
 }
 
 std::unique_ptr<AovAccumulator> make_depth_group() {
-    return std::make_unique<PrimaryHitGroup<float>>(AovGroupInfo{kAovDepth, "depth", "Z"}, Role::Depth,
-                                                    Precision::Float,
+    return std::make_unique<PrimaryHitGroup<float>>("depth", "Z", Role::Depth, Precision::Float,
                                                     [](const PrimaryHit &p) { return p.depth_m; });
 }
 
@@ -74,8 +72,7 @@ std::unique_ptr<AovAccumulator> make_depth_group() {
 // at the primary hit.
 std::unique_ptr<AovAccumulator> make_albedo_group() {
     return std::make_unique<PrimaryHitGroup<Vec3>>(
-        AovGroupInfo{kAovAlbedo, "albedo", "albedo.R, albedo.G, albedo.B"}, Role::Albedo, Precision::Half,
-        [](const PrimaryHit &p) {
+        "albedo", "albedo.R, albedo.G, albedo.B", Role::Albedo, Precision::Half, [](const PrimaryHit &p) {
             return texture_surface(p.mesh->material, p.position, p.normal).material.albedo;
         });
 }

@@ -18,8 +18,9 @@ constexpr const char *kRadianceChannels[3] = {"progress.radiance.R", "progress.r
 class ProgressGroup final : public AovAccumulator {
   public:
     AovGroupInfo info() const override {
-        return {kAovProgress, "progress",
-                "progress.weight, progress.unoccluded, progress.radiance.R/G/B (for --resume)"};
+        return group_info("progress",
+                          "progress.weight, progress.unoccluded, progress.radiance.R/G/B (for --resume)",
+                          roles());
     }
     std::vector<Role> roles() const override { return {}; }
 

@@ -11,10 +11,10 @@ namespace {
 class ShadowGroup final : public AovAccumulator {
   public:
     AovGroupInfo info() const override {
-        return {
-            kAovShadow, "shadow",
-            "shadow.V, shadow.d1, shadow.d2min, shadow.d2max, pixel.spp, pixel.size (and otherlights.R/G/B "
-            "with several lights)"};
+        return group_info("shadow",
+                          "shadow.V, shadow.d1, shadow.d2min, shadow.d2max, pixel.spp, pixel.size (and "
+                          "otherlights.R/G/B with several lights)",
+                          roles());
     }
     std::vector<Role> roles() const override {
         return {Role::Visibility,      Role::D1,        Role::D2Min,      Role::D2Max,

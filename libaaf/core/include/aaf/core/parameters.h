@@ -8,8 +8,9 @@
 
 namespace aaf {
 
-/// The kind of value a method parameter holds.
-enum class ParameterType { Float, Int, Bool, Choice };
+/// The kind of value a method parameter holds. A Text is any string, which
+/// its owner parses (a list such as "defocus,shadows").
+enum class ParameterType { Float, Int, Bool, Choice, Text };
 
 /// One parameter a method declares: what the command line, `aaf info`, the
 /// Python module and the property tests are generated from.
@@ -42,6 +43,9 @@ struct ParameterInfo {
     /// One of `choices`.
     static ParameterInfo choice(std::string name, std::string default_value, std::vector<std::string> choices,
                                 std::string help);
+    /// A Text, checked by its owner.
+    static ParameterInfo text(std::string name, std::string default_value, std::string unit,
+                              std::string help);
 };
 
 /// Values of a method's parameters, every one set to its default until
@@ -64,6 +68,7 @@ class ParameterSet {
     int get_int(const std::string &name) const;
     bool get_bool(const std::string &name) const;
     const std::string &get_choice(const std::string &name) const;
+    const std::string &get_text(const std::string &name) const;
 
     const std::vector<ParameterInfo> &infos() const { return infos_; }
     const ParameterInfo &info(const std::string &name) const;

@@ -10,65 +10,12 @@
 #include "aaf/core/aov_contract.h"
 #include "aaf/core/aov_set.h"
 #include "aaf/core/light_plane.h"
+#include "aaf/trace/aov_group_registry.h"
 
 namespace aaf::trace {
 
-/// Groups of AOVs a render can write (`aaf render --aovs`). The beauty R,G,B
-/// is always written. Each group is an accumulator (libaaf/trace/aov_group.h,
-/// one file each under libaaf/trace/aov_groups/) that may gather per-pixel
-/// state from every light sample: the place where later methods add theirs
-/// (MAAF's cos/sin accumulations, the ratio estimator's U, S_N, U_N, ISG's
-/// hard-shadow and reflection maps).
-enum AovGroup : unsigned {
-    kAovShadow =
-        1u << 0,  ///< shadow.V/d1/d2min/d2max, pixel.spp, pixel.size (+ otherlights.* with several lights)
-    kAovPosition = 1u << 1,    ///< P.X/Y/Z
-    kAovNormal = 1u << 2,      ///< N.X/Y/Z
-    kAovObjectId = 1u << 3,    ///< id.object
-    kAovUnshadowed = 1u << 4,  ///< unshadowed.R/G/B
-    kAovDepth = 1u << 5,       ///< Z
-    kAovAlbedo = 1u << 6,      ///< albedo.R/G/B
-    kAovMotion = 1u << 7,      ///< motion.X/Y
-    kAovProgress = 1u << 8,    ///< progress.*: the sums a resumed reference continues from
-    kAovMaaf = 1u << 9,        ///< maaf.*: MAAF's light-side sums; its first pass is a pass of its own
-    /// isg.*, reflect.*, gloss.theta_max, glossy.*, pinhole.*: ISG's maps and
-    /// references; traces rays of its own (a glossy reference of spp rays).
-    kAovIsg = 1u << 10,
-    /// ratio.U/S/Un (+ .Y), summed and per light: the ratio estimator's layer;
-    /// traces spp samples per light of its own (MIS of light and GGX).
-    kAovRatio = 1u << 11,
-    /// ratio.sto.*, ratio.cv.*: the full-stochastic and control-variate
-    /// estimates from the ratio group's samples (traced again when both are asked for).
-    kAovRatioEstimators = 1u << 12,
-    /// maaf6.*: MAAF for combined effects (Sec. 6.2); traces path samples of its own.
-    kAovMaaf6 = 1u << 13,
-};
-/// "all": every group that only records the light samples; maaf (whose first
-/// pass changes how the samples are stratified), isg, ratio and
-/// ratio_estimators (which trace rays of their own) are asked for by name.
-inline constexpr unsigned kAovsAll = (kAovProgress << 1) - 1;
-
-/// Name (as `--aovs` spells it) and contents of each group.
-struct AovGroupInfo {
-    unsigned group;
-    const char *name;
-    const char *contents;
-};
-const std::vector<AovGroupInfo> &aov_group_table();
-/// Parses a comma-separated list of group names, names of registered
-/// methods (method_registry.h: "aaf" is the groups AAF reads) and "all";
-/// throws aaf::Error naming an unknown entry.
-unsigned parse_aov_groups(const std::string &list);
-/// The groups that write any of `roles` (aov_contract.h), e.g. those a
-/// method's declared inputs need; the progress group writes no role.
-unsigned aov_groups_writing(const std::vector<Role> &roles);
-/// The groups that write the required inputs of the registered method
-/// `method` (its declaration is the one place that says what it reads);
-/// throws aaf::Error for an unknown method.
-unsigned aov_groups_for_method(const std::string &method);
-/// The groups as a Markdown table (name, channels, roles, the methods whose
-/// `--aovs METHOD` includes it), a generated block of libaaf/AOV_CONTRACT.md.
-std::string aov_groups_markdown();
+/// The AOV groups a render can write (`aaf render --aovs`) are a registry,
+/// aov_group_registry.h; the beauty R,G,B is always written.
 
 /// Samples per round of a progressive render: round k uses random-number
 /// pass k and its own stratification, so a reference of N * 1024 samples can
@@ -88,7 +35,10 @@ struct RenderSettings {
     std::uint64_t seed = 1;  ///< with pixel index and pass, fixes every random number
     int threads = 0;         ///< 0 = all hardware threads; the result does not depend on it
     double frame = 1;        ///< animation time (scene keyframes), frames
-    unsigned aovs = aov_groups_for_method("aaf");
+    AovGroups aovs = aov_groups_for_method("aaf");  ///< beside the beauty; by default the groups AAF reads
+    /// The values of the groups' own parameters (AovGroupInfo::parameters):
+    /// maaf's first-pass samples, maaf6's effects, a plug-in group's own.
+    AovGroupParameters group_parameters;
 
     /// AAF's two-pass adaptive sampling (Sec. 5.1, 6): after the first pass,
     /// each pixel gets the total of AAF Eq. 21 (aaf::plan_samples), capped at max_spp.
@@ -101,14 +51,6 @@ struct RenderSettings {
     AafLightAxes light_axes = AafParams{}.light_axes;
     /// The plan's pixel footprint (AafParams::projected_pixel): the filter's.
     bool projected_pixel = AafParams{}.projected_pixel;
-
-    /// With the maaf group: the samples of MAAF's first pass (Sec. 6.2: 16),
-    /// traced as a pass of their own before the rest, whose occluder distances
-    /// set the light-side frequencies every sample is accumulated with.
-    int maaf_first_pass_spp = 16;
-    /// With the maaf6 group: the effects its path samples trace (path_sample.h), any of
-    /// "defocus,shadows,indirect"; the others are off (pinhole, the light's centre, no bounce).
-    std::string maaf6_effects = "defocus,shadows,indirect";
 
     /// Overrides the lights' emission profile (AAF Sec. 7: uniform lights).
     std::optional<LightProfile> light_profile;
@@ -175,8 +117,9 @@ std::optional<double> scene_first_key_frame(const std::string &scene);
 
 /// Throws aaf::Error naming the first setting outside its range: width and
 /// height in [1, 16384], spp in [1, 1048576], threads in [0, 1024], a finite
-/// frame, and with `adaptive` a finite positive mu, max_spp in [spp, 1048576]
-/// and no resume. render_scene() checks this first.
+/// frame, with `adaptive` a finite positive mu, max_spp in [spp, 1048576]
+/// and no resume, no resume with a group that cannot be resumed, and values
+/// of each group's parameters that it accepts. render_scene() checks this first.
 void validate_render_settings(const RenderSettings &settings);
 
 /// Renders a scene, given as a JSON scene file or by name, with Embree and
