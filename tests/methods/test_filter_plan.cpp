@@ -27,7 +27,7 @@ AovSet combined_render() {
     settings.width = 24;
     settings.height = 18;
     settings.spp = 4;
-    settings.maaf6_effects = "all";
+    settings.group_parameters.of("maaf6").set("maaf6_effects", std::string("all"));
     settings.aovs = trace::parse_aov_groups("maaf6");
     return trace::render_scene("room", settings);
 }
