@@ -1,9 +1,7 @@
-#include <tbb/blocked_range.h>
-#include <tbb/parallel_for.h>
-
 #include <cmath>
 
 #include "aaf/core/error.h"
+#include "aaf/core/parallel.h"
 #include "aov_groups.h"
 #include "random.h"
 #include "stratified_grid.h"
@@ -60,8 +58,7 @@ class IsgGroup final : public AovAccumulator {
         const StratifiedGrid strata(std::uint32_t(std::max(1, state.spp)));
         // Each pixel is written by one call and draws its own random numbers, so
         // the result does not depend on the schedule.
-        tbb::parallel_for(tbb::blocked_range<int>(0, state.height), [&](const tbb::blocked_range<int> &rows) {
-            for (int y = rows.begin(); y != rows.end(); ++y)
+        parallel_for_rows(state.height, [&](int y) {
                 for (int x = 0; x < state.width; ++x) {
                     const std::size_t i = std::size_t(y) * std::size_t(state.width) + std::size_t(x);
                     const PrimaryHit &primary = state.primaries[i];
