@@ -35,8 +35,8 @@ std::unique_ptr<EmbreeScene> embree_scene_for(const SceneDescription &scene, con
     // Closest hits (occluder distances) stay one ray at a time:
     // rtcIntersect16 changed d2min/d2max of 3 of 1200 grids pixels against
     // rtcIntersect1 (tried and measured, not adopted).
-    const bool packets = grouping == ShadowRayGrouping::Packets ||
-                         (grouping == ShadowRayGrouping::Automatic && reference);
+    const bool packets =
+        grouping == ShadowRayGrouping::Packets || (grouping == ShadowRayGrouping::Automatic && reference);
     return std::make_unique<EmbreeScene>(scene, reference, true, packets);
 }
 
@@ -163,8 +163,8 @@ void Renderer::trace_key_light(const PrimaryHit &primary, Vec3 origin, float d1,
     const Vec3 direction = target - origin;
     if (!occluder_distances) {
         // Visibility alone: any hit answers it (rtcOccluded1), d2_m stays 0.
-        sample.visible =
-            traced_visibility ? *traced_visibility : !rays_.occluded(origin, direction, 0.0f, kShadowRayReach);
+        sample.visible = traced_visibility ? *traced_visibility
+                                           : !rays_.occluded(origin, direction, 0.0f, kShadowRayReach);
         return;
     }
     const Hit hit = rays_.closest_hit(origin, direction, 0.0f, kShadowRayReach);

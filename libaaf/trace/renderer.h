@@ -159,7 +159,8 @@ class Renderer {
     bool light_point_blocked(const PrimaryHit &primary, Vec3 light_point) const;
 
   private:
-    Renderer(const SceneDescription &scene, const RenderSettings &settings, std::unique_ptr<EmbreeScene> owned);
+    Renderer(const SceneDescription &scene, const RenderSettings &settings,
+             std::unique_ptr<EmbreeScene> owned);
     /// The primary hit of pixel (x, y) from its camera ray's closest hit.
     PrimaryHit primary_from(const Hit &hit, int x, int y) const;
     float pixel_footprint(const PrimaryHit &primary, int x, int y) const;

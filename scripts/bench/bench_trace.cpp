@@ -92,7 +92,6 @@ struct Fixture {
     std::unique_ptr<LightSampler> sampler;
 };
 
-
 /// Calls `emit` with every shadow ray the sample loop of
 /// Renderer::trace_shadows (pass 0) traces, in the same order.
 template <typename Emit>

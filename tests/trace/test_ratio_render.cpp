@@ -288,8 +288,9 @@ TEST_CASE(
                 reference *= double(emitter.plane.width_m) * emitter.plane.height_m / (double(kGrid) * kGrid);
                 if (!(reference > 0)) continue;
                 for (int k = 0; k < 4; ++k) {
-                    const trace::RatioLayers layers = trace::trace_ratio_layers(
-                        renderer.rays(), scene, primary, light, spps[k], settings.seed, std::uint64_t(y * 100 + x));
+                    const trace::RatioLayers layers =
+                        trace::trace_ratio_layers(renderer.rays(), scene, primary, light, spps[k],
+                                                  settings.seed, std::uint64_t(y * 100 + x));
                     squared[k] += (layers.unshadowed.x - reference) * (layers.unshadowed.x - reference);
                 }
                 sum_reference += reference;

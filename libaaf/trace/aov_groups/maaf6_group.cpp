@@ -5,8 +5,8 @@
 
 #include "../path_sample.h"
 #include "aaf/core/error.h"
-#include "aaf/core/parallel.h"
 #include "aaf/core/maaf6.h"
+#include "aaf/core/parallel.h"
 #include "aov_groups.h"
 
 namespace aaf::trace {

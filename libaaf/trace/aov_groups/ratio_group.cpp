@@ -25,14 +25,14 @@ std::vector<RatioLayers> trace_all_ratio_layers(const RenderState &state) {
     const int samples = std::max(1, state.spp);
     // Each pixel draws its own random numbers: the result does not depend on the schedule.
     parallel_for_rows(state.height, [&](int y) {
-            for (int x = 0; x < state.width; ++x) {
-                const std::size_t pixel = std::size_t(y) * std::size_t(state.width) + std::size_t(x);
-                const PrimaryHit &primary = state.primaries[pixel];
-                if (!primary.found) continue;
-                for (std::size_t l = 0; l < lights; ++l)
-                    layers[pixel * lights + l] = trace_ratio_layers(state.renderer->rays(), state.scene, primary, l,
-                                                                    samples, state.seed, pixel);
-            }
+        for (int x = 0; x < state.width; ++x) {
+            const std::size_t pixel = std::size_t(y) * std::size_t(state.width) + std::size_t(x);
+            const PrimaryHit &primary = state.primaries[pixel];
+            if (!primary.found) continue;
+            for (std::size_t l = 0; l < lights; ++l)
+                layers[pixel * lights + l] = trace_ratio_layers(state.renderer->rays(), state.scene, primary,
+                                                                l, samples, state.seed, pixel);
+        }
     });
     return layers;
 }
