@@ -233,26 +233,27 @@ class SweepPlanes {
     std::vector<FrameScratch> storage_;
 };
 
-/// Runs gather_sweep over all channels, kMaxChannelsPerSweep at a time.
+/// The sweep of `request` (modulated or not), kMaxChannelsPerSweep channels at a time.
 template <bool Modulated>
-void sweep_all(const GatherGuides &g, float cos_threshold, bool symmetric_borders,
-               const std::vector<const float *> &sources, const std::vector<float *> &outputs, bool along_x,
-               bool along_y, const AxisModulation &mod_u = {}, const AxisModulation &mod_v = {},
-               bool normalise = true) {
-    for (std::size_t first = 0; first < sources.size(); first += kMaxChannelsPerSweep) {
-        const std::size_t count = std::min<std::size_t>(kMaxChannelsPerSweep, sources.size() - first);
+void sweep_channels(const GatherSweepRequest &request) {
+    const GatherGuides &g = *request.guides;
+    const AxisModulation none;
+    const AxisModulation &mod_u = Modulated ? *request.modulation_u : none;
+    const AxisModulation &mod_v = Modulated ? *request.modulation_v : none;
+    for (std::size_t first = 0; first < request.channels; first += kMaxChannelsPerSweep) {
+        const std::size_t count = std::min<std::size_t>(kMaxChannelsPerSweep, request.channels - first);
         if (!Modulated) {
             // The SIMD rows (gather_rows.h): the same bits as gather_sweep's loops.
             detail::GatherSweep sweep;
             sweep.guides = &g;
-            sweep.cos_threshold = cos_threshold;
-            sweep.symmetric_borders = symmetric_borders;
-            sweep.along_x = along_x;
-            sweep.along_y = along_y;
+            sweep.cos_threshold = request.cos_threshold;
+            sweep.symmetric_borders = request.symmetric_borders;
+            sweep.along_x = request.along_x;
+            sweep.along_y = request.along_y;
             sweep.channels = int(count);
             for (std::size_t k = 0; k < count; ++k) {
-                sweep.source[k] = sources[first + k];
-                sweep.output[k] = outputs[first + k];
+                sweep.source[k] = request.sources[first + k];
+                sweep.output[k] = request.outputs[first + k];
             }
             detail::gather_rows_tiled(sweep);
             continue;
@@ -261,11 +262,11 @@ void sweep_all(const GatherGuides &g, float cos_threshold, bool symmetric_border
             constexpr int K = decltype(channels)::value;
             Planes<K> planes;
             for (int k = 0; k < K; ++k) {
-                planes.source[k] = sources[first + k];
-                planes.output[k] = outputs[first + k];
+                planes.source[k] = request.sources[first + k];
+                planes.output[k] = request.outputs[first + k];
             }
-            gather_sweep<K, Modulated>(g, cos_threshold, symmetric_borders, planes, along_x, along_y, mod_u,
-                                       mod_v, normalise);
+            gather_sweep<K, Modulated>(g, request.cos_threshold, request.symmetric_borders, planes,
+                                       request.along_x, request.along_y, mod_u, mod_v, request.normalise);
         };
         switch (count) {
             case 1:
@@ -282,6 +283,36 @@ void sweep_all(const GatherGuides &g, float cos_threshold, bool symmetric_border
                 break;
         }
     }
+}
+
+class CpuGatherBackend final : public GatherBackend {
+  public:
+    void sweep(const GatherSweepRequest &request) const override {
+        if (request.modulation_u || request.modulation_v)
+            sweep_channels<true>(request);
+        else
+            sweep_channels<false>(request);
+    }
+};
+
+/// Hands one sweep of `sources` into `outputs` to `settings`' backend.
+void run_sweep(const GatherGuides &g, const GatherSettings &settings, float cos_threshold,
+               const std::vector<const float *> &sources, const std::vector<float *> &outputs, bool along_x,
+               bool along_y, const AxisModulation *mod_u = nullptr, const AxisModulation *mod_v = nullptr,
+               bool normalise = true) {
+    GatherSweepRequest request;
+    request.guides = &g;
+    request.cos_threshold = cos_threshold;
+    request.symmetric_borders = settings.symmetric_borders;
+    request.along_x = along_x;
+    request.along_y = along_y;
+    request.modulation_u = mod_u;
+    request.modulation_v = mod_v;
+    request.normalise = normalise;
+    request.channels = sources.size();
+    request.sources = sources.data();
+    request.outputs = outputs.data();
+    (settings.backend ? *settings.backend : cpu_gather_backend()).sweep(request);
 }
 
 void check_guides(const GatherGuides &g) {
@@ -318,6 +349,11 @@ float cos_threshold_of(const GatherSettings &settings) {
 }
 
 }  // namespace
+
+const GatherBackend &cpu_gather_backend() {
+    static const CpuGatherBackend backend;
+    return backend;
+}
 
 void GatherGuides::resize(int new_width, int new_height) {
     width = new_width;
@@ -362,17 +398,14 @@ void gather(const GatherGuides &guides, const GatherSettings &settings,
         SweepPlanes planes(sources, outputs, true);
         std::vector<float *> vertical(sources.size());
         for (float *&plane : vertical) plane = planes.scratch(guides.width, guides.height);
-        sweep_all<false>(guides, cos_threshold, settings.symmetric_borders, planes.source, vertical, false,
-                         true);
-        sweep_all<false>(guides, cos_threshold, settings.symmetric_borders,
-                         std::vector<const float *>(vertical.begin(), vertical.end()), planes.output, true,
-                         false);
+        run_sweep(guides, settings, cos_threshold, planes.source, vertical, false, true);
+        run_sweep(guides, settings, cos_threshold,
+                  std::vector<const float *>(vertical.begin(), vertical.end()), planes.output, true, false);
         planes.finish(outputs);
     } else {
         SweepPlanes planes(sources, outputs, false);
         // AAF Eq. 10 directly
-        sweep_all<false>(guides, cos_threshold, settings.symmetric_borders, planes.source, planes.output,
-                         true, true);
+        run_sweep(guides, settings, cos_threshold, planes.source, planes.output, true, true);
         planes.finish(outputs);
     }
 }
@@ -394,9 +427,8 @@ void gather_modulated(const GatherGuides &guides, const GatherSettings &settings
             !(m->inv_two_sigma_sq.width == guides.width && m->inv_two_sigma_sq.height == guides.height))
             throw Error("modulated gather: a per-axis width plane has another size");
     SweepPlanes planes(sources, outputs, false);
-    sweep_all<true>(guides, cos_threshold_of(settings), settings.symmetric_borders, planes.source,
-                    planes.output, true, true, along_u, along_v,
-                    normalisation == GatherNormalisation::WeightSum);
+    run_sweep(guides, settings, cos_threshold_of(settings), planes.source, planes.output, true, true,
+              &along_u, &along_v, normalisation == GatherNormalisation::WeightSum);
     planes.finish(outputs);
 }
 

@@ -443,10 +443,6 @@ void GatherRow(const GatherSweep &s, int y, int x_begin, int x_end) {
 HWY_AFTER_NAMESPACE();
 
 #if HWY_ONCE
-#include <tbb/blocked_range2d.h>
-#include <tbb/parallel_for.h>
-#include <tbb/partitioner.h>
-
 #include "aaf/core/instruction_set.h"
 #include "aaf/core/parallel.h"
 
@@ -474,16 +470,13 @@ void gather_rows_tiled(const GatherSweep &sweep) {
         return;
     }
     const int strips = (width + kGatherStripPixels - 1) / kGatherStripPixels;
-    // Tiles of at most kGatherTileRows rows by one strip (simple_partitioner
-    // splits down to the grain): a thread walks its tile's rows within one strip.
-    tbb::parallel_for(
-        tbb::blocked_range2d<int>(0, height, kGatherTileRows, 0, strips, 1),
-        [&](const tbb::blocked_range2d<int> &tile) {
-            for (int strip = tile.cols().begin(); strip != tile.cols().end(); ++strip)
-                for (int y = tile.rows().begin(); y != tile.rows().end(); ++y)
-                    gather_row(sweep, y, strip * kGatherStripPixels, (strip + 1) * kGatherStripPixels);
-        },
-        tbb::simple_partitioner());
+    // Tiles of at most kGatherTileRows rows by one strip: a thread walks its
+    // tile's rows within one strip.
+    parallel_for_tiles(height, kGatherTileRows, strips, 1, [&](const TileRange &tile) {
+        for (int strip = tile.col_begin; strip != tile.col_end; ++strip)
+            for (int y = tile.row_begin; y != tile.row_end; ++y)
+                gather_row(sweep, y, strip * kGatherStripPixels, (strip + 1) * kGatherStripPixels);
+    });
 }
 
 const char *gather_row_target() {

@@ -54,7 +54,8 @@ const char *embree_device_config(InstructionSet set) {
 
 }  // namespace
 
-EmbreeScene::EmbreeScene(const SceneDescription &description, bool high_quality, bool robust) {
+EmbreeScene::EmbreeScene(const SceneDescription &description, bool high_quality, bool robust, bool packets)
+    : packets_(packets) {
     device_ = rtcNewDevice(embree_device_config(instruction_set()));
     if (!device_) throw Error("Embree: cannot create a device");
     try {
@@ -142,6 +143,24 @@ Hit EmbreeScene::intersect(Vec3 origin, Vec3 direction, float t_near, float t_fa
     hit.distance = float(std::clamp(t, double(t_near), double(t_far)));
     hit.geometric_normal = {float(normal.x), float(normal.y), float(normal.z)};
     return hit;
+}
+
+void EmbreeScene::primary_hits(const Camera &camera, int y, int x_begin, int x_end, Hit *hits) const {
+    for (int x = x_begin; x < x_end; ++x)
+        hits[x - x_begin] = intersect(camera.eye, camera.ray_direction(x + 0.5f, y + 0.5f), 0.0f,
+                                      std::numeric_limits<float>::infinity());
+}
+
+void EmbreeScene::occluded(Vec3 origin, const Vec3 *directions, int count, float t_near, float t_far,
+                           bool *blocked) const {
+    // A lone ray (a shading query) goes as one: a packet of one lane costs more.
+    if (!packets_ || count == 1) {
+        for (int k = 0; k < count; ++k) blocked[k] = occluded1(origin, directions[k], t_near, t_far);
+        return;
+    }
+    for (int first = 0; first < count; first += kPacketSize)
+        occluded_packet(origin, directions + first, std::min(kPacketSize, count - first), t_near, t_far,
+                        blocked + first);
 }
 
 void EmbreeScene::occluded_packet(Vec3 origin, const Vec3 *directions, int count, float t_near, float t_far,

@@ -1,11 +1,11 @@
 #include "path_sample.h"
-#include "concentric_disc.h"
 
 #include <algorithm>
 #include <cmath>
 #include <limits>
 #include <sstream>
 
+#include "aaf/core/concentric_disc.h"
 #include "aaf/core/error.h"
 #include "shading.h"
 
@@ -14,16 +14,6 @@ namespace aaf::trace {
 namespace {
 
 constexpr float kPi = 3.14159265358979323846f;
-constexpr float kShadowRayReach = 1.0f - 1e-4f;  // as renderer.cpp: stop just short of the light point
-
-Vec3 offset_origin(Vec3 p, Vec3 n) {
-    const float epsilon = 1e-4f * (1.0f + std::max({std::fabs(p.x), std::fabs(p.y), std::fabs(p.z)}));
-    return p + n * epsilon;
-}
-
-Vec3 times(Vec3 a, Vec3 b) {
-    return {a.x * b.x, a.y * b.y, a.z * b.z};
-}
 
 }  // namespace
 
@@ -55,8 +45,8 @@ std::string maaf6_effects_name(unsigned effects) {
     return name;
 }
 
-PathSampler::PathSampler(const SceneDescription &scene, const Renderer &renderer, unsigned effects)
-    : scene_(scene), renderer_(renderer), light_(scene.key_light()), effects_(effects) {}
+PathSampler::PathSampler(const SceneDescription &scene, const RayQueries &rays, unsigned effects)
+    : scene_(scene), rays_(rays), light_(scene.key_light()), effects_(effects) {}
 
 Vec3 PathSampler::direct_light(const Mesh &mesh, Vec3 p, Vec3 n, Vec3 eye, Vec3 light_point, bool &visible,
                                float &occluder_plane_distance_m) const {
@@ -66,9 +56,9 @@ Vec3 PathSampler::direct_light(const Mesh &mesh, Vec3 p, Vec3 n, Vec3 eye, Vec3 
     Vec3 to_light = light_point - p;
     const float distance_sq = dot(to_light, to_light);
     if (!(distance_sq > 0) || dot(n, to_light) <= 0) return {};  // behind the receiver's tangent plane
-    const Vec3 origin = offset_origin(p, n);
+    const Vec3 origin = offset_ray_origin(p, n);
     const Vec3 direction = light_point - origin;
-    const Hit blocker = renderer_.bvh().intersect(origin, direction, 0.0f, kShadowRayReach);
+    const Hit blocker = rays_.closest_hit(origin, direction, 0.0f, kShadowRayReach);
     if (blocker.found)
         occluder_plane_distance_m = light.plane.plane_distance_m(origin + direction * blocker.distance);
     visible = !blocker.found;
@@ -86,16 +76,15 @@ PathSample PathSampler::trace(int x, int y, const PathSampleNumbers &numbers) co
     // The primary lens ray (MAAF Sec. 6.2): from a point of the aperture to the pixel centre's focus point.
     Vec3 lens = camera.eye;
     if ((effects_ & kMaaf6Defocus) && camera.is_thin_lens()) {
-        float dx, dy;
-        concentric_disc(numbers.lens.s, numbers.lens.t, dx, dy);
-        sample.lens_offset_m = (camera.right * dx + camera.up * dy) * camera.aperture_radius_m;
+        const DiscPoint d = concentric_disc_unit(numbers.lens.s, numbers.lens.t);
+        sample.lens_offset_m = (camera.right * d.x + camera.up * d.y) * camera.aperture_radius_m;
         lens = camera.eye + sample.lens_offset_m;
     }
     const Vec3 focus_or_direction = camera.ray_direction(x + 0.5f, y + 0.5f);
     const Vec3 direction = camera.is_thin_lens()
                                ? camera.eye + focus_or_direction * camera.focus_distance_m - lens
                                : focus_or_direction;
-    const Hit hit = renderer_.bvh().intersect(lens, direction, 0.0f, std::numeric_limits<float>::infinity());
+    const Hit hit = rays_.closest_hit(lens, direction, 0.0f, std::numeric_limits<float>::infinity());
     if (!hit.found) return sample;
     sample.hit = true;
     const Mesh &mesh = scene_.meshes[hit.mesh_index];
@@ -124,8 +113,8 @@ PathSample PathSampler::trace(int x, int y, const PathSampleNumbers &numbers) co
     const Vec3 omega = normalize(b1 * (radius * std::cos(phi)) + b2 * (radius * std::sin(phi)) +
                                  n * std::sqrt(std::max(0.0f, 1 - numbers.bounce.s)));
     sample.bounce_direction = omega;
-    const Vec3 origin = offset_origin(p, n);
-    const Hit bounce = renderer_.bvh().intersect(origin, omega, 0.0f, std::numeric_limits<float>::infinity());
+    const Vec3 origin = offset_ray_origin(p, n);
+    const Hit bounce = rays_.closest_hit(origin, omega, 0.0f, std::numeric_limits<float>::infinity());
     if (!bounce.found) return sample;
     const Vec3 q = origin + omega * bounce.distance;
     Vec3 nq = normalize(bounce.geometric_normal);

@@ -4,7 +4,9 @@
 #include <string>
 
 #include "aaf/core/vec3.h"
-#include "renderer.h"
+#include "light_sampler.h"
+#include "ray_queries.h"
+#include "scene_description.h"
 
 namespace aaf::trace {
 
@@ -40,7 +42,7 @@ struct PathSample {
     float bounce_height_m = -1;  ///< reflector distance along the hit's normal, -1 without a reflector
 };
 
-/// Traces MAAF path samples through a Renderer's scene (thread-safe, const).
+/// Traces MAAF path samples through a scene's RayQueries (thread-safe, const).
 ///
 /// Direct: the key light's BRDF times its colour, intensity and
 /// cos(receiver) cos(light) / r^2 towards the sampled light point, times
@@ -53,7 +55,7 @@ struct PathSample {
 /// focus, as the tracer's thin lens does.
 class PathSampler {
   public:
-    PathSampler(const SceneDescription &scene, const Renderer &renderer, unsigned effects);
+    PathSampler(const SceneDescription &scene, const RayQueries &rays, unsigned effects);
 
     PathSample trace(int x, int y, const PathSampleNumbers &numbers) const;
 
@@ -65,7 +67,7 @@ class PathSampler {
                       float &occluder_plane_distance_m) const;
 
     const SceneDescription &scene_;
-    const Renderer &renderer_;
+    const RayQueries &rays_;
     LightSampler light_;
     unsigned effects_;
 };

@@ -45,7 +45,7 @@ double glossy_sampling_probability(const UnshadowedLight &u, bool glossy) {
     return std::clamp(luminance(u.specular) / total, kMinTechniqueProbability, 1 - kMinTechniqueProbability);
 }
 
-RatioLayers trace_ratio_layers(const Renderer &renderer, const SceneDescription &scene,
+RatioLayers trace_ratio_layers(const RayQueries &rays, const SceneDescription &scene,
                                const PrimaryHit &primary, std::size_t light_index, int samples,
                                std::uint64_t seed, std::uint64_t pixel_index) {
     RatioLayers layers;
@@ -108,7 +108,7 @@ RatioLayers trace_ratio_layers(const Renderer &renderer, const SceneDescription 
                                (glossy ? q_glossy * ggx::sample_pdf(wo_local, wi_local, alpha) : 0.0);
         if (!(density > 0)) continue;
         const Vec3 brdf = evaluate_brdf(material, n, wo, to_float(wi_world));
-        const bool visible = !renderer.light_point_blocked(primary, to_float(y));
+        const bool visible = !shadow_ray_blocked(rays, primary.position, primary.normal, to_float(y));
         for (int c = 0; c < 3; ++c) {
             // ratio estimator Eq. 21-22: R L / p, with V for S_N.
             const double value = double(brdf[c]) * double(light.radiance[c]) * cos_surface / density;

@@ -30,15 +30,13 @@ RectLight ratio_light(const SceneLight &light);
 double glossy_sampling_probability(const UnshadowedLight &u, bool glossy);
 
 /// U, S_N and U_N of light `light_index` at `primary` (found) from `samples`
-/// samples, each drawn from the light (solid angle, spherical_rectangle.h) or
-/// from the GGX lobe with glossy_sampling_probability(), the choice
-/// stratified over the samples (a randomly shifted lattice over a hashed
-/// permutation of the sample index, so that each technique's strata spread
-/// over the square), and weighted by the balance heuristic of the
-/// one-sample model: R L / (q_light p_light + q_glossy p_glossy). S_N and U_N
-/// add the same values in the same order, so S_N == U_N bit for bit where no
-/// shadow ray is blocked. Random numbers depend only on (seed, pixel, light).
-RatioLayers trace_ratio_layers(const Renderer &renderer, const SceneDescription &scene,
+/// samples, their shadow rays traced through `rays`, each drawn from the light (solid angle,
+/// spherical_rectangle.h) or from the GGX lobe with glossy_sampling_probability(), the choice stratified over
+/// the samples (a randomly shifted lattice over a hashed permutation of the sample index, so that each
+/// technique's strata spread over the square), and weighted by the balance heuristic of the one-sample model:
+/// R L / (q_light p_light + q_glossy p_glossy). S_N and U_N add the same values in the same order, so S_N ==
+/// U_N bit for bit where no shadow ray is blocked. Random numbers depend only on (seed, pixel, light).
+RatioLayers trace_ratio_layers(const RayQueries &rays, const SceneDescription &scene,
                                const PrimaryHit &primary, std::size_t light_index, int samples,
                                std::uint64_t seed, std::uint64_t pixel_index);
 

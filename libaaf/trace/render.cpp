@@ -1,10 +1,8 @@
 #include "aaf/trace/render.h"
 
 #include <pmmintrin.h>  // flush-to-zero and denormals-are-zero
-#include <tbb/blocked_range.h>
 #include <tbb/global_control.h>
 #include <tbb/info.h>
-#include <tbb/parallel_for.h>
 #include <tbb/task_arena.h>
 
 #include <algorithm>
@@ -17,6 +15,7 @@
 
 #include "aaf/core/aov_contract.h"
 #include "aaf/core/error.h"
+#include "aaf/core/parallel.h"
 #include "aaf/core/sampling_plan.h"
 #include "aov_group.h"
 #include "renderer.h"
@@ -32,34 +31,43 @@ constexpr int kTileSize = 16;
 /// Random-number pass of the adaptive second pass, apart from the rounds' passes.
 constexpr std::uint32_t kAdaptiveSecondPass = 1u << 30;
 
-/// Calls `body(x, y)` for every pixel, one 16x16 tile (clipped at the image's
-/// edges) per task index over oneTBB. Each pixel is written by exactly one
-/// call, so results do not depend on the schedule.
+/// Calls `body(x0, x1, y)` for every row span of every 16x16 tile (clipped
+/// at the image's edges), one tile per task. Each pixel is in exactly one
+/// span, so results do not depend on the schedule.
 template <typename Body>
-void for_each_pixel_tiled(int width, int height, const Body &body,
-                          const std::function<void(double)> &on_share_done = {}) {
+void for_each_tile_row(int width, int height, const Body &body,
+                       const std::function<void(double)> &on_share_done = {}) {
     const int tiles_x = (width + kTileSize - 1) / kTileSize;
     const int tiles_y = (height + kTileSize - 1) / kTileSize;
     const int tiles_total = tiles_x * tiles_y;
     std::atomic<int> tiles_done{0};
     std::mutex reporting;
-    tbb::parallel_for(tbb::blocked_range<int>(0, tiles_total), [&](const tbb::blocked_range<int> &tiles) {
+    parallel_for_each_index(tiles_total, [&](int tile) {
         // Denormals only slow the traversal down; flush them on every worker.
         _MM_SET_FLUSH_ZERO_MODE(_MM_FLUSH_ZERO_ON);
         _MM_SET_DENORMALS_ZERO_MODE(_MM_DENORMALS_ZERO_ON);
-        for (int tile = tiles.begin(); tile != tiles.end(); ++tile) {
-            const int x0 = (tile % tiles_x) * kTileSize, y0 = (tile / tiles_x) * kTileSize;
-            const int x1 = std::min(x0 + kTileSize, width), y1 = std::min(y0 + kTileSize, height);
-            for (int y = y0; y < y1; ++y)
-                for (int x = x0; x < x1; ++x) body(x, y);
-            if (!on_share_done) continue;
-            // A report each time the finished share crosses a 32nd.
-            const int done = ++tiles_done;
-            if (done * 32 / tiles_total == (done - 1) * 32 / tiles_total) continue;
-            const std::lock_guard<std::mutex> lock(reporting);
-            on_share_done(double(done) / tiles_total);
-        }
+        const int x0 = (tile % tiles_x) * kTileSize, y0 = (tile / tiles_x) * kTileSize;
+        const int x1 = std::min(x0 + kTileSize, width), y1 = std::min(y0 + kTileSize, height);
+        for (int y = y0; y < y1; ++y) body(x0, x1, y);
+        if (!on_share_done) return;
+        // A report each time the finished share crosses a 32nd.
+        const int done = ++tiles_done;
+        if (done * 32 / tiles_total == (done - 1) * 32 / tiles_total) return;
+        const std::lock_guard<std::mutex> lock(reporting);
+        on_share_done(double(done) / tiles_total);
     });
+}
+
+/// for_each_tile_row() pixel by pixel: `body(x, y)`.
+template <typename Body>
+void for_each_pixel_tiled(int width, int height, const Body &body,
+                          const std::function<void(double)> &on_share_done = {}) {
+    for_each_tile_row(
+        width, height,
+        [&](int x0, int x1, int y) {
+            for (int x = x0; x < x1; ++x) body(x, y);
+        },
+        on_share_done);
 }
 
 using Accumulators = std::vector<std::unique_ptr<AovAccumulator>>;
@@ -169,8 +177,8 @@ class Tracing {
     std::vector<ShadowStats> &stats() { return stats_; }
 
     void trace_primaries() {
-        for_each_pixel_tiled(settings_.width, settings_.height, [&](int x, int y) {
-            primaries_[std::size_t(y) * settings_.width + x] = renderer_.trace_primary(x, y);
+        for_each_tile_row(settings_.width, settings_.height, [&](int x0, int x1, int y) {
+            renderer_.trace_primaries(y, x0, x1, &primaries_[std::size_t(y) * settings_.width + x0]);
         });
     }
 

@@ -1,11 +1,12 @@
 #include "renderer.h"
-#include "concentric_disc.h"
 
 #include <algorithm>
 #include <array>
 #include <cmath>
 
+#include "aaf/core/concentric_disc.h"
 #include "aov_group.h"
+#include "embree_scene.h"
 #include "random.h"
 #include "shading.h"
 #include "stratified_grid.h"
@@ -16,8 +17,6 @@ namespace aaf::trace {
 namespace {
 
 constexpr int kFalloffQuadrature = 16;  // per axis
-/// Shadow rays end at this fraction of the way to the light point.
-constexpr float kShadowRayReach = 1.0f - 1e-4f;
 /// Floor of a squared receiver-light distance, (1e-6 m)^2.
 constexpr float kMinDistanceSq_m2 = 1e-12f;
 /// Samples whose light points are generated together (trace_shadows).
@@ -25,22 +24,10 @@ constexpr std::uint32_t kSampleBatch = 64;
 /// Distinguishes the lens and other-light random numbers from the key light's.
 constexpr std::uint64_t kSecondaryStream = 0x5bd1e9955bd1e995ull;
 
-/// Offset of a surface point along its (ray-facing) normal, scaled to the
-/// coordinates' magnitude so float rounding cannot put it behind the surface.
-Vec3 offset_origin(Vec3 p, Vec3 n) {
-    const float epsilon = 1e-4f * (1.0f + std::max({std::fabs(p.x), std::fabs(p.y), std::fabs(p.z)}));
-    return p + n * epsilon;
-}
-
-Vec3 times(Vec3 a, Vec3 b) {
-    return {a.x * b.x, a.y * b.y, a.z * b.z};
-}
-
-}  // namespace
-
-Renderer::Renderer(const SceneDescription &scene, const RenderSettings &settings, ShadowRayGrouping grouping)
-    : scene_(scene), settings_(settings), bvh_(scene, settings.spp >= kSamplesPerRound) {
-    for (const SceneLight &light : scene.lights) light_samplers_.emplace_back(light.plane);
+/// The EmbreeScene of a render with `settings`.
+std::unique_ptr<EmbreeScene> embree_scene_for(const SceneDescription &scene, const RenderSettings &settings,
+                                              ShadowRayGrouping grouping) {
+    const bool reference = settings.spp >= kSamplesPerRound;
     // Packets where they measured faster: with a reference's high-quality
     // BVH, every shipped scene (1.02-1.43x end to end at 2048 spp) and the
     // 129k-triangle mesh (even); with the medium BVH of shorter renders they
@@ -48,9 +35,28 @@ Renderer::Renderer(const SceneDescription &scene, const RenderSettings &settings
     // Closest hits (occluder distances) stay one ray at a time:
     // rtcIntersect16 changed d2min/d2max of 3 of 1200 grids pixels against
     // rtcIntersect1 (tried and measured, not adopted).
-    packets_ = grouping == ShadowRayGrouping::Packets ||
-               (grouping == ShadowRayGrouping::Automatic && settings.spp >= kSamplesPerRound);
+    const bool packets =
+        grouping == ShadowRayGrouping::Packets || (grouping == ShadowRayGrouping::Automatic && reference);
+    return std::make_unique<EmbreeScene>(scene, reference, true, packets);
 }
+
+}  // namespace
+
+Renderer::Renderer(const SceneDescription &scene, const RenderSettings &settings, ShadowRayGrouping grouping)
+    : Renderer(scene, settings, embree_scene_for(scene, settings, grouping)) {}
+
+Renderer::Renderer(const SceneDescription &scene, const RenderSettings &settings, const RayQueries &rays)
+    : scene_(scene), settings_(settings), rays_(rays) {
+    for (const SceneLight &light : scene.lights) light_samplers_.emplace_back(light.plane);
+}
+
+Renderer::Renderer(const SceneDescription &scene, const RenderSettings &settings,
+                   std::unique_ptr<EmbreeScene> owned)
+    : scene_(scene), settings_(settings), owned_rays_(std::move(owned)), rays_(*owned_rays_) {
+    for (const SceneLight &light : scene.lights) light_samplers_.emplace_back(light.plane);
+}
+
+Renderer::~Renderer() = default;
 
 float Renderer::falloff(const LightPlane &light, Vec3 p, Vec3 n, Vec3 light_point) const {
     Vec3 to_light = light_point - p;
@@ -90,9 +96,25 @@ Vec3 Renderer::unshadowed(std::size_t light_index, const Mesh &mesh, Vec3 p, Vec
 }
 
 PrimaryHit Renderer::trace_primary(int x, int y) const {
+    PrimaryHit primary;
+    trace_primaries(y, x, x + 1, &primary);
+    return primary;
+}
+
+void Renderer::trace_primaries(int y, int x_begin, int x_end, PrimaryHit *primaries) const {
+    constexpr int kRowBatch = 64;
+    std::array<Hit, kRowBatch> hits;
+    for (int first = x_begin; first < x_end; first += kRowBatch) {
+        const int last = std::min(first + kRowBatch, x_end);
+        rays_.primary_hits(scene_.camera, y, first, last, hits.data());
+        for (int x = first; x < last; ++x)
+            primaries[x - x_begin] = primary_from(hits[std::size_t(x - first)], x, y);
+    }
+}
+
+PrimaryHit Renderer::primary_from(const Hit &hit, int x, int y) const {
     const Camera &camera = scene_.camera;
-    const Vec3 direction = camera.ray_direction(x + 0.5f, y + 0.5f);
-    const Hit hit = bvh_.intersect(camera.eye, direction, 0.0f, std::numeric_limits<float>::infinity());
+    const Vec3 direction = camera.ray_direction(x + 0.5f, y + 0.5f);  // as RayQueries::primary_hits
     PrimaryHit primary;
     if (!hit.found) return primary;
     primary.found = true;
@@ -111,11 +133,7 @@ bool Renderer::light_point_blocked(const PrimaryHit &primary, Vec3 light_point) 
 }
 
 bool Renderer::occluded(Vec3 p, Vec3 n, Vec3 target) const {
-    // A light point behind the receiver's own tangent plane is occluded by the
-    // (closed) surface at the receiver itself.
-    if (dot(n, target - p) <= 0) return true;
-    const Vec3 origin = offset_origin(p, n);
-    return bvh_.occluded(origin, target - origin, 0.0f, kShadowRayReach);
+    return shadow_ray_blocked(rays_, p, n, target);
 }
 
 Vec3 Renderer::shade(const Mesh &mesh, Vec3 p, Vec3 n, Vec3 eye, UnitPoint u, std::size_t first_light) const {
@@ -145,11 +163,11 @@ void Renderer::trace_key_light(const PrimaryHit &primary, Vec3 origin, float d1,
     const Vec3 direction = target - origin;
     if (!occluder_distances) {
         // Visibility alone: any hit answers it (rtcOccluded1), d2_m stays 0.
-        sample.visible =
-            traced_visibility ? *traced_visibility : !bvh_.occluded(origin, direction, 0.0f, kShadowRayReach);
+        sample.visible = traced_visibility ? *traced_visibility
+                                           : !rays_.occluded(origin, direction, 0.0f, kShadowRayReach);
         return;
     }
-    const Hit hit = bvh_.intersect(origin, direction, 0.0f, kShadowRayReach);
+    const Hit hit = rays_.closest_hit(origin, direction, 0.0f, kShadowRayReach);
     if (hit.found) {
         sample.visible = false;
         sample.d2_m = light.plane_distance_m(origin + direction * hit.distance);
@@ -159,33 +177,24 @@ void Renderer::trace_key_light(const PrimaryHit &primary, Vec3 origin, float d1,
 void Renderer::trace_visibility_batch(const PrimaryHit &primary, Vec3 origin, std::uint32_t count,
                                       const float *y_u_m, const float *y_v_m, bool *visible) const {
     const LightPlane &light = scene_.key_light();
-    if (!packets_) {
-        for (std::uint32_t k = 0; k < count; ++k) {
-            const Vec3 target = light.point_at(y_u_m[k], y_v_m[k]);  // as trace_key_light
-            visible[k] = dot(primary.normal, target - primary.position) > 0 &&
-                         !bvh_.occluded(origin, target - origin, 0.0f, kShadowRayReach);
-        }
-        return;
-    }
-    constexpr int kPacket = EmbreeScene::kPacketSize;
     // The rays trace_key_light would trace (light points in front of the
-    // tangent plane), kPacket at a time.
-    std::array<Vec3, kPacket> directions;
-    std::array<std::uint32_t, kPacket> sample_of;
-    std::array<bool, kPacket> blocked;
+    // tangent plane), a batch of kSampleBatch at a time.
+    std::array<Vec3, kSampleBatch> directions;
+    std::array<std::uint32_t, kSampleBatch> sample_of;
+    std::array<bool, kSampleBatch> blocked;
     int filled = 0;
     auto flush = [&] {
-        bvh_.occluded_packet(origin, directions.data(), filled, 0.0f, kShadowRayReach, blocked.data());
+        rays_.occluded(origin, directions.data(), filled, 0.0f, kShadowRayReach, blocked.data());
         for (int r = 0; r < filled; ++r) visible[sample_of[std::size_t(r)]] = !blocked[std::size_t(r)];
         filled = 0;
     };
     for (std::uint32_t k = 0; k < count; ++k) {
-        const Vec3 target = light.point_at(y_u_m[k], y_v_m[k]);
+        const Vec3 target = light.point_at(y_u_m[k], y_v_m[k]);  // as trace_key_light
         visible[k] = false;  // behind the tangent plane, unless traced below
         if (dot(primary.normal, target - primary.position) <= 0) continue;
         directions[std::size_t(filled)] = target - origin;
         sample_of[std::size_t(filled)] = k;
-        if (++filled == kPacket) flush();
+        if (++filled == int(kSampleBatch)) flush();
     }
     if (filled > 0) flush();
 }
@@ -197,13 +206,17 @@ Vec3 Renderer::separate_radiance(const PrimaryHit &primary, Vec3 focus, PixelRng
         return shade(*primary.mesh, primary.position, primary.normal, camera.eye, sample.y_unit, 1);
     // A ray from a point of the aperture through the pixel centre's point on
     // the plane in focus; its hit is shaded by every light.
-    float dx, dy;
-    concentric_disc(lens_rng.next_float(), lens_rng.next_float(), dx, dy);
+    // The second coordinate is drawn first: the order GCC gave the two draws
+    // when they were arguments of one call, which the shipped renders keep.
+    const float u2 = lens_rng.next_float();
+    const float u1 = lens_rng.next_float();
+    const DiscPoint disc = concentric_disc_unit(u1, u2);
+    const float dx = disc.x, dy = disc.y;
     sample.lens_x_m = dx * camera.aperture_radius_m;
     sample.lens_y_m = dy * camera.aperture_radius_m;
     const Vec3 lens = camera.eye + (camera.right * dx + camera.up * dy) * camera.aperture_radius_m;
     const Vec3 direction = focus - lens;
-    const Hit hit = bvh_.intersect(lens, direction, 0.0f, std::numeric_limits<float>::infinity());
+    const Hit hit = rays_.closest_hit(lens, direction, 0.0f, std::numeric_limits<float>::infinity());
     if (!hit.found) return {};
     const Vec3 hit_point = lens + direction * hit.distance;
     Vec3 n = normalize(hit.geometric_normal);
@@ -223,7 +236,7 @@ void Renderer::trace_shadows(const PrimaryHit &primary, int x, int y, std::uint6
     // Only light points in front of the camera-facing normal are traced, so
     // the offset origin always lies on the side that faces the light point.
     const Vec3 p = primary.position;
-    const Vec3 origin = offset_origin(p, primary.normal);
+    const Vec3 origin = offset_ray_origin(p, primary.normal);
     const float d1 = primary.found ? light.plane_distance_m(p) : 0.0f;
     const float centre_falloff =
         settings_.cosine_falloff && primary.found ? falloff(light, p, primary.normal, light.center) : 0.0f;
@@ -287,8 +300,8 @@ Renderer::CentreShadow Renderer::trace_centre_shadow(const PrimaryHit &primary) 
         shadow.visible = false;  // the surface itself faces away: an attached shadow
         return shadow;
     }
-    const Vec3 origin = offset_origin(primary.position, primary.normal);
-    const Hit hit = bvh_.intersect(origin, target - origin, 0.0f, kShadowRayReach);
+    const Vec3 origin = offset_ray_origin(primary.position, primary.normal);
+    const Hit hit = rays_.closest_hit(origin, target - origin, 0.0f, kShadowRayReach);
     if (hit.found) {
         shadow.visible = false;
         shadow.occluder_m = hit.distance * length(target - origin);
@@ -298,8 +311,8 @@ Renderer::CentreShadow Renderer::trace_centre_shadow(const PrimaryHit &primary) 
 
 Renderer::SecondaryHit Renderer::trace_secondary(const PrimaryHit &primary, Vec3 direction) const {
     SecondaryHit seen;
-    const Vec3 origin = offset_origin(primary.position, primary.normal);
-    const Hit hit = bvh_.intersect(origin, direction, 0.0f, std::numeric_limits<float>::infinity());
+    const Vec3 origin = offset_ray_origin(primary.position, primary.normal);
+    const Hit hit = rays_.closest_hit(origin, direction, 0.0f, std::numeric_limits<float>::infinity());
     if (!hit.found) return seen;
     const Vec3 point = origin + direction * hit.distance;
     Vec3 n = normalize(hit.geometric_normal);

@@ -2,18 +2,20 @@
 
 #include <cstdint>
 #include <limits>
+#include <memory>
 #include <vector>
 
 #include "aaf/trace/render.h"
-#include "embree_scene.h"
 #include "light_sample.h"
 #include "light_sampler.h"
 #include "random.h"
+#include "ray_queries.h"
 #include "scene_description.h"
 
 namespace aaf::trace {
 
 class AovAccumulator;
+class EmbreeScene;
 
 /// What the central (pinhole) primary ray through a pixel's centre sees.
 struct PrimaryHit {
@@ -92,20 +94,32 @@ struct ShadowStats {
     }
 };
 
-/// How visibility-only key-light shadow rays go to Embree: one at a time
-/// (rtcOccluded1), in packets of up to 16 of a pixel's rays (rtcOccluded16),
+/// How a Renderer's own EmbreeScene sends visibility-only key-light shadow
+/// rays to Embree: one at a time (rtcOccluded1), in packets of up to 16 of a pixel's rays (rtcOccluded16),
 /// or Automatic: packets for renders of a round or more (a reference's
 /// high-quality BVH, where they measured faster). Every choice gives the same
 /// answers; only the speed differs.
 enum class ShadowRayGrouping { Automatic, Single, Packets };
 
-/// Traces primary and shadow rays of one scene (thread-safe, const).
+/// Traces primary and shadow rays of one scene and shades their hits
+/// (thread-safe, const). Every ray goes through a RayQueries backend: its
+/// own EmbreeScene, or one it is given.
 class Renderer {
   public:
+    /// Over an EmbreeScene of its own: a high-quality BVH for renders of a
+    /// round or more, shadow rays grouped as `grouping` says.
     Renderer(const SceneDescription &scene, const RenderSettings &settings,
              ShadowRayGrouping grouping = ShadowRayGrouping::Automatic);
+    /// Over `rays`, which must outlive it.
+    Renderer(const SceneDescription &scene, const RenderSettings &settings, const RayQueries &rays);
+    ~Renderer();
+    Renderer(const Renderer &) = delete;
+    Renderer &operator=(const Renderer &) = delete;
 
     PrimaryHit trace_primary(int x, int y) const;
+    /// trace_primary() of pixels [x_begin, x_end) of row y into
+    /// primaries[x - x_begin], their camera rays in one batch.
+    void trace_primaries(int y, int x_begin, int x_end, PrimaryHit *primaries) const;
 
     /// Traces `count` samples of pass `pass`, stratified among themselves,
     /// and adds them to `stats` and to each of `listeners` (add_sample with
@@ -120,7 +134,8 @@ class Renderer {
     /// True when the beauty is not r(x) times the key light's visibility.
     bool has_separate_radiance() const { return scene_.lights.size() > 1 || scene_.camera.is_thin_lens(); }
 
-    const EmbreeScene &bvh() const { return bvh_; }
+    /// The backend every ray goes through.
+    const RayQueries &rays() const { return rays_; }
 
     /// ISG's hard shadow (Sec. 3.1): one ray from the primary hit to the key
     /// light's centre. visible, or the distance from the hit to the first
@@ -144,6 +159,10 @@ class Renderer {
     bool light_point_blocked(const PrimaryHit &primary, Vec3 light_point) const;
 
   private:
+    Renderer(const SceneDescription &scene, const RenderSettings &settings,
+             std::unique_ptr<EmbreeScene> owned);
+    /// The primary hit of pixel (x, y) from its camera ray's closest hit.
+    PrimaryHit primary_from(const Hit &hit, int x, int y) const;
     float pixel_footprint(const PrimaryHit &primary, int x, int y) const;
     /// Geometric factor cos(receiver) cos(light) / r^2 from `p` (normal `n`) to a light point.
     float falloff(const LightPlane &light, Vec3 p, Vec3 n, Vec3 light_point) const;
@@ -169,9 +188,9 @@ class Renderer {
     void trace_key_light(const PrimaryHit &primary, Vec3 origin, float d1, float centre_falloff,
                          bool occluder_distances, const bool *traced_visibility, LightSample &sample) const;
     /// Visibility-only shadow rays of `count` light points (y_u_m[k],
-    /// y_v_m[k]) from the primary hit's offset `origin`, one at a time or in
-    /// packets (packets_): visible[k], false for a point behind the hit's
-    /// tangent plane (no ray, as in trace_key_light).
+    /// y_v_m[k]) from the primary hit's offset `origin`, in one batched
+    /// RayQueries::occluded() call: visible[k], false for a point behind the
+    /// hit's tangent plane (no ray, as in trace_key_light).
     void trace_visibility_batch(const PrimaryHit &primary, Vec3 origin, std::uint32_t count,
                                 const float *y_u_m, const float *y_v_m, bool *visible) const;
     /// The radiance `sample` traces apart from r(x) V(x): the other lights'
@@ -186,9 +205,9 @@ class Renderer {
 
     const SceneDescription &scene_;
     const RenderSettings &settings_;
-    EmbreeScene bvh_;
+    std::unique_ptr<EmbreeScene> owned_rays_;  ///< the backend, when the renderer built it
+    const RayQueries &rays_;
     std::vector<LightSampler> light_samplers_;
-    bool packets_ = false;  ///< visibility-only key light rays in packets (trace_visibility_batch)
 };
 
 }  // namespace aaf::trace

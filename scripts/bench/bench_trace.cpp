@@ -80,8 +80,10 @@ std::string write_dense_mesh_scene() {
 struct Fixture {
     SceneDescription scene;
     RenderSettings settings;
-    std::unique_ptr<Renderer> renderer;
-    std::unique_ptr<Renderer> packet_renderer;  ///< the same, visibility rays always in packets
+    /// The renderer's BVH, as Renderer builds its own for a render of kSpp,
+    /// and the same with visibility rays always in packets.
+    std::unique_ptr<EmbreeScene> bvh, packet_bvh;
+    std::unique_ptr<Renderer> renderer, packet_renderer;
     std::vector<PrimaryHit> primaries;
     std::vector<Ray> rays;
     std::size_t triangles = 0;
@@ -89,12 +91,6 @@ struct Fixture {
     /// pays per ray, not the inverse-CDF table's construction.
     std::unique_ptr<LightSampler> sampler;
 };
-
-/// Offsets along the normal exactly as renderer.cpp does.
-Vec3 offset_origin(Vec3 p, Vec3 n) {
-    const float epsilon = 1e-4f * (1.0f + std::max({std::fabs(p.x), std::fabs(p.y), std::fabs(p.z)}));
-    return p + n * epsilon;
-}
 
 /// Calls `emit` with every shadow ray the sample loop of
 /// Renderer::trace_shadows (pass 0) traces, in the same order.
@@ -108,7 +104,7 @@ void for_each_shadow_ray(const Fixture &f, const Emit &emit) {
             PixelRng rng(f.settings.seed, std::uint64_t(y) * kWidth + x, 0);
             const std::uint32_t key = rng.next_u32();
             const StratifiedGrid strata(kSpp);
-            const Vec3 origin = offset_origin(primary.position, primary.normal);
+            const Vec3 origin = offset_ray_origin(primary.position, primary.normal);
             // As the tracer: the batch's unit points, then the warp over the batch (the same bits
             // as LightSampler::point one at a time), then the rays.
             std::array<float, kSpp> s, t, u_m, v_m;
@@ -141,8 +137,11 @@ Fixture &fixture(const std::string &scene_name) {
     f.settings.width = kWidth;
     f.settings.height = kHeight;
     f.settings.spp = kSpp;
-    f.renderer = std::make_unique<Renderer>(f.scene, f.settings);
-    f.packet_renderer = std::make_unique<Renderer>(f.scene, f.settings, ShadowRayGrouping::Packets);
+    const bool reference = f.settings.spp >= kSamplesPerRound;
+    f.bvh = std::make_unique<EmbreeScene>(f.scene, reference);
+    f.packet_bvh = std::make_unique<EmbreeScene>(f.scene, reference, true, true);
+    f.renderer = std::make_unique<Renderer>(f.scene, f.settings, *f.bvh);
+    f.packet_renderer = std::make_unique<Renderer>(f.scene, f.settings, *f.packet_bvh);
     f.sampler = std::make_unique<LightSampler>(f.scene.key_light());
     for (int y = 0; y < kHeight; ++y)
         for (int x = 0; x < kWidth; ++x) f.primaries.push_back(f.renderer->trace_primary(x, y));
@@ -297,7 +296,7 @@ void set_flush_to_zero(bool on) {
 void BM_Throughput(benchmark::State &state, const std::string &scene_name) {
     Fixture &f = fixture(scene_name);
     set_flush_to_zero(true);
-    const RTCScene scene = f.renderer->bvh().handle();
+    const RTCScene scene = f.bvh->handle();
     double tracer_s = 0, tracer_visibility_s = 0, tracer_packets_s = 0, occluded_s = 0, intersect_s = 0,
            sampling_s = 0;
     std::size_t tracer_rays = 0;
@@ -347,7 +346,7 @@ void BM_Throughput(benchmark::State &state, const std::string &scene_name) {
 void BM_Packets(benchmark::State &state, const std::string &scene_name) {
     Fixture &f = fixture(scene_name);
     set_flush_to_zero(true);
-    const RTCScene scene = f.renderer->bvh().handle();
+    const RTCScene scene = f.bvh->handle();
     double single_s = 0, p4_s = 0, p8_s = 0, p16_s = 0, intersect1_s = 0, intersect16_s = 0;
     for (auto _ : state) {
         auto start = ThreadCpuClock::now();

@@ -193,7 +193,7 @@ TEST_CASE("Ratio: E[S_N] (MIS of light and GGX samples) equals an independent ar
                 int seeds = 0, hits = 0;
                 for (; seeds < kSeeds || (hits < kMinHits && seeds < kMaxSeeds); ++seeds) {
                     const trace::RatioLayers layers = trace::trace_ratio_layers(
-                        renderer, scene, primary, light, 4, std::uint64_t(seeds), 0);
+                        renderer.rays(), scene, primary, light, 4, std::uint64_t(seeds), 0);
                     sum += layers.shadowed.x;
                     sum_sq += double(layers.shadowed.x) * layers.shadowed.x;
                     if (layers.shadowed.x > 0) ++hits;
@@ -288,8 +288,9 @@ TEST_CASE(
                 reference *= double(emitter.plane.width_m) * emitter.plane.height_m / (double(kGrid) * kGrid);
                 if (!(reference > 0)) continue;
                 for (int k = 0; k < 4; ++k) {
-                    const trace::RatioLayers layers = trace::trace_ratio_layers(
-                        renderer, scene, primary, light, spps[k], settings.seed, std::uint64_t(y * 100 + x));
+                    const trace::RatioLayers layers =
+                        trace::trace_ratio_layers(renderer.rays(), scene, primary, light, spps[k],
+                                                  settings.seed, std::uint64_t(y * 100 + x));
                     squared[k] += (layers.unshadowed.x - reference) * (layers.unshadowed.x - reference);
                 }
                 sum_reference += reference;

@@ -1,9 +1,7 @@
-#include <tbb/blocked_range.h>
-#include <tbb/parallel_for.h>
-
 #include <cmath>
 
 #include "aaf/core/error.h"
+#include "aaf/core/parallel.h"
 #include "aov_groups.h"
 #include "random.h"
 #include "stratified_grid.h"
@@ -63,47 +61,46 @@ class IsgGroup final : public AovAccumulator {
         const StratifiedGrid strata(std::uint32_t(std::max(1, state.spp)));
         // Each pixel is written by one call and draws its own random numbers, so
         // the result does not depend on the schedule.
-        tbb::parallel_for(tbb::blocked_range<int>(0, state.height), [&](const tbb::blocked_range<int> &rows) {
-            for (int y = rows.begin(); y != rows.end(); ++y)
-                for (int x = 0; x < state.width; ++x) {
-                    const std::size_t i = std::size_t(y) * std::size_t(state.width) + std::size_t(x);
-                    const PrimaryHit &primary = state.primaries[i];
-                    hard[0](x, y) = 1.0f;
-                    if (!primary.found) continue;
-                    // The key light only (a pinhole's other lights are in otherlights.*).
-                    set3(pinhole, x, y, primary.unshadowed * state.stats[i].visibility());
-                    const Renderer::CentreShadow shadow = renderer.trace_centre_shadow(primary);
-                    hard[0](x, y) = shadow.visible ? 1.0f : 0.0f;
-                    occluder[0](x, y) = shadow.occluder_m;
+        parallel_for_rows(state.height, [&](int y) {
+            for (int x = 0; x < state.width; ++x) {
+                const std::size_t i = std::size_t(y) * std::size_t(state.width) + std::size_t(x);
+                const PrimaryHit &primary = state.primaries[i];
+                hard[0](x, y) = 1.0f;
+                if (!primary.found) continue;
+                // The key light only (a pinhole's other lights are in otherlights.*).
+                set3(pinhole, x, y, primary.unshadowed * state.stats[i].visibility());
+                const Renderer::CentreShadow shadow = renderer.trace_centre_shadow(primary);
+                hard[0](x, y) = shadow.visible ? 1.0f : 0.0f;
+                occluder[0](x, y) = shadow.occluder_m;
 
-                    const Vec3 incoming = normalize(primary.position - camera.eye);
-                    const Vec3 mirror = incoming - primary.normal * (2 * dot(incoming, primary.normal));
-                    const Renderer::SecondaryHit seen = renderer.trace_secondary(primary, mirror);
-                    set3(reflection, x, y, seen.radiance);
-                    reflected[0](x, y) = seen.distance_m;
+                const Vec3 incoming = normalize(primary.position - camera.eye);
+                const Vec3 mirror = incoming - primary.normal * (2 * dot(incoming, primary.normal));
+                const Renderer::SecondaryHit seen = renderer.trace_secondary(primary, mirror);
+                set3(reflection, x, y, seen.radiance);
+                reflected[0](x, y) = seen.distance_m;
 
-                    const float theta = primary.mesh->material.theta_max_deg * kPi / 180;
-                    theta_max[0](x, y) = theta;
-                    if (!(theta > 0)) {
-                        set3(glossy, x, y, seen.radiance);
-                        continue;
-                    }
-                    // Uniform in solid angle within theta_max of the mirror direction;
-                    // rays below the surface are absorbed.
-                    PixelRng rng(state.seed ^ kGlossyStream, i, 0);
-                    const std::uint32_t key = rng.next_u32();
-                    const float one_minus_cos_max = 1 - std::cos(theta);
-                    Vec3 sum;
-                    for (std::uint32_t s = 0; s < strata.count(); ++s) {
-                        float u1, u2;
-                        rng.next_float2(u1, u2);
-                        const UnitPoint u = strata.point(s, key, u1, u2);
-                        const Vec3 direction = around(mirror, 1 - u.s * one_minus_cos_max, 2 * kPi * u.t);
-                        if (dot(direction, primary.normal) <= 0) continue;
-                        sum = sum + renderer.trace_secondary(primary, direction).radiance;
-                    }
-                    set3(glossy, x, y, sum / float(strata.count()));
+                const float theta = primary.mesh->material.theta_max_deg * kPi / 180;
+                theta_max[0](x, y) = theta;
+                if (!(theta > 0)) {
+                    set3(glossy, x, y, seen.radiance);
+                    continue;
                 }
+                // Uniform in solid angle within theta_max of the mirror direction;
+                // rays below the surface are absorbed.
+                PixelRng rng(state.seed ^ kGlossyStream, i, 0);
+                const std::uint32_t key = rng.next_u32();
+                const float one_minus_cos_max = 1 - std::cos(theta);
+                Vec3 sum;
+                for (std::uint32_t s = 0; s < strata.count(); ++s) {
+                    float u1, u2;
+                    rng.next_float2(u1, u2);
+                    const UnitPoint u = strata.point(s, key, u1, u2);
+                    const Vec3 direction = around(mirror, 1 - u.s * one_minus_cos_max, 2 * kPi * u.t);
+                    if (dot(direction, primary.normal) <= 0) continue;
+                    sum = sum + renderer.trace_secondary(primary, direction).radiance;
+                }
+                set3(glossy, x, y, sum / float(strata.count()));
+            }
         });
     }
 };

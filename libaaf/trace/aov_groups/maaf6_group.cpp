@@ -1,6 +1,3 @@
-#include <tbb/blocked_range.h>
-#include <tbb/parallel_for.h>
-
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -9,6 +6,7 @@
 #include "../path_sample.h"
 #include "aaf/core/error.h"
 #include "aaf/core/maaf6.h"
+#include "aaf/core/parallel.h"
 #include "aov_groups.h"
 
 namespace aaf::trace {
@@ -23,15 +21,6 @@ constexpr int kPrefilterRadiusPx = 2;  ///< MAAF Sec. 6.2 "Pre-filtering": 5x5
 constexpr float kNormalThresholdDeg = 20;
 constexpr double kIndirectOmegaMax = 2.8;  ///< MAAF Sec. 3 (from AAF-GI), rad per unit tan
 constexpr double kPixelBand = 2.0;         ///< Omega_x^max = 2 / pixel size, maaf.omegax's scale at s = 0
-
-/// Calls body(y) for every row over oneTBB; each pixel is written by one call only, so the
-/// result does not depend on the schedule.
-template <typename Body>
-void parallel_for_rows(int height, const Body &body) {
-    tbb::parallel_for(tbb::blocked_range<int>(0, height), [&](const tbb::blocked_range<int> &rows) {
-        for (int y = rows.begin(); y != rows.end(); ++y) body(y);
-    });
-}
 
 /// One path sample projected on its pixel's tangent frame.
 struct Stored {
@@ -98,7 +87,7 @@ void Maaf6Group::write(const RenderState &state, AovSet &aovs) const {
     const Camera &camera = scene.camera;
     const LightPlane &light = scene.key_light();
     const unsigned effects = effects_;
-    const PathSampler sampler(scene, *state.renderer, effects);
+    const PathSampler sampler(scene, state.renderer->rays(), effects);
     const bool lens = (effects & kMaaf6Defocus) && camera.is_thin_lens();
     const int first_spp = std::min(kFirstPassSpp, state.spp);
 

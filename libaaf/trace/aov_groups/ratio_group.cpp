@@ -1,6 +1,3 @@
-#include <tbb/blocked_range.h>
-#include <tbb/parallel_for.h>
-
 #include <algorithm>
 #include <optional>
 #include <string>
@@ -8,6 +5,7 @@
 
 #include "../ratio_sampling.h"
 #include "aaf/core/error.h"
+#include "aaf/core/parallel.h"
 #include "aov_groups.h"
 
 namespace aaf::trace {
@@ -26,16 +24,15 @@ std::vector<RatioLayers> trace_all_ratio_layers(const RenderState &state) {
     std::vector<RatioLayers> layers(std::size_t(state.width) * std::size_t(state.height) * lights);
     const int samples = std::max(1, state.spp);
     // Each pixel draws its own random numbers: the result does not depend on the schedule.
-    tbb::parallel_for(tbb::blocked_range<int>(0, state.height), [&](const tbb::blocked_range<int> &rows) {
-        for (int y = rows.begin(); y != rows.end(); ++y)
-            for (int x = 0; x < state.width; ++x) {
-                const std::size_t pixel = std::size_t(y) * std::size_t(state.width) + std::size_t(x);
-                const PrimaryHit &primary = state.primaries[pixel];
-                if (!primary.found) continue;
-                for (std::size_t l = 0; l < lights; ++l)
-                    layers[pixel * lights + l] = trace_ratio_layers(*state.renderer, state.scene, primary, l,
-                                                                    samples, state.seed, pixel);
-            }
+    parallel_for_rows(state.height, [&](int y) {
+        for (int x = 0; x < state.width; ++x) {
+            const std::size_t pixel = std::size_t(y) * std::size_t(state.width) + std::size_t(x);
+            const PrimaryHit &primary = state.primaries[pixel];
+            if (!primary.found) continue;
+            for (std::size_t l = 0; l < lights; ++l)
+                layers[pixel * lights + l] = trace_ratio_layers(state.renderer->rays(), state.scene, primary,
+                                                                l, samples, state.seed, pixel);
+        }
     });
     return layers;
 }

@@ -1,9 +1,6 @@
 #include "aaf/core/occluder_fill.h"
 
-#include <tbb/blocked_range.h>
 #include <tbb/enumerable_thread_specific.h>
-#include <tbb/parallel_for.h>
-#include <tbb/partitioner.h>
 #include <tbb/task_arena.h>
 
 #include <algorithm>
@@ -13,6 +10,7 @@
 #include <vector>
 
 #include "aaf/core/occluder_fill_rows.h"
+#include "aaf/core/parallel.h"
 
 namespace aaf {
 
@@ -183,12 +181,7 @@ FilledOccluders fill_occluder_distances(ConstPlaneView d2_min, ConstPlaneView d2
             detail::search_occluder_row(search, y, ids, out_min, out_max);
         }
     };
-    tbb::parallel_for(
-        tbb::blocked_range<int>(0, bands, 1),
-        [&](const tbb::blocked_range<int> &range) {
-            for (int b = range.begin(); b != range.end(); ++b) fill_band(b);
-        },
-        tbb::simple_partitioner());
+    parallel_for_each_index(bands, fill_band);
     return filled;
 }
 

@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <optional>
 #include <vector>
 
 #include "../builtin_methods.h"
@@ -111,24 +112,17 @@ class IsgDofMethod final : public Method {
                 const float gather_px = clamp_radius(float(coc_sum / weight_sum), common.max_radius_px);
                 // Gather: ISG Eq. 17 keeps a sharper foreground tap from bleeding
                 // over a blurred pixel behind it (weight its own small radius).
-                double weight = 0, sum[3] = {0, 0, 0};
-                for (const Tap &tap : gather) {
-                    int sx, sy;
-                    if (!tap_pixel(x, y, tap, gather_px, width, height, sx, sy)) continue;
+                auto tap_weight = [&](int sx, int sy, const Tap &) -> std::optional<float> {
                     const float zi = depth(sx, sy);
-                    const Vec3 colour = sharp(sx, sy);
-                    if (std::isnan(zi) || !all_finite(colour)) continue;
+                    if (std::isnan(zi)) return std::nullopt;
                     const float ci = coc(zi);
                     const float in_front =
                         ci < c0 ? smoothstep(transition, -relative_depth_behind(zi, z0)) : 0.0f;
-                    const float w = coc_inf_px + in_front * (ci - coc_inf_px);  // ISG Eq. 17, smoothed
-                    weight += w;
-                    sum[0] += double(w) * colour.x;
-                    sum[1] += double(w) * colour.y;
-                    sum[2] += double(w) * colour.z;
-                }
-                if (weight > 0)
-                    for (int c = 0; c < 3; ++c) out[c](x, y) = float(sum[c] / weight);
+                    return coc_inf_px + in_front * (ci - coc_inf_px);  // ISG Eq. 17, smoothed
+                };
+                Vec3 mean;
+                if (gather_colour(sharp, gather, x, y, gather_px, width, height, tap_weight, mean))
+                    for (int c = 0; c < 3; ++c) out[c](x, y) = mean[c];
             }
         });
         progress.report(0.95);

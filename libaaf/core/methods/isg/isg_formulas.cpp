@@ -3,29 +3,13 @@
 #include <cstdint>
 #include <limits>
 
+#include "aaf/core/concentric_disc.h"
 #include "aaf/core/error.h"
 #include "aaf/core/isg.h"
 
 namespace aaf::isg {
 
 namespace {
-
-constexpr float kPi = 3.14159265358979323846f;
-
-/// Shirley and Chiu's concentric map of [-1, 1]^2 onto the unit disc (the
-/// square-to-disc mapping ISG Sec. 4 passes its grid through).
-Tap concentric_disc(float a, float b) {
-    if (a == 0 && b == 0) return {0, 0};
-    float r, phi;
-    if (std::fabs(a) > std::fabs(b)) {
-        r = a;
-        phi = (kPi / 4) * (b / a);
-    } else {
-        r = b;
-        phi = (kPi / 2) - (kPi / 4) * (a / b);
-    }
-    return {r * std::cos(phi), r * std::sin(phi)};
-}
 
 /// A fixed jitter in [-0.5, 0.5) from a cell index (SplitMix64's finaliser).
 float hashed_jitter(std::uint64_t key) {
@@ -56,10 +40,12 @@ std::vector<Tap> tap_set(int count, TapShape shape, TapPattern pattern, float ha
                 v += hashed_jitter(2 * cell + 1);
             }
             const float a = 2 * u / float(k) - 1, b = 2 * v / float(k) - 1;  // [-1, 1]^2
-            if (shape == TapShape::Disk)
-                taps.push_back(concentric_disc(a, b));
-            else
+            if (shape == TapShape::Disk) {
+                const DiscPoint d = concentric_disc(a, b);
+                taps.push_back({d.x, d.y});
+            } else {
                 taps.push_back({a * half_width / scale, b * half_height / scale});
+            }
         }
     return taps;
 }

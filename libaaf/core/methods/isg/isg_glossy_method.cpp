@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <optional>
 #include <vector>
 
 #include "../builtin_methods.h"
@@ -101,22 +102,16 @@ class IsgGlossyMethod final : public Method {
                 const float cos_incident = std::fabs(dot(n0, to_eye)) / eye_distance_m;
                 const float gather_px =
                     clamp_radius(alpha * px_per_rad * cos_incident, common.max_radius_px);  // ISG Eq. 14
-                double weight = 0, sum[3] = {0, 0, 0};
-                for (const Tap &tap : gather) {
-                    int sx, sy;
-                    if (!tap_pixel(x, y, tap, gather_px, width, height, sx, sy)) continue;
-                    const Vec3 colour = reflection(sx, sy);
+                auto tap_weight = [&](int sx, int sy, const Tap &tap) -> std::optional<float> {
                     // Gaussian: standard deviation half the radius, exp(-r^2 / (2 (R/2)^2)).
                     const float spatial = gaussian ? std::exp(-2 * (tap.x * tap.x + tap.y * tap.y)) : 1.0f;
                     const float w = spatial * range(sx, sy, p0, n0);
-                    if (!all_finite(colour) || !std::isfinite(w)) continue;
-                    weight += w;
-                    sum[0] += double(w) * colour.x;
-                    sum[1] += double(w) * colour.y;
-                    sum[2] += double(w) * colour.z;
-                }
-                if (weight > 0)
-                    for (int c = 0; c < 3; ++c) out[c](x, y) = float(sum[c] / weight);
+                    if (!std::isfinite(w)) return std::nullopt;
+                    return w;
+                };
+                Vec3 mean;
+                if (gather_colour(reflection, gather, x, y, gather_px, width, height, tap_weight, mean))
+                    for (int c = 0; c < 3; ++c) out[c](x, y) = mean[c];
             }
         });
         progress.report(0.95);

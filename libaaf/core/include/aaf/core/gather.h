@@ -58,6 +58,8 @@ enum class GatherMode {
     Full2D,     ///< every tap of the square window (AAF Eq. 10 directly)
 };
 
+class GatherBackend;
+
 struct GatherSettings {
     /// Taps whose unit normal makes an angle above this with the centre's are
     /// rejected (AAF Sec. 6 "check on normal variation"); degrees, [0, 180].
@@ -67,6 +69,8 @@ struct GatherSettings {
     /// centred on the pixel (unbiased on a linear gradient); false keeps the
     /// window cut on the edge side only.
     bool symmetric_borders = false;
+    /// Where the sweeps run; null = the CPU (cpu_gather_backend()).
+    const GatherBackend *backend = nullptr;
 
     /// Throws aaf::Error naming a setting out of range.
     void validate() const;
@@ -119,5 +123,39 @@ void gather_modulated(const GatherGuides &guides, const GatherSettings &settings
                       const std::vector<ConstPlaneView> &sources, const std::vector<PlaneView> &outputs,
                       const AxisModulation &along_u, const AxisModulation &along_v,
                       GatherNormalisation normalisation);
+
+/// One sweep of a gather over the whole image (gather() runs one or two,
+/// gather_modulated() one): every centre pixel with radius_px > 0 sums its
+/// accepted taps along the enabled axes, as gather() documents; the others
+/// copy their source. Planes are contiguous, row-major, the guides' size.
+struct GatherSweepRequest {
+    const GatherGuides *guides = nullptr;
+    float cos_threshold = 1;  ///< cosine of GatherSettings::normal_threshold_deg
+    bool symmetric_borders = false;
+    bool along_x = true, along_y = true;
+    /// gather_modulated()'s per-axis factors of the tap weight; both null in
+    /// gather()'s sweeps, both set in gather_modulated()'s.
+    const AxisModulation *modulation_u = nullptr, *modulation_v = nullptr;
+    bool normalise = true;  ///< divide by the weight sum (false: GatherNormalisation::None)
+    std::size_t channels = 0;
+    const float *const *sources = nullptr;  ///< `channels` planes, read
+    float *const *outputs = nullptr;        ///< `channels` planes, written (none aliases a source)
+};
+
+/// What runs a gather's sweeps: the seam between the methods' gathers and
+/// the hardware. gather() and gather_modulated() check their arguments,
+/// split a separable gather into its two sweeps and stage the planes, then
+/// hand each sweep to GatherSettings::backend. A backend gives every pixel
+/// the same bits whatever the thread count.
+class GatherBackend {
+  public:
+    virtual ~GatherBackend() = default;
+    virtual void sweep(const GatherSweepRequest &request) const = 0;
+};
+
+/// The CPU's backend: Highway SIMD rows for gather()'s sweeps (gather()'s
+/// bits on each kind of instruction set), scalar loops for the modulated
+/// ones, rows in parallel on the current oneTBB arena.
+const GatherBackend &cpu_gather_backend();
 
 }  // namespace aaf
