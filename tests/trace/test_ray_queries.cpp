@@ -80,7 +80,7 @@ AovSet write_groups(const Fixture &f, const Renderer &renderer, const std::vecto
     const RenderState state{f.scene,          f.scene.camera,    primaries, stats,          false,
                             f.settings.width, f.settings.height, &renderer, f.settings.spp, f.settings.seed};
     AovSet aovs(f.settings.width, f.settings.height);
-    for (const auto &group : make_aov_accumulators(kAovIsg | kAovRatio | kAovMaaf6))
+    for (const auto &group : make_aov_accumulators(AovGroups{"isg", "ratio", "maaf6"}))
         group->write(state, aovs);
     return aovs;
 }
