@@ -65,24 +65,15 @@ std::vector<float> ssim_map(std::vector<float> a, std::vector<float> b, int widt
     return map;
 }
 
-}  // namespace
-
-bool rect_within(const PixelRect &rect, int width, int height) {
-    using Wide = long long;
-    return rect.width > 0 && rect.height > 0 && rect.x >= 0 && rect.y >= 0 &&
-           Wide(rect.x) + rect.width <= width && Wide(rect.y) + rect.height <= height;
-}
-
-ErrorMetrics compare_images(const AovSet &test, const AovSet &reference, const CompareOptions &options) {
+/// The compared region (the crop, or the whole image), after checking that the
+/// images, their channels, the crop and the mask fit together.
+PixelRect compared_rect(const AovSet &test, const AovSet &reference, const CompareOptions &options) {
     if (test.width() != reference.width() || test.height() != reference.height())
         throw InputError("image sizes differ: " + size_text(test) + " vs " + size_text(reference));
     if (options.channels.empty()) throw Error("no channels to compare");
-    std::vector<ConstPlaneView> a, b;
     for (const std::string &name : options.channels) {
         if (!test.has_channel(name)) throw InputError("test image has no channel '" + name + "'");
         if (!reference.has_channel(name)) throw InputError("reference image has no channel '" + name + "'");
-        a.push_back(test.channel(name));
-        b.push_back(reference.channel(name));
     }
     const int width = test.width(), height = test.height();
     PixelRect rect{0, 0, width, height};
@@ -96,9 +87,15 @@ ErrorMetrics compare_images(const AovSet &test, const AovSet &reference, const C
     if (options.mask.valid() && (options.mask.width != width || options.mask.height != height))
         throw InputError("mask is " + std::to_string(options.mask.width) + "x" +
                          std::to_string(options.mask.height) + ", images are " + size_text(test));
+    return rect;
+}
 
-    std::vector<unsigned char> selected(test.pixel_count(), 0);  // finite and inside crop and mask
-    ErrorMetrics m;
+/// MSE, RMSE, MAE, relMSE and PSNR over the pixels inside `rect` and the mask
+/// whose every channel is finite in both images; marks those pixels in
+/// `selected` (SSIM and FLIP pool the same ones) and counts the others.
+void add_pixel_errors(const std::vector<ConstPlaneView> &a, const std::vector<ConstPlaneView> &b,
+                      const PixelRect &rect, int width, const CompareOptions &options,
+                      std::vector<unsigned char> &selected, ErrorMetrics &m) {
     double sum_sq = 0, sum_abs = 0, sum_rel = 0;
     for (int y = rect.y; y < rect.y + rect.height; ++y)
         for (int x = rect.x; x < rect.x + rect.width; ++x) {
@@ -127,6 +124,56 @@ ErrorMetrics compare_images(const AovSet &test, const AovSet &reference, const C
     m.relmse = count > 0 ? sum_rel / count : nan;
     m.psnr = m.mse > 0 ? 10.0 * std::log10(options.psnr_peak * options.psnr_peak / m.mse)
                        : (m.mse == 0 ? std::numeric_limits<double>::infinity() : nan);
+}
+
+/// FLIP (HDR or LDR, as the options say) of the RGB planes `a` against the
+/// reference `b`, pooled over the selected pixels.
+FlipSummary pooled_flip(const std::vector<ConstPlaneView> &a, const std::vector<ConstPlaneView> &b, int width,
+                        int height, const CompareOptions &options,
+                        const std::vector<unsigned char> &selected) {
+    // Non-finite values would spread through FLIP's filters: zero them (those pixels are not pooled).
+    std::array<std::vector<float>, 3> a_rgb, b_rgb;
+    RgbPlanes a_view, b_view;
+    for (int c = 0; c < 3; ++c) {
+        a_rgb[c].resize(std::size_t(width) * height);
+        b_rgb[c].resize(std::size_t(width) * height);
+        for (int y = 0; y < height; ++y)
+            for (int x = 0; x < width; ++x) {
+                const std::size_t i = std::size_t(y) * width + x;
+                a_rgb[c][i] = std::isfinite(a[c](x, y)) ? a[c](x, y) : 0.0f;
+                b_rgb[c][i] = std::isfinite(b[c](x, y)) ? b[c](x, y) : 0.0f;
+            }
+        a_view[c] = plane_view(a_rgb[c].data(), width, height);
+        b_view[c] = plane_view(b_rgb[c].data(), width, height);
+    }
+    FlipParams flip_params;
+    flip_params.pixels_per_degree = options.flip_pixels_per_degree;
+    const std::vector<float> map = options.flip == CompareOptions::Flip::Hdr
+                                       ? hdr_flip(b_view, a_view, flip_params)
+                                       : ldr_flip(b_view, a_view, flip_params);
+    return summarize_flip(map, selected);
+}
+
+}  // namespace
+
+bool rect_within(const PixelRect &rect, int width, int height) {
+    using Wide = long long;
+    return rect.width > 0 && rect.height > 0 && rect.x >= 0 && rect.y >= 0 &&
+           Wide(rect.x) + rect.width <= width && Wide(rect.y) + rect.height <= height;
+}
+
+ErrorMetrics compare_images(const AovSet &test, const AovSet &reference, const CompareOptions &options) {
+    const PixelRect rect = compared_rect(test, reference, options);
+    std::vector<ConstPlaneView> a, b;
+    for (const std::string &name : options.channels) {
+        a.push_back(test.channel(name));
+        b.push_back(reference.channel(name));
+    }
+    const int width = test.width(), height = test.height();
+    std::vector<unsigned char> selected(test.pixel_count(), 0);  // finite and inside crop and mask
+    ErrorMetrics m;
+    add_pixel_errors(a, b, rect, width, options, selected, m);
+    const double nan = std::numeric_limits<double>::quiet_NaN();
     m.ssim = nan;
     if (options.compute_ssim && m.pixels > 0) {
         const std::vector<float> map = ssim_map(luminance(test, options.channels),
@@ -139,27 +186,7 @@ ErrorMetrics compare_images(const AovSet &test, const AovSet &reference, const C
     m.flip_mean = m.flip_weighted_median = nan;
     if (options.flip != CompareOptions::Flip::Off && m.pixels > 0) {
         if (options.channels.size() != 3) throw Error("FLIP needs three (RGB) channels");
-        // Non-finite values would spread through FLIP's filters: zero them (those pixels are not pooled).
-        std::array<std::vector<float>, 3> a_rgb, b_rgb;
-        RgbPlanes a_view, b_view;
-        for (int c = 0; c < 3; ++c) {
-            a_rgb[c].resize(test.pixel_count());
-            b_rgb[c].resize(test.pixel_count());
-            for (int y = 0; y < height; ++y)
-                for (int x = 0; x < width; ++x) {
-                    const std::size_t i = std::size_t(y) * width + x;
-                    a_rgb[c][i] = std::isfinite(a[c](x, y)) ? a[c](x, y) : 0.0f;
-                    b_rgb[c][i] = std::isfinite(b[c](x, y)) ? b[c](x, y) : 0.0f;
-                }
-            a_view[c] = plane_view(a_rgb[c].data(), width, height);
-            b_view[c] = plane_view(b_rgb[c].data(), width, height);
-        }
-        FlipParams flip_params;
-        flip_params.pixels_per_degree = options.flip_pixels_per_degree;
-        const std::vector<float> map = options.flip == CompareOptions::Flip::Hdr
-                                           ? hdr_flip(b_view, a_view, flip_params)
-                                           : ldr_flip(b_view, a_view, flip_params);
-        const FlipSummary pooled = summarize_flip(map, selected);
+        const FlipSummary pooled = pooled_flip(a, b, width, height, options, selected);
         m.flip_mean = pooled.mean;
         m.flip_weighted_median = pooled.weighted_median;
     }

@@ -7,6 +7,7 @@
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
+#include <utility>
 
 #include "aaf/core/error.h"
 #include "aaf/io/exr_io.h"
@@ -44,28 +45,21 @@ bool draw_label(std::vector<float> &pixels, int width, int height, int x, int y,
     return ok;
 }
 
-}  // namespace
+/// Whether pixel (x, y) of the crop is compared: every pixel without a mask.
+struct ComparedPixels {
+    const ConstPlaneView &mask;
+    PixelRect rect;
+    bool operator()(int x, int y) const { return !mask.valid() || mask(rect.x + x, rect.y + y) != 0; }
+};
 
-std::string heatmap_exr_path(const std::string &png_path) {
-    return std::filesystem::path(png_path).replace_extension(".exr").string();
-}
-
-float write_error_heatmap(const AovSet &test, const AovSet &reference, const CompareOptions &region,
-                          const std::string &png_path) {
-    if (test.width() != reference.width() || test.height() != reference.height())
-        throw Error(png_path + ": heatmap images differ in size");
-    if (heatmap_exr_path(png_path) == png_path)
-        throw Error(png_path + ": the heatmap PNG needs a name that does not end in .exr");
-    const PixelRect rect = region.crop.value_or(PixelRect{0, 0, test.width(), test.height()});
-    if (!rect_within(rect, test.width(), test.height()))
-        throw InputError(png_path + ": the crop lies outside the image");
-    const ConstPlaneView &mask = region.mask;
-    if (mask.valid() && (mask.width != test.width() || mask.height != test.height()))
-        throw Error(png_path + ": the mask differs in size from the images");
-    const int width = rect.width, height = rect.height;
-    auto compared = [&](int x, int y) { return !mask.valid() || mask(rect.x + x, rect.y + y) != 0; };
-
-    AovSet errors(width, height);
+/// Adds "error.rms" (the per-pixel RMS over the region's channels, 0 outside
+/// the mask) and, with a mask, "error.compared" to `errors`; returns the
+/// colour scale: the 99th percentile of the finite compared errors, so a few
+/// fireflies do not wash out the map (1 when there are none above 0).
+float add_rms_errors(const AovSet &test, const AovSet &reference, const CompareOptions &region,
+                     const ComparedPixels &compared, AovSet &errors) {
+    const int width = errors.width(), height = errors.height();
+    const PixelRect &rect = compared.rect;
     PlaneView error = errors.add_channel("error.rms");
     for (const std::string &name : region.channels) {
         const ConstPlaneView a = test.channel(name), b = reference.channel(name);
@@ -87,15 +81,23 @@ float write_error_heatmap(const AovSet &test, const AovSet &reference, const Com
         std::nth_element(finite.begin(), nth, finite.end());
         scale = *nth > 0 ? *nth : 1.0f;
     }
-    if (mask.valid()) {
+    if (compared.mask.valid()) {
         PlaneView selected = errors.add_channel("error.compared");
         for (int y = 0; y < height; ++y)
             for (int x = 0; x < width; ++x) selected(x, y) = compared(x, y) ? 1.0f : 0.0f;
     }
+    return scale;
+}
 
+/// The PNG's interleaved RGB pixels: the false-coloured `error` (black where
+/// not compared, white where not finite), a colour bar to its right and, when
+/// the image is tall enough, the bar's labels. Sets `png_width`.
+std::vector<float> heatmap_pixels(const ConstPlaneView &error, const ComparedPixels &compared, float scale,
+                                  int &png_width) {
+    const int width = error.width, height = error.height;
     const bool labels = height >= kLabelMinHeightPx;
     const int bar_x = width + kBarGapPx;
-    const int png_width = bar_x + kBarWidthPx + (labels ? kBarGapPx + kLabelWidthPx : 0);
+    png_width = bar_x + kBarWidthPx + (labels ? kBarGapPx + kLabelWidthPx : 0);
     std::vector<float> rgb(std::size_t(png_width) * height * 3, 0.0f);
     auto put = [&](int x, int y, Vec3 c) {
         float *p = &rgb[(std::size_t(y) * png_width + x) * 3];
@@ -120,11 +122,39 @@ float write_error_heatmap(const AovSet &test, const AovSet &reference, const Com
                    OIIO::ImageBufAlgo::TextAlignY::Top);
         draw_label(rgb, png_width, height, label_x, height - 1, "0", OIIO::ImageBufAlgo::TextAlignY::Bottom);
     }
+    return rgb;
+}
+
+}  // namespace
+
+std::string heatmap_exr_path(const std::string &png_path) {
+    return std::filesystem::path(png_path).replace_extension(".exr").string();
+}
+
+float write_error_heatmap(const AovSet &test, const AovSet &reference, const CompareOptions &region,
+                          const std::string &png_path) {
+    if (test.width() != reference.width() || test.height() != reference.height())
+        throw Error(png_path + ": heatmap images differ in size");
+    if (heatmap_exr_path(png_path) == png_path)
+        throw Error(png_path + ": the heatmap PNG needs a name that does not end in .exr");
+    const PixelRect rect = region.crop.value_or(PixelRect{0, 0, test.width(), test.height()});
+    if (!rect_within(rect, test.width(), test.height()))
+        throw InputError(png_path + ": the crop lies outside the image");
+    const ConstPlaneView &mask = region.mask;
+    if (mask.valid() && (mask.width != test.width() || mask.height != test.height()))
+        throw Error(png_path + ": the mask differs in size from the images");
+    const ComparedPixels compared{mask, rect};
+
+    AovSet errors(rect.width, rect.height);
+    const float scale = add_rms_errors(test, reference, region, compared, errors);
+    int png_width = 0;
+    const std::vector<float> rgb =
+        heatmap_pixels(std::as_const(errors).channel("error.rms"), compared, scale, png_width);
 
     const std::string description = "RMS error over " + std::to_string(region.channels.size()) +
                                     " channels, colour bar 0 to " + short_number(scale) +
                                     (mask.valid() ? ", masked-out pixels black" : "");
-    OIIO::ImageSpec png_spec(png_width, height, 3, OIIO::TypeDesc::UINT8);
+    OIIO::ImageSpec png_spec(png_width, rect.height, 3, OIIO::TypeDesc::UINT8);
     png_spec.attribute("ImageDescription", description);
     write_image_atomically(png_path, "png", png_spec, rgb.data());
 

@@ -53,30 +53,11 @@ const float *row_of(ConstPlaneView view, int y, std::vector<float> &buffer) {
     return buffer.data();
 }
 
-}  // namespace
-
-GatherGuides aaf_gather_guides(const AafInputs &in, const LightPlane &light, const AafParams &params,
-                               PlaneView beta_m) {
-    check_inputs(in, light, params);
-    if (beta_m.valid() && (beta_m.width != in.visibility.width || beta_m.height != in.visibility.height))
-        throw Error("AAF output 'beta' has another size");
-    // AAF Sec. 6: unoccluded pixels take the occluder distances of their neighbours.
-    // Filled before the guides exist, so the search's scratch planes never coexist with them.
-    const FilledOccluders occluders =
-        fill_occluder_distances(in.d2_min, in.d2_max, in.object_id, params.fill_radius_px);
-    // Sized without zero-filling: the guide rows below write every pixel of every plane.
-    GatherGuides guides;
-    guides.allocate(in.visibility.width, in.visibility.height);
-    const std::size_t count = std::size_t(guides.width) * std::size_t(guides.height);
+/// What every pixel's guide row shares: the light's frame and variances, the
+/// band-limit, the parameters, and which optional guide planes are written.
+detail::AafGuideConstants guide_constants(const AafInputs &in, const LightPlane &light,
+                                          const AafParams &params) {
     const LightBandlimitAxes bandlimit_sigma_m = aaf_light_sigmas_m(light, params);
-    // One band-limit per light axis: the Gaussian is anisotropic in the light's plane.
-    const bool anisotropic = bandlimit_sigma_m.u_m != bandlimit_sigma_m.v_m;
-    if (anisotropic) guides.inv_two_sigma_sq_v.resize(count);
-    const bool along_light = params.light_distance != AafLightDistance::OrthogonalProjection;
-    if (along_light)
-        for (FramePlane<float> *plane :
-             {&guides.coord_n_m, &guides.shear_u, &guides.shear_v, &guides.inv_two_sigma_sq_n})
-            plane->resize(count);
     detail::AafGuideConstants constants;
     for (int a = 0; a < 3; ++a) {
         constants.center[a] = light.center[a];
@@ -95,11 +76,37 @@ GatherGuides aaf_gather_guides(const AafInputs &in, const LightPlane &light, con
     constants.max_radius_px = float(params.max_radius_px);
     constants.cutoff_sigmas = kCutoffSigmas;
     constants.projected_pixel = params.projected_pixel;
-    constants.along_light = along_light;
+    constants.along_light = params.light_distance != AafLightDistance::OrthogonalProjection;
     constants.guarded = params.light_distance == AafLightDistance::Guarded;
-    constants.anisotropic = anisotropic;
+    // One band-limit per light axis: the Gaussian is anisotropic in the light's plane.
+    constants.anisotropic = bandlimit_sigma_m.u_m != bandlimit_sigma_m.v_m;
     // AAF Sec. 5.2: the filter follows the samples actually taken.
     constants.per_pixel_mu = !params.fixed_mu && in.spp.valid();
+    return constants;
+}
+
+}  // namespace
+
+GatherGuides aaf_gather_guides(const AafInputs &in, const LightPlane &light, const AafParams &params,
+                               PlaneView beta_m) {
+    check_inputs(in, light, params);
+    if (beta_m.valid() && (beta_m.width != in.visibility.width || beta_m.height != in.visibility.height))
+        throw Error("AAF output 'beta' has another size");
+    // AAF Sec. 6: unoccluded pixels take the occluder distances of their neighbours.
+    // Filled before the guides exist, so the search's scratch planes never coexist with them.
+    const FilledOccluders occluders =
+        fill_occluder_distances(in.d2_min, in.d2_max, in.object_id, params.fill_radius_px);
+    // Sized without zero-filling: the guide rows below write every pixel of every plane.
+    GatherGuides guides;
+    guides.allocate(in.visibility.width, in.visibility.height);
+    const std::size_t count = std::size_t(guides.width) * std::size_t(guides.height);
+    const detail::AafGuideConstants constants = guide_constants(in, light, params);
+    const bool anisotropic = constants.anisotropic, along_light = constants.along_light;
+    if (anisotropic) guides.inv_two_sigma_sq_v.resize(count);
+    if (along_light)
+        for (FramePlane<float> *plane :
+             {&guides.coord_n_m, &guides.shear_u, &guides.shear_v, &guides.inv_two_sigma_sq_n})
+            plane->resize(count);
 
     // One pass over the inputs, row by row, neighbouring pixels in SIMD
     // lanes (aaf_guide_rows.h): coordinates, shear, normals, AAF Eq. 13's

@@ -123,30 +123,166 @@ HWY_INLINE V mu_for_samples(const AafGuideConstants &c, M needed, V samples, V p
     return hn::IfThenElse(at_max, max_mu, low);  // low stays the floor where the floor's rate suffices
 }
 
+/// A point or direction per lane.
+struct V3 {
+    V x, y, z;
+};
+HWY_INLINE V3 broadcast3(const float (&a)[3]) {
+    const D d;
+    return {hn::Set(d, a[0]), hn::Set(d, a[1]), hn::Set(d, a[2])};
+}
+HWY_INLINE V3 load_row3(const float *const (&rows)[3], int i, int count) {
+    return {load_row(rows[0], i, count), load_row(rows[1], i, count), load_row(rows[2], i, count)};
+}
+HWY_INLINE V3 sub3(const V3 &a, const V3 &b) {
+    return {hn::Sub(a.x, b.x), hn::Sub(a.y, b.y), hn::Sub(a.z, b.z)};
+}
+HWY_INLINE V dot3(const V3 &a, const V3 &b) {
+    return dot3(a.x, a.y, a.z, b.x, b.y, b.z);
+}
+
+/// The light's plane (AafGuideConstants) in every lane.
+struct LightFrame {
+    V3 center, axis_u, axis_v, normal;
+};
+
+/// The light's variance seen from each lane's pixel, along u and v.
+struct Spread {
+    V u_sq, v_sq;
+};
+
+/// The along-light guides of one vector of pixels (p their positions, n their
+/// normals, rel = p - the light's centre): stores the shear and the coordinate
+/// along the light's normal, and returns the light's spread at the pixel (0
+/// where the tap does not slide).
+HWY_INLINE Spread store_along_light_guides(const AafGuideConstants &c, const LightFrame &light, const V3 &p,
+                                           const V3 &n, const V3 &rel, M usable,
+                                           const AafGuideRowOutputs &out, int i, int count) {
+    const D d;
+    const V zero = hn::Zero(d);
+    // Delta_eff = Delta - l (n . Delta) / (n . l), l the unit direction to the light's
+    // centre: the tap slid along l onto the centre's plane parallel to the light
+    // (AAF Fig. 2's geometry), of which AAF Eq. 12 is the case l = n.
+    const V3 to = sub3(light.center, p);
+    const V distance = hn::Sqrt(dot3(to, to));
+    M slides = hn::Gt(distance, zero);
+    if (c.guarded) {
+        const V receiver_length = hn::Sqrt(dot3(n, n));
+        const M projection_holds =
+            hn::And(hn::Gt(receiver_length, zero),
+                    hn::Ge(hn::Abs(dot3(n, light.normal)),
+                           hn::Mul(hn::Set(d, kDegenerateProjectionCos), receiver_length)));
+        slides = hn::AndNot(projection_holds, slides);
+    }
+    const V3 l{hn::Div(to.x, distance), hn::Div(to.y, distance), hn::Div(to.z, distance)};
+    const V cos_light = dot3(l, light.normal);
+    // Nearly edge-on (|n . l| < 0.05, 87 degrees) the shear is held at 20.
+    const V min_cos = hn::Set(d, 0.05f);
+    const V denominator =
+        hn::IfThenElse(hn::Lt(hn::Abs(cos_light), min_cos), hn::CopySign(min_cos, cos_light), cos_light);
+    const V shear_u = hn::Div(dot3(l, light.axis_u), denominator);
+    const V shear_v = hn::Div(dot3(l, light.axis_v), denominator);
+    const V coord_n = dot3(light.normal, rel);
+    const V d1 = hn::Abs(coord_n);
+    const V d1_sq = hn::Mul(d1, d1);
+    const M sheared = hn::And(usable, slides);
+    store_row(d, hn::IfThenElseZero(sheared, shear_u), out.shear_u, i, count);
+    store_row(d, hn::IfThenElseZero(sheared, shear_v), out.shear_v, i, count);
+    store_row(d, hn::IfThenElseZero(usable, coord_n), out.coord_n_m, i, count);
+    return {hn::IfThenElseZero(sheared, hn::Div(hn::Set(d, c.variance_u_m2), d1_sq)),
+            hn::IfThenElseZero(sheared, hn::Div(hn::Set(d, c.variance_v_m2), d1_sq))};
+}
+
+/// projected_pixel_size_m() of aaf_bandlimits.cpp, where the footprint is finite.
+HWY_INLINE V projected_pixel_size(V pixel_size, const V3 &n, V normal_length, const V3 &light_normal) {
+    const D d;
+    const V zero = hn::Zero(d), one = hn::Set(d, 1.0f);
+    const M tilts =
+        hn::And(hn::IsFinite(pixel_size), hn::And(hn::Gt(normal_length, zero), hn::IsFinite(normal_length)));
+    const V cos_planes = hn::Div(hn::Abs(dot3(n, light_normal)), normal_length);
+    // std::clamp(cos, lo, 1): (cos < lo) ? lo : (1 < cos) ? 1 : cos.
+    const V lo = hn::Set(d, kDegenerateProjectionCos);
+    const V clamped =
+        hn::IfThenElse(hn::Lt(cos_planes, lo), lo, hn::IfThenElse(hn::Lt(one, cos_planes), one, cos_planes));
+    return hn::IfThenElse(tilts, hn::Mul(pixel_size, clamped), pixel_size);
+}
+
+/// beta of AAF Eq. 13 along the light's two axes, in the lanes of `filtered`.
+struct Beta {
+    V u, v;
+};
+HWY_INLINE Beta beta_widths(const AafGuideConstants &c, const AafGuideRowInputs &in, int i, int count,
+                            M filtered, V d1, V d2_min, V d2_max, V pixel_size) {
+    const D d;
+    if (c.fixed_beta_m > 0) return {hn::Set(d, c.fixed_beta_m), hn::Set(d, c.fixed_beta_m)};
+    const V one = hn::Set(d, 1.0f);
+    const MuFree bu = mu_free(d1, d2_min, d2_max, pixel_size, c.sigma_u_m, c.alpha);
+    const MuFree bv = c.anisotropic ? mu_free(d1, d2_min, d2_max, pixel_size, c.sigma_v_m, c.alpha) : bu;
+    V mu = hn::Set(d, c.mu);
+    // AAF Sec. 5.2: the filter follows the samples actually taken.
+    if (c.per_pixel_mu) mu = mu_for_samples(c, filtered, load_row(in.spp, i, count), pixel_size, bu, bv);
+    // AAF Eq. 13: beta = 1 / (k Omega_x^f), Omega_x^f = mu Omega_x0^f (Sec. 5.2).
+    const V k = hn::Set(d, c.k);
+    const V beta_u = hn::Div(one, hn::Mul(k, hn::Mul(mu, bu.omega_x_f0)));
+    return {beta_u, c.anisotropic ? hn::Div(one, hn::Mul(k, hn::Mul(mu, bv.omega_x_f0))) : beta_u};
+}
+
+/// Stores the filter's reach, beta and the Gaussian's 1 / (2 beta^2) weights
+/// (0 outside `kept`) of one vector of filtered pixels.
+HWY_INLINE void store_widths(const AafGuideConstants &c, const AafGuideRowOutputs &out, int i, int count,
+                             M kept, const Beta &beta, V own_pixel_size, const Spread &spread) {
+    const D d;
+    const DI di;
+    const V one = hn::Set(d, 1.0f), float_max = hn::Set(d, std::numeric_limits<float>::max());
+    // beta is in world metres; the reach in pixels follows from the pixel's own footprint.
+    const V widest = max_of(beta.u, beta.v);
+    const V radius = min_of(hn::Ceil(hn::Div(hn::Mul(hn::Set(d, c.cutoff_sigmas), widest), own_pixel_size)),
+                            hn::Set(d, c.max_radius_px));
+    store_row(di, hn::ConvertTo(di, hn::IfThenElseZero(kept, radius)), out.radius_px, i, count);
+    // The beta output: the isotropic width of the same area, sqrt(beta_u beta_v).
+    const V isotropic = c.anisotropic ? hn::Sqrt(hn::Mul(beta.u, beta.v)) : beta.u;
+    if (out.beta_m) store_row(d, hn::IfThenElseZero(kept, isotropic), out.beta_m, i, count);
+    // 1 / (2 beta^2): a beta below ~1e-19 m squares to 0 or a denormal; the
+    // largest float instead of inf keeps the centre tap's exponent 0 * that = 0.
+    const V inv_u = min_of(hn::Div(one, hn::Mul(hn::Mul(hn::Set(d, 2.0f), beta.u), beta.u)), float_max);
+    const V inv_v = c.anisotropic
+                        ? min_of(hn::Div(one, hn::Mul(hn::Mul(hn::Set(d, 2.0f), beta.v), beta.v)), float_max)
+                        : inv_u;
+    store_row(d, hn::IfThenElseZero(kept, inv_u), out.inv_two_sigma_sq, i, count);
+    if (c.anisotropic) store_row(d, hn::IfThenElseZero(kept, inv_v), out.inv_two_sigma_sq_v, i, count);
+    if (c.along_light) {
+        const V weight_n = hn::Add(hn::Mul(spread.u_sq, inv_u), hn::Mul(spread.v_sq, inv_v));
+        const V inv_n = hn::IfThenElse(hn::IsFinite(weight_n), weight_n, float_max);
+        store_row(d, hn::IfThenElseZero(kept, inv_n), out.inv_two_sigma_sq_n, i, count);
+    }
+}
+
+/// Zero weights and reach for a vector of pixels AAF does not filter.
+HWY_INLINE void store_unfiltered(const AafGuideConstants &c, const AafGuideRowOutputs &out, int i,
+                                 int count) {
+    const D d;
+    const DI di;
+    const V zero = hn::Zero(d);
+    if (out.beta_m) store_row(d, zero, out.beta_m, i, count);
+    store_row(d, zero, out.inv_two_sigma_sq, i, count);
+    if (c.anisotropic) store_row(d, zero, out.inv_two_sigma_sq_v, i, count);
+    if (c.along_light) store_row(d, zero, out.inv_two_sigma_sq_n, i, count);
+    store_row(di, hn::Zero(di), out.radius_px, i, count);
+}
+
 void AafGuideRow(const AafGuideConstants &c, const AafGuideRowInputs &in, const AafGuideRowOutputs &out,
                  int count) {
     const D d;
-    const DI di;
-    const V zero = hn::Zero(d), one = hn::Set(d, 1.0f);
-    const V center_x = hn::Set(d, c.center[0]), center_y = hn::Set(d, c.center[1]),
-            center_z = hn::Set(d, c.center[2]);
-    const V axis_ux = hn::Set(d, c.axis_u[0]), axis_uy = hn::Set(d, c.axis_u[1]),
-            axis_uz = hn::Set(d, c.axis_u[2]);
-    const V axis_vx = hn::Set(d, c.axis_v[0]), axis_vy = hn::Set(d, c.axis_v[1]),
-            axis_vz = hn::Set(d, c.axis_v[2]);
-    const V light_nx = hn::Set(d, c.light_normal[0]), light_ny = hn::Set(d, c.light_normal[1]),
-            light_nz = hn::Set(d, c.light_normal[2]);
-    const V float_max = hn::Set(d, std::numeric_limits<float>::max());
+    const V zero = hn::Zero(d);
+    const LightFrame light{broadcast3(c.center), broadcast3(c.axis_u), broadcast3(c.axis_v),
+                           broadcast3(c.light_normal)};
     for (int i = 0; i < count; i += kMaxLanes) {
-        const V px = load_row(in.position[0], i, count), py = load_row(in.position[1], i, count),
-                pz = load_row(in.position[2], i, count);
-        const V nx = load_row(in.normal[0], i, count), ny = load_row(in.normal[1], i, count),
-                nz = load_row(in.normal[2], i, count);
+        const V3 p = load_row3(in.position, i, count), n = load_row3(in.normal, i, count);
         const V id = load_row(in.object_id, i, count);
         // Coordinates along the light's two tangent axes (AAF Eq. 12 for the orthonormal frame).
-        const V rel_x = hn::Sub(px, center_x), rel_y = hn::Sub(py, center_y), rel_z = hn::Sub(pz, center_z);
-        const V u = dot3(axis_ux, axis_uy, axis_uz, rel_x, rel_y, rel_z);
-        const V v = dot3(axis_vx, axis_vy, axis_vz, rel_x, rel_y, rel_z);
+        const V3 rel = sub3(p, light.center);
+        const V u = dot3(light.axis_u, rel);
+        const V v = dot3(light.axis_v, rel);
         // Unusable geometry: never a tap (NaN id), never filtered, every other guide 0.
         const M usable = hn::IsFinite(hn::Add(u, v));
         store_row(d, hn::IfThenElseZero(usable, u), out.coord_u_m, i, count);
@@ -154,117 +290,34 @@ void AafGuideRow(const AafGuideConstants &c, const AafGuideRowInputs &in, const 
         store_row(d, hn::IfThenElse(usable, id, hn::Set(d, std::numeric_limits<float>::quiet_NaN())),
                   out.object_id, i, count);
 
-        V spread_u_sq = zero, spread_v_sq = zero;
-        if (c.along_light) {
-            // Delta_eff = Delta - l (n . Delta) / (n . l), l the unit direction to the light's
-            // centre: the tap slid along l onto the centre's plane parallel to the light
-            // (AAF Fig. 2's geometry), of which AAF Eq. 12 is the case l = n.
-            const V to_x = hn::Sub(center_x, px), to_y = hn::Sub(center_y, py), to_z = hn::Sub(center_z, pz);
-            const V distance = hn::Sqrt(dot3(to_x, to_y, to_z, to_x, to_y, to_z));
-            M slides = hn::Gt(distance, zero);
-            if (c.guarded) {
-                const V receiver_length = hn::Sqrt(dot3(nx, ny, nz, nx, ny, nz));
-                const M projection_holds =
-                    hn::And(hn::Gt(receiver_length, zero),
-                            hn::Ge(hn::Abs(dot3(nx, ny, nz, light_nx, light_ny, light_nz)),
-                                   hn::Mul(hn::Set(d, kDegenerateProjectionCos), receiver_length)));
-                slides = hn::AndNot(projection_holds, slides);
-            }
-            const V lx = hn::Div(to_x, distance), ly = hn::Div(to_y, distance), lz = hn::Div(to_z, distance);
-            const V cos_light = dot3(lx, ly, lz, light_nx, light_ny, light_nz);
-            // Nearly edge-on (|n . l| < 0.05, 87 degrees) the shear is held at 20.
-            const V min_cos = hn::Set(d, 0.05f);
-            const V denominator = hn::IfThenElse(hn::Lt(hn::Abs(cos_light), min_cos),
-                                                 hn::CopySign(min_cos, cos_light), cos_light);
-            const V shear_u = hn::Div(dot3(lx, ly, lz, axis_ux, axis_uy, axis_uz), denominator);
-            const V shear_v = hn::Div(dot3(lx, ly, lz, axis_vx, axis_vy, axis_vz), denominator);
-            const V coord_n = dot3(light_nx, light_ny, light_nz, rel_x, rel_y, rel_z);
-            const V d1 = hn::Abs(coord_n);
-            const V d1_sq = hn::Mul(d1, d1);
-            const M sheared = hn::And(usable, slides);
-            spread_u_sq = hn::IfThenElseZero(sheared, hn::Div(hn::Set(d, c.variance_u_m2), d1_sq));
-            spread_v_sq = hn::IfThenElseZero(sheared, hn::Div(hn::Set(d, c.variance_v_m2), d1_sq));
-            store_row(d, hn::IfThenElseZero(sheared, shear_u), out.shear_u, i, count);
-            store_row(d, hn::IfThenElseZero(sheared, shear_v), out.shear_v, i, count);
-            store_row(d, hn::IfThenElseZero(usable, coord_n), out.coord_n_m, i, count);
-        }
-        const V normal_length = hn::Sqrt(dot3(nx, ny, nz, nx, ny, nz));
+        Spread spread{zero, zero};
+        if (c.along_light) spread = store_along_light_guides(c, light, p, n, rel, usable, out, i, count);
+        const V normal_length = hn::Sqrt(dot3(n, n));
         const M unit_normal =
             hn::And(usable, hn::And(hn::Gt(normal_length, zero), hn::IsFinite(normal_length)));
-        store_row(d, hn::IfThenElseZero(unit_normal, hn::Div(nx, normal_length)), out.normal[0], i, count);
-        store_row(d, hn::IfThenElseZero(unit_normal, hn::Div(ny, normal_length)), out.normal[1], i, count);
-        store_row(d, hn::IfThenElseZero(unit_normal, hn::Div(nz, normal_length)), out.normal[2], i, count);
+        store_row(d, hn::IfThenElseZero(unit_normal, hn::Div(n.x, normal_length)), out.normal[0], i, count);
+        store_row(d, hn::IfThenElseZero(unit_normal, hn::Div(n.y, normal_length)), out.normal[1], i, count);
+        store_row(d, hn::IfThenElseZero(unit_normal, hn::Div(n.z, normal_length)), out.normal[2], i, count);
 
         // beta of AAF Eq. 13 along the light's axes, 0 where AAF does not filter.
         const V d1 = load_row(in.d1_m, i, count);
         const V own_pixel_size = load_row(in.pixel_size_m, i, count);
-        V pixel_size = own_pixel_size;
-        if (c.projected_pixel) {
-            // projected_pixel_size_m() of aaf_bandlimits.cpp, where the footprint is finite.
-            const V length_n = normal_length;
-            const M tilts =
-                hn::And(hn::IsFinite(pixel_size), hn::And(hn::Gt(length_n, zero), hn::IsFinite(length_n)));
-            const V cos_planes = hn::Div(hn::Abs(dot3(nx, ny, nz, light_nx, light_ny, light_nz)), length_n);
-            // std::clamp(cos, lo, 1): (cos < lo) ? lo : (1 < cos) ? 1 : cos.
-            const V lo = hn::Set(d, kDegenerateProjectionCos);
-            const V clamped = hn::IfThenElse(hn::Lt(cos_planes, lo), lo,
-                                             hn::IfThenElse(hn::Lt(one, cos_planes), one, cos_planes));
-            pixel_size = hn::IfThenElse(tilts, hn::Mul(pixel_size, clamped), pixel_size);
-        }
+        const V pixel_size = c.projected_pixel
+                                 ? projected_pixel_size(own_pixel_size, n, normal_length, light.normal)
+                                 : own_pixel_size;
         const V d2_min = load_row(in.d2_min_m, i, count), d2_max = load_row(in.d2_max_m, i, count);
         const M has_occluder = hn::And(hn::Gt(d2_max, zero), hn::Lt(d2_max, hn::Set(d, 3.0e38f)));
         M filtered = hn::AndNot(hn::Eq(id, zero), usable);
         filtered = hn::And(filtered, hn::And(hn::Gt(d1, zero), hn::Gt(pixel_size, zero)));
         filtered = hn::And(filtered, hn::And(hn::IsFinite(pixel_size), has_occluder));
         if (hn::AllFalse(d, filtered)) {
-            if (out.beta_m) store_row(d, zero, out.beta_m, i, count);
-            store_row(d, zero, out.inv_two_sigma_sq, i, count);
-            if (c.anisotropic) store_row(d, zero, out.inv_two_sigma_sq_v, i, count);
-            if (c.along_light) store_row(d, zero, out.inv_two_sigma_sq_n, i, count);
-            store_row(di, hn::Zero(di), out.radius_px, i, count);
+            store_unfiltered(c, out, i, count);
             continue;
         }
-        V beta_u, beta_v;
-        if (c.fixed_beta_m > 0) {
-            beta_u = beta_v = hn::Set(d, c.fixed_beta_m);
-        } else {
-            const MuFree bu = mu_free(d1, d2_min, d2_max, pixel_size, c.sigma_u_m, c.alpha);
-            const MuFree bv =
-                c.anisotropic ? mu_free(d1, d2_min, d2_max, pixel_size, c.sigma_v_m, c.alpha) : bu;
-            V mu = hn::Set(d, c.mu);
-            // AAF Sec. 5.2: the filter follows the samples actually taken.
-            if (c.per_pixel_mu)
-                mu = mu_for_samples(c, filtered, load_row(in.spp, i, count), pixel_size, bu, bv);
-            // AAF Eq. 13: beta = 1 / (k Omega_x^f), Omega_x^f = mu Omega_x0^f (Sec. 5.2).
-            const V k = hn::Set(d, c.k);
-            beta_u = hn::Div(one, hn::Mul(k, hn::Mul(mu, bu.omega_x_f0)));
-            beta_v = c.anisotropic ? hn::Div(one, hn::Mul(k, hn::Mul(mu, bv.omega_x_f0))) : beta_u;
-        }
-        const M kept = hn::And(filtered, hn::And(hn::And(hn::Gt(beta_u, zero), hn::Gt(beta_v, zero)),
-                                                 hn::And(hn::IsFinite(beta_u), hn::IsFinite(beta_v))));
-        // beta is in world metres; the reach in pixels follows from the pixel's own footprint.
-        const V widest = max_of(beta_u, beta_v);
-        const V radius =
-            min_of(hn::Ceil(hn::Div(hn::Mul(hn::Set(d, c.cutoff_sigmas), widest), own_pixel_size)),
-                   hn::Set(d, c.max_radius_px));
-        store_row(di, hn::ConvertTo(di, hn::IfThenElseZero(kept, radius)), out.radius_px, i, count);
-        // The beta output: the isotropic width of the same area, sqrt(beta_u beta_v).
-        const V beta = c.anisotropic ? hn::Sqrt(hn::Mul(beta_u, beta_v)) : beta_u;
-        if (out.beta_m) store_row(d, hn::IfThenElseZero(kept, beta), out.beta_m, i, count);
-        // 1 / (2 beta^2): a beta below ~1e-19 m squares to 0 or a denormal; the
-        // largest float instead of inf keeps the centre tap's exponent 0 * that = 0.
-        const V inv_u = min_of(hn::Div(one, hn::Mul(hn::Mul(hn::Set(d, 2.0f), beta_u), beta_u)), float_max);
-        const V inv_v =
-            c.anisotropic
-                ? min_of(hn::Div(one, hn::Mul(hn::Mul(hn::Set(d, 2.0f), beta_v), beta_v)), float_max)
-                : inv_u;
-        store_row(d, hn::IfThenElseZero(kept, inv_u), out.inv_two_sigma_sq, i, count);
-        if (c.anisotropic) store_row(d, hn::IfThenElseZero(kept, inv_v), out.inv_two_sigma_sq_v, i, count);
-        if (c.along_light) {
-            const V weight_n = hn::Add(hn::Mul(spread_u_sq, inv_u), hn::Mul(spread_v_sq, inv_v));
-            const V inv_n = hn::IfThenElse(hn::IsFinite(weight_n), weight_n, float_max);
-            store_row(d, hn::IfThenElseZero(kept, inv_n), out.inv_two_sigma_sq_n, i, count);
-        }
+        const Beta beta = beta_widths(c, in, i, count, filtered, d1, d2_min, d2_max, pixel_size);
+        const M kept = hn::And(filtered, hn::And(hn::And(hn::Gt(beta.u, zero), hn::Gt(beta.v, zero)),
+                                                 hn::And(hn::IsFinite(beta.u), hn::IsFinite(beta.v))));
+        store_widths(c, out, i, count, kept, beta, own_pixel_size, spread);
     }
 }
 

@@ -94,30 +94,31 @@ std::vector<Function> functions_of(int p) {
     return {{2 * p - 1, AxisModulation::Kind::Cos}, {2 * p, AxisModulation::Kind::NegSin}};
 }
 
-}  // namespace
-
-void MaafParams::validate() const {
-    if (!(omega_y_max_rad_per_m > 0) || !std::isfinite(omega_y_max_rad_per_m))
-        throw Error("MAAF Omega_y^max must be positive and finite");
-    if (pairs_used < 0) throw Error("MAAF filter pairs must be >= 0");
-    if (!(normal_threshold_deg >= 0 && normal_threshold_deg <= 180))
-        throw Error("MAAF normal threshold must lie in [0, 180] degrees");
-    if (max_radius_px < 0) throw Error("MAAF maximum filter radius must be >= 0 pixels");
-    if (!(k > 0) || !std::isfinite(k)) throw Error("MAAF width scale k must be positive and finite");
+/// Adds one component pair's filtered sums, weighted (MAAF Eq. 21), to the
+/// totals; the central pair's (pu = pv = 0) are also kept on their own.
+void add_pair_sums(const std::vector<MaafPixelKernel> &kernels, int pu, int pv,
+                   const std::vector<float> &value, const std::vector<float> &unoccluded,
+                   MaafFilteredSums &sums) {
+    for (std::size_t i = 0; i < kernels.size(); ++i) {
+        if (!kernels[i].filtered) continue;
+        const double w = kernels[i].weight[pu] * kernels[i].weight[pv];
+        sums.numerator[i] += w * value[i];
+        sums.denominator[i] += w * unoccluded[i];
+        if (pu == 0 && pv == 0) {
+            sums.central_numerator[i] = value[i];
+            sums.central_denominator[i] = unoccluded[i];
+        }
+    }
 }
 
-void maaf_filter(const MaafInputs &in, const LightPlane &light, const MaafParams &params, PlaneView out) {
-    check_inputs(in, light, params);
+/// The gather's guides (coordinates along the light's axes, unit normals,
+/// object ids) and every pixel's component kernels (`kernels`, row-major).
+GatherGuides maaf_guides(const MaafInputs &in, const LightPlane &light, const MaafParams &params, int pairs,
+                         std::vector<MaafPixelKernel> &kernels) {
     const int width = in.pixel_size.width, height = in.pixel_size.height;
-    if (!out.valid() || out.width != width || out.height != height)
-        throw Error("MAAF output 'filtered visibility' is missing or has another size");
-    const int pairs = params.pairs_used == 0 ? in.pairs : params.pairs_used;
-    const int per_axis = maaf_functions_per_axis(in.pairs);
-    const std::size_t count = std::size_t(width) * std::size_t(height);
-
     GatherGuides guides;
     guides.resize(width, height);
-    std::vector<MaafPixelKernel> kernels(count);
+    kernels.assign(std::size_t(width) * std::size_t(height), MaafPixelKernel{});
     parallel_for_rows(height, [&](int y) {
         for (int x = 0; x < width; ++x) {
             const std::size_t i = guides.index(x, y);
@@ -140,56 +141,38 @@ void maaf_filter(const MaafInputs &in, const LightPlane &light, const MaafParams
             kernels[i] = pixel_kernels(in, params, pairs, x, y);
         }
     });
+    return guides;
+}
 
-    // Non-finite sums (a renderer's NaN) are read as 0, so they cannot spread through the filter.
-    auto finite_copy = [&](ConstPlaneView view) {
-        std::vector<float> plane(count);
-        for (int y = 0; y < height; ++y)
-            for (int x = 0; x < width; ++x) {
-                const float value = view(x, y);
-                plane[guides.index(x, y)] = std::isfinite(value) ? value : 0.0f;
-            }
-        return plane;
-    };
-
-    std::vector<std::vector<float>> values, unoccludeds;
-    for (std::size_t c = 0; c < in.value_sums.size(); ++c) {
-        values.push_back(finite_copy(in.value_sums[c]));
-        unoccludeds.push_back(finite_copy(in.unoccluded_sums[c]));
-    }
-    std::vector<double> numerator(count, 0.0), denominator(count, 0.0), central_num(count, 0.0),
-        central_den(count, 0.0);
-    // Adds one component pair's filtered sums, times `scale`, to the totals.
-    auto add = [&](int pu, int pv, double scale, const std::vector<float> &value,
-                   const std::vector<float> &unoccluded) {
-        for (std::size_t i = 0; i < count; ++i) {
-            if (!kernels[i].filtered) continue;
-            const double w = scale * kernels[i].weight[pu] * kernels[i].weight[pv];
-            numerator[i] += w * value[i];
-            denominator[i] += w * unoccluded[i];
-            if (pu == 0 && pv == 0) {
-                central_num[i] = value[i];
-                central_den[i] = unoccluded[i];
-            }
+/// `view` in the guides' row-major layout, non-finite values as 0.
+std::vector<float> finite_copy(ConstPlaneView view, const GatherGuides &guides) {
+    std::vector<float> plane(std::size_t(guides.width) * std::size_t(guides.height));
+    for (int y = 0; y < guides.height; ++y)
+        for (int x = 0; x < guides.width; ++x) {
+            const float value = view(x, y);
+            plane[guides.index(x, y)] = std::isfinite(value) ? value : 0.0f;
         }
-    };
-    auto channel = [&](int function_u, int function_v) {
-        return std::size_t(function_u * per_axis + function_v);
-    };
-    if (params.separable) {
-        MaafFilteredSums sums = maaf_separable_filter(guides, params.normal_threshold_deg, kernels, in.pairs,
-                                                      pairs, values, unoccludeds);
-        numerator = std::move(sums.numerator);
-        denominator = std::move(sums.denominator);
-        central_num = std::move(sums.central_numerator);
-        central_den = std::move(sums.central_denominator);
-    }
-    for (int pu = 0; pu < pairs && !params.separable; ++pu)
+    return plane;
+}
+
+/// maaf_separable_filter()'s sums by the full-window gather: for each pair of
+/// components (pu along the light's first axis, pv along its second; MAAF
+/// Fig. 7) each of its channels through gather_modulated(), then weighted
+/// (MAAF Eq. 21) into the totals. Sets the guides' radius_px per pair.
+MaafFilteredSums full_window_filter(GatherGuides &guides, float normal_threshold_deg,
+                                    const std::vector<MaafPixelKernel> &kernels, int sum_pairs, int pairs,
+                                    const std::vector<std::vector<float>> &values,
+                                    const std::vector<std::vector<float>> &unoccludeds) {
+    const int width = guides.width, height = guides.height;
+    const std::size_t count = kernels.size();
+    const int per_axis = maaf_functions_per_axis(sum_pairs);
+    MaafFilteredSums sums{std::vector<double>(count, 0.0), std::vector<double>(count, 0.0),
+                          std::vector<double>(count, 0.0), std::vector<double>(count, 0.0)};
+    GatherSettings settings;
+    settings.normal_threshold_deg = normal_threshold_deg;
+    settings.mode = GatherMode::Full2D;
+    for (int pu = 0; pu < pairs; ++pu)
         for (int pv = 0; pv < pairs; ++pv) {
-            // Component pu along the light's first axis, pv along its second (MAAF Fig. 7).
-            GatherSettings settings;
-            settings.normal_threshold_deg = params.normal_threshold_deg;
-            settings.mode = GatherMode::Full2D;
             std::vector<float> omega_u(count), omega_v(count), inv_u(count), inv_v(count), out_value(count),
                 out_unoccluded(count);
             for (std::size_t i = 0; i < count; ++i) {
@@ -202,7 +185,7 @@ void maaf_filter(const MaafInputs &in, const LightPlane &light, const MaafParams
             }
             for (const Function &fu : functions_of(pu))
                 for (const Function &fv : functions_of(pv)) {
-                    const std::size_t c = channel(fu.index, fv.index);
+                    const std::size_t c = std::size_t(fu.index * per_axis + fv.index);
                     const AxisModulation along_u{fu.kind,
                                                  plane_view<const float>(omega_u.data(), width, height),
                                                  plane_view<const float>(inv_u.data(), width, height)};
@@ -215,9 +198,44 @@ void maaf_filter(const MaafInputs &in, const LightPlane &light, const MaafParams
                                      {plane_view(out_value.data(), width, height),
                                       plane_view(out_unoccluded.data(), width, height)},
                                      along_u, along_v, GatherNormalisation::None);
-                    add(pu, pv, 1.0, out_value, out_unoccluded);
+                    add_pair_sums(kernels, pu, pv, out_value, out_unoccluded, sums);
                 }
         }
+    return sums;
+}
+
+}  // namespace
+
+void MaafParams::validate() const {
+    if (!(omega_y_max_rad_per_m > 0) || !std::isfinite(omega_y_max_rad_per_m))
+        throw Error("MAAF Omega_y^max must be positive and finite");
+    if (pairs_used < 0) throw Error("MAAF filter pairs must be >= 0");
+    if (!(normal_threshold_deg >= 0 && normal_threshold_deg <= 180))
+        throw Error("MAAF normal threshold must lie in [0, 180] degrees");
+    if (max_radius_px < 0) throw Error("MAAF maximum filter radius must be >= 0 pixels");
+    if (!(k > 0) || !std::isfinite(k)) throw Error("MAAF width scale k must be positive and finite");
+}
+
+void maaf_filter(const MaafInputs &in, const LightPlane &light, const MaafParams &params, PlaneView out) {
+    check_inputs(in, light, params);
+    const int width = in.pixel_size.width, height = in.pixel_size.height;
+    if (!out.valid() || out.width != width || out.height != height)
+        throw Error("MAAF output 'filtered visibility' is missing or has another size");
+    const int pairs = params.pairs_used == 0 ? in.pairs : params.pairs_used;
+
+    std::vector<MaafPixelKernel> kernels;
+    GatherGuides guides = maaf_guides(in, light, params, pairs, kernels);
+    // Non-finite sums (a renderer's NaN) are read as 0, so they cannot spread through the filter.
+    std::vector<std::vector<float>> values, unoccludeds;
+    for (std::size_t c = 0; c < in.value_sums.size(); ++c) {
+        values.push_back(finite_copy(in.value_sums[c], guides));
+        unoccludeds.push_back(finite_copy(in.unoccluded_sums[c], guides));
+    }
+    const MaafFilteredSums sums = params.separable
+                                      ? maaf_separable_filter(guides, params.normal_threshold_deg, kernels,
+                                                              in.pairs, pairs, values, unoccludeds)
+                                      : full_window_filter(guides, params.normal_threshold_deg, kernels,
+                                                           in.pairs, pairs, values, unoccludeds);
 
     const std::vector<float> &value0 = values[0], &unoccluded0 = unoccludeds[0];
     parallel_for_rows(height, [&](int y) {
@@ -226,10 +244,11 @@ void maaf_filter(const MaafInputs &in, const LightPlane &light, const MaafParams
             // Unfiltered: the pixel's own light-weighted visibility, 1 without samples.
             double result = unoccluded0[i] > 0 ? double(value0[i]) / double(unoccluded0[i]) : 1.0;
             if (kernels[i].filtered) {
-                if (denominator[i] > 0 && std::isfinite(numerator[i] / denominator[i]))
-                    result = numerator[i] / denominator[i];
-                else if (central_den[i] > 0)
-                    result = central_num[i] / central_den[i];  // the central filter alone (AAF)
+                const double numerator = sums.numerator[i], denominator = sums.denominator[i];
+                if (denominator > 0 && std::isfinite(numerator / denominator))
+                    result = numerator / denominator;
+                else if (sums.central_denominator[i] > 0)  // the central filter alone (AAF)
+                    result = sums.central_numerator[i] / sums.central_denominator[i];
             }
             out(x, y) = std::isfinite(result) ? float(result) : 0.0f;
         }

@@ -104,27 +104,19 @@ struct TapWeights {
     }
 };
 
-}  // namespace
-
-MaafFilteredSums maaf_separable_filter(const GatherGuides &g, float normal_threshold_deg,
-                                       const std::vector<MaafPixelKernel> &kernels, int sum_pairs, int pairs,
-                                       const std::vector<std::vector<float>> &value_sums,
-                                       const std::vector<std::vector<float>> &unoccluded_sums) {
-    if (pairs < 1 || pairs > sum_pairs || sum_pairs > kMaafMaxPairs)
-        throw Error("MAAF separable filter: N used must lie in [1, N of the sums]");
-    const std::size_t count = std::size_t(g.width) * std::size_t(g.height);
-    const std::vector<Term> terms = terms_for(sum_pairs, pairs);
-    const TermTable table(terms);
-    // Per pixel four blocks of `padded` floats: value re, value im, unoccluded re, unoccluded im.
-    const std::size_t term_count = terms.size(), padded = table.padded, stride = 4 * padded;
-
-    // The complex sources, pixel-interleaved so that one tap's terms are contiguous.
-    std::vector<float> sources(count * stride, 0.0f);
+/// The complex sources, pixel-interleaved so that one tap's terms are
+/// contiguous: per pixel four blocks of `padded` floats (value re, value im,
+/// unoccluded re, unoccluded im).
+std::vector<float> complex_sources(const GatherGuides &g, const std::vector<Term> &terms, std::size_t padded,
+                                   const std::vector<std::vector<float>> &value_sums,
+                                   const std::vector<std::vector<float>> &unoccluded_sums) {
+    const std::size_t stride = 4 * padded;
+    std::vector<float> sources(std::size_t(g.width) * std::size_t(g.height) * stride, 0.0f);
     parallel_for_rows(g.height, [&](int y) {
         for (int x = 0; x < g.width; ++x) {
             const std::size_t i = g.index(x, y);
             float *s = &sources[i * stride];
-            for (std::size_t j = 0; j < term_count; ++j) {
+            for (std::size_t j = 0; j < terms.size(); ++j) {
                 for (const auto &[factor, c] : terms[j].re) {
                     s[j] += factor * value_sums[c][i];
                     s[2 * padded + j] += factor * unoccluded_sums[c][i];
@@ -136,55 +128,64 @@ MaafFilteredSums maaf_separable_filter(const GatherGuides &g, float normal_thres
             }
         }
     });
+    return sources;
+}
 
-    const float cos_threshold = std::cos(normal_threshold_deg * kPi / 180.0f);
-    auto accepted = [&](std::size_t c, std::size_t t) {
-        const float cos_angle =
-            g.normal_x[c] * g.normal_x[t] + g.normal_y[c] * g.normal_y[t] + g.normal_z[c] * g.normal_z[t];
-        return t == c || (g.object_id[t] == g.object_id[c] && cos_angle >= cos_threshold);
-    };
-    // Each term's reach at a pixel: max(radius_p, radius_q); 0 where it is not filtered.
-    auto term_radii = [&](const MaafPixelKernel &k, int *radius) {
-        int widest = 0;
-        for (std::size_t j = 0; j < term_count; ++j) {
-            radius[j] = k.filtered ? std::max(k.radius_px[terms[j].pu], k.radius_px[terms[j].pv]) : 0;
-            widest = std::max(widest, radius[j]);
-        }
-        return widest;
-    };
+/// The two passes over one frame's complex sources: a row's vertical pass
+/// feeds only that row's horizontal pass, so one row's intermediates exist
+/// at a time (RowBuffers, allocated once per row).
+class SeparablePasses {
+  public:
+    SeparablePasses(const GatherGuides &g, float normal_threshold_deg,
+                    const std::vector<MaafPixelKernel> &kernels, int pairs, const std::vector<Term> &terms,
+                    const std::vector<float> &sources)
+        : g_(g),
+          kernels_(kernels),
+          pairs_(pairs),
+          terms_(terms),
+          table_(terms),
+          sources_(sources),
+          cos_threshold_(std::cos(normal_threshold_deg * kPi / 180.0f)) {}
 
-    MaafFilteredSums out;
-    out.numerator.assign(count, 0.0);
-    out.denominator.assign(count, 0.0);
-    out.central_numerator.assign(count, 0.0);
-    out.central_denominator.assign(count, 0.0);
-    // A row's vertical pass feeds only that row's horizontal pass: one row's intermediates at a time.
-    parallel_for_rows(g.height, [&](int y) {
-        std::vector<float> intermediate(std::size_t(g.width) * stride), sum(stride), re(padded, 0.0f),
-            im(padded, 0.0f);
-        std::vector<int> radius(term_count);
+    /// One row's scratch: the vertical pass's output, one centre's sums, the
+    /// terms' weights and reaches.
+    struct RowBuffers {
+        std::vector<float> intermediate, sum, re, im;
+        std::vector<int> radius;
         TapWeights w;
-        for (int x = 0; x < g.width; ++x) {  // vertical: each pixel with its own kernel
-            const std::size_t c = g.index(x, y);
-            const MaafPixelKernel &k = kernels[c];
-            const int widest = term_radii(k, radius.data());
-            float *acc = &intermediate[std::size_t(x) * stride];
+        RowBuffers(int width, std::size_t padded, std::size_t term_count)
+            : intermediate(std::size_t(width) * 4 * padded),
+              sum(4 * padded),
+              re(padded, 0.0f),
+              im(padded, 0.0f),
+              radius(term_count) {}
+    };
+    RowBuffers row_buffers() const { return RowBuffers(g_.width, table_.padded, table_.count); }
+
+    /// Vertical: each pixel of row y with its own kernel, into b.intermediate.
+    void vertical(int y, RowBuffers &b) const {
+        const std::size_t padded = table_.padded, stride = 4 * padded;
+        for (int x = 0; x < g_.width; ++x) {
+            const std::size_t c = g_.index(x, y);
+            const MaafPixelKernel &k = kernels_[c];
+            const int widest = term_radii(k, b.radius.data());
+            float *acc = &b.intermediate[std::size_t(x) * stride];
             if (widest == 0) {
-                std::copy_n(&sources[c * stride], stride, acc);
+                std::copy_n(&sources_[c * stride], stride, acc);
                 continue;
             }
-            std::fill(sum.begin(), sum.end(), 0.0f);
-            for (int ty = std::max(0, y - widest); ty <= std::min(g.height - 1, y + widest); ++ty) {
-                const std::size_t t = g.index(x, ty);
+            std::fill(b.sum.begin(), b.sum.end(), 0.0f);
+            for (int ty = std::max(0, y - widest); ty <= std::min(g_.height - 1, y + widest); ++ty) {
+                const std::size_t t = g_.index(x, ty);
                 if (!accepted(c, t)) continue;
                 const int offset = std::abs(ty - y);
-                w.evaluate(k, pairs, g.coord_u_m[t] - g.coord_u_m[c], g.coord_v_m[t] - g.coord_v_m[c]);
-                w.of_terms(table, radius.data(), offset, re.data(), im.data());
-                const float *s = &sources[t * stride];
+                b.w.evaluate(k, pairs_, g_.coord_u_m[t] - g_.coord_u_m[c], g_.coord_v_m[t] - g_.coord_v_m[c]);
+                b.w.of_terms(table_, b.radius.data(), offset, b.re.data(), b.im.data());
+                const float *s = &sources_[t * stride];
                 // Distinct buffers: restrict lets the compiler vectorise over the terms.
-                float *__restrict sum_v = sum.data(), *__restrict sum_u = sum.data() + 2 * padded;
+                float *__restrict sum_v = b.sum.data(), *__restrict sum_u = b.sum.data() + 2 * padded;
                 const float *__restrict src_v = s, *__restrict src_u = s + 2 * padded;
-                const float *__restrict wr = re.data(), *__restrict wi = im.data();
+                const float *__restrict wr = b.re.data(), *__restrict wi = b.im.data();
                 for (std::size_t j = 0; j < padded; ++j) {  // complex weight times complex source
                     sum_v[j] += wr[j] * src_v[j] - wi[j] * src_v[padded + j];
                     sum_v[padded + j] += wr[j] * src_v[padded + j] + wi[j] * src_v[j];
@@ -192,40 +193,98 @@ MaafFilteredSums maaf_separable_filter(const GatherGuides &g, float normal_thres
                     sum_u[padded + j] += wr[j] * src_u[padded + j] + wi[j] * src_u[j];
                 }
             }
-            std::copy(sum.begin(), sum.end(), acc);
+            std::copy(b.sum.begin(), b.sum.end(), acc);
         }
-        for (int x = 0; x < g.width; ++x) {  // horizontal: each centre with its own kernel, real parts only
-            const std::size_t c = g.index(x, y);
-            const MaafPixelKernel &k = kernels[c];
+    }
+
+    /// Horizontal: each centre of row y with its own kernel over the vertical
+    /// pass's output, real parts only, then MAAF Eq. 21's weighted sums.
+    void horizontal(int y, RowBuffers &b, MaafFilteredSums &out) const {
+        const std::size_t padded = table_.padded, stride = 4 * padded;
+        for (int x = 0; x < g_.width; ++x) {
+            const std::size_t c = g_.index(x, y);
+            const MaafPixelKernel &k = kernels_[c];
             if (!k.filtered) continue;
-            const int widest = term_radii(k, radius.data());
-            std::fill(sum.begin(), sum.end(), 0.0f);
-            for (int tx = std::max(0, x - widest); tx <= std::min(g.width - 1, x + widest); ++tx) {
-                const std::size_t t = g.index(tx, y);
+            const int widest = term_radii(k, b.radius.data());
+            std::fill(b.sum.begin(), b.sum.end(), 0.0f);
+            for (int tx = std::max(0, x - widest); tx <= std::min(g_.width - 1, x + widest); ++tx) {
+                const std::size_t t = g_.index(tx, y);
                 if (!accepted(c, t)) continue;
                 const int offset = std::abs(tx - x);
-                w.evaluate(k, pairs, g.coord_u_m[t] - g.coord_u_m[c], g.coord_v_m[t] - g.coord_v_m[c]);
-                w.of_terms(table, radius.data(), offset, re.data(), im.data());
-                const float *s = &intermediate[std::size_t(tx) * stride];
-                float *__restrict sum_v = sum.data(), *__restrict sum_u = sum.data() + 2 * padded;
+                b.w.evaluate(k, pairs_, g_.coord_u_m[t] - g_.coord_u_m[c], g_.coord_v_m[t] - g_.coord_v_m[c]);
+                b.w.of_terms(table_, b.radius.data(), offset, b.re.data(), b.im.data());
+                const float *s = &b.intermediate[std::size_t(tx) * stride];
+                float *__restrict sum_v = b.sum.data(), *__restrict sum_u = b.sum.data() + 2 * padded;
                 const float *__restrict src_v = s, *__restrict src_u = s + 2 * padded;
-                const float *__restrict wr = re.data(), *__restrict wi = im.data();
+                const float *__restrict wr = b.re.data(), *__restrict wi = b.im.data();
                 for (std::size_t j = 0; j < padded; ++j) {  // real parts only
                     sum_v[j] += wr[j] * src_v[j] - wi[j] * src_v[padded + j];
                     sum_u[j] += wr[j] * src_u[j] - wi[j] * src_u[padded + j];
                 }
             }
             double numerator = 0, denominator = 0;
-            for (std::size_t j = 0; j < term_count; ++j) {  // MAAF Eq. 21: mu_p sigma_p mu_q sigma_q per pair
-                const double weight = terms[j].scale * k.weight[terms[j].pu] * k.weight[terms[j].pv];
-                numerator += weight * double(sum[j]);
-                denominator += weight * double(sum[2 * padded + j]);
+            for (std::size_t j = 0; j < table_.count;
+                 ++j) {  // MAAF Eq. 21: mu_p sigma_p mu_q sigma_q per pair
+                const double weight = terms_[j].scale * k.weight[terms_[j].pu] * k.weight[terms_[j].pv];
+                numerator += weight * double(b.sum[j]);
+                denominator += weight * double(b.sum[2 * padded + j]);
             }
             out.numerator[c] = numerator;
             out.denominator[c] = denominator;
-            out.central_numerator[c] = double(sum[0]);
-            out.central_denominator[c] = double(sum[2 * padded]);
+            out.central_numerator[c] = double(b.sum[0]);
+            out.central_denominator[c] = double(b.sum[2 * padded]);
         }
+    }
+
+  private:
+    /// gather()'s tap test: the centre always, else the same object with a normal within the threshold.
+    bool accepted(std::size_t c, std::size_t t) const {
+        const float cos_angle = g_.normal_x[c] * g_.normal_x[t] + g_.normal_y[c] * g_.normal_y[t] +
+                                g_.normal_z[c] * g_.normal_z[t];
+        return t == c || (g_.object_id[t] == g_.object_id[c] && cos_angle >= cos_threshold_);
+    }
+    /// Each term's reach at a pixel: max(radius_p, radius_q); 0 where it is not filtered. Returns the widest.
+    int term_radii(const MaafPixelKernel &k, int *radius) const {
+        int widest = 0;
+        for (std::size_t j = 0; j < table_.count; ++j) {
+            radius[j] = k.filtered ? std::max(k.radius_px[terms_[j].pu], k.radius_px[terms_[j].pv]) : 0;
+            widest = std::max(widest, radius[j]);
+        }
+        return widest;
+    }
+
+    const GatherGuides &g_;
+    const std::vector<MaafPixelKernel> &kernels_;
+    const int pairs_;
+    const std::vector<Term> &terms_;
+    const TermTable table_;
+    const std::vector<float> &sources_;
+    const float cos_threshold_;
+};
+
+}  // namespace
+
+MaafFilteredSums maaf_separable_filter(const GatherGuides &g, float normal_threshold_deg,
+                                       const std::vector<MaafPixelKernel> &kernels, int sum_pairs, int pairs,
+                                       const std::vector<std::vector<float>> &value_sums,
+                                       const std::vector<std::vector<float>> &unoccluded_sums) {
+    if (pairs < 1 || pairs > sum_pairs || sum_pairs > kMaafMaxPairs)
+        throw Error("MAAF separable filter: N used must lie in [1, N of the sums]");
+    const std::size_t count = std::size_t(g.width) * std::size_t(g.height);
+    const std::vector<Term> terms = terms_for(sum_pairs, pairs);
+    const std::vector<float> sources =
+        complex_sources(g, terms, TermTable(terms).padded, value_sums, unoccluded_sums);
+    const SeparablePasses passes(g, normal_threshold_deg, kernels, pairs, terms, sources);
+
+    MaafFilteredSums out;
+    out.numerator.assign(count, 0.0);
+    out.denominator.assign(count, 0.0);
+    out.central_numerator.assign(count, 0.0);
+    out.central_denominator.assign(count, 0.0);
+    parallel_for_rows(g.height, [&](int y) {
+        SeparablePasses::RowBuffers buffers = passes.row_buffers();
+        passes.vertical(y, buffers);
+        passes.horizontal(y, buffers, out);
     });
     return out;
 }

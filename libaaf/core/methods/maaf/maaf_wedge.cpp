@@ -21,6 +21,43 @@ void check_size(ConstPlaneView view, int width, int height, const char *what) {
         throw Error(std::string("MAAF input '") + what + "' is missing or has another size");
 }
 
+/// The per-pixel wedge slopes before MAAF's prefilter, and the unit normals
+/// (0 where the normal is unusable) that decide which neighbours it averages.
+struct RawSlopes {
+    std::vector<float> s_min, s_max, unit_normal;
+};
+
+/// Raw slopes (MAAF Sec. 3: s = d1/d2 - 1), NaN where a pixel has no wedge.
+RawSlopes raw_slopes(const MaafWedgeInputs &in, const FilledOccluders &occluders) {
+    const int width = in.d1.width, height = in.d1.height;
+    const std::size_t count = std::size_t(width) * std::size_t(height);
+    const float no_wedge = std::nanf("");
+    RawSlopes raw{std::vector<float>(count, no_wedge), std::vector<float>(count, no_wedge),
+                  std::vector<float>(3 * count, 0.0f)};
+    std::vector<float> &raw_min = raw.s_min, &raw_max = raw.s_max, &unit_normal = raw.unit_normal;
+    parallel_for_rows(height, [&](int y) {
+        for (int x = 0; x < width; ++x) {
+            const std::size_t i = std::size_t(y) * std::size_t(width) + std::size_t(x);
+            const float nx = in.normal[0](x, y), ny = in.normal[1](x, y), nz = in.normal[2](x, y);
+            const float len = std::sqrt(nx * nx + ny * ny + nz * nz);
+            if (len > 0 && std::isfinite(len)) {
+                unit_normal[3 * i] = nx / len;
+                unit_normal[3 * i + 1] = ny / len;
+                unit_normal[3 * i + 2] = nz / len;
+            }
+            const float d1 = in.d1(x, y), d2_min = occluders.d2_min_m[i], d2_max = occluders.d2_max_m[i];
+            const float pixel = in.pixel_size(x, y);
+            if (in.object_id(x, y) == 0 || !(d1 > 0) || !std::isfinite(d1) || !(pixel > 0) ||
+                !std::isfinite(pixel) || !has_occluder(d2_max) || !(d2_min > 0))
+                continue;
+            // An occluder measured beyond the receiver (curved geometry) counts as contact.
+            raw_min[i] = std::max(0.0f, d1 / d2_max - 1.0f);
+            raw_max[i] = std::max(raw_min[i], d1 / d2_min - 1.0f);
+        }
+    });
+    return raw;
+}
+
 }  // namespace
 
 void MaafWedgeParams::validate() const {
@@ -54,29 +91,8 @@ MaafWedges maaf_pixel_wedges(const MaafWedgeInputs &in, const LightPlane &light,
     const FilledOccluders occluders =
         fill_occluder_distances(in.d2_min, in.d2_max, in.object_id, params.fill_radius_px);
 
-    // Raw slopes (MAAF Sec. 3: s = d1/d2 - 1), NaN where a pixel has no wedge.
-    const float no_wedge = std::nanf("");
-    std::vector<float> raw_min(count, no_wedge), raw_max(count, no_wedge), unit_normal(3 * count, 0.0f);
-    parallel_for_rows(height, [&](int y) {
-        for (int x = 0; x < width; ++x) {
-            const std::size_t i = std::size_t(y) * std::size_t(width) + std::size_t(x);
-            const float nx = in.normal[0](x, y), ny = in.normal[1](x, y), nz = in.normal[2](x, y);
-            const float len = std::sqrt(nx * nx + ny * ny + nz * nz);
-            if (len > 0 && std::isfinite(len)) {
-                unit_normal[3 * i] = nx / len;
-                unit_normal[3 * i + 1] = ny / len;
-                unit_normal[3 * i + 2] = nz / len;
-            }
-            const float d1 = in.d1(x, y), d2_min = occluders.d2_min_m[i], d2_max = occluders.d2_max_m[i];
-            const float pixel = in.pixel_size(x, y);
-            if (in.object_id(x, y) == 0 || !(d1 > 0) || !std::isfinite(d1) || !(pixel > 0) ||
-                !std::isfinite(pixel) || !has_occluder(d2_max) || !(d2_min > 0))
-                continue;
-            // An occluder measured beyond the receiver (curved geometry) counts as contact.
-            raw_min[i] = std::max(0.0f, d1 / d2_max - 1.0f);
-            raw_max[i] = std::max(raw_min[i], d1 / d2_min - 1.0f);
-        }
-    });
+    const RawSlopes raw = raw_slopes(in, occluders);
+    const std::vector<float> &raw_min = raw.s_min, &raw_max = raw.s_max, &unit_normal = raw.unit_normal;
 
     MaafWedges w;
     w.width = width;

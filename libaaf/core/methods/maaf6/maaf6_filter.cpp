@@ -138,163 +138,217 @@ void check_inputs(const Maaf6LayerInputs &layer, const Maaf6SharedInputs &shared
     if (!(params.k > 0)) throw Error("MAAF 6D: k must be positive");
 }
 
+/// What a filtered pixel's taps share: its components, its frame and windows.
+struct PixelFilter {
+    std::vector<Maaf6Component> pairs;         ///< only the central one where the offsets weigh 0
+    std::vector<Maaf6Component> axis_aligned;  ///< N = 1's (MYRD14's), beside the partition
+    bool offsets_used = false;
+    int pixel_n = 1;    ///< the channels per axis gathered: 2N - 1, or 1 without offsets
+    Vec3 p, n, t1, t2;  ///< the pixel's position, unit normal and tangent frame
+    double std_m = 0, axis_aligned_std_m = 0, lens_std_m = 0;
+    int r = 0, axis_aligned_r = 0;  ///< the windows' radii, pixels
+    double mass_all = 0;            ///< the central envelope's mass over the whole window
+};
+
+/// A pixel's sums over its accepted taps.
+struct TapSums {
+    double num[3] = {0, 0, 0}, den = 0;         ///< the filter's (the partition's with offsets)
+    double num0[3] = {0, 0, 0}, den0 = 0;       ///< the central term alone
+    double num1[3] = {0, 0, 0}, den1 = 0;       ///< the axis-aligned filter over its own window
+    double unoccluded = 0, unoccluded_den = 0;  ///< the unoccluded light through the lens band
+    double mass_kept = 0;                       ///< the central envelope's mass the guides keep
+};
+
+/// maaf6_filter_layer() for one layer: per row, each pixel's components,
+/// then its taps' sums, then the filtered ratio times the unoccluded light.
+class LayerFilter {
+  public:
+    LayerFilter(const Maaf6LayerInputs &layer, const Maaf6SharedInputs &shared, const LightPlane &light,
+                const Maaf6FilterParams &params)
+        : layer_(layer),
+          shared_(shared),
+          light_(light),
+          params_(params),
+          stored_n_(2 * params.stored_pairs - 1),
+          used_n_(2 * params.pairs_used - 1),
+          cos_threshold_(std::cos(double(params.normal_threshold_deg) * kPi / 180.0)) {
+        // The fitted pair weights' tables (MaafFittedWeights): the y-wedge's and the lens wedge's.
+        if (params.pair_weights == Maaf6PairWeights::Fitted && params.pairs_used > 1) {
+            const int n = params.pairs_used;
+            fitted_y_ = shared_fitted_weights(layer.y_density, layer.omega_y_max, n, params.k);
+            if (shared.omega_u_max > 0)
+                fitted_u_ = shared_fitted_weights(shared.lens_density, shared.omega_u_max, n, params.k);
+        }
+    }
+
+    /// Filters row y into `out`; its buffers are the row's own (rows run in parallel).
+    void row(int y, const std::array<PlaneView, 3> &out) const {
+        const int width = shared_.object_id.width, height = shared_.object_id.height;
+        std::vector<double> k1(static_cast<std::size_t>(used_n_)), k2(static_cast<std::size_t>(used_n_));
+        std::vector<double> envelope_px;  // the central envelope per pixel offset, for the window's mass
+        for (int x = 0; x < width; ++x) {
+            const float own_count = shared_.samples(x, y);
+            auto own_mean = [&](int c) {
+                return own_count > 0 ? layer_.sums[std::size_t(c)](x, y) / own_count : 0.0f;
+            };
+            Maaf6Wedge wedge;
+            // No wedge to filter along (a pinhole without y-wedge, or the focal-plane box):
+            // the pixel band is the pixel itself; MAAF Sec. 6.2 adds samples there instead.
+            if (shared_.object_id(x, y) == 0 || !pixel_wedge(layer_, shared_, params_, x, y, wedge)) {
+                for (int c = 0; c < 3; ++c) out[std::size_t(c)](x, y) = own_mean(c);
+                continue;
+            }
+            const PixelFilter f = pixel_filter(wedge, x, y, envelope_px);
+            TapSums sums;
+            for (int ty = std::max(0, y - f.r); ty <= std::min(height - 1, y + f.r); ++ty)
+                for (int tx = std::max(0, x - f.r); tx <= std::min(width - 1, x + f.r); ++tx)
+                    if (tap_accepted(shared_, f.n, cos_threshold_, tx, ty))
+                        add_tap(f, x, y, tx, ty, envelope_px, k1.data(), k2.data(), sums);
+            // The filtered ratio times the pixel's own mean weight (AAF's r(x) V(x) factoring).
+            const double own_weight =
+                own_count > 0 ? double(layer_.weights[0](x, y)) / double(own_count) : 0.0;
+            const double unoccluded_mean =
+                sums.unoccluded_den > 0 ? sums.unoccluded / sums.unoccluded_den : own_weight;
+            // The offset components can cancel most of the normalisation: below a tenth of the
+            // central term's, fall back to the central term rather than amplify noise.
+            const bool partition_kept = f.offsets_used && sums.mass_kept >= kMinWindowMass * f.mass_all;
+            for (int col = 0; col < 3; ++col) {
+                double v = f.offsets_used && !partition_kept
+                               ? (sums.den1 > 1e-12 ? unoccluded_mean * sums.num1[col] / sums.den1
+                                                    : double(own_mean(col)))
+                           : sums.den > 0.1 * sums.den0 && sums.den0 > 1e-12
+                               ? unoccluded_mean * sums.num[col] / sums.den
+                           : sums.den0 > 1e-12 ? unoccluded_mean * sums.num0[col] / sums.den0
+                                               : double(own_mean(col));
+                if (!std::isfinite(v)) v = double(own_mean(col));
+                v = std::max(0.0, v);  // radiance is not negative; the offset kernels' ringing can be
+                out[std::size_t(col)](x, y) = float(v);
+            }
+        }
+    }
+
+  private:
+    /// The components of pixel (x, y) with their weights (the pair weights
+    /// chosen), its frame and its windows; fills `envelope_px` with offsets.
+    PixelFilter pixel_filter(const Maaf6Wedge &wedge, int x, int y, std::vector<double> &envelope_px) const {
+        PixelFilter f;
+        const double window_m = double(params_.max_radius_px) * double(shared_.pixel_size(x, y));
+        f.pairs = maaf6_filter_components(wedge, pixel_pairs(shared_, params_, x, y), params_.k, window_m);
+        // Where the offset pairs have weight 0 (the axis-aligned fallback) their kernels are 0:
+        // only the central channel is gathered, with the same result.
+        f.offsets_used = std::any_of(f.pairs.begin() + 1, f.pairs.end(),
+                                     [](const Maaf6Component &c) { return c.weight != 0; });
+        if (!f.offsets_used) f.pairs.resize(1);
+        if (params_.pair_weights == Maaf6PairWeights::Light && f.offsets_used)
+            for (Maaf6Component &c : f.pairs)
+                c.weight *= maaf6_light_attenuation(c.centre_y, wedge.omega_y_max);
+        if (params_.pair_weights == Maaf6PairWeights::Fitted && f.offsets_used) {
+            // The partition is used, so the wedge is neither clipped by the x band nor
+            // widened (pixel_pairs): its slope ratio is all the fit depends on.
+            const double u_lo = std::min(std::fabs(wedge.u_min), std::fabs(wedge.u_max));
+            const double u_hi = std::max(std::fabs(wedge.u_min), std::fabs(wedge.u_max));
+            const MaafFittedWeights &table = wedge.has_y ? *fitted_y_ : *fitted_u_;
+            const double ratio = wedge.has_y ? wedge.y_min / wedge.y_max : u_lo / u_hi;
+            double mu[kMaafMaxPairs];
+            table.weights(ratio, mu);
+            for (std::size_t p = 1; p < f.pairs.size(); ++p) f.pairs[p].weight = mu[p - 1];
+        }
+        f.pixel_n = f.offsets_used ? used_n_ : 1;
+        f.p = read3(shared_.position, x, y);
+        f.n = normalize(read3(shared_.normal, x, y));
+        maaf6_tangent_frame(f.n, light_.axis_u, light_.axis_v, f.t1, f.t2);
+        f.std_m = f.pairs[0].sigma_x > 0 ? params_.k / f.pairs[0].sigma_x : 1e30;
+        f.r = window_radius(shared_, params_, x, y, f.std_m);
+        // The unoccluded light that multiplies the filtered ratio: with a lens wedge its samples
+        // see whatever surface the lens ray hits (across a blurred silhouette, the surface behind),
+        // so the pixel's own mean carries all of the defocus noise. It varies with u alone, so it
+        // is filtered with the lens wedge's own axis-aligned band (never wider than the ratio's).
+        const double lens_band = maaf6_lens_band(wedge);
+        f.lens_std_m = lens_band > 0 ? params_.k / lens_band : 0.0;
+        // With the partition: the axis-aligned filter alongside (MYRD14's, maaf6_pair_components(w, 1)),
+        // and how much of the central envelope's mass the window keeps (kMinWindowMass).
+        // It is computed as `--pairs 1` computes it, over its own window, so that it gives the same bits.
+        if (f.offsets_used) f.axis_aligned = maaf6_pair_components(wedge, 1);
+        f.axis_aligned_std_m =
+            f.offsets_used && f.axis_aligned[0].sigma_x > 0 ? params_.k / f.axis_aligned[0].sigma_x : 1e30;
+        f.axis_aligned_r = window_radius(shared_, params_, x, y, f.axis_aligned_std_m);
+        f.mass_all = f.offsets_used
+                         ? window_envelope(f.std_m / std::max(1e-12, double(shared_.pixel_size(x, y))), f.r,
+                                           envelope_px)
+                         : 0.0;
+        return f;
+    }
+
+    /// Adds the accepted tap (tx, ty) of pixel (x, y) to its sums; k1, k2 hold
+    /// 2N - 1 doubles each (the x kernels along t1 and t2).
+    void add_tap(const PixelFilter &f, int x, int y, int tx, int ty, const std::vector<double> &envelope_px,
+                 double *k1, double *k2, TapSums &s) const {
+        // The tap minus the centre: h(x) = sum f(x', y, u) w(x - x', y, u) sees the
+        // spectrum at (Omega_x, -Omega_y, -Omega_u), and our y, u axes point the way
+        // that puts the wedge at positive slopes (README.md beside this file, "Filter").
+        const Vec3 d = read3(shared_.position, tx, ty) - f.p;
+        maaf6_x_kernel(f.pairs, params_.k, double(dot(d, f.t1)), k1);
+        maaf6_x_kernel(f.pairs, params_.k, double(dot(d, f.t2)), k2);
+        // Off the tangent plane (a step in depth, another surface of the same
+        // normal), the central Gaussian of that distance: AAF's world distance.
+        const double off_plane = double(dot(d, f.n)) / f.std_m;
+        const double depth_weight = std::exp(-0.5 * off_plane * off_plane);
+        // Per-pixel means, as AAF filters them: a pixel with more samples (the
+        // focal-plane extra) is not weighted more than its neighbours.
+        const float count = shared_.samples(tx, ty);
+        const double per_sample = depth_weight / double(count);
+        if (f.lens_std_m > 0) {
+            const double lens_kernel = frame_gaussian(d, f.lens_std_m);
+            s.unoccluded += lens_kernel * double(layer_.weights[0](tx, ty)) / double(count);
+            s.unoccluded_den += lens_kernel;
+        }
+        if (f.offsets_used) {
+            s.mass_kept +=
+                envelope_px[std::size_t(std::abs(tx - x))] * envelope_px[std::size_t(std::abs(ty - y))];
+            if (std::abs(tx - x) <= f.axis_aligned_r && std::abs(ty - y) <= f.axis_aligned_r) {
+                double a1, a2;  // the steps of the gather below, for N = 1
+                maaf6_x_kernel(f.axis_aligned, params_.k, double(dot(d, f.t1)), &a1);
+                maaf6_x_kernel(f.axis_aligned, params_.k, double(dot(d, f.t2)), &a2);
+                const double off = double(dot(d, f.n)) / f.axis_aligned_std_m;
+                a1 *= std::exp(-0.5 * off * off) / double(count);
+                const double kernel = a1 * a2;
+                s.den1 += kernel * double(layer_.weights[0](tx, ty));
+                for (int col = 0; col < 3; ++col)
+                    s.num1[col] += kernel * double(layer_.sums[std::size_t(col)](tx, ty));
+            }
+        }
+        for (int a = 0; a < f.pixel_n; ++a) k1[a] *= per_sample;
+        for (int a = 0; a < f.pixel_n; ++a)
+            for (int b = 0; b < f.pixel_n; ++b) {
+                const int c = a * stored_n_ + b;  // the layout of the stored N
+                const double kernel = k1[a] * k2[b];
+                s.den += kernel * double(layer_.weights[std::size_t(c)](tx, ty));
+                for (int col = 0; col < 3; ++col)
+                    s.num[col] += kernel * double(layer_.sums[std::size_t(3 * c + col)](tx, ty));
+            }
+        const double central = k1[0] * k2[0];
+        s.den0 += central * double(layer_.weights[0](tx, ty));
+        for (int col = 0; col < 3; ++col)
+            s.num0[col] += central * double(layer_.sums[std::size_t(col)](tx, ty));
+    }
+
+    const Maaf6LayerInputs &layer_;
+    const Maaf6SharedInputs &shared_;
+    const LightPlane &light_;
+    const Maaf6FilterParams &params_;
+    const int stored_n_, used_n_;
+    const double cos_threshold_;
+    std::shared_ptr<const MaafFittedWeights> fitted_y_, fitted_u_;
+};
+
 }  // namespace
 
 void maaf6_filter_layer(const Maaf6LayerInputs &layer, const Maaf6SharedInputs &shared,
                         const LightPlane &light, const Maaf6FilterParams &params,
                         const std::array<PlaneView, 3> &out) {
     check_inputs(layer, shared, params);
-    const int width = shared.object_id.width, height = shared.object_id.height;
-    const int stored_n = 2 * params.stored_pairs - 1;
-    const double cos_threshold = std::cos(double(params.normal_threshold_deg) * kPi / 180.0);
-    const int used_n = 2 * params.pairs_used - 1;
-    // The fitted pair weights' tables (MaafFittedWeights): the y-wedge's and, without one, the lens wedge's.
-    std::shared_ptr<const MaafFittedWeights> fitted_y, fitted_u;
-    if (params.pair_weights == Maaf6PairWeights::Fitted && params.pairs_used > 1) {
-        const int n = params.pairs_used;
-        fitted_y = shared_fitted_weights(layer.y_density, layer.omega_y_max, n, params.k);
-        if (shared.omega_u_max > 0)
-            fitted_u = shared_fitted_weights(shared.lens_density, shared.omega_u_max, n, params.k);
-    }
-
-    parallel_for_rows(height, [&](int y) {
-        std::vector<double> k1(static_cast<std::size_t>(used_n)), k2(static_cast<std::size_t>(used_n));
-        std::vector<double> envelope_px;  // the central envelope per pixel offset, for the window's mass
-        for (int x = 0; x < width; ++x) {
-            const float own_count = shared.samples(x, y);
-            auto own_mean = [&](int c) {
-                return own_count > 0 ? layer.sums[std::size_t(c)](x, y) / own_count : 0.0f;
-            };
-            // The filtered ratio times the pixel's own mean weight (AAF's r(x) V(x) factoring).
-            const double own_weight =
-                own_count > 0 ? double(layer.weights[0](x, y)) / double(own_count) : 0.0;
-            if (shared.object_id(x, y) == 0) {
-                for (int c = 0; c < 3; ++c) out[std::size_t(c)](x, y) = own_mean(c);
-                continue;
-            }
-            Maaf6Wedge wedge;
-            if (!pixel_wedge(layer, shared, params, x, y, wedge)) {
-                // No wedge to filter along (a pinhole without y-wedge, or the focal-plane box):
-                // the pixel band is the pixel itself; MAAF Sec. 6.2 adds samples there instead.
-                for (int c = 0; c < 3; ++c) out[std::size_t(c)](x, y) = own_mean(c);
-                continue;
-            }
-            const double window_m = double(params.max_radius_px) * double(shared.pixel_size(x, y));
-            std::vector<Maaf6Component> pairs =
-                maaf6_filter_components(wedge, pixel_pairs(shared, params, x, y), params.k, window_m);
-            // Where the offset pairs have weight 0 (the axis-aligned fallback) their kernels are 0:
-            // only the central channel is gathered, with the same result.
-            const bool offsets_used = std::any_of(pairs.begin() + 1, pairs.end(),
-                                                  [](const Maaf6Component &c) { return c.weight != 0; });
-            if (!offsets_used) pairs.resize(1);
-            if (params.pair_weights == Maaf6PairWeights::Light && offsets_used)
-                for (Maaf6Component &c : pairs)
-                    c.weight *= maaf6_light_attenuation(c.centre_y, wedge.omega_y_max);
-            if (params.pair_weights == Maaf6PairWeights::Fitted && offsets_used) {
-                // The partition is used, so the wedge is neither clipped by the x band nor
-                // widened (pixel_pairs): its slope ratio is all the fit depends on.
-                const double u_lo = std::min(std::fabs(wedge.u_min), std::fabs(wedge.u_max));
-                const double u_hi = std::max(std::fabs(wedge.u_min), std::fabs(wedge.u_max));
-                const MaafFittedWeights &table = wedge.has_y ? *fitted_y : *fitted_u;
-                const double ratio = wedge.has_y ? wedge.y_min / wedge.y_max : u_lo / u_hi;
-                double mu[kMaafMaxPairs];
-                table.weights(ratio, mu);
-                for (std::size_t p = 1; p < pairs.size(); ++p) pairs[p].weight = mu[p - 1];
-            }
-            const int pixel_n = offsets_used ? used_n : 1;
-            const Vec3 p = read3(shared.position, x, y), n = normalize(read3(shared.normal, x, y));
-            Vec3 t1, t2;
-            maaf6_tangent_frame(n, light.axis_u, light.axis_v, t1, t2);
-            const double std_m = pairs[0].sigma_x > 0 ? params.k / pairs[0].sigma_x : 1e30;
-            const int r = window_radius(shared, params, x, y, std_m);
-            // The unoccluded light that multiplies the filtered ratio: with a lens wedge its samples
-            // see whatever surface the lens ray hits (across a blurred silhouette, the surface behind),
-            // so the pixel's own mean carries all of the defocus noise. It varies with u alone, so it
-            // is filtered with the lens wedge's own axis-aligned band (never wider than the ratio's).
-            const double lens_band = maaf6_lens_band(wedge);
-            const double lens_std_m = lens_band > 0 ? params.k / lens_band : 0.0;
-            double num[3] = {0, 0, 0}, den = 0, num0[3] = {0, 0, 0}, den0 = 0, unoccluded = 0,
-                   unoccluded_den = 0;
-            // With the partition: the axis-aligned filter alongside (MYRD14's, maaf6_pair_components(w, 1)),
-            // and how much of the central envelope's mass the window keeps (kMinWindowMass).
-            // It is computed as `--pairs 1` computes it, over its own window, so that it gives the same bits.
-            const std::vector<Maaf6Component> axis_aligned =
-                offsets_used ? maaf6_pair_components(wedge, 1) : std::vector<Maaf6Component>{};
-            const double axis_aligned_std_m =
-                offsets_used && axis_aligned[0].sigma_x > 0 ? params.k / axis_aligned[0].sigma_x : 1e30;
-            const int axis_aligned_r = window_radius(shared, params, x, y, axis_aligned_std_m);
-            double num1[3] = {0, 0, 0}, den1 = 0, mass_kept = 0;
-            const double mass_all =
-                offsets_used ? window_envelope(std_m / std::max(1e-12, double(shared.pixel_size(x, y))), r,
-                                               envelope_px)
-                             : 0.0;
-            for (int ty = std::max(0, y - r); ty <= std::min(height - 1, y + r); ++ty)
-                for (int tx = std::max(0, x - r); tx <= std::min(width - 1, x + r); ++tx) {
-                    if (!tap_accepted(shared, n, cos_threshold, tx, ty)) continue;
-                    // The tap minus the centre: h(x) = sum f(x', y, u) w(x - x', y, u) sees the
-                    // spectrum at (Omega_x, -Omega_y, -Omega_u), and our y, u axes point the way
-                    // that puts the wedge at positive slopes (README.md beside this file, "Filter").
-                    const Vec3 d = read3(shared.position, tx, ty) - p;
-                    maaf6_x_kernel(pairs, params.k, double(dot(d, t1)), k1.data());
-                    maaf6_x_kernel(pairs, params.k, double(dot(d, t2)), k2.data());
-                    // Off the tangent plane (a step in depth, another surface of the same
-                    // normal), the central Gaussian of that distance: AAF's world distance.
-                    const double off_plane = double(dot(d, n)) / std_m;
-                    const double depth_weight = std::exp(-0.5 * off_plane * off_plane);
-                    // Per-pixel means, as AAF filters them: a pixel with more samples (the
-                    // focal-plane extra) is not weighted more than its neighbours.
-                    const float count = shared.samples(tx, ty);
-                    const double per_sample = depth_weight / double(count);
-                    if (lens_std_m > 0) {
-                        const double lens_kernel = frame_gaussian(d, lens_std_m);
-                        unoccluded += lens_kernel * double(layer.weights[0](tx, ty)) / double(count);
-                        unoccluded_den += lens_kernel;
-                    }
-                    if (offsets_used) {
-                        mass_kept += envelope_px[std::size_t(std::abs(tx - x))] *
-                                     envelope_px[std::size_t(std::abs(ty - y))];
-                        if (std::abs(tx - x) <= axis_aligned_r && std::abs(ty - y) <= axis_aligned_r) {
-                            double a1, a2;  // the steps of the gather below, for N = 1
-                            maaf6_x_kernel(axis_aligned, params.k, double(dot(d, t1)), &a1);
-                            maaf6_x_kernel(axis_aligned, params.k, double(dot(d, t2)), &a2);
-                            const double off = double(dot(d, n)) / axis_aligned_std_m;
-                            a1 *= std::exp(-0.5 * off * off) / double(count);
-                            const double kernel = a1 * a2;
-                            den1 += kernel * double(layer.weights[0](tx, ty));
-                            for (int col = 0; col < 3; ++col)
-                                num1[col] += kernel * double(layer.sums[std::size_t(col)](tx, ty));
-                        }
-                    }
-                    for (int a = 0; a < pixel_n; ++a) k1[std::size_t(a)] *= per_sample;
-                    for (int a = 0; a < pixel_n; ++a)
-                        for (int b = 0; b < pixel_n; ++b) {
-                            const int c = a * stored_n + b;  // the layout of the stored N
-                            const double kernel = k1[std::size_t(a)] * k2[std::size_t(b)];
-                            den += kernel * double(layer.weights[std::size_t(c)](tx, ty));
-                            for (int col = 0; col < 3; ++col)
-                                num[col] += kernel * double(layer.sums[std::size_t(3 * c + col)](tx, ty));
-                        }
-                    const double central = k1[0] * k2[0];
-                    den0 += central * double(layer.weights[0](tx, ty));
-                    for (int col = 0; col < 3; ++col)
-                        num0[col] += central * double(layer.sums[std::size_t(col)](tx, ty));
-                }
-            const double unoccluded_mean = unoccluded_den > 0 ? unoccluded / unoccluded_den : own_weight;
-            // The offset components can cancel most of the normalisation: below a tenth of the
-            // central term's, fall back to the central term rather than amplify noise.
-            const bool partition_kept = offsets_used && mass_kept >= kMinWindowMass * mass_all;
-            for (int col = 0; col < 3; ++col) {
-                double v = offsets_used && !partition_kept
-                               ? (den1 > 1e-12 ? unoccluded_mean * num1[col] / den1 : double(own_mean(col)))
-                           : den > 0.1 * den0 && den0 > 1e-12 ? unoccluded_mean * num[col] / den
-                           : den0 > 1e-12                     ? unoccluded_mean * num0[col] / den0
-                                                              : double(own_mean(col));
-                if (!std::isfinite(v)) v = double(own_mean(col));
-                v = std::max(0.0, v);  // radiance is not negative; the offset kernels' ringing can be
-                out[std::size_t(col)](x, y) = float(v);
-            }
-        }
-    });
+    const LayerFilter filter(layer, shared, light, params);
+    parallel_for_rows(shared.object_id.height, [&](int y) { filter.row(y, out); });
 }
 
 Maaf6PartitionCensus maaf6_partition_census(const Maaf6LayerInputs &layer, const Maaf6SharedInputs &shared,
