@@ -31,6 +31,7 @@
 #include "frame_history.h"
 #include "frame_runner.h"
 #include "missing_input_report.h"
+#include "parameter_options.h"
 #include "provenance.h"
 
 namespace aaf::cli {
@@ -163,10 +164,8 @@ std::string render_parameters(const trace::RenderSettings &settings) {
     std::ostringstream text;
     text << "width=" << settings.width << " height=" << settings.height << " spp=" << settings.spp
          << " seed=" << settings.seed << " frame=" << settings.frame << " aovs=" << settings.aovs
-         << " adaptive=" << settings.adaptive << " mu=" << settings.adaptive_mu
-         << " max_spp=" << settings.max_spp << " light_bandlimit=" << to_string(settings.light_bandlimit)
-         << " light_axes=" << to_string(settings.light_axes)
-         << " pixel_footprint=" << (settings.projected_pixel ? "projected" : "receiver")
+         << " adaptive=" << settings.adaptive << " "
+         << adaptive_parameters_text(settings.plan, settings.max_spp)
          << " light=" << (settings.light_profile ? to_string(*settings.light_profile) : "scene")
          << " falloff=" << settings.cosine_falloff << " skip_self_occluded=" << settings.skip_self_occluded
          << " maaf_first_pass_spp=" << settings.maaf_first_pass_spp;
@@ -273,9 +272,7 @@ void add_render_command(CLI::App &app) {
         std::vector<std::string> filter_params;
         io::WriteOptions write;  ///< of complete frames; checkpoints keep the defaults, for --resume
         bool keep_beauty = false;
-        std::string light_bandlimit = to_string(trace::RenderSettings{}.light_bandlimit);
-        std::string light_axes = to_string(trace::RenderSettings{}.light_axes);
-        std::string pixel_footprint = trace::RenderSettings{}.projected_pixel ? "projected" : "receiver";
+        GivenParameters plan;  ///< the adaptive plan's AAF parameters given
         trace::RenderSettings settings;
         double checkpoint_s = 60;
         bool list = false, skip_existing = false, timings = false;
@@ -308,22 +305,7 @@ void add_render_command(CLI::App &app) {
         ->capture_default_str();
     cmd->add_flag("--adaptive", options->settings.adaptive,
                   "Two-pass adaptive sampling (AAF Sec. 6): --spp first, then AAF Eq. 21 per pixel");
-    cmd->add_option("--mu", options->settings.adaptive_mu, "mu of the adaptive sampling rate (AAF Eq. 21)")
-        ->capture_default_str();
-    cmd->add_option("--max-spp", options->settings.max_spp, "Cap on the adaptive samples per pixel")
-        ->capture_default_str();
-    cmd->add_option("--light-bandlimit", options->light_bandlimit,
-                    "Light band-limit rule of the adaptive plan (the filter's --light-bandlimit)")
-        ->check(CLI::IsMember({"spectrum", "equivalent_width", "sigma"}))
-        ->capture_default_str();
-    cmd->add_option("--light-axes", options->light_axes,
-                    "Light axes rule of the adaptive plan (the filter's --light-axes)")
-        ->check(CLI::IsMember({"per_axis", "shortest"}))
-        ->capture_default_str();
-    cmd->add_option("--pixel-footprint", options->pixel_footprint,
-                    "Pixel footprint of the adaptive plan (the filter's --pixel-footprint)")
-        ->check(CLI::IsMember({"projected", "receiver"}))
-        ->capture_default_str();
+    add_adaptive_options(*cmd, options->plan, options->settings.max_spp);
     cmd->add_option("--light", options->light, "Override the lights' profile: gaussian or uniform")
         ->check(CLI::IsMember({"gaussian", "uniform"}));
     cmd->add_flag("--falloff", options->settings.cosine_falloff,
@@ -372,9 +354,7 @@ void add_render_command(CLI::App &app) {
         require_exr_output(options->output, "aaf render");
         trace::RenderSettings &settings = options->settings;
         if (!options->light.empty()) settings.light_profile = light_profile_from_string(options->light);
-        settings.light_bandlimit = light_bandlimit_from_string(options->light_bandlimit);
-        settings.light_axes = light_axes_from_string(options->light_axes);
-        settings.projected_pixel = options->pixel_footprint == "projected";
+        settings.plan = aaf_params_given(options->plan);
         try {
             settings.aovs = trace::parse_aov_groups(options->aovs);
         } catch (const Error &e) {
@@ -417,10 +397,10 @@ void add_render_command(CLI::App &app) {
         check_settings(settings, !options->resume.empty());
         // Options that only shape the adaptive second pass do nothing without it.
         if (!settings.adaptive)
-            for (const char *option :
-                 {"--mu", "--max-spp", "--light-bandlimit", "--light-axes", "--pixel-footprint"})
+            for (const std::string &option : adaptive_option_names())
                 if (cmd->count(option) > 0)
-                    std::fprintf(stderr, "aaf: warning: %s has no effect without --adaptive\n", option);
+                    std::fprintf(stderr, "aaf: warning: %s has no effect without --adaptive\n",
+                                 option.c_str());
         // Nor do a group's options without the group.
         if (!(settings.aovs & trace::kAovMaaf6) && cmd->count("--maaf6-effects") > 0)
             std::fprintf(stderr,

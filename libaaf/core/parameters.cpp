@@ -239,6 +239,12 @@ std::string parameter_text(bool value) {
     return value ? "true" : "false";
 }
 
+void throw_unknown_parameter(const std::string &owner, const std::vector<ParameterInfo> &infos,
+                             const std::string &name) {
+    ParameterSet(owner, infos).info(name);  // throws, naming the known ones
+    throw Error("internal: parameter '" + name + "' of '" + owner + "' is and is not declared");
+}
+
 void throw_unnamed_choice(const std::string &name) {
     throw Error("internal: a value of parameter '" + name + "' has no name among its choices");
 }

@@ -48,7 +48,7 @@ const ParameterDeclarations<RatioSettings> &ratio_parameters() {
                     "What is denoised: ratio, U x den(S_N) / den(U_N) (ratio estimator Eq. 25); stochastic, "
                     "den(S_N) (ratio estimator Eq. 10); control-variate, den(U - U_N + S_N) (ratio estimator "
                     "Eq. 11); same denoiser and widths")
-            .choice(
+            .text_choice(
                 "denoiser", &P::denoiser, {"bilateral", "gaussian", "aaf"},
                 "bilateral: the joint bilateral with sigma from the noise estimate (Sec. 4); gaussian: one "
                 "fixed screen-space sigma (Fig. 7); aaf: AAF's per-pixel widths (needs the shadow group's "

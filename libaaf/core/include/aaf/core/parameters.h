@@ -95,6 +95,9 @@ std::string parameter_text(bool value);
 
 /// Throws aaf::Error: a value of choice parameter `name` that its declaration does not name.
 [[noreturn]] void throw_unnamed_choice(const std::string &name);
+/// Throws aaf::Error as ParameterSet::info() does for a name `infos` lacks.
+[[noreturn]] void throw_unknown_parameter(const std::string &owner, const std::vector<ParameterInfo> &infos,
+                                          const std::string &name);
 
 /// Each parameter of a method declared once, bound to the member of its
 /// settings struct `Params` that it sets (pbrt-v4's ParameterDictionary
@@ -193,8 +196,8 @@ class ParameterDeclarations {
 
     /// A Choice whose member holds the chosen name itself.
     template <class Base>
-    ParameterDeclarations &choice(std::string name, std::string Base::*member, std::vector<std::string> names,
-                                  std::string help) {
+    ParameterDeclarations &text_choice(std::string name, std::string Base::*member,
+                                       std::vector<std::string> names, std::string help) {
         std::vector<std::pair<std::string, std::string>> choices;
         for (const std::string &n : names) choices.emplace_back(n, n);
         return choice<std::string, Base>(std::move(name), member, std::move(choices), std::move(help));
@@ -204,7 +207,11 @@ class ParameterDeclarations {
     /// The declarations in order: MethodInfo::parameters.
     const std::vector<ParameterInfo> &infos() const { return infos_; }
     /// The declaration of `name`; throws aaf::Error naming the known ones.
-    const ParameterInfo &info(const std::string &name) const { return defaults().info(name); }
+    const ParameterInfo &info(const std::string &name) const {
+        for (const ParameterInfo &info : infos_)
+            if (info.name == name) return info;
+        throw_unknown_parameter(owner_, infos_, name);
+    }
     /// Every parameter at its default, Params{}'s.
     ParameterSet defaults() const { return ParameterSet(owner_, infos_); }
 
