@@ -21,6 +21,7 @@
 #include "frame_runner.h"
 #include "light_option.h"
 #include "missing_input_report.h"
+#include "parameter_options.h"
 #include "provenance.h"
 
 namespace aaf::cli {
@@ -28,29 +29,6 @@ namespace aaf::cli {
 namespace fs = std::filesystem;
 
 namespace {
-
-/// One option per declared parameter; values given land in `values` as text.
-void add_parameter_options(CLI::App &cmd, const MethodInfo &method,
-                           std::map<std::string, std::string> &values) {
-    for (const ParameterInfo &parameter : method.parameters) {
-        std::string help = parameter.help;
-        if (!parameter.unit.empty()) help += "; " + parameter.unit;
-        if (parameter.type == ParameterType::Bool) {
-            cmd.add_flag_callback(
-                parameter.option_name(), [&values, name = parameter.name] { values[name] = "true"; }, help);
-            continue;
-        }
-        help += "; " + parameter.range_text();
-        const char *type = parameter.type == ParameterType::Int     ? "INT"
-                           : parameter.type == ParameterType::Float ? "FLOAT"
-                                                                    : "TEXT";
-        cmd.add_option_function<std::string>(
-               parameter.option_name(),
-               [&values, name = parameter.name](const std::string &v) { values[name] = v; }, help)
-            ->type_name(type)
-            ->default_str(parameter.default_value);
-    }
-}
 
 std::string role_keys(const std::vector<Role> &roles) {
     std::string text;
@@ -180,7 +158,7 @@ void add_method_command(CLI::App &filter, const Method &method) {
     auto options = std::make_shared<FilterOptions>();
     CLI::App *cmd = filter.add_subcommand(method.info().name, method.info().summary);
     add_common_options(*cmd, *options);
-    add_parameter_options(*cmd, method.info(), options->parameters);
+    add_parameter_options(*cmd, method.info().parameters, options->parameters);
     cmd->callback([options, &method] {
         require_exr_output(options->output, "aaf filter");
         const ChannelMap channels = channel_map_from(options->maps);

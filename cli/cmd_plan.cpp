@@ -9,16 +9,14 @@
 #include "aaf/io/exr_io.h"
 #include "channel_options.h"
 #include "commands.h"
+#include "parameter_options.h"
 
 namespace aaf::cli {
 
 void add_plan_command(CLI::App &app) {
     struct Options {
         std::string input, output;
-        AafParams aaf;
-        std::string light_bandlimit = to_string(AafParams{}.light_bandlimit);
-        std::string light_axes = to_string(AafParams{}.light_axes);
-        std::string pixel_footprint = AafParams{}.projected_pixel ? "projected" : "receiver";
+        GivenParameters aaf;  ///< AAF's parameters given, as `aaf filter aaf` takes them
         SamplingPlanParams plan;
         std::vector<std::string> maps;
         int threads = 0;
@@ -29,42 +27,27 @@ void add_plan_command(CLI::App &app) {
     cmd->add_option("input", options->input, "First-pass EXR with d1, d2min, d2max, object id, pixel size")
         ->required();
     cmd->add_option("-o,--output", options->output, "Output EXR with the plan.spp channel")->required();
-    cmd->add_option("--mu", options->aaf.mu, "mu of AAF Eq. 21 (use the filter's)")
-        ->check(finite_number(0))
-        ->capture_default_str();
-    cmd->add_option("--alpha", options->aaf.alpha,
-                    "Occluder bandlimit over pixel bandlimit, (0,1] (AAF Eq. 5)")
-        ->check(finite_number(0, 1))
-        ->capture_default_str();
-    cmd->add_option("--light-bandlimit", options->light_bandlimit,
-                    "Light band-limit rule (use the filter's --light-bandlimit)")
-        ->check(CLI::IsMember({"spectrum", "equivalent_width", "sigma"}))
-        ->capture_default_str();
-    cmd->add_option("--light-axes", options->light_axes, "Light axes rule (use the filter's --light-axes)")
-        ->check(CLI::IsMember({"per_axis", "shortest"}))
-        ->capture_default_str();
-    cmd->add_option("--pixel-footprint", options->pixel_footprint,
-                    "Pixel footprint (use the filter's --pixel-footprint; projected needs the normal)")
-        ->check(CLI::IsMember({"projected", "receiver"}))
-        ->capture_default_str();
+    // AAF's own parameters, declared once (aaf_parameter_declarations()): the plan must use the filter's.
+    add_aaf_option(*cmd, "mu", options->aaf, "mu of AAF Eq. 21 (use the filter's)");
+    add_aaf_option(*cmd, "alpha", options->aaf);
+    add_aaf_option(*cmd, "light_bandlimit", options->aaf,
+                   "Light band-limit rule (use the filter's --light-bandlimit)");
+    add_aaf_option(*cmd, "light_axes", options->aaf, "Light axes rule (use the filter's --light-axes)");
+    add_aaf_option(*cmd, "pixel_footprint", options->aaf,
+                   "Pixel footprint (use the filter's --pixel-footprint; projected needs the normal)");
     cmd->add_option("--first-pass", options->plan.first_pass_spp, "Samples the first pass took per pixel")
         ->check(finite_number(1, HUGE_VAL, /*low_allowed=*/true))
         ->capture_default_str();
     cmd->add_option("--max-spp", options->plan.max_spp, "Cap on the total per pixel")
         ->check(finite_number(1, HUGE_VAL, /*low_allowed=*/true))
         ->capture_default_str();
-    cmd->add_option("--fill-radius", options->aaf.fill_radius_px,
-                    "Radius to borrow occluder distances, pixels")
-        ->check(finite_number(0, HUGE_VAL, /*low_allowed=*/true))
-        ->capture_default_str();
+    add_aaf_option(*cmd, "fill_radius", options->aaf);
     add_map_and_threads_options(*cmd, options->maps, options->threads);
     cmd->callback([options] {
         if (options->plan.first_pass_spp > options->plan.max_spp)
             throw UsageError("--first-pass " + std::to_string(options->plan.first_pass_spp) +
                              " is above --max-spp " + std::to_string(options->plan.max_spp));
-        options->aaf.light_bandlimit = light_bandlimit_from_string(options->light_bandlimit);
-        options->aaf.light_axes = light_axes_from_string(options->light_axes);
-        options->aaf.projected_pixel = options->pixel_footprint == "projected";
+        const AafParams aaf = aaf_params_given(options->aaf);
         const ChannelMap channels = channel_map_from(options->maps);
         require_exr_output(options->output, "aaf plan");
         io::check_not_same_file(options->input, options->output);
@@ -72,7 +55,7 @@ void add_plan_command(CLI::App &app) {
         AovSet plan;
         run_with_threads(options->threads, [&] {
             with_context(options->input,
-                         [&] { plan = plan_samples_aovs(input, channels, options->aaf, options->plan); });
+                         [&] { plan = plan_samples_aovs(input, channels, aaf, options->plan); });
         });
         io::write_aovs(plan, options->output);
     });

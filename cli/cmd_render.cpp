@@ -33,6 +33,7 @@
 #include "frame_history.h"
 #include "frame_runner.h"
 #include "missing_input_report.h"
+#include "parameter_options.h"
 #include "provenance.h"
 
 namespace aaf::cli {
@@ -165,10 +166,8 @@ std::string render_parameters(const trace::RenderSettings &settings) {
     std::ostringstream text;
     text << "width=" << settings.width << " height=" << settings.height << " spp=" << settings.spp
          << " seed=" << settings.seed << " frame=" << settings.frame << " aovs=" << settings.aovs.text()
-         << " adaptive=" << settings.adaptive << " mu=" << settings.adaptive_mu
-         << " max_spp=" << settings.max_spp << " light_bandlimit=" << to_string(settings.light_bandlimit)
-         << " light_axes=" << to_string(settings.light_axes)
-         << " pixel_footprint=" << (settings.projected_pixel ? "projected" : "receiver")
+         << " adaptive=" << settings.adaptive << " "
+         << adaptive_parameters_text(settings.plan, settings.max_spp)
          << " light=" << (settings.light_profile ? to_string(*settings.light_profile) : "scene")
          << " falloff=" << settings.cosine_falloff << " skip_self_occluded=" << settings.skip_self_occluded;
     // The parameters of the groups rendered (AovGroupInfo::parameters), as declared.
@@ -270,9 +269,7 @@ struct RenderOptions {
     std::vector<std::string> filter_params;
     io::WriteOptions write;  ///< of complete frames; checkpoints keep the defaults, for --resume
     bool keep_beauty = false;
-    std::string light_bandlimit = to_string(trace::RenderSettings{}.light_bandlimit);
-    std::string light_axes = to_string(trace::RenderSettings{}.light_axes);
-    std::string pixel_footprint = trace::RenderSettings{}.projected_pixel ? "projected" : "receiver";
+    GivenParameters plan;  ///< the adaptive plan's AAF parameters given
     trace::RenderSettings settings;
     /// The group parameters given (--maaf6-effects shadows): value by group and parameter name.
     std::map<std::pair<std::string, std::string>, std::string> group_values;
@@ -335,22 +332,7 @@ void add_group_options(CLI::App &cmd, RenderOptions &o) {
 void add_sampling_options(CLI::App &cmd, RenderOptions &o) {
     cmd.add_flag("--adaptive", o.settings.adaptive,
                  "Two-pass adaptive sampling (AAF Sec. 6): --spp first, then AAF Eq. 21 per pixel");
-    cmd.add_option("--mu", o.settings.adaptive_mu, "mu of the adaptive sampling rate (AAF Eq. 21)")
-        ->capture_default_str();
-    cmd.add_option("--max-spp", o.settings.max_spp, "Cap on the adaptive samples per pixel")
-        ->capture_default_str();
-    cmd.add_option("--light-bandlimit", o.light_bandlimit,
-                   "Light band-limit rule of the adaptive plan (the filter's --light-bandlimit)")
-        ->check(CLI::IsMember({"spectrum", "equivalent_width", "sigma"}))
-        ->capture_default_str();
-    cmd.add_option("--light-axes", o.light_axes,
-                   "Light axes rule of the adaptive plan (the filter's --light-axes)")
-        ->check(CLI::IsMember({"per_axis", "shortest"}))
-        ->capture_default_str();
-    cmd.add_option("--pixel-footprint", o.pixel_footprint,
-                   "Pixel footprint of the adaptive plan (the filter's --pixel-footprint)")
-        ->check(CLI::IsMember({"projected", "receiver"}))
-        ->capture_default_str();
+    add_adaptive_options(cmd, o.plan, o.settings.max_spp);
     cmd.add_option("--light", o.light, "Override the lights' profile: gaussian or uniform")
         ->check(CLI::IsMember({"gaussian", "uniform"}));
     cmd.add_flag("--falloff", o.settings.cosine_falloff,
@@ -448,10 +430,9 @@ void set_group_parameters(RenderOptions &o) {
 void warn_idle_options(const RenderOptions &o, const CLI::App &cmd) {
     // Options that only shape the adaptive second pass do nothing without it.
     if (!o.settings.adaptive)
-        for (const char *option :
-             {"--mu", "--max-spp", "--light-bandlimit", "--light-axes", "--pixel-footprint"})
+        for (const std::string &option : adaptive_option_names())
             if (cmd.count(option) > 0)
-                std::fprintf(stderr, "aaf: warning: %s has no effect without --adaptive\n", option);
+                std::fprintf(stderr, "aaf: warning: %s has no effect without --adaptive\n", option.c_str());
     // Nor do a group's parameters without the group.
     for (const auto &entry : o.group_values) {
         const std::string &group = entry.first.first;
@@ -467,9 +448,7 @@ void warn_idle_options(const RenderOptions &o, const CLI::App &cmd) {
 std::optional<RenderFilter> settings_from_options(RenderOptions &o, const CLI::App &cmd) {
     trace::RenderSettings &settings = o.settings;
     if (!o.light.empty()) settings.light_profile = light_profile_from_string(o.light);
-    settings.light_bandlimit = light_bandlimit_from_string(o.light_bandlimit);
-    settings.light_axes = light_axes_from_string(o.light_axes);
-    settings.projected_pixel = o.pixel_footprint == "projected";
+    settings.plan = aaf_params_given(o.plan);
     try {
         settings.aovs = trace::parse_aov_groups(o.aovs);
     } catch (const Error &e) {

@@ -216,3 +216,54 @@ std::string ParameterSet::text(const std::string &name) const {
 }
 
 }  // namespace aaf
+
+namespace aaf {
+
+namespace {
+
+/// The shortest "%.Ng" text of `value` that `parse` reads back exactly; an
+/// integral value in full ("100", not "1e+02").
+template <class T, class Parse>
+std::string shortest_text(T value, int max_digits, Parse parse) {
+    char buffer[64];
+    if (std::isfinite(value) && value == std::floor(value) && std::fabs(value) < 1e15) {
+        std::snprintf(buffer, sizeof buffer, "%.0f", double(value));
+        return buffer;
+    }
+    for (int digits = 1; digits < max_digits; ++digits) {
+        std::snprintf(buffer, sizeof buffer, "%.*g", digits, double(value));
+        if (parse(buffer) == value) return buffer;
+    }
+    std::snprintf(buffer, sizeof buffer, "%.*g", max_digits, double(value));
+    return buffer;
+}
+
+}  // namespace
+
+std::string parameter_text(float value) {
+    return shortest_text(value, 9, [](const char *text) { return std::strtof(text, nullptr); });
+}
+
+std::string parameter_text(double value) {
+    return shortest_text(value, 17, [](const char *text) { return std::strtod(text, nullptr); });
+}
+
+std::string parameter_text(long long value) {
+    return std::to_string(value);
+}
+
+std::string parameter_text(bool value) {
+    return value ? "true" : "false";
+}
+
+void throw_unknown_parameter(const std::string &owner, const std::vector<ParameterInfo> &infos,
+                             const std::string &name) {
+    ParameterSet(owner, infos).info(name);  // throws, naming the known ones
+    throw Error("internal: parameter '" + name + "' of '" + owner + "' is and is not declared");
+}
+
+void throw_unnamed_choice(const std::string &name) {
+    throw Error("internal: a value of parameter '" + name + "' has no name among its choices");
+}
+
+}  // namespace aaf

@@ -92,7 +92,7 @@ void write_attributes(const SceneDescription &scene, const RenderSettings &setti
     aovs.attributes[attr::kSppDone] = spp_done;
     aovs.attributes[attr::kFrame] = float(settings.frame);
     if (settings.adaptive) {
-        aovs.attributes[attr::kAdaptiveMu] = settings.adaptive_mu;
+        aovs.attributes[attr::kAdaptiveMu] = settings.plan.mu;
         aovs.attributes[attr::kMaxSpp] = settings.max_spp;
     }
     aovs.attributes[attr::kCosineFalloff] = int(settings.cosine_falloff);
@@ -244,15 +244,10 @@ AovSet plan_second_pass(const RenderState &state, const Accumulators &accumulato
     AovSet first_pass(settings.width, settings.height);
     write_aovs(state, accumulators, aov_groups_for_method("aaf"), first_pass);
     write_light_attributes(state.scene.key_light(), first_pass);
-    AafParams aaf;
-    aaf.mu = settings.adaptive_mu;
-    aaf.light_bandlimit = settings.light_bandlimit;
-    aaf.light_axes = settings.light_axes;
-    aaf.projected_pixel = settings.projected_pixel;
     SamplingPlanParams params;
     params.first_pass_spp = settings.spp;
     params.max_spp = settings.max_spp;
-    return plan_samples_aovs(first_pass, ChannelMap(), aaf, params);
+    return plan_samples_aovs(first_pass, ChannelMap(), settings.plan, params);
 }
 
 using Clock = std::chrono::steady_clock;
@@ -321,7 +316,7 @@ void validate_render_settings(const RenderSettings &settings) {
     if (settings.adaptive) {
         if (settings.max_spp < settings.spp || settings.max_spp > (1 << 20))
             throw Error("max spp must lie in [spp, 1048576] for adaptive sampling");
-        if (!(settings.adaptive_mu > 0) || !std::isfinite(settings.adaptive_mu))
+        if (!(settings.plan.mu > 0) || !std::isfinite(settings.plan.mu))
             throw Error("adaptive mu must be positive and finite");
         if (settings.resume) throw Error("an adaptive render cannot be resumed");
     }

@@ -225,11 +225,11 @@ int main(int argc, char **argv) {
             study.add("AS_skip_self_occluded", "AF", default_mu, skipped, AafParams{});
             // The paper's pipeline: its plan (Omega_L = 1/sigma, the receiver's footprint:
             // the defaults' plan too) and its filter settings.
-            settings.light_bandlimit = LightBandlimit::Sigma;
-            settings.projected_pixel = false;
+            settings.plan.light_bandlimit = LightBandlimit::Sigma;
+            settings.plan.projected_pixel = false;
             const AovSet paper = trace::render_scene(scene, settings);
-            settings.light_bandlimit = trace::RenderSettings{}.light_bandlimit;
-            settings.projected_pixel = trace::RenderSettings{}.projected_pixel;
+            settings.plan.light_bandlimit = trace::RenderSettings{}.plan.light_bandlimit;
+            settings.plan.projected_pixel = trace::RenderSettings{}.plan.projected_pixel;
             study.add_unfiltered("AS_paper", default_mu, paper);
             study.add("AS_paper", "AF_paper", default_mu, paper, paper_params(float(default_mu)));
             study.add("AS_paper", "AF", default_mu, paper, AafParams{});

@@ -108,7 +108,7 @@ int main(int argc, char **argv) {
             settings.adaptive = true;
             settings.max_spp = 1000;
             for (float mu : mu_values) {
-                settings.adaptive_mu = mu;
+                settings.plan.mu = mu;
                 auto start = Clock::now();
                 const AovSet noisy = trace::render_scene(scene, settings);
                 const double sampling_s = seconds_since(start);

@@ -144,10 +144,10 @@ TEST_CASE("An adaptive render gives the golden bytes", "[trace][golden]") {
     check_golden([&] { return trace::render_scene("grids", settings); }, 0x00d8de2112aa3d62);
     // The former defaults still give their bytes: the truncated profile's
     // equivalent-width band-limit with the projected footprint, then with the receiver's.
-    settings.light_bandlimit = LightBandlimit::EquivalentWidth;
-    settings.projected_pixel = true;
+    settings.plan.light_bandlimit = LightBandlimit::EquivalentWidth;
+    settings.plan.projected_pixel = true;
     check_golden([&] { return trace::render_scene("grids", settings); }, 0xe101f6697f8b22db);
-    settings.projected_pixel = false;
+    settings.plan.projected_pixel = false;
     check_golden([&] { return trace::render_scene("grids", settings); }, 0x03f8c67dcddd21c6);
 }
 

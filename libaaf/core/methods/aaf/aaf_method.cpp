@@ -9,6 +9,7 @@
 #include "aaf/core/error.h"
 #include "aaf/core/filter_aovs.h"
 #include "aaf/core/method_registry.h"
+#include "aaf/core/parameter_defaults.h"
 #include "aaf/core/shadow_composition.h"
 #include "aaf_method_inputs.h"
 
@@ -16,79 +17,67 @@ namespace aaf {
 
 namespace {
 
-/// The parameters, with AafParams' defaults (AAF Sec. 6) and AafParams::validate()'s ranges.
-std::vector<ParameterInfo> aaf_parameters() {
-    constexpr double kInf = std::numeric_limits<double>::infinity();
-    return {
-        ParameterInfo::real("mu", "2", "", "Filter scale for consistency, beta ~ 1/mu (AAF Sec. 5.2)", 0,
-                            kInf,
-                            /*min_open=*/true),
-        ParameterInfo::flag("mu_from_spp",
-                            "Require the spp input: per pixel, raise mu until AAF Eq. 21's rate equals the "
-                            "samples taken (consistency, AAF Sec. 5.2; the default whenever spp is given)"),
-        ParameterInfo::flag(
-            "fixed_mu", "One mu everywhere, ignoring the spp input (AAF Eq. 13 as printed; not consistent)"),
-        ParameterInfo::choice(
-            "light_bandlimit", "sigma", {"sigma", "equivalent_width", "spectrum"},
-            "Light band-limit 1/sigma_b of AAF Sec. 4.1: sigma (the paper's, the profile's sigma) or, "
-            "for the Gaussian truncated at the light's edges, equivalent_width (the spectrum's area) "
-            "or spectrum (falls to exp(-1/2) where the truncated profile's does); the plan (aaf "
-            "plan, render --adaptive) must use the same"),
-        ParameterInfo::choice("light_axes", "per_axis", {"per_axis", "shortest"},
-                              "per_axis: each light axis its own band-limit, an anisotropic Gaussian in the "
-                              "light's plane; shortest: the sharper axis's for both (isotropic); the plan "
-                              "must use the same"),
-        ParameterInfo::real("k", "3", "", "Gaussian spread factor of AAF Eq. 13", 0, kInf, /*min_open=*/true),
-        ParameterInfo::real("alpha", "1", "", "Occluder bandlimit over pixel bandlimit (AAF Eq. 5)", 0, 1,
-                            /*min_open=*/true),
-        ParameterInfo::real("normal_threshold", "25", "degrees", "Reject taps whose normal turns more", 0,
-                            180),
-        ParameterInfo::integer("fill_radius", "5", "pixels",
-                               "Radius to borrow occluder distances (AAF Sec. 6)", 0, 1 << 16),
-        ParameterInfo::integer("max_radius", "64", "pixels", "Largest filter radius", 0, 1 << 16),
-        ParameterInfo::real(
-            "fixed_beta", "0", "metres",
-            "Non-adaptive baseline of AAF Fig. 6: this beta everywhere AAF filters; 0 = AAF Eq. 13", 0),
-        ParameterInfo::choice("filter", "separable", {"separable", "2d"},
-                              "separable: two 1D passes (AAF Sec. 6); 2d: exact 2D gather of AAF Eq. 10, to "
-                              "measure the approximation"),
-        ParameterInfo::choice("borders", "symmetric", {"symmetric", "clip"},
-                              "symmetric: near the image edge the window shrinks on both sides and stays "
-                              "centred; clip: cut on the edge side only (one-sided, biased on gradients)"),
-        ParameterInfo::choice(
-            "light_distance", "ray", {"ray", "plane", "guarded"},
-            "Tap distance in the light's plane: ray (slid along the direction to the light onto "
-            "the light-parallel plane first), plane (AAF Eq. 12's orthogonal projection) or guarded "
-            "(plane, and ray where a receiver is within 6 degrees of perpendicular to the light's "
-            "plane)"),
-        ParameterInfo::choice("pixel_footprint", "receiver", {"receiver", "projected"},
-                              "Pixel size d of the pixel band-limit 1/d (AAF Eq. 6, 15): the receiver's own "
-                              "(the paper's) or projected orthogonally onto the light's plane like the plane "
-                              "distances; the plan must use the same"),
-    };
+constexpr double kInf = std::numeric_limits<double>::infinity();
+
+/// The parameters, each bound to its AafParams member: AafParams' defaults (AAF Sec. 6) and
+/// AafParams::validate()'s ranges.
+ParameterDeclarations<AafParams> declare_aaf_parameters() {
+    using P = AafParams;
+    return std::move(
+        ParameterDeclarations<P>("aaf")
+            .real("mu", &P::mu, "", "Filter scale for consistency, beta ~ 1/mu (AAF Sec. 5.2)", 0, kInf,
+                  /*min_open=*/true)
+            .flag("mu_from_spp", &P::mu_from_spp,
+                  "Require the spp input: per pixel, raise mu until AAF Eq. 21's rate equals the samples "
+                  "taken (consistency, AAF Sec. 5.2; the default whenever spp is given)")
+            .flag("fixed_mu", &P::fixed_mu,
+                  "One mu everywhere, ignoring the spp input (AAF Eq. 13 as printed; not consistent)")
+            .choice(
+                "light_bandlimit", &P::light_bandlimit,
+                {{"sigma", LightBandlimit::Sigma},
+                 {"equivalent_width", LightBandlimit::EquivalentWidth},
+                 {"spectrum", LightBandlimit::Spectrum}},
+                "Light band-limit 1/sigma_b of AAF Sec. 4.1: sigma (the paper's, the profile's sigma) or, "
+                "for the Gaussian truncated at the light's edges, equivalent_width (the spectrum's area) "
+                "or spectrum (falls to exp(-1/2) where the truncated profile's does); the plan (aaf "
+                "plan, render --adaptive) must use the same")
+            .choice("light_axes", &P::light_axes,
+                    {{"per_axis", AafLightAxes::PerAxis}, {"shortest", AafLightAxes::Shortest}},
+                    "per_axis: each light axis its own band-limit, an anisotropic Gaussian in the light's "
+                    "plane; shortest: the sharper axis's for both (isotropic); the plan must use the same")
+            .real("k", &P::k, "", "Gaussian spread factor of AAF Eq. 13", 0, kInf, /*min_open=*/true)
+            .real("alpha", &P::alpha, "", "Occluder bandlimit over pixel bandlimit (AAF Eq. 5)", 0, 1,
+                  /*min_open=*/true)
+            .real("normal_threshold", &P::normal_threshold_deg, "degrees",
+                  "Reject taps whose normal turns more", 0, 180)
+            .integer("fill_radius", &P::fill_radius_px, "pixels",
+                     "Radius to borrow occluder distances (AAF Sec. 6)", 0, 1 << 16)
+            .integer("max_radius", &P::max_radius_px, "pixels", "Largest filter radius", 0, 1 << 16)
+            .real("fixed_beta", &P::fixed_beta_m, "metres",
+                  "Non-adaptive baseline of AAF Fig. 6: this beta everywhere AAF filters; 0 = AAF Eq. 13", 0)
+            .choice("filter", &P::mode,
+                    {{"separable", AafFilterMode::Separable}, {"2d", AafFilterMode::Exact2D}},
+                    "separable: two 1D passes (AAF Sec. 6); 2d: exact 2D gather of AAF Eq. 10, to measure "
+                    "the approximation")
+            .choice("borders", &P::symmetric_borders, {{"symmetric", true}, {"clip", false}},
+                    "symmetric: near the image edge the window shrinks on both sides and stays centred; "
+                    "clip: cut on the edge side only (one-sided, biased on gradients)")
+            .choice("light_distance", &P::light_distance,
+                    {{"ray", AafLightDistance::AlongLightDirection},
+                     {"plane", AafLightDistance::OrthogonalProjection},
+                     {"guarded", AafLightDistance::Guarded}},
+                    "Tap distance in the light's plane: ray (slid along the direction to the light onto the "
+                    "light-parallel plane first), plane (AAF Eq. 12's orthogonal projection) or guarded "
+                    "(plane, and ray where a receiver is within 6 degrees of perpendicular to the light's "
+                    "plane)")
+            .choice("pixel_footprint", &P::projected_pixel, {{"receiver", false}, {"projected", true}},
+                    "Pixel size d of the pixel band-limit 1/d (AAF Eq. 6, 15): the receiver's own (the "
+                    "paper's) or projected orthogonally onto the light's plane like the plane distances; "
+                    "the plan must use the same"));
 }
 
 AafParams params_from(const ParameterSet &set) {
-    AafParams p;
-    p.mu = set.get_float("mu");
-    p.mu_from_spp = set.get_bool("mu_from_spp");
-    p.fixed_mu = set.get_bool("fixed_mu");
-    p.light_bandlimit = light_bandlimit_from_string(set.get_choice("light_bandlimit"));
-    p.light_axes = light_axes_from_string(set.get_choice("light_axes"));
-    p.k = set.get_float("k");
-    p.alpha = set.get_float("alpha");
-    p.normal_threshold_deg = set.get_float("normal_threshold");
-    p.fill_radius_px = set.get_int("fill_radius");
-    p.max_radius_px = set.get_int("max_radius");
-    p.fixed_beta_m = set.get_float("fixed_beta");
-    p.mode = set.get_choice("filter") == "2d" ? AafFilterMode::Exact2D : AafFilterMode::Separable;
-    p.symmetric_borders = set.get_choice("borders") == "symmetric";
-    const std::string distance = set.get_choice("light_distance");
-    p.light_distance = distance == "plane" ? AafLightDistance::OrthogonalProjection
-                       : distance == "ray" ? AafLightDistance::AlongLightDirection
-                                           : AafLightDistance::Guarded;
-    p.projected_pixel = set.get_choice("pixel_footprint") == "projected";
-    return p;
+    return aaf_parameter_declarations().read(set);
 }
 
 class AafMethod final : public Method {
@@ -105,7 +94,7 @@ class AafMethod final : public Method {
         info_.roles.optional = {Role::SamplesPerPixel, Role::OtherLights};
         info_.roles.outputs = {Role::FilteredVisibility, Role::FilterWidth, Role::Beauty};
         info_.roles.filtered = {{Role::Visibility, Role::FilteredVisibility}};
-        info_.parameters = aaf_parameters();
+        info_.parameters = aaf_parameter_declarations().infos();
         info_.required_attributes = light_attribute_names();
         // AAF for soft shadows, defocus and indirect light together is maaf6's
         // central filter alone, with its own widths per effect (MAAF Sec. 6.2's
@@ -153,27 +142,22 @@ std::unique_ptr<Method> make_aaf_method() {
     return std::make_unique<AafMethod>();
 }
 
+const ParameterDeclarations<AafParams> &aaf_parameter_declarations() {
+    static const ParameterDeclarations<AafParams> declarations = declare_aaf_parameters();
+    return declarations;
+}
+
+const std::vector<std::string> &aaf_plan_parameter_names() {
+    static const std::vector<std::string> names = {"mu", "light_bandlimit", "light_axes", "pixel_footprint"};
+    return names;
+}
+
 ParameterSet aaf_parameter_set(const AafParams &params) {
-    ParameterSet set("aaf", aaf_parameters());
-    set.set("mu", double(params.mu));
-    set.set("mu_from_spp", params.mu_from_spp);
-    set.set("fixed_mu", params.fixed_mu);
-    set.set("light_bandlimit", std::string(to_string(params.light_bandlimit)));
-    set.set("light_axes", std::string(to_string(params.light_axes)));
-    set.set("k", double(params.k));
-    set.set("alpha", double(params.alpha));
-    set.set("normal_threshold", double(params.normal_threshold_deg));
-    set.set("fill_radius", double(params.fill_radius_px));
-    set.set("max_radius", double(params.max_radius_px));
-    set.set("fixed_beta", double(params.fixed_beta_m));
-    set.set("filter", std::string(params.mode == AafFilterMode::Exact2D ? "2d" : "separable"));
-    set.set("borders", std::string(params.symmetric_borders ? "symmetric" : "clip"));
-    set.set("light_distance",
-            std::string(params.light_distance == AafLightDistance::OrthogonalProjection  ? "plane"
-                        : params.light_distance == AafLightDistance::AlongLightDirection ? "ray"
-                                                                                         : "guarded"));
-    set.set("pixel_footprint", std::string(params.projected_pixel ? "projected" : "receiver"));
-    return set;
+    return aaf_parameter_declarations().write(params);
+}
+
+std::vector<std::string> aaf_parameter_defaults_read_back_differently() {
+    return aaf_parameter_declarations().defaults_read_back_differently();
 }
 
 AovSet aaf_filter_aovs(const AovSet &input, const ChannelMap &channels, const AafParams &params) {

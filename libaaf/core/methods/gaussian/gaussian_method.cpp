@@ -6,11 +6,24 @@
 
 #include "../builtin_methods.h"
 #include "aaf/core/fixed_gaussian.h"
+#include "aaf/core/parameter_defaults.h"
 #include "aaf/core/shadow_composition.h"
 
 namespace aaf {
 
 namespace {
+
+struct GaussianSettings {
+    float sigma_px = 2;  ///< standard deviation of the Gaussian, cut at 3 sigma; 0 copies
+};
+
+const ParameterDeclarations<GaussianSettings> &gaussian_parameters() {
+    static const auto declarations =
+        std::move(ParameterDeclarations<GaussianSettings>("gaussian")
+                      .real("sigma", &GaussianSettings::sigma_px, "pixels",
+                            "Standard deviation of the Gaussian, cut at 3 sigma; 0 copies", 0, 256));
+    return declarations;
+}
 
 class GaussianMethod final : public Method {
   public:
@@ -24,13 +37,13 @@ class GaussianMethod final : public Method {
         info_.roles.optional = {Role::OtherLights};
         info_.roles.outputs = {Role::FilteredVisibility, Role::Beauty};
         info_.roles.filtered = {{Role::Visibility, Role::FilteredVisibility}};
-        info_.parameters = {ParameterInfo::real(
-            "sigma", "2", "pixels", "Standard deviation of the Gaussian, cut at 3 sigma; 0 copies", 0, 256)};
+        info_.parameters = gaussian_parameters().infos();
     }
 
     const MethodInfo &info() const override { return info_; }
 
     void run(const MethodImages &images, const ParameterSet &parameters, Progress &progress) const override {
+        const GaussianSettings settings = gaussian_parameters().read(parameters);
         const int width = images.width(), height = images.height();
         // Non-finite visibility is read as 0, so it cannot spread through the blur.
         std::vector<float> visibility(std::size_t(width) * std::size_t(height));
@@ -40,8 +53,7 @@ class GaussianMethod final : public Method {
                 visibility[std::size_t(y) * std::size_t(width) + std::size_t(x)] =
                     std::isfinite(in(x, y)) ? in(x, y) : 0.0f;
         const PlaneView filtered = images.output(Role::FilteredVisibility);
-        fixed_gaussian_filter(plane_view(visibility.data(), width, height), parameters.get_float("sigma"),
-                              filtered);
+        fixed_gaussian_filter(plane_view(visibility.data(), width, height), settings.sigma_px, filtered);
         progress.report(0.9);
         compose_shadowed_beauty(images, filtered);  // AAF Eq. 1
     }
@@ -54,6 +66,10 @@ class GaussianMethod final : public Method {
 
 std::unique_ptr<Method> make_gaussian_method() {
     return std::make_unique<GaussianMethod>();
+}
+
+std::vector<std::string> gaussian_parameter_defaults_read_back_differently() {
+    return gaussian_parameters().defaults_read_back_differently();
 }
 
 }  // namespace aaf

@@ -10,39 +10,6 @@
 
 namespace aaf::isg {
 
-std::vector<ParameterInfo> common_parameters() {
-    const std::vector<std::string> counts = {"1", "9", "25", "49", "81", "121"};
-    return {
-        ParameterInfo::choice("search_samples", "25", counts,
-                              "Taps of the parameter search, a k x k pattern (ISG Table 1's 9/25/49/81)"),
-        ParameterInfo::choice("gather_samples", "25", counts,
-                              "Taps of the gather, a k x k pattern (ISG Table 1's 9/25/49/81)"),
-        ParameterInfo::choice("pattern", "grid", {"grid", "stratified"},
-                              "grid: the regular grid ISG Sec. 4 maps to the disc; stratified: one fixed "
-                              "jittered tap per cell"),
-        ParameterInfo::real("sigma", "0.001", "",
-                            "Range constant sigma of the Gaussian on world distance, in units of the scene "
-                            "size squared (ISG Sec. 5: near 1e-3 scaled by the inverse scene size)",
-                            0, 1e6, /*min_open=*/true),
-        ParameterInfo::real("scene_size", "0", "metres",
-                            "Scene size the range constants scale with; 0 = the positions' bounding-box "
-                            "diagonal",
-                            0, 1e9),
-        ParameterInfo::real("max_radius", "64", "pixels", "Largest search or gather radius", 0, 4096),
-    };
-}
-
-CommonSettings common_settings(const ParameterSet &parameters) {
-    CommonSettings s;
-    s.search_samples = std::stoi(parameters.get_choice("search_samples"));
-    s.gather_samples = std::stoi(parameters.get_choice("gather_samples"));
-    s.pattern = parameters.get_choice("pattern") == "stratified" ? TapPattern::Stratified : TapPattern::Grid;
-    s.sigma = parameters.get_float("sigma");
-    s.scene_size_m = parameters.get_float("scene_size");
-    s.max_radius_px = parameters.get_float("max_radius");
-    return s;
-}
-
 namespace {
 
 std::string describe(float value) {

@@ -7,6 +7,7 @@
 #include <map>
 #include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "aaf/core/isg.h"
@@ -15,11 +16,7 @@
 
 namespace aaf::isg {
 
-/// search_samples, gather_samples, pattern, sigma, scene_size, max_radius:
-/// the parameters every ISG method declares, in that order.
-std::vector<ParameterInfo> common_parameters();
-
-/// The settings of common_parameters() read from a parameter set.
+/// The settings every ISG method shares, read from its parameters.
 struct CommonSettings {
     int search_samples = 25;
     int gather_samples = 25;
@@ -28,7 +25,35 @@ struct CommonSettings {
     float scene_size_m = 0;    ///< 0 = the diagonal of the positions' bounding box
     float max_radius_px = 64;  ///< every search and gather radius is clamped to this
 };
-CommonSettings common_settings(const ParameterSet &parameters);
+
+/// Declarations for a method whose settings derive from CommonSettings,
+/// starting with the parameters every ISG method declares, in this order:
+/// search_samples, gather_samples, pattern, sigma, scene_size, max_radius.
+template <class Settings>
+ParameterDeclarations<Settings> common_parameters(std::string method) {
+    using C = CommonSettings;
+    const std::vector<std::pair<std::string, int>> counts = {{"1", 1},   {"9", 9},   {"25", 25},
+                                                             {"49", 49}, {"81", 81}, {"121", 121}};
+    return std::move(
+        ParameterDeclarations<Settings>(std::move(method))
+            .choice("search_samples", &C::search_samples, counts,
+                    "Taps of the parameter search, a k x k pattern (ISG Table 1's 9/25/49/81)")
+            .choice("gather_samples", &C::gather_samples, counts,
+                    "Taps of the gather, a k x k pattern (ISG Table 1's 9/25/49/81)")
+            .choice("pattern", &C::pattern,
+                    {{"grid", TapPattern::Grid}, {"stratified", TapPattern::Stratified}},
+                    "grid: the regular grid ISG Sec. 4 maps to the disc; stratified: one fixed jittered tap "
+                    "per cell")
+            .real(
+                "sigma", &C::sigma, "",
+                "Range constant sigma of the Gaussian on world distance, in units of the scene size squared "
+                "(ISG Sec. 5: near 1e-3 scaled by the inverse scene size)",
+                0, 1e6, /*min_open=*/true)
+            .real("scene_size", &C::scene_size_m, "metres",
+                  "Scene size the range constants scale with; 0 = the positions' bounding-box diagonal", 0,
+                  1e9)
+            .real("max_radius", &C::max_radius_px, "pixels", "Largest search or gather radius", 0, 4096));
+}
 
 /// A float or Vec3 header attribute; throws aaf::InputError naming a missing
 /// or mistyped one (and a Vec3 with a NaN or infinite component).

@@ -11,6 +11,7 @@
 #include "../builtin_methods.h"
 #include "aaf/core/aov_contract.h"
 #include "aaf/core/parallel.h"
+#include "aaf/core/parameter_defaults.h"
 #include "isg_common.h"
 
 namespace aaf {
@@ -28,6 +29,27 @@ float relative_depth_behind(float z, float z0) {
     return (z - z0) / z0;
 }
 
+struct IsgDofSettings : CommonSettings {
+    float transition = 0.05f;  ///< smoothstep width of ISG Eq. 16-17's depth test, relative to the depth
+    float aperture_m = 0;      ///< lens aperture radius; 0 = the header's
+    float focus_m = 0;         ///< depth in focus; 0 = the header's
+};
+
+const ParameterDeclarations<IsgDofSettings> &isg_dof_parameters() {
+    using P = IsgDofSettings;
+    static const auto declarations = std::move(
+        common_parameters<P>("isg-dof")
+            .real("transition", &P::transition, "",
+                  "Width of the smoothstep that softens ISG Eq. 16-17's depth test, relative to the pixel's "
+                  "depth (0 = the hard test)",
+                  0, 1e3)
+            .real("aperture", &P::aperture_m, "metres",
+                  "Lens aperture radius; 0 = the header's aaf:camera:aperture_radius_m", 0, 1e3)
+            .real("focus", &P::focus_m, "metres",
+                  "Depth in focus z_f; 0 = the header's aaf:camera:focus_distance_m", 0, 1e9));
+    return declarations;
+}
+
 class IsgDofMethod final : public Method {
   public:
     IsgDofMethod() {
@@ -39,18 +61,7 @@ class IsgDofMethod final : public Method {
         info_.roles.required = {Role::PinholeBeauty, Role::Depth};
         info_.roles.outputs = {Role::Defocused};
         info_.roles.filtered = {{Role::PinholeBeauty, Role::Defocused}};
-        info_.parameters = common_parameters();
-        info_.parameters.push_back(ParameterInfo::real(
-            "transition", "0.05", "",
-            "Width of the smoothstep that softens ISG Eq. 16-17's depth test, relative to the pixel's depth "
-            "(0 = the hard test)",
-            0, 1e3));
-        info_.parameters.push_back(ParameterInfo::real(
-            "aperture", "0", "metres", "Lens aperture radius; 0 = the header's aaf:camera:aperture_radius_m",
-            0, 1e3));
-        info_.parameters.push_back(
-            ParameterInfo::real("focus", "0", "metres",
-                                "Depth in focus z_f; 0 = the header's aaf:camera:focus_distance_m", 0, 1e9));
+        info_.parameters = isg_dof_parameters().infos();
         info_.required_attributes = {attr::kCameraFocalPx};
     }
 
@@ -58,15 +69,16 @@ class IsgDofMethod final : public Method {
 
     void run(const MethodImages &images, const ParameterSet &parameters, Progress &progress) const override {
         const int width = images.width(), height = images.height();
-        const CommonSettings common = common_settings(parameters);
+        const IsgDofSettings settings = isg_dof_parameters().read(parameters);
+        const CommonSettings &common = settings;
         const auto &attributes = images.attributes();
         const float focal_px = focal_px_attribute(attributes, height);
-        float aperture_m = parameters.get_float("aperture");
+        float aperture_m = settings.aperture_m;
         if (!(aperture_m > 0)) aperture_m = non_negative_attribute(attributes, attr::kApertureRadius);
-        float focus_m = parameters.get_float("focus");
+        float focus_m = settings.focus_m;
         if (!(focus_m > 0) && aperture_m > 0)
             focus_m = positive_attribute(attributes, attr::kFocusDistance, std::numeric_limits<float>::max());
-        const float transition = parameters.get_float("transition");
+        const float transition = settings.transition;
         // ISG Eq. 15's c_inf: the aperture seen from the plane in focus, in pixels.
         const float coc_inf_px = aperture_m > 0 && focus_m > 0 ? aperture_m / focus_m * focal_px : 0.0f;
         const std::vector<Tap> search = tap_set(common.search_samples, TapShape::Disk, common.pattern);
@@ -136,6 +148,10 @@ class IsgDofMethod final : public Method {
 
 std::unique_ptr<Method> make_isg_dof_method() {
     return std::make_unique<IsgDofMethod>();
+}
+
+std::vector<std::string> isg_dof_parameter_defaults_read_back_differently() {
+    return isg_dof_parameters().defaults_read_back_differently();
 }
 
 }  // namespace aaf

@@ -10,6 +10,7 @@
 #include "../builtin_methods.h"
 #include "aaf/core/aov_contract.h"
 #include "aaf/core/parallel.h"
+#include "aaf/core/parameter_defaults.h"
 #include "isg_common.h"
 
 namespace aaf {
@@ -17,6 +18,24 @@ namespace aaf {
 namespace {
 
 using namespace isg;
+
+struct IsgGlossySettings : CommonSettings {
+    float a = 1, b = 1;            ///< weights of the world distance and the normals' difference (ISG Eq. 10)
+    bool gaussian_weight = false;  ///< the gather's spatial weight: a Gaussian, else constant (ISG Sec. 3.2)
+};
+
+const ParameterDeclarations<IsgGlossySettings> &isg_glossy_parameters() {
+    using P = IsgGlossySettings;
+    static const auto declarations = std::move(
+        common_parameters<P>("isg-glossy")
+            .real("a", &P::a, "", "Weight of the world distance in ISG Eq. 10", 0, 1e6)
+            .real("b", &P::b, "", "Weight of the normals' difference 1 - N.N0 in ISG Eq. 10", 0, 1e6)
+            .choice(
+                "spatial_weight", &P::gaussian_weight, {{"constant", false}, {"gaussian", true}},
+                "The gather's spatial weight, the BRDF's shape in the cone (ISG Sec. 3.2): constant, or a "
+                "Gaussian of standard deviation half the radius"));
+    return declarations;
+}
 
 class IsgGlossyMethod final : public Method {
   public:
@@ -30,15 +49,7 @@ class IsgGlossyMethod final : public Method {
                                 Role::Normal};
         info_.roles.outputs = {Role::GlossyReflection};
         info_.roles.filtered = {{Role::Reflection, Role::GlossyReflection}};
-        info_.parameters = common_parameters();
-        info_.parameters.push_back(
-            ParameterInfo::real("a", "1", "", "Weight of the world distance in ISG Eq. 10", 0, 1e6));
-        info_.parameters.push_back(ParameterInfo::real(
-            "b", "1", "", "Weight of the normals' difference 1 - N.N0 in ISG Eq. 10", 0, 1e6));
-        info_.parameters.push_back(ParameterInfo::choice(
-            "spatial_weight", "constant", {"constant", "gaussian"},
-            "The gather's spatial weight, the BRDF's shape in the cone (ISG Sec. 3.2): constant, or a "
-            "Gaussian of standard deviation half the radius"));
+        info_.parameters = isg_glossy_parameters().infos();
         info_.required_attributes = {attr::kCameraEye, attr::kCameraFocalPx};
     }
 
@@ -46,14 +57,15 @@ class IsgGlossyMethod final : public Method {
 
     void run(const MethodImages &images, const ParameterSet &parameters, Progress &progress) const override {
         const int width = images.width(), height = images.height();
-        const CommonSettings common = common_settings(parameters);
+        const IsgGlossySettings settings = isg_glossy_parameters().read(parameters);
+        const CommonSettings &common = settings;
         const Vec3 eye = vec3_attribute(images.attributes(), attr::kCameraEye);
         const float focal_px = focal_px_attribute(images.attributes(), height);
         // ISG Sec. 3.2 projects angles by the field of view: pixels per radian.
         const float fov_y_rad = 2 * std::atan(0.5f * float(height) / focal_px);
         const float px_per_rad = float(height) / fov_y_rad;
-        const float a = parameters.get_float("a"), b = parameters.get_float("b");
-        const bool gaussian = parameters.get_choice("spatial_weight") == "gaussian";
+        const float a = settings.a, b = settings.b;
+        const bool gaussian = settings.gaussian_weight;
         const std::vector<Tap> search = tap_set(common.search_samples, TapShape::Disk, common.pattern);
         const std::vector<Tap> gather = tap_set(common.gather_samples, TapShape::Disk, common.pattern);
 
@@ -125,6 +137,10 @@ class IsgGlossyMethod final : public Method {
 
 std::unique_ptr<Method> make_isg_glossy_method() {
     return std::make_unique<IsgGlossyMethod>();
+}
+
+std::vector<std::string> isg_glossy_parameter_defaults_read_back_differently() {
+    return isg_glossy_parameters().defaults_read_back_differently();
 }
 
 }  // namespace aaf

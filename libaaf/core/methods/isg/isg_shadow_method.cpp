@@ -8,6 +8,7 @@
 #include "../builtin_methods.h"
 #include "aaf/core/aov_contract.h"
 #include "aaf/core/parallel.h"
+#include "aaf/core/parameter_defaults.h"
 #include "aaf/core/shadow_composition.h"
 #include "isg_common.h"
 
@@ -16,6 +17,26 @@ namespace aaf {
 namespace {
 
 using namespace isg;
+
+struct IsgShadowSettings : CommonSettings {
+    TapShape light_shape = TapShape::Rectangle;  ///< the taps', the virtual light's (ISG Sec. 3.1)
+    float light_scale = 1;                       ///< L of ISG Eq. 5 and 8 over the light's half-extent
+};
+
+const ParameterDeclarations<IsgShadowSettings> &isg_shadow_parameters() {
+    using P = IsgShadowSettings;
+    static const auto declarations = std::move(
+        common_parameters<P>("isg-shadow")
+            .choice("light_shape", &P::light_shape,
+                    {{"rectangle", TapShape::Rectangle}, {"disk", TapShape::Disk}},
+                    "Shape of the taps, the virtual light's shape (ISG Sec. 3.1): the light's rectangle (its "
+                    "width:height, along the image axes) or a disc")
+            .real("light_scale", &P::light_scale, "",
+                  "L of ISG Eq. 5 and 8 as a multiple of the light's half-extent (its larger half-side)", 0,
+                  1e6,
+                  /*min_open=*/true));
+    return declarations;
+}
 
 class IsgShadowMethod final : public Method {
   public:
@@ -30,15 +51,7 @@ class IsgShadowMethod final : public Method {
         info_.roles.optional = {Role::OtherLights};
         info_.roles.outputs = {Role::FilteredVisibility, Role::Beauty};
         info_.roles.filtered = {{Role::HardVisibility, Role::FilteredVisibility}};
-        info_.parameters = common_parameters();
-        info_.parameters.push_back(ParameterInfo::choice(
-            "light_shape", "rectangle", {"rectangle", "disk"},
-            "Shape of the taps, the virtual light's shape (ISG Sec. 3.1): the light's rectangle (its "
-            "width:height, along the image axes) or a disc"));
-        info_.parameters.push_back(ParameterInfo::real(
-            "light_scale", "1", "",
-            "L of ISG Eq. 5 and 8 as a multiple of the light's half-extent (its larger half-side)", 0, 1e6,
-            /*min_open=*/true));
+        info_.parameters = isg_shadow_parameters().infos();
         info_.required_attributes = light_attribute_names();
         info_.required_attributes.push_back(attr::kCameraFocalPx);
     }
@@ -47,13 +60,12 @@ class IsgShadowMethod final : public Method {
 
     void run(const MethodImages &images, const ParameterSet &parameters, Progress &progress) const override {
         const int width = images.width(), height = images.height();
-        const CommonSettings common = common_settings(parameters);
+        const IsgShadowSettings settings = isg_shadow_parameters().read(parameters);
+        const CommonSettings &common = settings;
         const LightPlane light = read_light_attributes(images.attributes());
         const float focal_px = focal_px_attribute(images.attributes(), height);
-        const float light_size_m =
-            parameters.get_float("light_scale") * 0.5f * std::max(light.width_m, light.height_m);
-        const TapShape shape =
-            parameters.get_choice("light_shape") == "disk" ? TapShape::Disk : TapShape::Rectangle;
+        const float light_size_m = settings.light_scale * 0.5f * std::max(light.width_m, light.height_m);
+        const TapShape shape = settings.light_shape;
         const std::vector<Tap> search =
             tap_set(common.search_samples, shape, common.pattern, light.width_m, light.height_m);
         const std::vector<Tap> gather =
@@ -126,6 +138,10 @@ class IsgShadowMethod final : public Method {
 
 std::unique_ptr<Method> make_isg_shadow_method() {
     return std::make_unique<IsgShadowMethod>();
+}
+
+std::vector<std::string> isg_shadow_parameter_defaults_read_back_differently() {
+    return isg_shadow_parameters().defaults_read_back_differently();
 }
 
 }  // namespace aaf

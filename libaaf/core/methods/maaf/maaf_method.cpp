@@ -12,31 +12,33 @@
 #include "aaf/core/maaf_accumulation.h"
 #include "aaf/core/maaf_filter.h"
 #include "aaf/core/method_registry.h"
+#include "aaf/core/parameter_defaults.h"
 #include "aaf/core/shadow_composition.h"
 
 namespace aaf {
 
 namespace {
 
-std::vector<ParameterInfo> maaf_parameters() {
-    return {
-        ParameterInfo::choice("pairs", "all", {"all", "1"},
-                              "Filter pairs N per 2D subspace: all of the sums' (the tracer writes N = 3, 25 "
-                              "filters in 4D) or 1, the central filter alone (AAF)"),
-        ParameterInfo::real(
-            "k", "3", "",
-            "Width scale: each component's Fourier-domain std is k times its half-width sigma_x^p "
-            "(1 = the paper's reading of MAAF Eq. 8-9; 3 = AAF's k, N = 1 then equals AAF's "
-            "default filter)",
-            0.01, 100),
-        ParameterInfo::real("normal_threshold", "20", "degrees",
-                            "Reject taps whose normal turns more (MAAF Sec. 6.2)", 0, 180),
-        ParameterInfo::integer("max_radius", "64", "pixels", "Largest filter radius", 0, 1 << 16),
-        ParameterInfo::choice(
-            "filter", "separable", {"separable", "2d"},
-            "separable: two 1D passes per component pair (complex exponentials, as AAF Sec. 6 "
-            "separates); 2d: every tap of MAAF Eq. 21, to measure the approximation"),
-    };
+/// The parameters, each bound to its MaafParams member (the header gives omega_y_max).
+const ParameterDeclarations<MaafParams> &maaf_parameters() {
+    using P = MaafParams;
+    static const auto declarations = std::move(
+        ParameterDeclarations<P>("maaf")
+            .choice(
+                "pairs", &P::pairs_used, {{"all", 0}, {"1", 1}},
+                "Filter pairs N per 2D subspace: all of the sums' (the tracer writes N = 3, 25 filters in "
+                "4D) or 1, the central filter alone (AAF)")
+            .real("k", &P::k, "",
+                  "Width scale: each component's Fourier-domain std is k times its half-width sigma_x^p (1 = "
+                  "the paper's reading of MAAF Eq. 8-9; 3 = AAF's k, N = 1 then equals AAF's default filter)",
+                  0.01, 100)
+            .real("normal_threshold", &P::normal_threshold_deg, "degrees",
+                  "Reject taps whose normal turns more (MAAF Sec. 6.2)", 0, 180)
+            .integer("max_radius", &P::max_radius_px, "pixels", "Largest filter radius", 0, 1 << 16)
+            .choice("filter", &P::separable, {{"separable", true}, {"2d", false}},
+                    "separable: two 1D passes per component pair (complex exponentials, as AAF Sec. 6 "
+                    "separates); 2d: every tap of MAAF Eq. 21, to measure the approximation"));
+    return declarations;
 }
 
 template <typename T>
@@ -63,7 +65,7 @@ class MaafMethod final : public Method {
             Role::Normal,        Role::ObjectId,           Role::PixelSize, Role::Unshadowed};
         info_.roles.optional = {Role::OtherLights};
         info_.roles.outputs = {Role::FilteredVisibility, Role::Beauty};
-        info_.parameters = maaf_parameters();
+        info_.parameters = maaf_parameters().infos();
         info_.required_attributes = light_attribute_names();
         info_.required_attributes.push_back(attr::kMaafPairs);
         info_.required_attributes.push_back(attr::kMaafOmegaYMax);
@@ -94,15 +96,10 @@ class MaafMethod final : public Method {
         }
         in.object_id = images.input(Role::ObjectId);
         in.pixel_size = images.input(Role::PixelSize);
-        MaafParams params;
+        MaafParams params = maaf_parameters().read(parameters);
         params.omega_y_max_rad_per_m = double(header_value<float>(images, attr::kMaafOmegaYMax));
         if (!(params.omega_y_max_rad_per_m > 0) || !std::isfinite(params.omega_y_max_rad_per_m))
             throw InputError("header attribute '" + std::string(attr::kMaafOmegaYMax) + "' must be positive");
-        params.pairs_used = parameters.get_choice("pairs") == "1" ? 1 : 0;
-        params.k = double(parameters.get_float("k"));
-        params.normal_threshold_deg = parameters.get_float("normal_threshold");
-        params.max_radius_px = parameters.get_int("max_radius");
-        params.separable = parameters.get_choice("filter") == "separable";
         const PlaneView filtered = images.output(Role::FilteredVisibility);
         maaf_filter(in, read_light_attributes(images.attributes()), params, filtered);
         progress.report(0.9);
@@ -117,6 +114,10 @@ class MaafMethod final : public Method {
 
 std::unique_ptr<Method> make_maaf_method() {
     return std::make_unique<MaafMethod>();
+}
+
+std::vector<std::string> maaf_parameter_defaults_read_back_differently() {
+    return maaf_parameters().defaults_read_back_differently();
 }
 
 }  // namespace aaf

@@ -12,6 +12,7 @@
 #include "aaf/core/maaf6.h"
 #include "aaf/core/maaf6_filter.h"
 #include "aaf/core/method_registry.h"
+#include "aaf/core/parameter_defaults.h"
 
 namespace aaf {
 
@@ -35,6 +36,51 @@ SampleDensity light_density(const LightPlane &light) {
     return {DensityShape::TruncatedGaussian, half, double(light.sigma_m)};
 }
 
+/// The filter's parameters and the indirect layer's own band_spp.
+struct Maaf6Settings : Maaf6FilterParams {
+    double indirect_band_spp = 128;
+};
+
+/// The parameters, each bound to its Maaf6Settings member (the header gives the rest).
+const ParameterDeclarations<Maaf6Settings> &maaf6_parameters() {
+    using P = Maaf6Settings;
+    static const auto declarations = std::move(
+        ParameterDeclarations<P>("maaf6")
+            .choice("pairs", &P::pairs_used, {{"all", kMaafContractPairs}, {"1", 1}},
+                    "Filter pairs N per 3D subspace: all of the sums' (N = 3, 25 filters in 6D) or 1, the "
+                    "central axis-aligned filter alone (AAF for combined effects, MYRD14)")
+            .choice("pair_weights", &P::pair_weights,
+                    {{"fitted", Maaf6PairWeights::Fitted},
+                     {"eq10", Maaf6PairWeights::Eq10},
+                     {"light", Maaf6PairWeights::Light}},
+                    "mu_p of the offset pairs: fitted: least squares so that the filter passes the sampling "
+                    "density's spectrum along the wedge, as the light integral does (not in the paper; "
+                    "measured better than MAAF Eq. 10 on room, see its README); eq10: MAAF Eq. 10, the "
+                    "paper's; light: MAAF Eq. 10 times the Gaussian light model's spectrum at the pair's y "
+                    "centre")
+            .real("k", &P::k, "",
+                  "Width scale: each component's Fourier std is its half-width divided by k (as `aaf filter "
+                  "maaf --k`; 1 = the paper's reading, measured best on room for both N = 3 and N = 1)",
+                  0.01, 100)
+            .real("normal_threshold", &P::normal_threshold_deg, "degrees",
+                  "Reject taps whose normal turns more (MAAF Sec. 6.2)", 0, 180)
+            .integer("max_radius", &P::max_radius_px, "pixels", "Largest filter radius", 0, 1 << 12)
+            .real("band_spp", &P::band_spp, "spp",
+                  "Samples per pixel at which the direct layer's light and lens bands are MAAF Sec. 3's; "
+                  "past it they widen as sqrt(spp / band_spp), the pixel band with them, and the pixel gets "
+                  "the axis-aligned filter, so the filter narrows as samples are added and converges to the "
+                  "reference (AAF Sec. 5.2's consistency; 16 = the first pass); 0 = the paper's fixed bands, "
+                  "whose bias stays whatever the samples",
+                  0)
+            .real("indirect_band_spp", &P::indirect_band_spp, "spp",
+                  "As band_spp, for the indirect layer: its noise is several times the direct layer's at "
+                  "equal samples, so its filter stays wide for longer (on room fixed bands were best for it "
+                  "up to 256 spp; 128 is the smallest that lost nothing up to 128 spp, see its README); 0 = "
+                  "fixed bands",
+                  0));
+    return declarations;
+}
+
 class Maaf6Method final : public Method {
   public:
     Maaf6Method() {
@@ -53,43 +99,7 @@ class Maaf6Method final : public Method {
                                 Role::Position,          Role::Normal,
                                 Role::ObjectId,          Role::PixelSize};
         info_.roles.outputs = {Role::Maaf6Direct, Role::Maaf6Indirect, Role::Beauty};
-        info_.parameters = {
-            ParameterInfo::choice(
-                "pairs", "all", {"all", "1"},
-                "Filter pairs N per 3D subspace: all of the sums' (N = 3, 25 filters in 6D) or "
-                "1, the central axis-aligned filter alone (AAF for combined effects, MYRD14)"),
-            ParameterInfo::choice(
-                "pair_weights", "fitted", {"fitted", "eq10", "light"},
-                "mu_p of the offset pairs: fitted: least squares so that the filter passes the "
-                "sampling density's spectrum along the wedge, as the light integral does (not in "
-                "the paper; measured better than MAAF Eq. 10 on room, see its README); eq10: MAAF "
-                "Eq. 10, the paper's; light: MAAF Eq. 10 times the Gaussian light model's spectrum at "
-                "the pair's y centre"),
-            ParameterInfo::real(
-                "k", "1", "",
-                "Width scale: each component's Fourier std is its half-width divided by k (as "
-                "`aaf filter maaf --k`; 1 = the paper's reading, measured best on room for both "
-                "N = 3 and N = 1)",
-                0.01, 100),
-            ParameterInfo::real("normal_threshold", "20", "degrees",
-                                "Reject taps whose normal turns more (MAAF Sec. 6.2)", 0, 180),
-            ParameterInfo::integer("max_radius", "12", "pixels", "Largest filter radius", 0, 1 << 12),
-            ParameterInfo::real(
-                "band_spp", "16", "spp",
-                "Samples per pixel at which the direct layer's light and lens bands are MAAF "
-                "Sec. 3's; past it they widen as sqrt(spp / band_spp), the pixel band with them, "
-                "and the pixel gets the axis-aligned filter, so the filter narrows as samples are "
-                "added and converges to the reference (AAF Sec. 5.2's consistency; 16 = the first "
-                "pass); 0 = the paper's fixed bands, whose bias stays whatever the samples",
-                0),
-            ParameterInfo::real(
-                "indirect_band_spp", "128", "spp",
-                "As band_spp, for the indirect layer: its noise is several times the direct "
-                "layer's at equal samples, so its filter stays wide for longer (on room fixed bands "
-                "were best for it up to 256 spp; 128 is the smallest that lost nothing up to 128 "
-                "spp, see its README); 0 = fixed bands",
-                0),
-        };
+        info_.parameters = maaf6_parameters().infos();
         info_.required_attributes = light_attribute_names();
         for (const char *name :
              {attr::kMaaf6Pairs, attr::kMaaf6OmegaDirect, attr::kMaaf6OmegaIndirect, attr::kMaaf6OmegaLens})
@@ -119,18 +129,11 @@ class Maaf6Method final : public Method {
         if (!(shared.omega_u_max >= 0) || !std::isfinite(shared.omega_u_max))
             throw InputError("header attribute '" + std::string(attr::kMaaf6OmegaLens) +
                              "' must be finite and not negative (0: a pinhole)");
-        Maaf6FilterParams params;
+        const Maaf6Settings settings = maaf6_parameters().read(parameters);
+        Maaf6FilterParams params = settings;
         params.stored_pairs = pairs;
-        params.pairs_used = parameters.get_choice("pairs") == "1" ? 1 : pairs;
-        params.k = double(parameters.get_float("k"));
-        const std::string weights = parameters.get_choice("pair_weights");
-        params.pair_weights = weights == "light"    ? Maaf6PairWeights::Light
-                              : weights == "fitted" ? Maaf6PairWeights::Fitted
-                                                    : Maaf6PairWeights::Eq10;
-        params.normal_threshold_deg = parameters.get_float("normal_threshold");
-        params.max_radius_px = parameters.get_int("max_radius");
-        params.band_spp = double(parameters.get_float("band_spp"));
-        const double indirect_band_spp = double(parameters.get_float("indirect_band_spp"));
+        params.pairs_used = settings.pairs_used == 1 ? 1 : pairs;
+        const double indirect_band_spp = settings.indirect_band_spp;
         const LightPlane light = read_light_attributes(images.attributes());
         // The lens is a uniform disc of radius A = 4 / Omega_u^max (the contract's MAAF Sec. 3 band, L = A).
         if (shared.omega_u_max > 0)
@@ -186,6 +189,10 @@ class Maaf6Method final : public Method {
 
 std::unique_ptr<Method> make_maaf6_method() {
     return std::make_unique<Maaf6Method>();
+}
+
+std::vector<std::string> maaf6_parameter_defaults_read_back_differently() {
+    return maaf6_parameters().defaults_read_back_differently();
 }
 
 }  // namespace aaf

@@ -15,6 +15,7 @@
 #include "aaf/core/fixed_gaussian.h"
 #include "aaf/core/gather.h"
 #include "aaf/core/parallel.h"
+#include "aaf/core/parameter_defaults.h"
 #include "aaf/core/ratio_bilateral.h"
 #include "aaf/core/ratio_composition.h"
 #include "aaf/core/ratio_noise_estimate.h"
@@ -24,50 +25,9 @@ namespace aaf {
 
 namespace {
 
-std::vector<ParameterInfo> ratio_parameters() {
-    constexpr double kInf = std::numeric_limits<double>::infinity();
-    return {
-        ParameterInfo::choice(
-            "estimator", "ratio", {"ratio", "stochastic", "control-variate"},
-            "What is denoised: ratio, U x den(S_N) / den(U_N) (ratio estimator Eq. 25); stochastic, den(S_N) "
-            "(ratio estimator Eq. 10); control-variate, den(U - U_N + S_N) (ratio estimator Eq. 11); same "
-            "denoiser and widths"),
-        ParameterInfo::choice(
-            "denoiser", "bilateral", {"bilateral", "gaussian", "aaf"},
-            "bilateral: the joint bilateral with sigma from the noise estimate (Sec. 4); "
-            "gaussian: one fixed screen-space sigma (Fig. 7); aaf: AAF's per-pixel widths "
-            "(needs the shadow group's d1/d2 and the key light's header; the key light's widths "
-            "serve every light)"),
-        ParameterInfo::flag("grey",
-                            "One W per pixel from the luminance layers (ratio.S.Y / ratio.Un.Y, Sec. 3.4)"),
-        ParameterInfo::flag("summed",
-                            "Denoise the summed layers only, ignoring the per-light ratio.L<i>.* layers"),
-        ParameterInfo::integer("noise_radius", "6", "pixels",
-                               "Half length of the 4 lines of the noise estimate E (ratio estimator Eq. 29)",
-                               1, 64),
-        ParameterInfo::real("sigma_per_noise", "3", "pixels",
-                            "Bilateral sigma = this x E (E: mean absolute second difference of W_N per "
-                            "pixel, ratio estimator Eq. 29)",
-                            0, kInf),
-        ParameterInfo::real("max_sigma", "8", "pixels", "Cap on the bilateral sigma", 0, 64),
-        ParameterInfo::real("plane_sigma", "1", "pixel footprints",
-                            "Bilateral plane weight: Gaussian of a tap's distance from the centre's tangent "
-                            "plane, in pixel.size (scene scale) units",
-                            0, kInf, /*min_open=*/true),
-        ParameterInfo::real("sigma", "4", "pixels", "Width of --denoiser gaussian (Fig. 7 uses 4)", 0, 256),
-        ParameterInfo::integer("seed", "0", "", "Seed of the noise estimate's per-pixel line rotation", 0,
-                               1 << 30),
-        ParameterInfo::flag("temporal",
-                            "On a sequence: blend with the previous frame's output by reverse reprojection "
-                            "(motion AOV), rejecting disocclusions by plane distance and normal (Sec. 4.1)"),
-        ParameterInfo::real("temporal_alpha", "0.2", "", "Weight of the current frame in the history", 0, 1,
-                            /*min_open=*/true),
-    };
-}
-
 struct RatioSettings {
     RatioEstimator estimator = RatioEstimator::Ratio;
-    std::string denoiser;
+    std::string denoiser = "bilateral";
     bool grey = false, summed = false, temporal = false;
     int noise_radius_px = 6;
     float sigma_per_noise_px = 3, max_sigma_px = 8, plane_sigma = 1, gaussian_sigma_px = 4,
@@ -75,23 +35,54 @@ struct RatioSettings {
     std::uint32_t seed = 0;
 };
 
+/// The parameters, each bound to its RatioSettings member.
+const ParameterDeclarations<RatioSettings> &ratio_parameters() {
+    using P = RatioSettings;
+    constexpr double kInf = std::numeric_limits<double>::infinity();
+    static const auto declarations = std::move(
+        ParameterDeclarations<P>("ratio")
+            .choice("estimator", &P::estimator,
+                    {{"ratio", RatioEstimator::Ratio},
+                     {"stochastic", RatioEstimator::Stochastic},
+                     {"control-variate", RatioEstimator::ControlVariate}},
+                    "What is denoised: ratio, U x den(S_N) / den(U_N) (ratio estimator Eq. 25); stochastic, "
+                    "den(S_N) (ratio estimator Eq. 10); control-variate, den(U - U_N + S_N) (ratio estimator "
+                    "Eq. 11); same denoiser and widths")
+            .text_choice(
+                "denoiser", &P::denoiser, {"bilateral", "gaussian", "aaf"},
+                "bilateral: the joint bilateral with sigma from the noise estimate (Sec. 4); gaussian: one "
+                "fixed screen-space sigma (Fig. 7); aaf: AAF's per-pixel widths (needs the shadow group's "
+                "d1/d2 and the key light's header; the key light's widths serve every light)")
+            .flag("grey", &P::grey,
+                  "One W per pixel from the luminance layers (ratio.S.Y / ratio.Un.Y, Sec. 3.4)")
+            .flag("summed", &P::summed,
+                  "Denoise the summed layers only, ignoring the per-light ratio.L<i>.* layers")
+            .integer("noise_radius", &P::noise_radius_px, "pixels",
+                     "Half length of the 4 lines of the noise estimate E (ratio estimator Eq. 29)", 1, 64)
+            .real("sigma_per_noise", &P::sigma_per_noise_px, "pixels",
+                  "Bilateral sigma = this x E (E: mean absolute second difference of W_N per pixel, ratio "
+                  "estimator Eq. 29)",
+                  0, kInf)
+            .real("max_sigma", &P::max_sigma_px, "pixels", "Cap on the bilateral sigma", 0, 64)
+            .real("plane_sigma", &P::plane_sigma, "pixel footprints",
+                  "Bilateral plane weight: Gaussian of a tap's distance from the centre's tangent plane, in "
+                  "pixel.size (scene scale) units",
+                  0, kInf, /*min_open=*/true)
+            .real("sigma", &P::gaussian_sigma_px, "pixels", "Width of --denoiser gaussian (Fig. 7 uses 4)", 0,
+                  256)
+            .integer("seed", &P::seed, "", "Seed of the noise estimate's per-pixel line rotation", 0, 1 << 30)
+            .flag(
+                "temporal", &P::temporal,
+                "On a sequence: blend with the previous frame's output by reverse reprojection (motion AOV), "
+                "rejecting disocclusions by plane distance and normal (Sec. 4.1)")
+            .real("temporal_alpha", &P::temporal_alpha, "", "Weight of the current frame in the history", 0,
+                  1,
+                  /*min_open=*/true));
+    return declarations;
+}
+
 RatioSettings settings_from(const ParameterSet &set) {
-    RatioSettings s;
-    const std::string &estimator = set.get_choice("estimator");
-    s.estimator = estimator == "ratio"        ? RatioEstimator::Ratio
-                  : estimator == "stochastic" ? RatioEstimator::Stochastic
-                                              : RatioEstimator::ControlVariate;
-    s.denoiser = set.get_choice("denoiser");
-    s.grey = set.get_bool("grey");
-    s.summed = set.get_bool("summed");
-    s.noise_radius_px = set.get_int("noise_radius");
-    s.sigma_per_noise_px = set.get_float("sigma_per_noise");
-    s.max_sigma_px = set.get_float("max_sigma");
-    s.plane_sigma = set.get_float("plane_sigma");
-    s.gaussian_sigma_px = set.get_float("sigma");
-    s.seed = std::uint32_t(set.get_int("seed"));
-    s.temporal = set.get_bool("temporal");
-    s.temporal_alpha = set.get_float("temporal_alpha");
+    const RatioSettings s = ratio_parameters().read(set);
     if (s.grey && s.estimator != RatioEstimator::Ratio)
         throw Error("ratio: --grey applies to --estimator ratio only");
     return s;
@@ -247,7 +238,7 @@ class RatioMethod final : public Method {
                                 Role::ObjectId,
                                 Role::SamplesPerPixel};
         info_.roles.outputs = {Role::Beauty};
-        info_.parameters = ratio_parameters();
+        info_.parameters = ratio_parameters().infos();
         info_.uses_history = true;
     }
 
@@ -266,7 +257,7 @@ class RatioMethod final : public Method {
     }
 
     bool reads_history(const ParameterSet &parameters) const override {
-        return parameters.get_bool("temporal");
+        return ratio_parameters().read(parameters).temporal;
     }
 
     void run(const MethodImages &images, const ParameterSet &parameters, Progress &progress) const override {
@@ -357,6 +348,10 @@ class RatioMethod final : public Method {
 
 std::unique_ptr<Method> make_ratio_method() {
     return std::make_unique<RatioMethod>();
+}
+
+std::vector<std::string> ratio_parameter_defaults_read_back_differently() {
+    return ratio_parameters().defaults_read_back_differently();
 }
 
 }  // namespace aaf

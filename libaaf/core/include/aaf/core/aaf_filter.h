@@ -1,6 +1,7 @@
 #pragma once
 
 #include <array>
+#include <string>
 #include <vector>
 
 #include "aaf/core/aaf_params.h"
@@ -52,6 +53,15 @@ GatherGuides aaf_gather_guides(const AafInputs &inputs, const LightPlane &light,
                                PlaneView beta_m = {});
 /// The gather settings AafParams selects (normal threshold, separable or 2D).
 GatherSettings aaf_gather_settings(const AafParams &params);
+
+/// The "aaf" method's parameters, each declared once bound to its AafParams
+/// member: the filter's options, `aaf info`, the Python module, and the
+/// plan's options (aaf plan, render --adaptive) are generated from it.
+const ParameterDeclarations<AafParams> &aaf_parameter_declarations();
+/// The parameters a sampling plan (AAF Eq. 21: aaf plan, render --adaptive)
+/// shares with the filter that follows it, which must be given the same:
+/// mu, light_bandlimit, light_axes, pixel_footprint.
+const std::vector<std::string> &aaf_plan_parameter_names();
 
 /// The registered "aaf" method's parameters holding `params` (method_registry.h).
 ParameterSet aaf_parameter_set(const AafParams &params);

@@ -43,14 +43,11 @@ struct RenderSettings {
     /// AAF's two-pass adaptive sampling (Sec. 5.1, 6): after the first pass,
     /// each pixel gets the total of AAF Eq. 21 (aaf::plan_samples), capped at max_spp.
     bool adaptive = false;
-    float adaptive_mu = 2.0f;  ///< mu of AAF Eq. 21
-    int max_spp = 100;         ///< cap of the adaptive total per pixel
-    /// The light band-limit rule of the plan (AafParams::light_bandlimit): the filter's.
-    LightBandlimit light_bandlimit = AafParams{}.light_bandlimit;
-    /// The light axes rule of the plan (AafParams::light_axes): the filter's.
-    AafLightAxes light_axes = AafParams{}.light_axes;
-    /// The plan's pixel footprint (AafParams::projected_pixel): the filter's.
-    bool projected_pixel = AafParams{}.projected_pixel;
+    int max_spp = 100;  ///< cap of the adaptive total per pixel
+    /// The AAF parameters of the plan: those it shares with the filter that
+    /// follows (aaf_plan_parameter_names(): mu, light_bandlimit, light_axes,
+    /// projected_pixel) must be the filter's; the others stay at their defaults.
+    AafParams plan;
 
     /// Overrides the lights' emission profile (AAF Sec. 7: uniform lights).
     std::optional<LightProfile> light_profile;
