@@ -10,7 +10,8 @@ in a source or Markdown suffix) must exist under SOURCE_DIR (relative to the
 repository, or to the page's own folder); an identifier (a word with '_' or
 '::' or an inner capital, optionally followed by '()') must occur as a whole
 word in a C++, Python or CMake file under libaaf/, cli/, tests/ or scripts/.
-Command lines, options and plain words are not checked. Exits 1 listing
+Command lines, options, placeholders (`<name>`) and plain words are not
+checked. Exits 1 listing
 every page, line and name that is missing."""
 import os
 import re
@@ -56,7 +57,7 @@ for page in pages:
     for number, line in enumerate(text.split("\n"), 1):
         for span in re.findall(r"`([^`]+)`", line):
             span = span.strip()
-            if span.startswith(("-", "aaf ", "$")):
+            if span.startswith(("-", "aaf ", "$")) or "<" in span:  # commands, options, placeholders
                 continue
             if is_path(span):
                 path = span.rstrip("/")
