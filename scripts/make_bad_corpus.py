@@ -976,6 +976,26 @@ def aov_group_option_cases():
     ]
 
 
+def plan_parameter_cases():
+    """The plan's AAF parameters (aaf plan, render --adaptive) are checked by AAF's declarations."""
+    def plan(name, args, option):
+        return case(name, ["plan", "good.exr", "-o", "out.exr", *args], 2, option)
+
+    def render(name, args, option):
+        return case(name, RENDER + ["--adaptive", *args], 2, option)
+
+    return [
+        plan("plan --light-axes bogus", ["--light-axes", "bogus"], "--light-axes"),
+        plan("plan --fill-radius 1.5", ["--fill-radius", "1.5"], "--fill-radius"),
+        plan("plan --alpha 2", ["--alpha", "2"], "--alpha"),
+        plan("plan --mu nan", ["--mu", "nan"], "--mu"),
+        render("render --adaptive --light-bandlimit bogus", ["--light-bandlimit", "bogus"], "--light-bandlimit"),
+        render("render --adaptive --pixel-footprint PROJECTED", ["--pixel-footprint", "PROJECTED"],
+               "--pixel-footprint"),
+        render("render --adaptive --mu inf", ["--mu", "inf"], "--mu"),
+    ]
+
+
 def main():
     shutil.rmtree(FILES, ignore_errors=True)
     os.makedirs(FILES)
@@ -988,6 +1008,7 @@ def main():
     cases = render_cases() + filter_cases() + other_cases() + fuzz_cases() + method_input_cases()
     cases += python_module_cases() + aaf_complete_cases() + slurm_filter_cases() + blender_bridge_cases()
     cases += temporal_sequence_cases() + render_filter_param_cases() + aov_group_option_cases()
+    cases += plan_parameter_cases()
     names = [c["name"] for c in cases]
     if len(set(names)) != len(names):
         sys.exit("duplicate case names")

@@ -64,6 +64,29 @@ class Methods(unittest.TestCase):
         for name in names:  # the filter docstring is generated from the same registry
             self.assertIn("  " + name + ": ", aaf.filter.__doc__)
 
+    def test_parameters_and_defaults_are_the_command_lines_and_the_plan_shares_aafs(self):
+        def helped(*words):
+            run = subprocess.run([AAF_EXE] + list(words) + ["--help"], capture_output=True, text=True)
+            self.assertEqual(run.returncode, 0, words)
+            return " ".join(run.stdout.split())
+
+        def option(p):
+            name = "--" + p["name"].replace("_", "-")
+            if p["type"] == "bool":
+                return name + " "
+            return "%s %s=%s " % (name, {"float": "FLOAT", "int": "INT"}.get(p["type"], "TEXT"), p["default"])
+
+        for method in [m["name"] for m in aaf.methods()]:
+            text = helped("filter", method)
+            for p in aaf.method(method)["parameters"]:
+                self.assertIn(option(p), text, (method, p["name"]))
+        # One declaration: the plan's (aaf plan, render --adaptive) are AAF's own.
+        shared = {p["name"]: p for p in aaf.method("aaf")["parameters"]}
+        for command in (("plan",), ("render",)):
+            text = helped(*command)
+            for name in ("mu", "light_bandlimit", "light_axes", "pixel_footprint"):
+                self.assertIn(option(shared[name]), text, (command, name))
+
     def test_a_method_run_equals_the_cli_output_for_every_method(self):
         aovs = aaf.read(scratch("noisy.exr"))
         runs = {"aaf": (["--mu", "3", "--filter", "2d"], {"mu": 3, "filter": "2d"}),

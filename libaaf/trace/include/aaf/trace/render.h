@@ -10,6 +10,7 @@
 #include "aaf/core/aov_contract.h"
 #include "aaf/core/aov_set.h"
 #include "aaf/core/light_plane.h"
+#include "aaf/core/sampling_plan.h"
 #include "aaf/trace/aov_group_registry.h"
 
 namespace aaf::trace {
@@ -43,7 +44,7 @@ struct RenderSettings {
     /// AAF's two-pass adaptive sampling (Sec. 5.1, 6): after the first pass,
     /// each pixel gets the total of AAF Eq. 21 (aaf::plan_samples), capped at max_spp.
     bool adaptive = false;
-    int max_spp = 100;  ///< cap of the adaptive total per pixel
+    int max_spp = SamplingPlanParams{}.max_spp;  ///< cap of the adaptive total per pixel (aaf plan's)
     /// The AAF parameters of the plan: those it shares with the filter that
     /// follows (aaf_plan_parameter_names(): mu, light_bandlimit, light_axes,
     /// projected_pixel) must be the filter's; the others stay at their defaults.
