@@ -90,9 +90,11 @@ sequence)
 requeue)
   mkdir -p ref
   "$aaf" render grids -o "ref/noisy.####.exr" --frames 1-6 "${size[@]}" --progress none
-  # aaf's test hook holds each finished temporary for 2 s before renaming it,
-  # so the kill lands while a frame is written, its bytes not yet in place.
-  job=$(AAF_TEST_HOLD_BEFORE_RENAME_S=2 "$submit" --aaf "$aaf" --frames 1-6 --chunk 3 \
+  # aaf's test hook holds each finished temporary for 6 s before renaming it,
+  # so the kill lands while a frame is written, its bytes not yet in place:
+  # the window must outlast the test's own steps between seeing both frames
+  # being written and the signals landing, on a loaded 2-core machine too.
+  job=$(AAF_TEST_HOLD_BEFORE_RENAME_S=6 "$submit" --aaf "$aaf" --frames 1-6 --chunk 3 \
     --logs "$shot/logs" render grids "$shot/noisy.####.exr" "${size[@]}")
   # Task 0 (frames 1-3) and task 1 (frames 4-6) each writing its second frame.
   writing() { has_file "$shot" ".noisy.0002.exr.tmp-*" && has_file "$shot" ".noisy.0005.exr.tmp-*"; }
@@ -113,8 +115,9 @@ requeue)
   # Nothing partial under a final name: the killed frame 2 is not there; the
   # cancelled frame 5, whose bytes were all written, may have been put in
   # place by aaf's SIGTERM handling, whole.
-  [ ! -e "$shot/noisy.0002.exr" ] && [ ! -e "$shot/noisy.0003.exr" ] && [ ! -e "$shot/noisy.0006.exr" ] \
-    || fail "a frame the killed tasks had not finished is under its final name"
+  for frame in 0002 0003 0006; do
+    [ ! -e "$shot/noisy.$frame.exr" ] || fail "frame $frame, which the killed tasks had not finished, is under its final name"
+  done
   [ ! -e "$shot/noisy.0005.exr" ] || cmp -s "ref/noisy.0005.exr" "$shot/noisy.0005.exr" \
     || fail "frame 5, cancelled while written, is under its final name but not whole"
   scontrol requeue "${job}_0,${job}_1"
