@@ -33,7 +33,7 @@ run() {
 {
     echo "# Benchmark suite, $(date -u +%FT%TZ)"
     echo
-    echo "$(nproc) CPUs ($(grep -m1 'model name' /proc/cpuinfo | cut -d: -f2 | xargs)), load average $(cut -d' ' -f1-3 /proc/loadavg) at the start."
+    echo "Machine: $("$root/scripts/machine.sh"); load average $(cut -d' ' -f1-3 /proc/loadavg) at the start."
     echo "Produced by: REPS=$reps scripts/bench_all.sh"
     run "$bench/bench_aaf_filter" --benchmark_repetitions="$reps" --benchmark_report_aggregates_only=true
     run "$bench/bench_aaf_scaling" --benchmark_repetitions="$reps" --benchmark_report_aggregates_only=true

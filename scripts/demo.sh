@@ -65,9 +65,5 @@ printf '%-22s %8s %16s %16s %8s %10s %10s\n' "adaptive (AAF Eq. 21)" "$adaptive_
 echo "reference: $ref_time; compare (2x): $(elapsed "$t4" "$t5") s; times include EXR I/O"
 # The figures' machine: renders give the same bytes under every instruction
 # set; the filters' last bits and every time depend on it.
-cpu=$(awk -F': ' '/^model name/ {print $2; exit}' /proc/cpuinfo)
-widest=sse4.2
-grep -qw avx2 /proc/cpuinfo && grep -qw fma /proc/cpuinfo && widest=avx2
-grep -qw avx512f /proc/cpuinfo && grep -qw avx512vl /proc/cpuinfo && widest=avx512
-echo "machine: ${cpu:-unknown CPU}, $(nproc) threads, widest instruction set $widest, --isa ${AAF_ISA:-native}"
+echo "machine: $("$root/scripts/machine.sh")"
 echo "images: $out/grids_{noisy,aaf,adaptive_aaf,ref,beta,n}.png and the EXRs beside them"

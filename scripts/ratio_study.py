@@ -241,6 +241,9 @@ def main():
                 f"ratio estimator's consistent limit at the reference's samples, sum over lights of "
                 f"U x S / U_N: it differs from the reference by RMSE {floor_rmse:.5f} (FLIP {floor_flip:.4f}), "
                 f"the error of the analytic U against the converged U_N, which no denoiser removes.\n\n")
+        machine = subprocess.run([os.path.join(os.path.dirname(os.path.abspath(__file__)), "machine.sh")],
+                                 capture_output=True, text=True, check=True).stdout.strip()
+        f.write(f"Machine: {machine}.\n\n")
         spps = sorted({r["spp_per_light"] for r in rows})
         f.write("| configuration | " + " | ".join(f"RMSE {n} spp" for n in spps) + " | "
                 + " | ".join(f"FLIP {n} spp" for n in spps) + " | " + " | ".join(f"unshadowed RMSE {n} spp" for n in spps)

@@ -122,6 +122,8 @@ with open(os.path.join(out, "isg_study.md"), "w") as f:
     f.write(f"Settings: {settings}. Error against each effect's distribution-ray-traced reference "
             f"({ref_spp} spp); glossy over the glossy pixels only (theta_max > 0). "
             "Produced by scripts/isg_study.sh.\n\n")
+    f.write("Machine: " + subprocess.run([os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "machine.sh")],
+                                         capture_output=True, text=True, check=True).stdout.strip() + ".\n\n")
     f.write("| effect | image | rays/pixel for the effect | RMSE | FLIP (mean) |\n| --- | --- | --- | --- | --- |\n")
     for row in rows:
         f.write(f"| {row[0]} | {row[1]} | {row[2]} | {row[3]:.5f} | {row[4]:.4f} |\n")
