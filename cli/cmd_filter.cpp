@@ -32,7 +32,7 @@ namespace {
 
 std::string role_keys(const std::vector<Role> &roles) {
     std::string text;
-    for (Role role : roles) text += std::string(text.empty() ? "" : " ") + role_info(role).key;
+    for (Role role : roles) text += std::string(text.empty() ? "" : " ") + role.key;
     return text.empty() ? "-" : text;
 }
 

@@ -295,10 +295,14 @@ void add_image_options(CLI::App &cmd, RenderOptions &o) {
     cmd.add_option("--frame", o.settings.frame, "Animation time of a single render, frames")
         ->capture_default_str();
     cmd.add_option("--frames", o.frames, "Render a sequence: 1-24, 1-24x2, 1-24:2, 1,5,7-9");
-    std::string groups;  // those `all` renders; the others are asked for by name
-    for (const trace::AovGroupInfo &group : trace::aov_group_table())
-        if (group.in_all) groups += ", " + group.name;
-    cmd.add_option("--aovs", o.aovs, "AOV groups, comma-separated: aaf (default), all" + groups)
+    std::string in_all, by_name;  // `all` renders the first; the others trace samples of their own
+    for (const trace::AovGroupInfo &group : trace::aov_group_table()) {
+        std::string &list = group.in_all ? in_all : by_name;
+        list += (list.empty() ? "" : ", ") + group.name;
+    }
+    cmd.add_option("--aovs", o.aovs,
+                   "AOV groups, comma-separated: aaf (default); all (" + in_all +
+                       "); and, each tracing samples of its own, " + by_name)
         ->capture_default_str();
 }
 

@@ -33,10 +33,10 @@ std::vector<std::string> missing_input_recipes(const MissingInputs &missing, con
     for (Role role : missing.roles) {
         const RoleInfo &info = role_info(role);
         const std::string groups = groups_writing(role);
-        recipes.push_back(std::string(info.key) + " [" + joined(found.channels(role), ",") + "]: " +
+        recipes.push_back(std::string(info.role.key) + " [" + joined(found.channels(role), ",") + "]: " +
                           (groups.empty() ? "the beauty of any render"
                                           : "aaf render SCENE --aovs " + groups + " (exported shot)") +
-                          ", or your renderer's pass with --map " + info.key +
+                          ", or your renderer's pass with --map " + info.role.key +
                           "=CHANNEL (libaaf/RENDERERS.md)");
     }
     std::vector<std::string> light, other;

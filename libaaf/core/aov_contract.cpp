@@ -4,75 +4,39 @@
 #include <type_traits>
 
 #include "aaf/core/error.h"
-#include "aaf/core/maaf_accumulation.h"
 #include "aaf/core/quoted.h"
 
 namespace aaf {
 
-namespace {
-
-/// The (2N-1)^2 channel names of a MAAF sums layer for the contract's N (maaf_accumulation.h's layout).
-std::vector<std::string> maaf_channel_names(const std::string &prefix) {
-    std::vector<std::string> names;
-    for (int c = 0; c < maaf_channel_count(kMaafContractPairs); ++c)
-        names.push_back(prefix + maaf_channel_suffix(kMaafContractPairs, c));
-    return names;
-}
-
-/// The (2N-1)^2 maaf6 channel names of one layer, with `.R/.G/.B` per channel when `rgb`.
-std::vector<std::string> maaf6_channel_names(const std::string &prefix, bool rgb) {
-    std::vector<std::string> names;
-    for (int c = 0; c < maaf_channel_count(kMaafContractPairs); ++c) {
-        const std::string base = prefix + maaf_channel_suffix(kMaafContractPairs, c);
-        if (!rgb) {
-            names.push_back(base);
-            continue;
-        }
-        for (const char *colour : {".R", ".G", ".B"}) names.push_back(base + colour);
-    }
-    return names;
-}
-
-}  // namespace
-
-const std::vector<RoleInfo> &role_table() {
+const std::vector<RoleInfo> &shared_roles() {
     static const std::vector<RoleInfo> table = {
         {Role::Beauty,
-         "beauty",
          {"R", "G", "B"},
          "linear radiance",
-         "final noisy image, r(x) times the noisy visibility"},
+         "final noisy image, r(x) times the noisy visibility",
+         true},
         {Role::Visibility,
-         "visibility",
          {"shadow.V"},
          "[0,1]",
          "noisy light-weighted visibility: sum of l(y) f(x, y) over the samples / sum of l(y) (with samples "
          "drawn "
          "proportionally to l, the unoccluded fraction)"},
         {Role::D1,
-         "d1",
          {"shadow.d1"},
          "metres",
          "distance of the receiver from the light's plane, along the light normal"},
         {Role::D2Min,
-         "d2min",
          {"shadow.d2min"},
          "metres, 0 = no occluder",
          "smallest light-plane distance of an occluder hit by the pixel's shadow rays (0 in both d2 channels "
          "where "
          "none was hit)"},
         {Role::D2Max,
-         "d2max",
          {"shadow.d2max"},
          "metres, 0 = no occluder",
          "largest light-plane distance of an occluder hit by the pixel's shadow rays"},
-        {Role::Position,
-         "position",
-         {"P.X", "P.Y", "P.Z"},
-         "world metres",
-         "world position of the primary hit"},
+        {Role::Position, {"P.X", "P.Y", "P.Z"}, "world metres", "world position of the primary hit"},
         {Role::Normal,
-         "normal",
          {"N.X", "N.Y", "N.Z"},
          "unit vector",
          "the normal the renderer shades with, facing the camera; the bundled tracer writes the hit "
@@ -80,13 +44,11 @@ const std::vector<RoleInfo> &role_table() {
          "geometric normal (flat per triangle: its meshes have no vertex normals), the same one it shades "
          "with"},
         {Role::ObjectId,
-         "object_id",
          {"id.object"},
          "integer stored as float, 0 = background",
          "identifier of the object hit by the primary ray"},
-        {Role::SamplesPerPixel, "spp", {"pixel.spp"}, "samples", "light samples taken at the pixel"},
+        {Role::SamplesPerPixel, {"pixel.spp"}, "samples", "light samples taken at the pixel"},
         {Role::PixelSize,
-         "pixel_size",
          {"pixel.size"},
          "metres",
          "world length one pixel covers at the receiver, foreshortening included (d of AAF Eq. 6); the "
@@ -94,7 +56,6 @@ const std::vector<RoleInfo> &role_table() {
          "computes it from ray differentials: sqrt of the area of the pixel's footprint on the hit's tangent "
          "plane"},
         {Role::Unshadowed,
-         "unshadowed",
          {"unshadowed.R", "unshadowed.G", "unshadowed.B"},
          "linear radiance",
          "r(x) of AAF Eq. 1 for the key light, without visibility; the bundled tracer writes the full BRDF "
@@ -103,219 +64,41 @@ const std::vector<RoleInfo> &role_table() {
          "and to "
          "the light's centre, times the light's colour and intensity and cos(receiver) cos(light) / r^2 "
          "towards its "
-         "centre (with `--falloff`, the mean of that factor over the light)"},
+         "centre (with `--falloff`, the mean of that factor over the light)",
+         true},
         {Role::FilteredVisibility,
-         "filtered_visibility",
          {"aaf.V"},
          "[0,1]",
          "output of a visibility filter (`aaf filter aaf`, `gaussian`): filtered visibility"},
-        {Role::FilterWidth,
-         "beta",
-         {"aaf_beta.X"},
-         "metres, 0 = not filtered",
-         "output of `aaf filter aaf`: Gaussian standard deviation beta of AAF Eq. 13 (a layer of its own "
-         "with one "
-         "single-letter channel, so Blender's compositor shows it as a pass; aaf 0.1 named it `aaf.beta`, "
-         "still "
-         "read)"},
         {Role::NoisyBeauty,
-         "noisy_beauty",
          {"noisy.R", "noisy.G", "noisy.B"},
          "linear radiance",
-         "output of a filter that composes a new beauty: the input beauty, kept"},
+         "output of a filter that composes a new beauty: the input beauty, kept",
+         true},
         {Role::FilteredBeauty,
-         "filtered_beauty",
          {"aaf.R", "aaf.G", "aaf.B"},
          "linear radiance",
-         "output of `aaf filter aaf --keep-beauty`: the filtered image, the beauty left as it was"},
-        {Role::PlannedSpp,
-         "planned_spp",
-         {"plan.spp"},
-         "samples",
-         "output of `aaf plan`: total light samples per pixel from AAF Eq. 21"},
-        {Role::Depth,
-         "depth",
-         {"Z"},
-         "metres, 0 = background",
-         "distance of the primary hit along the camera axis"},
+         "output of `aaf filter aaf --keep-beauty`: the filtered image, the beauty left as it was",
+         true},
+        {Role::Depth, {"Z"}, "metres, 0 = background", "distance of the primary hit along the camera axis"},
         {Role::Albedo,
-         "albedo",
          {"albedo.R", "albedo.G", "albedo.B"},
          "[0,1]",
-         "diffuse reflectance of the primary hit"},
+         "diffuse reflectance of the primary hit",
+         true},
         {Role::Motion,
-         "motion",
          {"motion.X", "motion.Y"},
          "pixels, y down",
          "raster position of the pixel's surface point in this frame minus in the previous frame (frame - 1; "
          "geometry is static, the camera moves)"},
         {Role::OtherLights,
-         "other_lights",
          {"otherlights.R", "otherlights.G", "otherlights.B"},
          "linear radiance",
          "noisy shadowed shading of every light but the key light (scenes with several lights); "
-         "the beauty is r(x) V(x) plus this"},
-        {Role::MaafValueSums, "maaf_value", maaf_channel_names("maaf.V_"),
-         "light weight, summed over samples",
-         "MAAF Eq. 20/23 by Monte Carlo, N = 3: channel V_<a><b> is the sum over the pixel's samples of l(y) "
-         "f(x, y) phi_a(y1) phi_b(y2), with y1, y2 the sample's point on the light along its axis_u and "
-         "axis_v "
-         "(metres from its centre) and phi_c0 = 1, phi_cp = cos(C_y^p y), phi_sp = sin(C_y^p y), C_y^p = "
-         "maaf.omegay 2p / 5 rad/m (MAAF Eq. 6); `aaf::MaafLightSide::accumulate` writes it for any "
-         "renderer"},
-        {Role::MaafUnoccludedSums, "maaf_unoccluded", maaf_channel_names("maaf.W_"),
-         "light weight, summed over samples",
-         "as maaf.V_* with every sample counted unoccluded (f = 1): the filter divides by these, filtered "
-         "alike, so a fully lit region stays exactly lit"},
-        {Role::MaafWedge,
-         "maaf_wedge",
-         {"maaf.smin", "maaf.smax", "maaf.omegax", "maaf.omegay"},
-         "slopes (unitless); rad/m",
-         "the wedge the MAAF sums were accumulated with (MAAF Sec. 6.2: from the first pass, averaged over "
-         "5x5): "
-         "slopes d1/d2 - 1, the pixel band-limit Omega_x^max (0 = no wedge, not filtered) and the "
-         "partitioned "
-         "Omega_y^max of the light-side functions"},
-        {Role::HardVisibility,
-         "hard_visibility",
-         {"isg.V"},
-         "0 or 1",
-         "ISG Sec. 3.1's image-space hard shadow: 1 where one shadow ray from the primary hit to the key "
-         "light's centre reaches it, 0 where it is blocked (in shadow); 1 on the background"},
-        {Role::OccluderDistance,
-         "occluder_distance",
-         {"isg.occluder_m"},
-         "metres, 0 = not in shadow",
-         "distance from the primary hit to the first occluder on that ray (d of ISG Eq. 8)"},
-        {Role::Reflection,
-         "reflection",
-         {"reflect.R", "reflect.G", "reflect.B"},
-         "linear radiance",
-         "ISG Sec. 3.2's reflection map: radiance along the mirror reflection of the primary ray (every "
-         "light "
-         "towards its centre, hard shadows), 0 where it leaves the scene"},
-        {Role::ReflectionDistance,
-         "reflection_distance",
-         {"reflect.E"},
-         "metres, 0 = nothing reflected",
-         "distance from the primary hit to the reflected object (E of ISG Eq. 13)"},
-        {Role::ThetaMax,
-         "theta_max",
-         {"gloss.theta_max"},
-         "radians, 0 = not glossy",
-         "the material's glossy cone half-angle theta_max (ISG Fig. 4): its glossy BRDF is zero outside it"},
-        {Role::GlossyReference,
-         "glossy_reference",
-         {"glossy.R", "glossy.G", "glossy.B"},
-         "linear radiance",
-         "distribution-ray-traced glossy reflection: the mean over the pixel's spp rays, uniform in solid "
-         "angle within theta_max of the mirror direction, of the radiance the reflection map records (rays "
-         "below the surface count 0); equals the reflection map where theta_max = 0"},
-        {Role::PinholeBeauty,
-         "pinhole",
-         {"pinhole.R", "pinhole.G", "pinhole.B"},
-         "linear radiance",
-         "the in-focus image a pinhole camera sees, r(x) V(x) of the key light; with a thin lens the "
-         "beauty is the defocused reference of this"},
-        {Role::GlossyReflection,
-         "glossy_reflection",
-         {"isg_glossy.R", "isg_glossy.G", "isg_glossy.B"},
-         "linear radiance",
-         "output of `aaf filter isg-glossy`: the reflection map gathered over the glossy cone (ISG Eq. "
-         "10-14)"},
-        {Role::Defocused,
-         "defocused",
-         {"isg_dof.R", "isg_dof.G", "isg_dof.B"},
-         "linear radiance",
-         "output of `aaf filter isg-dof`: the pinhole image gathered over circles of confusion (ISG Eq. "
-         "15-17)"},
-        {Role::RatioAnalytic,
-         "ratio_u",
-         {"ratio.U.R", "ratio.U.G", "ratio.U.B"},
-         "linear radiance",
-         "ratio estimator Eq. 20: the analytic unshadowed direct light U of every light, summed (exact "
-         "polygon irradiance for the diffuse lobe, linearly transformed cosines for GGX). Per light: the "
-         "same "
-         "names with `ratio.` replaced by `ratio.L<i>.`, i < aaf:ratio:lights"},
-        {Role::RatioShadowed,
-         "ratio_s",
-         {"ratio.S.R", "ratio.S.G", "ratio.S.B"},
-         "linear radiance",
-         "ratio estimator Eq. 21 as a mean: (1/N) sum of w R L V / p over the pixel's N samples per light "
-         "(MIS weights w), summed over lights; it is also the full-stochastic estimate (ratio estimator Eq. "
-         "10). Per light as "
-         "ratio_u"},
-        {Role::RatioUnshadowed,
-         "ratio_un",
-         {"ratio.Un.R", "ratio.Un.G", "ratio.Un.B"},
-         "linear radiance",
-         "ratio estimator Eq. 22 as a mean: the same samples and weights as ratio_s with V = 1, so S_N / U_N "
-         "stays in [0, 1]; U - U_N + S_N is the control-variate estimate (ratio estimator Eq. 11). Per light "
-         "as ratio_u"},
-        {Role::RatioShadowedLuminance,
-         "ratio_s_y",
-         {"ratio.S.Y"},
-         "luminance",
-         "Rec. 709 luminance of ratio_s, for the grey approximation (ratio estimator Sec. 3.4). Per light as "
-         "ratio_u"},
-        {Role::RatioUnshadowedLuminance,
-         "ratio_un_y",
-         {"ratio.Un.Y"},
-         "luminance",
-         "Rec. 709 luminance of ratio_un (ratio estimator Sec. 3.4). Per light as ratio_u"},
-        {Role::Maaf6Direct,
-         "maaf6_direct",
-         {"maaf6.direct.R", "maaf6.direct.G", "maaf6.direct.B"},
-         "linear radiance",
-         "MAAF 6D (Sec. 6.2): mean over the pixel's path samples of the direct light at the lens ray's hit, "
-         "one shadow ray to the area light; the beauty of a maaf6 render is this plus maaf6_indirect"},
-        {Role::Maaf6Indirect,
-         "maaf6_indirect",
-         {"maaf6.indirect.R", "maaf6.indirect.G", "maaf6.indirect.B"},
-         "linear radiance",
-         "MAAF 6D: mean of the one-bounce diffuse indirect light (cosine-sampled bounce, one shadow ray at "
-         "the "
-         "bounce point), 0 when the effect is off"},
-        {Role::Maaf6DirectSums, "maaf6_direct_sums", maaf6_channel_names("maaf6.direct.V_", true),
-         "linear radiance, summed over samples",
-         "MAAF Eq. 23 by Monte Carlo, N = 3: V_<a><b>.R/G/B is the sum over the pixel's samples of the "
-         "direct "
-         "radiance times phi_a(y1, u1) phi_b(y2, u2); phi_c0 = 1, phi_cp = cos(C_y^p y + C_u^p u), phi_sp = "
-         "sin(...), y_i the light point and u_i the lens point along the pixel's tangent axis t_i (metres), "
-         "C from `aaf::maaf6_pair_components` of maaf6_wedge; `aaf::Maaf6SampleSide::accumulate` writes it"},
-        {Role::Maaf6DirectWeights, "maaf6_direct_weights", maaf6_channel_names("maaf6.direct.W_", false),
-         "luminance, summed over samples",
-         "as maaf6_direct_sums with the sample's unoccluded luminance (its radiance with visibility 1) "
-         "instead of "
-         "its radiance: the filter divides by these, filtered alike, and multiplies by the pixel's own mean"},
-        {Role::Maaf6IndirectSums, "maaf6_indirect_sums", maaf6_channel_names("maaf6.indirect.V_", true),
-         "linear radiance, summed over samples",
-         "as maaf6_direct_sums for the indirect radiance, with y_i = the bounce direction's tan along t_i "
-         "(unitless, the unit plane above the receiver)"},
-        {Role::Maaf6IndirectWeights, "maaf6_indirect_weights",
-         maaf6_channel_names("maaf6.indirect.W_", false), "samples",
-         "as maaf6_direct_sums for the indirect layer with weight 1 (channel c0c0 counts the samples)"},
-        {Role::Maaf6Wedge,
-         "maaf6_wedge",
-         {"maaf6.direct.ymin", "maaf6.direct.ymax", "maaf6.indirect.ymin", "maaf6.indirect.ymax",
-          "maaf6.umin", "maaf6.umax", "maaf6.omegax"},
-         "slopes: unitless (direct, u), metres (indirect); rad/m",
-         "the 3D wedges of the first pass averaged over 5x5 (MAAF Sec. 6.2): direct y slopes d1/d2 - 1, "
-         "indirect y slopes = reflector distance z, defocus slopes 1 - z/F (either sign), -1 in both y "
-         "channels = no y-wedge; the pixel band-limit 2 / pixel size"},
-        {Role::Maaf6Spp,
-         "maaf6_spp",
-         {"maaf6.spp"},
-         "samples",
-         "path samples of the pixel: --spp plus the focal-plane extra (MAAF Sec. 6.2, at most 100)"},
+         "the beauty is r(x) V(x) plus this",
+         true},
     };
     return table;
-}
-
-const RoleInfo &role_info(Role role) {
-    for (const RoleInfo &info : role_table())
-        if (info.role == role) return info;
-    throw Error("internal: role missing from the role table");
 }
 
 const std::vector<std::string> &light_attribute_names() {
@@ -406,11 +189,11 @@ void ChannelMap::set_override(const std::string &spec) {
     std::string key = spec.substr(0, eq);
     const RoleInfo *info = nullptr;
     for (const RoleInfo &candidate : role_table())
-        if (key == candidate.key) info = &candidate;
+        if (key == candidate.role.key) info = &candidate;
     if (!info) {
         std::string known;
         for (const RoleInfo &candidate : role_table())
-            known += std::string(known.empty() ? "" : ", ") + candidate.key;
+            known += std::string(known.empty() ? "" : ", ") + candidate.role.key;
         throw Error("unknown role '" + key + "' in mapping '" + spec + "' (roles: " + known + ")");
     }
 
@@ -442,17 +225,18 @@ void ChannelMap::set_override(const std::string &spec) {
 }
 
 const std::vector<std::string> &ChannelMap::channels(Role role) const {
-    return names_.at(role);
+    // A role registered after this map was made has its default names.
+    const auto it = names_.find(role);
+    return it != names_.end() ? it->second : role_info(role).channels;
 }
 
 const std::string &ChannelMap::channel(Role role) const {
     const std::vector<std::string> &names = channels(role);
-    if (names.size() != 1)
-        throw Error(std::string("internal: role '") + role_info(role).key + "' has several channels");
+    if (names.size() != 1) throw Error(std::string("internal: role '") + role.key + "' has several channels");
     return names.front();
 }
 
-const std::vector<RoleSynonym> &role_synonyms() {
+const std::vector<RoleSynonym> &shared_role_synonyms() {
     static const std::vector<RoleSynonym> table = {
         {Role::Beauty, "Blender", {"*.Combined.R", "*.Combined.G", "*.Combined.B"}},
         {Role::Beauty, "Arnold", {"RGBA.R", "RGBA.G", "RGBA.B"}},
@@ -467,7 +251,6 @@ const std::vector<RoleSynonym> &role_synonyms() {
         {Role::Albedo, "Blender", {"*.DiffCol.R", "*.DiffCol.G", "*.DiffCol.B"}},
         {Role::Albedo, "pbrt-v4", {"Albedo.R", "Albedo.G", "Albedo.B"}},
         {Role::Albedo, "Arnold", {"albedo.R", "albedo.G", "albedo.B"}},
-        {Role::FilterWidth, "aaf 0.1", {"aaf.beta"}},
     };
     return table;
 }
@@ -554,6 +337,8 @@ std::vector<std::string> under_view_layer(const std::vector<std::string> &names,
 
 ChannelMap ChannelMap::resolved(const AovSet &aovs) const {
     ChannelMap map = *this;
+    for (const RoleInfo &info : role_table())
+        map.names_.emplace(info.role, info.channels);  // registered since
     for (auto &[role, names] : map.names_) {
         if (overridden_.count(role)) continue;
         if (!match_channels(names, aovs).empty()) continue;
@@ -585,25 +370,7 @@ ChannelMap ChannelMap::resolved(const AovSet &aovs) const {
 }
 
 bool is_colour_role(Role role) {
-    switch (role) {
-        case Role::Beauty:
-        case Role::Unshadowed:
-        case Role::NoisyBeauty:
-        case Role::FilteredBeauty:
-        case Role::Albedo:
-        case Role::OtherLights:
-        case Role::Reflection:
-        case Role::GlossyReference:
-        case Role::PinholeBeauty:
-        case Role::GlossyReflection:
-        case Role::Defocused:
-        case Role::RatioAnalytic:
-        case Role::RatioShadowed:
-        case Role::RatioUnshadowed:
-            return true;
-        default:
-            return false;
-    }
+    return role_info(role).colour;
 }
 
 std::vector<bool> colour_channels(const AovSet &aovs, const ChannelMap &map) {

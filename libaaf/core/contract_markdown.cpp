@@ -18,7 +18,7 @@ std::string code_list(const std::vector<std::string> &names, const char *separat
 
 std::string role_list(const std::vector<Role> &roles) {
     std::vector<std::string> keys;
-    for (Role role : roles) keys.push_back(role_info(role).key);
+    for (Role role : roles) keys.push_back(role.key);
     return code_list(keys);
 }
 
@@ -49,7 +49,7 @@ std::string roles_markdown() {
             readers.push_back(name + " (optional)");
         const std::vector<std::string> writers =
             methods_with(info.role, [](const MethodRoles &r) { return r.outputs; });
-        text += "| `" + std::string(info.key) + "` | " + code_list(info.channels) + " | " + info.units +
+        text += "| `" + std::string(info.role.key) + "` | " + code_list(info.channels) + " | " + info.units +
                 " | " + info.meaning + " | " + code_list(readers) + " | " + code_list(writers) + " |\n";
     }
     return text;
@@ -86,7 +86,7 @@ std::string synonyms_markdown() {
             if (synonym.role == info.role)
                 tried += (tried.empty() ? "" : "; ") + std::string(synonym.renderer) + " " +
                          code_list(synonym.channels);
-        if (!tried.empty()) text += "| `" + std::string(info.key) + "` | " + tried + " |\n";
+        if (!tried.empty()) text += "| `" + std::string(info.role.key) + "` | " + tried + " |\n";
     }
     text +=
         "| every role, last | its contract names under the file's view-layer prefix (shared by every "

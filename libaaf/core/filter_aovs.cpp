@@ -57,8 +57,8 @@ struct SplitInput {
 void check_inputs(const FilterPlan &plan, const AovSet &input) {
     if (!plan.missing.roles.empty()) {
         const RoleInfo &info = role_info(plan.missing.roles.front());
-        throw InputError("missing " + plan.method->info().title + " input '" + info.key + "' (channels " +
-                         joined(plan.channels.channels(info.role)) + ")");
+        throw InputError("missing " + plan.method->info().title + " input '" + info.role.key +
+                         "' (channels " + joined(plan.channels.channels(info.role)) + ")");
     }
     if (!plan.missing.attributes.empty())
         throw InputError("missing header attribute " + quoted(plan.missing.attributes.front()));

@@ -7,7 +7,7 @@ namespace aaf {
 ConstPlaneView MethodImages::input(Role role, std::size_t channel) const {
     auto it = inputs_.find(role);
     if (it == inputs_.end() || channel >= it->second.size())
-        throw Error(std::string("input '") + role_info(role).key + "' is not available to this method");
+        throw Error(std::string("input '") + role.key + "' is not available to this method");
     return it->second[channel];
 }
 
@@ -17,7 +17,7 @@ PlaneView MethodImages::output(Role role, std::size_t channel) const {
     if (auto it = deferred_outputs_.find(role); it != deferred_outputs_.end())
         views = &deferred_views(it->second);
     if (!views || channel >= views->size())
-        throw Error(std::string("internal: '") + role_info(role).key + "' is not an output of this method");
+        throw Error(std::string("internal: '") + role.key + "' is not an output of this method");
     return (*views)[channel];
 }
 
@@ -47,7 +47,7 @@ const std::string &MethodImages::channel_names(Role role) const {
 ConstPlaneView MethodImages::light_input(Role role, int light, std::size_t channel) const {
     auto it = light_inputs_.find({role, light});
     if (it == light_inputs_.end() || channel >= it->second.size())
-        throw Error(std::string("input '") + role_info(role).key + "' of light " + std::to_string(light) +
+        throw Error(std::string("input '") + role.key + "' of light " + std::to_string(light) +
                     " is not available to this method");
     return it->second[channel];
 }
@@ -55,7 +55,7 @@ ConstPlaneView MethodImages::light_input(Role role, int light, std::size_t chann
 ConstPlaneView MethodImages::history(Role role, std::size_t channel) const {
     auto it = history_.find(role);
     if (it == history_.end() || channel >= it->second.size())
-        throw Error(std::string("the previous frame's '") + role_info(role).key + "' is not available");
+        throw Error(std::string("the previous frame's '") + role.key + "' is not available");
     return it->second[channel];
 }
 

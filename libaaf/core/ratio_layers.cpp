@@ -2,6 +2,7 @@
 
 #include "aaf/core/error.h"
 #include "aaf/core/quoted.h"
+#include "aaf/core/ratio_roles.h"
 
 namespace aaf {
 
@@ -11,16 +12,10 @@ constexpr std::size_t kMinChannelsPerLight = 3;
 }  // namespace
 
 bool is_per_light_role(Role role) {
-    switch (role) {
-        case Role::RatioAnalytic:
-        case Role::RatioShadowed:
-        case Role::RatioUnshadowed:
-        case Role::RatioShadowedLuminance:
-        case Role::RatioUnshadowedLuminance:
-            return true;
-        default:
-            return false;
-    }
+    for (Role per_light : {roles::RatioAnalytic, roles::RatioShadowed, roles::RatioUnshadowed,
+                           roles::RatioShadowedLuminance, roles::RatioUnshadowedLuminance})
+        if (role == per_light) return true;
+    return false;
 }
 
 std::string per_light_channel(const std::string &channel, int light) {

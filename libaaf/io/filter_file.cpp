@@ -6,6 +6,7 @@
 
 #include "aaf/core/error.h"
 #include "aaf/core/filter_aovs.h"
+#include "aaf/core/maaf6_roles.h"
 #include "aaf/core/thread_count.h"
 #include "aaf/io/atomic_file.h"
 

@@ -46,7 +46,7 @@ const char *type_name(ParameterType type) {
 
 py::list role_keys(const std::vector<Role> &roles) {
     py::list keys;
-    for (Role role : roles) keys.append(role_info(role).key);
+    for (Role role : roles) keys.append(role.key);
     return keys;
 }
 

@@ -239,8 +239,7 @@ std::string aov_groups_markdown() {
         "| group (`--aovs`) | channels | roles | in `--aovs METHOD` for |\n| --- | --- | --- | --- |\n";
     for (const AovGroupInfo &group : aov_group_table()) {
         std::string roles, users;
-        for (Role role : group.roles)
-            roles += (roles.empty() ? "`" : ", `") + std::string(role_info(role).key) + "`";
+        for (Role role : group.roles) roles += (roles.empty() ? "`" : ", `") + std::string(role.key) + "`";
         for (const Method *method : methods())
             if (aov_groups_for_method(method->info().name).contains(group.name))
                 users += (users.empty() ? "`" : ", `") + method->info().name + "`";

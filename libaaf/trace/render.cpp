@@ -13,8 +13,10 @@
 #include <mutex>
 #include <optional>
 
+#include "aaf/core/aaf_roles.h"
 #include "aaf/core/aov_contract.h"
 #include "aaf/core/error.h"
+#include "aaf/core/maaf6_roles.h"
 #include "aaf/core/parallel.h"
 #include "aaf/core/sampling_plan.h"
 #include "aov_group.h"
@@ -382,7 +384,7 @@ AovSet render_scene(const std::string &scene_name, const RenderSettings &setting
         if (settings.adaptive) {
             start = Clock::now();
             const AovSet plan = plan_second_pass(state, accumulators, settings);
-            const ConstPlaneView totals = plan.channel(ChannelMap().channel(Role::PlannedSpp));
+            const ConstPlaneView totals = plan.channel(ChannelMap().channel(roles::PlannedSpp));
             measured.plan_s = seconds_since(start);
             start = Clock::now();
             tracing.trace_pass(

@@ -32,6 +32,7 @@
 #include "aaf/core/maaf_accumulation.h"
 #include "aaf/core/maaf_components.h"
 #include "aaf/core/maaf_filter.h"
+#include "aaf/core/maaf_roles.h"
 #include "aaf/core/thread_count.h"
 #include "aaf/trace/render.h"
 

@@ -15,6 +15,7 @@
 #include "aaf/core/aov_contract.h"
 #include "aaf/core/error.h"
 #include "aaf/core/maaf6_filter.h"
+#include "aaf/core/maaf6_roles.h"
 #include "aaf/io/exr_io.h"
 
 using namespace aaf;
@@ -57,7 +58,7 @@ int main(int argc, char **argv) {
         const AovSet aovs = io::read_aovs(input);
         const ChannelMap names;
         Maaf6SharedInputs shared;
-        const std::vector<ConstPlaneView> wedge = planes(aovs, names, Role::Maaf6Wedge);
+        const std::vector<ConstPlaneView> wedge = planes(aovs, names, roles::Maaf6Wedge);
         shared.u_min = wedge.at(4);
         shared.u_max = wedge.at(5);
         shared.omega_x = wedge.at(6);
@@ -69,7 +70,7 @@ int main(int argc, char **argv) {
         }
         shared.object_id = aovs.channel(names.channel(Role::ObjectId));
         shared.pixel_size = aovs.channel(names.channel(Role::PixelSize));
-        shared.samples = aovs.channel(names.channel(Role::Maaf6Spp));
+        shared.samples = aovs.channel(names.channel(roles::Maaf6Spp));
         shared.omega_u_max = double(attribute(aovs, attr::kMaaf6OmegaLens));
         std::printf(
             "%s, k %g, max radius %d px: filtered pixels of each layer by the reasons for the central "
@@ -84,10 +85,10 @@ int main(int argc, char **argv) {
             std::size_t wedge_channel;
             const char *omega;
         };
-        for (const LayerSpec &spec : {LayerSpec{"direct", Role::Maaf6DirectSums, Role::Maaf6DirectWeights, 0,
-                                                attr::kMaaf6OmegaDirect},
-                                      LayerSpec{"indirect", Role::Maaf6IndirectSums,
-                                                Role::Maaf6IndirectWeights, 2, attr::kMaaf6OmegaIndirect}}) {
+        for (const LayerSpec &spec : {LayerSpec{"direct", roles::Maaf6DirectSums, roles::Maaf6DirectWeights,
+                                                0, attr::kMaaf6OmegaDirect},
+                                      LayerSpec{"indirect", roles::Maaf6IndirectSums,
+                                                roles::Maaf6IndirectWeights, 2, attr::kMaaf6OmegaIndirect}}) {
             Maaf6LayerInputs layer;
             layer.sums = planes(aovs, names, spec.sums);
             layer.weights = planes(aovs, names, spec.weights);

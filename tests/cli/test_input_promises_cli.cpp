@@ -10,6 +10,7 @@
 #include <string>
 
 #include "aaf/core/aov_contract.h"
+#include "aaf/core/isg_roles.h"
 #include "aaf/io/exr_io.h"
 #include "run_aaf.h"
 

@@ -5,15 +5,17 @@
 #include "aaf/core/aov_contract.h"
 #include "aaf/core/error.h"
 #include "aaf/core/filter_aovs.h"
+#include "aaf/core/maaf6_roles.h"
 #include "aaf/core/method_registry.h"
 #include "aaf/core/ratio_layers.h"
+#include "aaf/core/ratio_roles.h"
 
 using namespace aaf;
 
 TEST_CASE("Role table has unique keys and channel names", "[contract]") {
     std::set<std::string> keys, channels;
     for (const RoleInfo &info : role_table()) {
-        CHECK(keys.insert(info.key).second);
+        CHECK(keys.insert(info.role.key).second);
         for (const std::string &name : info.channels) CHECK(channels.insert(name).second);
     }
 }
@@ -151,18 +153,18 @@ TEST_CASE("A role is read only from its own name, a --map, or a renderer synonym
 TEST_CASE("A --map layer replaces the role's layer and keeps only the component suffix", "[contract]") {
     ChannelMap map;
     map.set_override("ratio_u=myU");
-    CHECK(map.channels(Role::RatioAnalytic) == std::vector<std::string>{"myU.R", "myU.G", "myU.B"});
+    CHECK(map.channels(roles::RatioAnalytic) == std::vector<std::string>{"myU.R", "myU.G", "myU.B"});
     map.set_override("position=Pw");
     CHECK(map.channels(Role::Position) == std::vector<std::string>{"Pw.X", "Pw.Y", "Pw.Z"});
     map.set_override("maaf6_direct=ViewLayer.direct");
-    CHECK(map.channels(Role::Maaf6Direct) ==
+    CHECK(map.channels(roles::Maaf6Direct) ==
           std::vector<std::string>{"ViewLayer.direct.R", "ViewLayer.direct.G", "ViewLayer.direct.B"});
     // Every multi-channel role: the layer form gives distinct names, each under the layer.
     for (const RoleInfo &info : role_table()) {
         if (info.channels.size() < 2) continue;
-        INFO(info.key);
+        INFO(info.role.key);
         ChannelMap one;
-        one.set_override(std::string(info.key) + "=L");
+        one.set_override(std::string(info.role.key) + "=L");
         const std::vector<std::string> &names = one.channels(info.role);
         CHECK(std::set<std::string>(names.begin(), names.end()).size() == names.size());
         for (const std::string &name : names) CHECK(name.rfind("L.", 0) == 0);

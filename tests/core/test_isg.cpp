@@ -11,6 +11,7 @@
 #include "aaf/core/error.h"
 #include "aaf/core/filter_aovs.h"
 #include "aaf/core/isg.h"
+#include "aaf/core/isg_roles.h"
 #include "aaf/core/method_registry.h"
 
 using namespace aaf;
@@ -85,8 +86,8 @@ constexpr float kTenToNinetyPerRadius = 2 * 0.6870f;
 /// square light 4 m above the edge.
 AovSet shadow_edge(float occluder_m) {
     AovSet aovs(kWidth, kHeight);
-    const PlaneView v = aovs.add_channel(role_info(Role::HardVisibility).channels[0]);
-    const PlaneView d = aovs.add_channel(role_info(Role::OccluderDistance).channels[0]);
+    const PlaneView v = aovs.add_channel(role_info(roles::HardVisibility).channels[0]);
+    const PlaneView d = aovs.add_channel(role_info(roles::OccluderDistance).channels[0]);
     const PlaneView z = aovs.add_channel(role_info(Role::Depth).channels[0], kDepth_m);
     PlaneView p[3];
     for (int c = 0; c < 3; ++c) p[c] = aovs.add_channel(role_info(Role::Position).channels[std::size_t(c)]);
@@ -150,7 +151,7 @@ TEST_CASE("isg-shadow: the penumbra widens with the occluder's height as ISG Eq.
 TEST_CASE("isg-shadow: a fully lit input and a pixel without depth stay as they were", "[isg]") {
     const Method &method = find_method("isg-shadow");
     AovSet lit = shadow_edge(0.5f);
-    PlaneView v = lit.channel(role_info(Role::HardVisibility).channels[0]);
+    PlaneView v = lit.channel(role_info(roles::HardVisibility).channels[0]);
     std::fill(v.data, v.data + lit.pixel_count(), 1.0f);
     lit.channel(role_info(Role::Depth).channels[0])(3, 3) = 0;  // the background
     const AovSet out = filter_aovs(method, lit, ChannelMap{}, method.default_parameters());
@@ -170,10 +171,10 @@ AovSet reflection_edge(float reflected_m) {
     for (std::size_t c = 0; c < 3; ++c) {
         p[c] = aovs.add_channel(role_info(Role::Position).channels[c]);
         n[c] = aovs.add_channel(role_info(Role::Normal).channels[c], c == 2 ? 1.0f : 0.0f);
-        r[c] = aovs.add_channel(role_info(Role::Reflection).channels[c]);
+        r[c] = aovs.add_channel(role_info(roles::Reflection).channels[c]);
     }
-    aovs.add_channel(role_info(Role::ReflectionDistance).channels[0], reflected_m);
-    aovs.add_channel(role_info(Role::ThetaMax).channels[0], 0.02f);
+    aovs.add_channel(role_info(roles::ReflectionDistance).channels[0], reflected_m);
+    aovs.add_channel(role_info(roles::ThetaMax).channels[0], 0.02f);
     for (int y = 0; y < kHeight; ++y)
         for (int x = 0; x < kWidth; ++x) {
             p[0](x, y) = float(x) * kPixel_m;
@@ -201,7 +202,7 @@ TEST_CASE(
     for (float reflected_m : {1.0f, 3.0f, 10.0f, 40.0f}) {
         INFO("reflected object " << reflected_m << " m away");
         const AovSet out = filter_aovs(method, reflection_edge(reflected_m), ChannelMap{}, parameters);
-        const float measured = rise_width_px(out, role_info(Role::GlossyReflection).channels[0]);
+        const float measured = rise_width_px(out, role_info(roles::GlossyReflection).channels[0]);
         // ISG Eq. 13 with e = 5 m; ISG Eq. 14 with cos(theta_incident) = 1 at the edge, seen head-on.
         const float alpha = std::atan(reflected_m * std::tan(0.02f) / (kDepth_m + reflected_m));
         CHECK(measured > previous);
@@ -210,7 +211,7 @@ TEST_CASE(
     }
     // theta_max = 0 (not glossy): the mirror reflection stays as it was.
     AovSet mirror = reflection_edge(3.0f);
-    PlaneView theta = mirror.channel(role_info(Role::ThetaMax).channels[0]);
+    PlaneView theta = mirror.channel(role_info(roles::ThetaMax).channels[0]);
     std::fill(theta.data, theta.data + mirror.pixel_count(), 0.0f);
     const AovSet out = filter_aovs(method, mirror, ChannelMap{}, parameters);
     CHECK(out.plane(out.index_of("isg_glossy.R")) == mirror.plane(mirror.index_of("reflect.R")));
@@ -222,7 +223,7 @@ namespace {
 AovSet pinhole_edge(float depth_m) {
     AovSet aovs(kWidth, kHeight);
     for (std::size_t c = 0; c < 3; ++c) {
-        const PlaneView v = aovs.add_channel(role_info(Role::PinholeBeauty).channels[c]);
+        const PlaneView v = aovs.add_channel(role_info(roles::PinholeBeauty).channels[c]);
         for (int y = 0; y < kHeight; ++y)
             for (int x = 0; x < kWidth; ++x) v(x, y) = x < kWidth / 2 ? 0.0f : 1.0f;
     }

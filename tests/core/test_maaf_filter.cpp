@@ -11,6 +11,7 @@
 #include "aaf/core/maaf_accumulation.h"
 #include "aaf/core/maaf_components.h"
 #include "aaf/core/maaf_filter.h"
+#include "aaf/core/maaf_roles.h"
 #include "aaf/core/maaf_wedge.h"
 
 using namespace aaf;

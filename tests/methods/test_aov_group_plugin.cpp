@@ -1,5 +1,6 @@
 // The test AOV group (toy_hit_group.cpp), registered from its own file, in
 // the library's registry and in the `aaf` front end built with it (aaf_with_toy).
+#include <algorithm>
 #include <catch2/catch.hpp>
 
 #include "../cli/run_aaf.h"
@@ -44,8 +45,16 @@ TEST_CASE("An AOV group registered from its own file is rendered, named by --aov
 
     // The front end built with it: --aovs help, its option, a render's file.
     const RunResult help = run_aaf("render --help", AAF_TOY_EXECUTABLE);
-    CHECK_THAT(help.output, Catch::Contains(", progress, toy_hits\n") && Catch::Contains("--toy-hit-value") &&
+    CHECK_THAT(help.output, Catch::Contains(", progress, toy_hits);") && Catch::Contains("--toy-hit-value") &&
                                 Catch::Contains("With --aovs toy_hits: the value written at a hit"));
+    // Every group is named in the --aovs help, those `all` leaves out too.
+    std::string aovs_help = help.output.substr(help.output.find("--aovs TEXT"));
+    aovs_help = aovs_help.substr(0, aovs_help.find('\n'));
+    std::replace_if(
+        aovs_help.begin(), aovs_help.end(),
+        [](char c) { return c == ',' || c == '(' || c == ')' || c == ';'; }, ' ');
+    for (const trace::AovGroupInfo &group : trace::aov_group_table())
+        CHECK_THAT(aovs_help + " ", Catch::Contains(" " + group.name + " "));
     const fs::path dir = scratch_dir("aov_group_plugin");
     const std::string output = (dir / "toy.exr").string();
     const RunResult render = run_aaf(

@@ -10,6 +10,7 @@
 #include "../scratch_dir.h"
 #include "aaf/core/aov_contract.h"
 #include "aaf/core/filter_aovs.h"
+#include "aaf/core/isg_roles.h"
 #include "aaf/core/method_registry.h"
 #include "aaf/trace/render.h"
 
@@ -69,13 +70,13 @@ TEST_CASE("ISG on the gallery: finite, and nearer the references than its one-ra
     REQUIRE(all_finite(shadow, Role::FilteredVisibility));
     REQUIRE(all_finite(shadow, Role::Beauty));
     CHECK(rms(shadow, Role::FilteredVisibility, reference, Role::Visibility) <
-          0.8 * rms(one, Role::HardVisibility, reference, Role::Visibility));
+          0.8 * rms(one, roles::HardVisibility, reference, Role::Visibility));
 
     const AovSet glossy = run("isg-glossy", one);
-    REQUIRE(all_finite(glossy, Role::GlossyReflection));
-    const std::string glossy_pixels = role_info(Role::ThetaMax).channels[0];
-    CHECK(rms(glossy, Role::GlossyReflection, reference, Role::GlossyReference, glossy_pixels) <
-          0.8 * rms(one, Role::Reflection, reference, Role::GlossyReference, glossy_pixels));
+    REQUIRE(all_finite(glossy, roles::GlossyReflection));
+    const std::string glossy_pixels = role_info(roles::ThetaMax).channels[0];
+    CHECK(rms(glossy, roles::GlossyReflection, reference, roles::GlossyReference, glossy_pixels) <
+          0.8 * rms(one, roles::Reflection, reference, roles::GlossyReference, glossy_pixels));
 
     // Depth of field: the gallery through a thin lens focused on the post.
     const std::string lens = (aaf_test::scratch_dir("isg_gallery") / "gallery_lens.json").string();
@@ -90,9 +91,9 @@ TEST_CASE("ISG on the gallery: finite, and nearer the references than its one-ra
     }
     const AovSet defocused_reference = render_gallery(lens, 64);
     const AovSet dof = run("isg-dof", defocused_reference);  // its pinhole.* is the in-focus input
-    REQUIRE(all_finite(dof, Role::Defocused));
-    CHECK(rms(dof, Role::Defocused, defocused_reference, Role::Beauty) <
-          0.8 * rms(defocused_reference, Role::PinholeBeauty, defocused_reference, Role::Beauty));
+    REQUIRE(all_finite(dof, roles::Defocused));
+    CHECK(rms(dof, roles::Defocused, defocused_reference, Role::Beauty) <
+          0.8 * rms(defocused_reference, roles::PinholeBeauty, defocused_reference, Role::Beauty));
 }
 
 TEST_CASE("The isg group's maps and glossy reference do not depend on the thread count", "[isg]") {

@@ -12,6 +12,7 @@
 #include "aaf/core/aov_contract.h"
 #include "aaf/core/error.h"
 #include "aaf/core/filter_aovs.h"
+#include "aaf/core/maaf6_roles.h"
 #include "aaf/core/method_registry.h"
 #include "aaf/trace/render.h"
 
@@ -56,7 +57,8 @@ AovSet filtered(const AovSet &input, const char *pairs, double band_spp = 16) {
 
 TEST_CASE("maaf6: the group's channels follow the contract and the beauty is direct + indirect", "[maaf6]") {
     const AovSet render = render_room("all", 16, 1, 96, 72);
-    for (Role role : {Role::Maaf6DirectSums, Role::Maaf6IndirectWeights, Role::Maaf6Wedge, Role::Maaf6Spp})
+    for (Role role :
+         {roles::Maaf6DirectSums, roles::Maaf6IndirectWeights, roles::Maaf6Wedge, roles::Maaf6Spp})
         for (const std::string &name : role_info(role).channels) REQUIRE(render.has_channel(name));
     const ConstPlaneView r = render.channel("R"), direct = render.channel("maaf6.direct.R"),
                          indirect = render.channel("maaf6.indirect.R"),

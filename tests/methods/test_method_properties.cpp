@@ -105,11 +105,56 @@ TEST_CASE("Every method: the registry holds the built-ins and the test plug-in, 
     CHECK_THROWS_WITH(find_method("nonesuch"), Catch::Contains("aaf") && Catch::Contains("toy_box"));
 }
 
+namespace {
+
+/// A method that only declares roles, to test what registration accepts.
+class DeclaringMethod final : public Method {
+  public:
+    DeclaringMethod(std::string name, std::vector<RoleInfo> declared) {
+        info_.name = std::move(name);
+        info_.roles.declared = std::move(declared);
+        info_.roles.outputs = {Role::FilteredVisibility};
+    }
+    const MethodInfo &info() const override { return info_; }
+    void run(const MethodImages &, const ParameterSet &, Progress &) const override {}
+
+  private:
+    MethodInfo info_;
+};
+
+}  // namespace
+
+TEST_CASE("Every role is declared once: a method declaring a taken or malformed key is refused",
+          "[methods]") {
+    const std::size_t before = methods().size(), roles = role_table().size();
+    const auto declare = [](const char *key) {
+        return std::make_unique<DeclaringMethod>(
+            "declares_" + std::string(key[0] ? "x" : "empty"),
+            std::vector<RoleInfo>{{Role{key}, {"declared.V"}, "", "a test role"}});
+    };
+    CHECK_THROWS_WITH(MethodRegistration(declare("visibility")),
+                      Catch::Contains("'visibility'") && Catch::Contains("already declared"));  // shared
+    CHECK_THROWS_WITH(MethodRegistration(declare("maaf_wedge")),
+                      Catch::Contains("already declared"));  // maaf's own
+    CHECK_THROWS_WITH(MethodRegistration(declare("toy_hit")),
+                      Catch::Contains("already declared"));  // a plug-in's
+    CHECK_THROWS_WITH(MethodRegistration(declare("Bad-Key")), Catch::Contains("lower-case"));
+    CHECK_THROWS_WITH(MethodRegistration(declare("")), Catch::Contains("lower-case"));
+    // Nothing refused was registered.
+    CHECK(methods().size() == before);
+    CHECK(role_table().size() == roles);
+    // Each built-in role is declared by the shared contract or by the one method that owns it.
+    std::set<std::string> keys;
+    for (const RoleInfo &info : role_table()) CHECK(keys.insert(info.role.key).second);
+    CHECK(role_info(Role{"toy_hit"}).channels == std::vector<std::string>{"toy.hit"});
+    CHECK_THROWS_WITH(role_info(Role{"nonesuch"}), Catch::Contains("'nonesuch'"));
+}
+
 TEST_CASE("Every method: a constant input stays that constant", "[methods]") {
     for (const Method *method : methods()) {
         const MethodInfo &info = method->info();
         for (const auto &[from, to] : info.roles.filtered) {
-            INFO(info.name << ": " << role_info(from).key << " -> " << role_info(to).key);
+            INFO(info.name << ": " << from.key << " -> " << to.key);
             AovSet input = realistic_input();
             const float constant = 0.3725f;
             for (const std::string &name : role_info(from).channels) {
@@ -276,7 +321,7 @@ TEST_CASE("Every method: a missing required input is named in a one-line input e
     for (const Method *method : methods()) {
         const MethodInfo &info = method->info();
         for (Role role : info.roles.required) {
-            INFO(info.name << ": " << role_info(role).key);
+            INFO(info.name << ": " << role.key);
             const AovSet &full = realistic_input();
             AovSet input(full.width(), full.height());
             input.attributes = full.attributes;
@@ -293,8 +338,7 @@ TEST_CASE("Every method: a missing required input is named in a one-line input e
                     std::copy(full.plane(c).begin(), full.plane(c).end(),
                               input.add_channel(full.channel_names()[c]).data);
             CHECK_THROWS_AS(run_method(*method, input), InputError);
-            CHECK_THROWS_WITH(run_method(*method, input),
-                              Catch::Contains(std::string("'") + role_info(role).key + "'"));
+            CHECK_THROWS_WITH(run_method(*method, input), Catch::Contains(std::string("'") + role.key + "'"));
         }
     }
 }
@@ -344,7 +388,7 @@ TEST_CASE("Every method: a finite input gives a finite output, or an input error
         const AovSet reference = run_method(*method, clean);
         for (Role role : input_roles(method->info())) {
             if (role == Role::ObjectId || role == Role::Motion) continue;  // ids and motion are not summed
-            INFO(method->info().name << ": " << role_info(role).key << " = 3e38");
+            INFO(method->info().name << ": " << role.key << " = 3e38");
             AovSet input = clean;
             for (const std::string &name : role_info(role).channels) {
                 PlaneView view = input.channel(name);

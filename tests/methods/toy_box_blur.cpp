@@ -1,6 +1,9 @@
 // A toy method added from outside the library, as a plug-in would be: this
-// one file and its registration line below. It then appears in `aaf filter
-// --help` and `aaf info` of the `aaf_with_toy` build and runs through the
+// one file and its registration line below. It declares a new input role,
+// `toy_hit`, which the toy tracer group (toy_hit_group.cpp) writes, and an
+// output role of its own. It then appears in `aaf filter --help` and
+// `aaf info` of the `aaf_with_toy` build (the recipe for its input names the
+// toy group), its roles in `--map` and the contract, and it runs through the
 // property tests of every registered method (test_method_properties.cpp).
 #include <algorithm>
 #include <cmath>
@@ -9,17 +12,26 @@
 
 namespace {
 
-/// A square box blur of the visibility (no guides), clamped at the borders.
+constexpr aaf::Role kToyHit{"toy_hit"};          // input, written by the toy_hits group
+constexpr aaf::Role kToyBlurred{"toy_blurred"};  // output
+
+/// A square box blur of toy_hit (no guides), clamped at the borders.
 class ToyBoxBlur final : public aaf::Method {
   public:
     ToyBoxBlur() {
         info_.name = "toy_box";
         info_.title = "toy box blur";
-        info_.summary = "Test plug-in: a square box blur of the visibility";
+        info_.summary = "Test plug-in: a square box blur of toy_hit";
         info_.reference = "none";
-        info_.roles.required = {aaf::Role::Visibility};
-        info_.roles.outputs = {aaf::Role::FilteredVisibility};
-        info_.roles.filtered = {{aaf::Role::Visibility, aaf::Role::FilteredVisibility}};
+        info_.roles.declared = {
+            {kToyHit, {"toy.hit"}, "[0, 1] times --toy-hit-value", "test plug-in: where the primary ray hit"},
+            {kToyBlurred,
+             {"toy.blurred"},
+             "as toy_hit",
+             "output of `aaf filter toy_box`: toy_hit, box-blurred"}};
+        info_.roles.required = {kToyHit};
+        info_.roles.outputs = {kToyBlurred};
+        info_.roles.filtered = {{kToyHit, kToyBlurred}};
         info_.parameters = {
             aaf::ParameterInfo::integer("radius", "1", "pixels", "Half the box's side", 0, 16)};
     }
@@ -29,8 +41,8 @@ class ToyBoxBlur final : public aaf::Method {
     void run(const aaf::MethodImages &images, const aaf::ParameterSet &parameters,
              aaf::Progress &) const override {
         const int r = parameters.get_int("radius"), width = images.width(), height = images.height();
-        const aaf::ConstPlaneView in = images.input(aaf::Role::Visibility);
-        const aaf::PlaneView out = images.output(aaf::Role::FilteredVisibility);
+        const aaf::ConstPlaneView in = images.input(kToyHit);
+        const aaf::PlaneView out = images.output(kToyBlurred);
         for (int y = 0; y < height; ++y)
             for (int x = 0; x < width; ++x) {
                 double sum = 0;

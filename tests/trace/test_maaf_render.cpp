@@ -12,6 +12,7 @@
 #include "aaf/core/error.h"
 #include "aaf/core/filter_aovs.h"
 #include "aaf/core/maaf_accumulation.h"
+#include "aaf/core/maaf_roles.h"
 #include "aaf/core/method_registry.h"
 #include "aaf/trace/render.h"
 

@@ -1,6 +1,7 @@
 #include <cmath>
 
 #include "aaf/core/error.h"
+#include "aaf/core/isg_roles.h"
 #include "aaf/core/parallel.h"
 #include "aov_groups.h"
 #include "random.h"
@@ -39,21 +40,22 @@ class IsgGroup final : public AovAccumulator {
         return info;
     }
     std::vector<Role> roles() const override {
-        return {Role::HardVisibility, Role::OccluderDistance, Role::Reflection,   Role::ReflectionDistance,
-                Role::ThetaMax,       Role::GlossyReference,  Role::PinholeBeauty};
+        return {roles::HardVisibility,     roles::OccluderDistance, roles::Reflection,
+                roles::ReflectionDistance, roles::ThetaMax,         roles::GlossyReference,
+                roles::PinholeBeauty};
     }
 
     void write(const RenderState &state, AovSet &aovs) const override {
         if (!state.renderer) throw Error("internal: the isg group needs the render's tracer");
         const Renderer &renderer = *state.renderer;
         const Camera &camera = state.scene.camera;
-        const auto hard = add_role_channels(aovs, Role::HardVisibility);
-        const auto occluder = add_role_channels(aovs, Role::OccluderDistance);
-        const auto reflection = add_role_channels(aovs, Role::Reflection);
-        const auto reflected = add_role_channels(aovs, Role::ReflectionDistance);
-        const auto theta_max = add_role_channels(aovs, Role::ThetaMax);
-        const auto glossy = add_role_channels(aovs, Role::GlossyReference);
-        const auto pinhole = add_role_channels(aovs, Role::PinholeBeauty);
+        const auto hard = add_role_channels(aovs, roles::HardVisibility);
+        const auto occluder = add_role_channels(aovs, roles::OccluderDistance);
+        const auto reflection = add_role_channels(aovs, roles::Reflection);
+        const auto reflected = add_role_channels(aovs, roles::ReflectionDistance);
+        const auto theta_max = add_role_channels(aovs, roles::ThetaMax);
+        const auto glossy = add_role_channels(aovs, roles::GlossyReference);
+        const auto pinhole = add_role_channels(aovs, roles::PinholeBeauty);
         aovs.attributes[attr::kCameraEye] = camera.eye;
         aovs.attributes[attr::kCameraFocalPx] = 0.5f * float(camera.height) / camera.tan_half_fov_y;
         aovs.attributes[attr::kFocusDistance] = camera.focus_distance_m;

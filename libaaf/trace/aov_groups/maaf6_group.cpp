@@ -6,6 +6,8 @@
 #include "../path_sample.h"
 #include "aaf/core/error.h"
 #include "aaf/core/maaf6.h"
+#include "aaf/core/maaf6_roles.h"
+#include "aaf/core/maaf_roles.h"
 #include "aaf/core/parallel.h"
 #include "aov_groups.h"
 
@@ -61,9 +63,9 @@ class Maaf6Group final : public AovAccumulator {
         return info;
     }
     std::vector<Role> roles() const override {
-        return {Role::Maaf6Direct,        Role::Maaf6Indirect,     Role::Maaf6DirectSums,
-                Role::Maaf6DirectWeights, Role::Maaf6IndirectSums, Role::Maaf6IndirectWeights,
-                Role::Maaf6Wedge,         Role::Maaf6Spp};
+        return {roles::Maaf6Direct,        roles::Maaf6Indirect,     roles::Maaf6DirectSums,
+                roles::Maaf6DirectWeights, roles::Maaf6IndirectSums, roles::Maaf6IndirectWeights,
+                roles::Maaf6Wedge,         roles::Maaf6Spp};
     }
 
     /// The effects' names are parsed here, so that a bad list is refused before anything renders.
@@ -232,14 +234,14 @@ void Maaf6Group::write(const RenderState &state, AovSet &aovs) const {
     const double sampling_s = std::chrono::duration<double>(Clock::now() - start).count();
     const auto accumulate_start = Clock::now();
 
-    const std::vector<PlaneView> direct_views = add_role_channels(aovs, Role::Maaf6Direct);
-    const std::vector<PlaneView> indirect_views = add_role_channels(aovs, Role::Maaf6Indirect);
-    const std::vector<PlaneView> direct_sums = add_role_channels(aovs, Role::Maaf6DirectSums);
-    const std::vector<PlaneView> direct_weights = add_role_channels(aovs, Role::Maaf6DirectWeights);
-    const std::vector<PlaneView> indirect_sums = add_role_channels(aovs, Role::Maaf6IndirectSums);
-    const std::vector<PlaneView> indirect_weights = add_role_channels(aovs, Role::Maaf6IndirectWeights);
-    const std::vector<PlaneView> wedge_views = add_role_channels(aovs, Role::Maaf6Wedge);
-    const std::vector<PlaneView> spp_view = add_role_channels(aovs, Role::Maaf6Spp);
+    const std::vector<PlaneView> direct_views = add_role_channels(aovs, roles::Maaf6Direct);
+    const std::vector<PlaneView> indirect_views = add_role_channels(aovs, roles::Maaf6Indirect);
+    const std::vector<PlaneView> direct_sums = add_role_channels(aovs, roles::Maaf6DirectSums);
+    const std::vector<PlaneView> direct_weights = add_role_channels(aovs, roles::Maaf6DirectWeights);
+    const std::vector<PlaneView> indirect_sums = add_role_channels(aovs, roles::Maaf6IndirectSums);
+    const std::vector<PlaneView> indirect_weights = add_role_channels(aovs, roles::Maaf6IndirectWeights);
+    const std::vector<PlaneView> wedge_views = add_role_channels(aovs, roles::Maaf6Wedge);
+    const std::vector<PlaneView> spp_view = add_role_channels(aovs, roles::Maaf6Spp);
     const PlaneView beauty[3] = {aovs.channel("R"), aovs.channel("G"), aovs.channel("B")};
     const int channels = maaf6_channel_count(kMaafContractPairs);
     // MAAF Eq. 23: each layer's sums with its pixel's parameters.

@@ -3,6 +3,7 @@
 #include <vector>
 
 #include "aaf/core/maaf_accumulation.h"
+#include "aaf/core/maaf_roles.h"
 #include "aaf/core/maaf_wedge.h"
 #include "aov_groups.h"
 
@@ -35,7 +36,7 @@ class MaafGroup final : public AovAccumulator {
         return info;
     }
     std::vector<Role> roles() const override {
-        return {Role::MaafValueSums, Role::MaafUnoccludedSums, Role::MaafWedge};
+        return {roles::MaafValueSums, roles::MaafUnoccludedSums, roles::MaafWedge};
     }
     bool wants_samples() const override { return true; }
     void set_parameters(const ParameterSet &values) override {
@@ -97,9 +98,9 @@ class MaafGroup final : public AovAccumulator {
         MaafWedgeParams params;
         const MaafWedges wedges = maaf_pixel_wedges(inputs, light, params);
 
-        const auto value_views = add_role_channels(aovs, Role::MaafValueSums);
-        const auto unoccluded_views = add_role_channels(aovs, Role::MaafUnoccludedSums);
-        const auto wedge_views = add_role_channels(aovs, Role::MaafWedge);
+        const auto value_views = add_role_channels(aovs, roles::MaafValueSums);
+        const auto unoccluded_views = add_role_channels(aovs, roles::MaafUnoccludedSums);
+        const auto wedge_views = add_role_channels(aovs, roles::MaafWedge);
         const int channels = maaf_channel_count(kMaafContractPairs);
         std::vector<double> value_sums(static_cast<std::size_t>(channels), 0.0),
             unoccluded_sums(static_cast<std::size_t>(channels), 0.0);

@@ -6,6 +6,7 @@
 #include "../ratio_sampling.h"
 #include "aaf/core/error.h"
 #include "aaf/core/parallel.h"
+#include "aaf/core/ratio_roles.h"
 #include "aov_groups.h"
 
 namespace aaf::trace {
@@ -77,15 +78,15 @@ class RatioGroup final : public AovAccumulator {
         return info;
     }
     std::vector<Role> roles() const override {
-        return {Role::RatioAnalytic, Role::RatioShadowed, Role::RatioUnshadowed, Role::RatioShadowedLuminance,
-                Role::RatioUnshadowedLuminance};
+        return {roles::RatioAnalytic, roles::RatioShadowed, roles::RatioUnshadowed,
+                roles::RatioShadowedLuminance, roles::RatioUnshadowedLuminance};
     }
 
     void write(const RenderState &state, AovSet &aovs) const override {
         const std::vector<RatioLayers> &layers = cache_.get(state);
         const std::size_t lights = state.scene.lights.size();
-        const Role roles[] = {Role::RatioAnalytic, Role::RatioShadowed, Role::RatioUnshadowed,
-                              Role::RatioShadowedLuminance, Role::RatioUnshadowedLuminance};
+        const Role roles[] = {roles::RatioAnalytic, roles::RatioShadowed, roles::RatioUnshadowed,
+                              roles::RatioShadowedLuminance, roles::RatioUnshadowedLuminance};
         // views[0] the sum, views[1 + l] light l; per role.
         std::vector<std::vector<std::vector<PlaneView>>> views(lights + 1);
         for (std::size_t target = 0; target <= lights; ++target)

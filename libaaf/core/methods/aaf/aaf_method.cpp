@@ -6,6 +6,7 @@
 
 #include "../builtin_methods.h"
 #include "aaf/core/aaf_filter.h"
+#include "aaf/core/aaf_roles.h"
 #include "aaf/core/error.h"
 #include "aaf/core/filter_aovs.h"
 #include "aaf/core/method_registry.h"
@@ -88,11 +89,13 @@ class AafMethod final : public Method {
         info_.summary = "Axis-Aligned Filtering of soft shadows (Mehta et al. 2012)";
         info_.reference =
             "Mehta, Wang, Ramamoorthi: Axis-Aligned Filtering for Interactive Sampled Soft Shadows, 2012";
+        info_.roles.declared = aaf_roles();
+        info_.roles.synonyms = {{roles::FilterWidth, "aaf 0.1", {"aaf.beta"}}};
         info_.roles.required = {Role::Visibility, Role::D1,        Role::D2Min,
                                 Role::D2Max,      Role::Position,  Role::Normal,
                                 Role::ObjectId,   Role::PixelSize, Role::Unshadowed};
         info_.roles.optional = {Role::SamplesPerPixel, Role::OtherLights};
-        info_.roles.outputs = {Role::FilteredVisibility, Role::FilterWidth, Role::Beauty};
+        info_.roles.outputs = {Role::FilteredVisibility, roles::FilterWidth, Role::Beauty};
         info_.roles.filtered = {{Role::Visibility, Role::FilteredVisibility}};
         info_.parameters = aaf_parameter_declarations().infos();
         info_.required_attributes = light_attribute_names();
@@ -126,7 +129,7 @@ class AafMethod final : public Method {
             in.spp = images.input(Role::SamplesPerPixel);
         AafOutputs out;
         out.filtered_visibility = images.output(Role::FilteredVisibility);
-        out.beta_m = images.output(Role::FilterWidth);
+        out.beta_m = images.output(roles::FilterWidth);
         aaf_filter(in, read_light_attributes(images.attributes()), params, out);
         progress.report(0.9);
         compose_shadowed_beauty(images, out.filtered_visibility);  // AAF Eq. 1

@@ -5,6 +5,7 @@
 #include <string>
 
 #include "aaf/core/aaf_bandlimits.h"
+#include "aaf/core/aaf_roles.h"
 #include "aaf/core/error.h"
 #include "aaf/core/light_bandlimit.h"
 #include "aaf/core/occluder_fill.h"
@@ -63,8 +64,8 @@ AovSet plan_samples_aovs(const AovSet &first_pass, const ChannelMap &requested, 
     const ChannelMap channels = requested.resolved(first_pass);
     for (Role role : {Role::D1, Role::D2Min, Role::D2Max, Role::ObjectId, Role::PixelSize})
         if (!first_pass.has_channel(channels.channel(role)))
-            throw InputError("missing sampling-plan input '" + std::string(role_info(role).key) +
-                             "' (channel " + channels.channel(role) + ")");
+            throw InputError("missing sampling-plan input '" + std::string(role.key) + "' (channel " +
+                             channels.channel(role) + ")");
     SamplingPlanInputs inputs;
     inputs.d1 = first_pass.channel(channels.channel(Role::D1));
     inputs.d2_min = first_pass.channel(channels.channel(Role::D2Min));
@@ -81,7 +82,7 @@ AovSet plan_samples_aovs(const AovSet &first_pass, const ChannelMap &requested, 
     plan.attributes[attr::kAdaptiveMu] = aaf.mu;
     plan.attributes[attr::kMaxSpp] = params.max_spp;
     plan_samples(inputs, read_light_attributes(first_pass), aaf, params,
-                 plan.add_channel(channels.channel(Role::PlannedSpp)));
+                 plan.add_channel(channels.channel(roles::PlannedSpp)));
     return plan;
 }
 

@@ -6,6 +6,7 @@
 
 #include "aaf/core/aov_contract.h"
 #include "aaf/core/error.h"
+#include "aaf/core/isg_roles.h"
 #include "aaf/core/quoted.h"
 
 namespace aaf::isg {

@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "aaf/core/isg.h"
+#include "aaf/core/isg_roles.h"
 #include "aaf/core/method.h"
 #include "aaf/core/vec3.h"
 

@@ -10,6 +10,7 @@
 
 #include "../builtin_methods.h"
 #include "aaf/core/aov_contract.h"
+#include "aaf/core/isg_roles.h"
 #include "aaf/core/parallel.h"
 #include "aaf/core/parameter_defaults.h"
 #include "isg_common.h"
@@ -58,9 +59,10 @@ class IsgDofMethod final : public Method {
         info_.summary =
             "Image Space Gathering depth of field from a pinhole image and depth (Robison, Shirley 2009)";
         info_.reference = "Robison, Shirley: Image Space Gathering, HPG 2009, Sec. 3.3";
-        info_.roles.required = {Role::PinholeBeauty, Role::Depth};
-        info_.roles.outputs = {Role::Defocused};
-        info_.roles.filtered = {{Role::PinholeBeauty, Role::Defocused}};
+        info_.roles.declared = isg_dof_roles();
+        info_.roles.required = {roles::PinholeBeauty, Role::Depth};
+        info_.roles.outputs = {roles::Defocused};
+        info_.roles.filtered = {{roles::PinholeBeauty, roles::Defocused}};
         info_.parameters = isg_dof_parameters().infos();
         info_.required_attributes = {attr::kCameraFocalPx};
     }
@@ -84,10 +86,10 @@ class IsgDofMethod final : public Method {
         const std::vector<Tap> search = tap_set(common.search_samples, TapShape::Disk, common.pattern);
         const std::vector<Tap> gather = tap_set(common.gather_samples, TapShape::Disk, common.pattern);
 
-        const Vec3Planes sharp = vec3_input(images, Role::PinholeBeauty);
+        const Vec3Planes sharp = vec3_input(images, roles::PinholeBeauty);
         const ConstPlaneView depth_m = images.input(Role::Depth);
-        const PlaneView out[3] = {images.output(Role::Defocused, 0), images.output(Role::Defocused, 1),
-                                  images.output(Role::Defocused, 2)};
+        const PlaneView out[3] = {images.output(roles::Defocused, 0), images.output(roles::Defocused, 1),
+                                  images.output(roles::Defocused, 2)};
         // Depth 0 is the background, at infinity; a non-finite depth is unknown (NaN).
         auto depth = [&](int x, int y) {
             const float z = depth_m(x, y);

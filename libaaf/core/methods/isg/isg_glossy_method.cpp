@@ -9,6 +9,7 @@
 
 #include "../builtin_methods.h"
 #include "aaf/core/aov_contract.h"
+#include "aaf/core/isg_roles.h"
 #include "aaf/core/parallel.h"
 #include "aaf/core/parameter_defaults.h"
 #include "isg_common.h"
@@ -45,10 +46,11 @@ class IsgGlossyMethod final : public Method {
         info_.summary =
             "Image Space Gathering glossy reflections from one mirror ray per pixel (Robison, Shirley 2009)";
         info_.reference = "Robison, Shirley: Image Space Gathering, HPG 2009, Sec. 3.2";
-        info_.roles.required = {Role::Reflection, Role::ReflectionDistance, Role::ThetaMax, Role::Position,
+        info_.roles.declared = isg_glossy_roles();
+        info_.roles.required = {roles::Reflection, roles::ReflectionDistance, roles::ThetaMax, Role::Position,
                                 Role::Normal};
-        info_.roles.outputs = {Role::GlossyReflection};
-        info_.roles.filtered = {{Role::Reflection, Role::GlossyReflection}};
+        info_.roles.outputs = {roles::GlossyReflection};
+        info_.roles.filtered = {{roles::Reflection, roles::GlossyReflection}};
         info_.parameters = isg_glossy_parameters().infos();
         info_.required_attributes = {attr::kCameraEye, attr::kCameraFocalPx};
     }
@@ -69,14 +71,14 @@ class IsgGlossyMethod final : public Method {
         const std::vector<Tap> search = tap_set(common.search_samples, TapShape::Disk, common.pattern);
         const std::vector<Tap> gather = tap_set(common.gather_samples, TapShape::Disk, common.pattern);
 
-        const Vec3Planes reflection = vec3_input(images, Role::Reflection);
-        const ConstPlaneView reflected_m = images.input(Role::ReflectionDistance);
-        const ConstPlaneView theta_max = images.input(Role::ThetaMax);
+        const Vec3Planes reflection = vec3_input(images, roles::Reflection);
+        const ConstPlaneView reflected_m = images.input(roles::ReflectionDistance);
+        const ConstPlaneView theta_max = images.input(roles::ThetaMax);
         const Vec3Planes position = vec3_input(images, Role::Position);
         const Vec3Planes normal = vec3_input(images, Role::Normal);
-        const PlaneView out[3] = {images.output(Role::GlossyReflection, 0),
-                                  images.output(Role::GlossyReflection, 1),
-                                  images.output(Role::GlossyReflection, 2)};
+        const PlaneView out[3] = {images.output(roles::GlossyReflection, 0),
+                                  images.output(roles::GlossyReflection, 1),
+                                  images.output(roles::GlossyReflection, 2)};
         const float inv_scene_size = 1.0f / scene_size_m(position, width, height, common.scene_size_m);
         const float inv_sigma = 1.0f / common.sigma;
         auto range = [&](int sx, int sy, Vec3 p0, Vec3 n0) {

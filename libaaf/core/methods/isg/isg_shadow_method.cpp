@@ -7,6 +7,7 @@
 
 #include "../builtin_methods.h"
 #include "aaf/core/aov_contract.h"
+#include "aaf/core/isg_roles.h"
 #include "aaf/core/parallel.h"
 #include "aaf/core/parameter_defaults.h"
 #include "aaf/core/shadow_composition.h"
@@ -46,11 +47,12 @@ class IsgShadowMethod final : public Method {
         info_.summary =
             "Image Space Gathering soft shadows from one shadow ray per pixel (Robison, Shirley 2009)";
         info_.reference = "Robison, Shirley: Image Space Gathering, HPG 2009, Sec. 3.1";
-        info_.roles.required = {Role::HardVisibility, Role::OccluderDistance, Role::Position, Role::Depth,
+        info_.roles.declared = isg_shadow_roles();
+        info_.roles.required = {roles::HardVisibility, roles::OccluderDistance, Role::Position, Role::Depth,
                                 Role::Unshadowed};
         info_.roles.optional = {Role::OtherLights};
         info_.roles.outputs = {Role::FilteredVisibility, Role::Beauty};
-        info_.roles.filtered = {{Role::HardVisibility, Role::FilteredVisibility}};
+        info_.roles.filtered = {{roles::HardVisibility, Role::FilteredVisibility}};
         info_.parameters = isg_shadow_parameters().infos();
         info_.required_attributes = light_attribute_names();
         info_.required_attributes.push_back(attr::kCameraFocalPx);
@@ -71,8 +73,8 @@ class IsgShadowMethod final : public Method {
         const std::vector<Tap> gather =
             tap_set(common.gather_samples, shape, common.pattern, light.width_m, light.height_m);
 
-        const ConstPlaneView hard = images.input(Role::HardVisibility);
-        const ConstPlaneView occluder_m = images.input(Role::OccluderDistance);
+        const ConstPlaneView hard = images.input(roles::HardVisibility);
+        const ConstPlaneView occluder_m = images.input(roles::OccluderDistance);
         const ConstPlaneView depth_m = images.input(Role::Depth);
         const Vec3Planes position = vec3_input(images, Role::Position);
         const PlaneView out = images.output(Role::FilteredVisibility);

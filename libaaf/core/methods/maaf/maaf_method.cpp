@@ -11,6 +11,7 @@
 #include "aaf/core/error.h"
 #include "aaf/core/maaf_accumulation.h"
 #include "aaf/core/maaf_filter.h"
+#include "aaf/core/maaf_roles.h"
 #include "aaf/core/method_registry.h"
 #include "aaf/core/parameter_defaults.h"
 #include "aaf/core/shadow_composition.h"
@@ -60,9 +61,10 @@ class MaafMethod final : public Method {
         info_.reference =
             "Wu, Yan, Kuznetsov, Ramamoorthi: Multiple Axis-Aligned Filters for Rendering of Combined "
             "Distribution Effects, 2017";
+        info_.roles.declared = maaf_roles();
         info_.roles.required = {
-            Role::MaafValueSums, Role::MaafUnoccludedSums, Role::MaafWedge, Role::Position,
-            Role::Normal,        Role::ObjectId,           Role::PixelSize, Role::Unshadowed};
+            roles::MaafValueSums, roles::MaafUnoccludedSums, roles::MaafWedge, Role::Position, Role::Normal,
+            Role::ObjectId,       Role::PixelSize,           Role::Unshadowed};
         info_.roles.optional = {Role::OtherLights};
         info_.roles.outputs = {Role::FilteredVisibility, Role::Beauty};
         info_.parameters = maaf_parameters().infos();
@@ -84,12 +86,12 @@ class MaafMethod final : public Method {
         MaafInputs in;
         in.pairs = pairs;
         for (int c = 0; c < maaf_channel_count(pairs); ++c) {
-            in.value_sums.push_back(images.input(Role::MaafValueSums, std::size_t(c)));
-            in.unoccluded_sums.push_back(images.input(Role::MaafUnoccludedSums, std::size_t(c)));
+            in.value_sums.push_back(images.input(roles::MaafValueSums, std::size_t(c)));
+            in.unoccluded_sums.push_back(images.input(roles::MaafUnoccludedSums, std::size_t(c)));
         }
-        in.s_min = images.input(Role::MaafWedge, 0);
-        in.s_max = images.input(Role::MaafWedge, 1);
-        in.omega_x_max = images.input(Role::MaafWedge, 2);
+        in.s_min = images.input(roles::MaafWedge, 0);
+        in.s_max = images.input(roles::MaafWedge, 1);
+        in.omega_x_max = images.input(roles::MaafWedge, 2);
         for (std::size_t c = 0; c < 3; ++c) {
             in.position[c] = images.input(Role::Position, c);
             in.normal[c] = images.input(Role::Normal, c);

@@ -11,6 +11,8 @@
 #include "aaf/core/error.h"
 #include "aaf/core/maaf6.h"
 #include "aaf/core/maaf6_filter.h"
+#include "aaf/core/maaf6_roles.h"
+#include "aaf/core/maaf_roles.h"
 #include "aaf/core/method_registry.h"
 #include "aaf/core/parameter_defaults.h"
 
@@ -93,12 +95,13 @@ class Maaf6Method final : public Method {
         info_.reference =
             "Wu, Yan, Kuznetsov, Ramamoorthi: Multiple Axis-Aligned Filters for Rendering of Combined "
             "Distribution Effects, 2017";
-        info_.roles.required = {Role::Maaf6DirectSums,   Role::Maaf6DirectWeights,
-                                Role::Maaf6IndirectSums, Role::Maaf6IndirectWeights,
-                                Role::Maaf6Wedge,        Role::Maaf6Spp,
-                                Role::Position,          Role::Normal,
-                                Role::ObjectId,          Role::PixelSize};
-        info_.roles.outputs = {Role::Maaf6Direct, Role::Maaf6Indirect, Role::Beauty};
+        info_.roles.declared = maaf6_roles();
+        info_.roles.required = {roles::Maaf6DirectSums,   roles::Maaf6DirectWeights,
+                                roles::Maaf6IndirectSums, roles::Maaf6IndirectWeights,
+                                roles::Maaf6Wedge,        roles::Maaf6Spp,
+                                Role::Position,           Role::Normal,
+                                Role::ObjectId,           Role::PixelSize};
+        info_.roles.outputs = {roles::Maaf6Direct, roles::Maaf6Indirect, Role::Beauty};
         info_.parameters = maaf6_parameters().infos();
         info_.required_attributes = light_attribute_names();
         for (const char *name :
@@ -115,16 +118,16 @@ class Maaf6Method final : public Method {
                 "header attribute '" + std::string(attr::kMaaf6Pairs) + "' is " + std::to_string(pairs) +
                 "; the maaf6 channels of the contract hold N = " + std::to_string(kMaafContractPairs));
         Maaf6SharedInputs shared;
-        shared.u_min = images.input(Role::Maaf6Wedge, 4);
-        shared.u_max = images.input(Role::Maaf6Wedge, 5);
-        shared.omega_x = images.input(Role::Maaf6Wedge, 6);
+        shared.u_min = images.input(roles::Maaf6Wedge, 4);
+        shared.u_max = images.input(roles::Maaf6Wedge, 5);
+        shared.omega_x = images.input(roles::Maaf6Wedge, 6);
         for (std::size_t c = 0; c < 3; ++c) {
             shared.position[c] = images.input(Role::Position, c);
             shared.normal[c] = images.input(Role::Normal, c);
         }
         shared.object_id = images.input(Role::ObjectId);
         shared.pixel_size = images.input(Role::PixelSize);
-        shared.samples = images.input(Role::Maaf6Spp);
+        shared.samples = images.input(roles::Maaf6Spp);
         shared.omega_u_max = double(header_value<float>(images, attr::kMaaf6OmegaLens));
         if (!(shared.omega_u_max >= 0) || !std::isfinite(shared.omega_u_max))
             throw InputError("header attribute '" + std::string(attr::kMaaf6OmegaLens) +
@@ -145,10 +148,10 @@ class Maaf6Method final : public Method {
             std::size_t wedge_channel;
             const char *omega;
         };
-        const Layer layers[2] = {
-            {Role::Maaf6DirectSums, Role::Maaf6DirectWeights, Role::Maaf6Direct, 0, attr::kMaaf6OmegaDirect},
-            {Role::Maaf6IndirectSums, Role::Maaf6IndirectWeights, Role::Maaf6Indirect, 2,
-             attr::kMaaf6OmegaIndirect}};
+        const Layer layers[2] = {{roles::Maaf6DirectSums, roles::Maaf6DirectWeights, roles::Maaf6Direct, 0,
+                                  attr::kMaaf6OmegaDirect},
+                                 {roles::Maaf6IndirectSums, roles::Maaf6IndirectWeights, roles::Maaf6Indirect,
+                                  2, attr::kMaaf6OmegaIndirect}};
         for (int l = 0; l < 2; ++l) {
             const Layer &spec = layers[l];
             Maaf6LayerInputs layer;
@@ -156,8 +159,8 @@ class Maaf6Method final : public Method {
                 layer.sums.push_back(images.input(spec.sums, std::size_t(c)));
             for (int c = 0; c < channels; ++c)
                 layer.weights.push_back(images.input(spec.weights, std::size_t(c)));
-            layer.y_min = images.input(Role::Maaf6Wedge, spec.wedge_channel);
-            layer.y_max = images.input(Role::Maaf6Wedge, spec.wedge_channel + 1);
+            layer.y_min = images.input(roles::Maaf6Wedge, spec.wedge_channel);
+            layer.y_max = images.input(roles::Maaf6Wedge, spec.wedge_channel + 1);
             layer.omega_y_max = double(header_value<float>(images, spec.omega));
             layer.y_density =
                 l == 0 ? light_density(light) : SampleDensity{DensityShape::CosineLobe, 1.0, 1.0};
@@ -174,8 +177,8 @@ class Maaf6Method final : public Method {
         // MAAF Sec. 6.2: direct and indirect filtered apart, then summed.
         for (int c = 0; c < 3; ++c) {
             const PlaneView beauty = images.output(Role::Beauty, std::size_t(c));
-            const ConstPlaneView direct = images.output(Role::Maaf6Direct, std::size_t(c));
-            const ConstPlaneView indirect = images.output(Role::Maaf6Indirect, std::size_t(c));
+            const ConstPlaneView direct = images.output(roles::Maaf6Direct, std::size_t(c));
+            const ConstPlaneView indirect = images.output(roles::Maaf6Indirect, std::size_t(c));
             for (int y = 0; y < images.height(); ++y)
                 for (int x = 0; x < images.width(); ++x) beauty(x, y) = direct(x, y) + indirect(x, y);
         }

@@ -19,6 +19,7 @@
 #include "aaf/core/ratio_bilateral.h"
 #include "aaf/core/ratio_composition.h"
 #include "aaf/core/ratio_noise_estimate.h"
+#include "aaf/core/ratio_roles.h"
 #include "aaf/core/ratio_temporal.h"
 
 namespace aaf {
@@ -127,24 +128,24 @@ RatioLayers layers_of(const MethodImages &images, int light, bool grey) {
     };
     auto has = [&](Role role) { return light < 0 ? images.has(role) : images.has_light(role, light); };
     const std::vector<Role> needed =
-        grey ? std::vector<Role>{Role::RatioAnalytic, Role::RatioShadowedLuminance,
-                                 Role::RatioUnshadowedLuminance}
-             : std::vector<Role>{Role::RatioAnalytic, Role::RatioShadowed, Role::RatioUnshadowed};
+        grey ? std::vector<Role>{roles::RatioAnalytic, roles::RatioShadowedLuminance,
+                                 roles::RatioUnshadowedLuminance}
+             : std::vector<Role>{roles::RatioAnalytic, roles::RatioShadowed, roles::RatioUnshadowed};
     for (Role role : needed)
         if (!has(role))
             throw InputError(
-                std::string("missing ratio input '") + role_info(role).key + "' (channels " +
+                std::string("missing ratio input '") + role.key + "' (channels " +
                 (light < 0 ? images.channel_names(role) : images.light_channel_names(role, light)) + ")");
     RatioLayers layers;
     for (std::size_t c = 0; c < 3; ++c) {
-        layers.analytic[c] = view(Role::RatioAnalytic, c);
+        layers.analytic[c] = view(roles::RatioAnalytic, c);
         if (grey) continue;
-        layers.shadowed[c] = view(Role::RatioShadowed, c);
-        layers.unshadowed[c] = view(Role::RatioUnshadowed, c);
+        layers.shadowed[c] = view(roles::RatioShadowed, c);
+        layers.unshadowed[c] = view(roles::RatioUnshadowed, c);
     }
     if (grey) {
-        layers.shadowed_y = view(Role::RatioShadowedLuminance, 0);
-        layers.unshadowed_y = view(Role::RatioUnshadowedLuminance, 0);
+        layers.shadowed_y = view(roles::RatioShadowedLuminance, 0);
+        layers.unshadowed_y = view(roles::RatioUnshadowedLuminance, 0);
     }
     return layers;
 }
@@ -189,9 +190,8 @@ std::vector<float> bilateral_sigma_px(const RatioLayers &layers, bool grey, cons
 GatherGuides aaf_guides(const MethodImages &images, const std::vector<float> &any_plane) {
     for (Role role : {Role::D1, Role::D2Min, Role::D2Max, Role::ObjectId, Role::PixelSize})
         if (!images.has(role))
-            throw InputError(std::string("--denoiser aaf needs the '") + role_info(role).key +
-                             "' input (channels " + images.channel_names(role) +
-                             "; aaf render --aovs ratio,shadow,all)");
+            throw InputError(std::string("--denoiser aaf needs the '") + role.key + "' input (channels " +
+                             images.channel_names(role) + "; aaf render --aovs ratio,shadow,all)");
     for (const std::string &name : light_attribute_names())
         if (!images.attributes().count(name))
             throw InputError("--denoiser aaf needs the key light's header attribute '" + name + "'");
@@ -226,10 +226,11 @@ class RatioMethod final : public Method {
             "Ratio estimator: analytic U times denoised S_N over denoised U_N (Heitz et al. 2018)";
         info_.reference =
             "Heitz, Hill, McGuire: Combining Analytic Direct Illumination and Stochastic Shadows, 2018";
-        info_.roles.required = {Role::RatioAnalytic, Role::RatioShadowed, Role::RatioUnshadowed,
+        info_.roles.declared = ratio_roles();
+        info_.roles.required = {roles::RatioAnalytic, roles::RatioShadowed, roles::RatioUnshadowed,
                                 Role::Position, Role::Normal};
-        info_.roles.optional = {Role::RatioShadowedLuminance,
-                                Role::RatioUnshadowedLuminance,
+        info_.roles.optional = {roles::RatioShadowedLuminance,
+                                roles::RatioUnshadowedLuminance,
                                 Role::PixelSize,
                                 Role::Motion,
                                 Role::D1,
@@ -249,7 +250,8 @@ class RatioMethod final : public Method {
     std::vector<Role> roles_needed(const ParameterSet &parameters) const override {
         const RatioSettings s = settings_from(parameters);
         std::vector<Role> roles = info_.roles.required;
-        if (s.grey) roles.insert(roles.end(), {Role::RatioShadowedLuminance, Role::RatioUnshadowedLuminance});
+        if (s.grey)
+            roles.insert(roles.end(), {roles::RatioShadowedLuminance, roles::RatioUnshadowedLuminance});
         if (s.denoiser == "aaf")  // aaf_guides()
             roles.insert(roles.end(), {Role::D1, Role::D2Min, Role::D2Max, Role::ObjectId, Role::PixelSize});
         if (s.temporal) roles.push_back(Role::Motion);  // accumulate_history()

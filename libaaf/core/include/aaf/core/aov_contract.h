@@ -2,6 +2,7 @@
 
 #include <map>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "aaf/core/aov_set.h"
@@ -9,73 +10,85 @@
 
 namespace aaf {
 
-/// What a channel (or group of channels) means to the filters. The one table
-/// of names, units and meanings is `role_table()`; which methods read and
-/// write which roles is each method's declaration (method.h).
-/// libaaf/AOV_CONTRACT.md is generated from both (contract_markdown.h).
-enum class Role {
-    Beauty,              ///< noisy final image
-    Visibility,          ///< noisy light-weighted visibility
-    D1,                  ///< light-plane distance of the receiver
-    D2Min,               ///< smallest light-plane distance of an occluder
-    D2Max,               ///< largest light-plane distance of an occluder
-    Position,            ///< world position of the primary hit
-    Normal,              ///< shading normal
-    ObjectId,            ///< object identifier
-    SamplesPerPixel,     ///< light samples taken at the pixel
-    PixelSize,           ///< world length one pixel covers at the receiver
-    Unshadowed,          ///< r(x) of AAF Eq. 1
-    FilteredVisibility,  ///< output: filtered visibility
-    FilterWidth,         ///< output: AAF beta
-    NoisyBeauty,         ///< output: the input beauty kept beside the filtered one
-    FilteredBeauty,      ///< output with --keep-beauty: the filtered image beside the untouched beauty
-    PlannedSpp,          ///< output of the sampling plan: total samples per pixel (AAF Eq. 21)
-    Depth,               ///< distance along the camera axis
-    Albedo,              ///< diffuse reflectance
-    Motion,              ///< screen-space motion since the previous frame
-    OtherLights,         ///< shadowed shading of every light but the key light
-    MaafValueSums,       ///< MAAF: samples' light-weighted visibility times the light-side functions
-    MaafUnoccludedSums,  ///< MAAF: the same with every sample unoccluded (normalisation)
-    MaafWedge,           ///< MAAF: the wedge the sums were accumulated with
-    HardVisibility,      ///< ISG: one shadow ray towards the key light's centre, 1 = reached it
-    OccluderDistance,    ///< ISG: distance from the hit to the occluder of that ray
-    Reflection,          ///< ISG: radiance along the mirror reflection
-    ReflectionDistance,  ///< ISG: distance from the hit to the reflected object
-    ThetaMax,            ///< ISG: the material's glossy cone half-angle
-    GlossyReference,     ///< ISG: the glossy reflection by cone sampling (reference)
-    PinholeBeauty,       ///< ISG: the in-focus image a pinhole camera sees
-    GlossyReflection,    ///< output of isg-glossy: the filtered reflection
-    Defocused,           ///< output of isg-dof: the defocused image
-    RatioAnalytic,       ///< ratio estimator: analytic unshadowed direct light U (ratio estimator Eq. 20)
-    RatioShadowed,       ///< ratio estimator: stochastic shadowed direct light S_N (ratio estimator Eq. 21)
-    RatioUnshadowed,     ///< ratio estimator: stochastic unshadowed direct light U_N (ratio estimator Eq. 22)
-    RatioShadowedLuminance,    ///< ratio estimator: luminance of S_N (grey approximation, Sec. 3.4)
-    RatioUnshadowedLuminance,  ///< ratio estimator: luminance of U_N (grey approximation, Sec. 3.4)
-    Maaf6Direct,               ///< MAAF 6D: noisy direct radiance (soft shadows through the lens)
-    Maaf6Indirect,             ///< MAAF 6D: noisy one-bounce indirect radiance
-    Maaf6DirectSums,           ///< MAAF 6D: direct radiance times the (y, u) functions, per colour
-    Maaf6DirectWeights,        ///< MAAF 6D: the same functions alone (normalisation)
-    Maaf6IndirectSums,         ///< MAAF 6D: indirect radiance times the (y, u) functions, per colour
-    Maaf6IndirectWeights,      ///< MAAF 6D: the same functions alone (normalisation)
-    Maaf6Wedge,                ///< MAAF 6D: the 3D wedges the sums were accumulated with
-    Maaf6Spp,                  ///< MAAF 6D: path samples of the pixel (first pass + rest + focal-plane extra)
+/// What a channel (or group of channels) means to the filters, named by its
+/// key: the spelling of `--map key=...`, `aaf info` and the contract document.
+/// The roles several methods and tracer groups share are declared here;
+/// a method's own roles are declared in its folder (e.g. `aaf::roles::MaafWedge`
+/// in maaf_roles.h) and registered with the contract through its
+/// MethodInfo (method.h), so a plug-in brings its own. Roles compare by key.
+/// libaaf/AOV_CONTRACT.md is generated from role_table() (contract_markdown.h).
+struct Role {
+    const char *key = "";
+
+    static const Role Beauty;              ///< noisy final image
+    static const Role Visibility;          ///< noisy light-weighted visibility
+    static const Role D1;                  ///< light-plane distance of the receiver
+    static const Role D2Min;               ///< smallest light-plane distance of an occluder
+    static const Role D2Max;               ///< largest light-plane distance of an occluder
+    static const Role Position;            ///< world position of the primary hit
+    static const Role Normal;              ///< shading normal
+    static const Role ObjectId;            ///< object identifier
+    static const Role SamplesPerPixel;     ///< light samples taken at the pixel
+    static const Role PixelSize;           ///< world length one pixel covers at the receiver
+    static const Role Unshadowed;          ///< r(x) of AAF Eq. 1
+    static const Role FilteredVisibility;  ///< output: filtered visibility
+    static const Role NoisyBeauty;         ///< output: the input beauty kept beside the filtered one
+    static const Role FilteredBeauty;  ///< output with --keep-beauty: the filtered image beside the beauty
+    static const Role Depth;           ///< distance along the camera axis
+    static const Role Albedo;          ///< diffuse reflectance
+    static const Role Motion;          ///< screen-space motion since the previous frame
+    static const Role OtherLights;     ///< shadowed shading of every light but the key light
 };
+
+inline constexpr Role Role::Beauty{"beauty"};
+inline constexpr Role Role::Visibility{"visibility"};
+inline constexpr Role Role::D1{"d1"};
+inline constexpr Role Role::D2Min{"d2min"};
+inline constexpr Role Role::D2Max{"d2max"};
+inline constexpr Role Role::Position{"position"};
+inline constexpr Role Role::Normal{"normal"};
+inline constexpr Role Role::ObjectId{"object_id"};
+inline constexpr Role Role::SamplesPerPixel{"spp"};
+inline constexpr Role Role::PixelSize{"pixel_size"};
+inline constexpr Role Role::Unshadowed{"unshadowed"};
+inline constexpr Role Role::FilteredVisibility{"filtered_visibility"};
+inline constexpr Role Role::NoisyBeauty{"noisy_beauty"};
+inline constexpr Role Role::FilteredBeauty{"filtered_beauty"};
+inline constexpr Role Role::Depth{"depth"};
+inline constexpr Role Role::Albedo{"albedo"};
+inline constexpr Role Role::Motion{"motion"};
+inline constexpr Role Role::OtherLights{"other_lights"};
+
+constexpr bool operator==(Role a, Role b) {
+    return std::string_view(a.key) == std::string_view(b.key);
+}
+constexpr bool operator!=(Role a, Role b) {
+    return !(a == b);
+}
+constexpr bool operator<(Role a, Role b) {
+    return std::string_view(a.key) < std::string_view(b.key);
+}
 
 struct RoleInfo {
     Role role;
-    const char *key;                    ///< spelling on the command line (--map key=...)
     std::vector<std::string> channels;  ///< default EXR channel names
     const char *units;
     const char *meaning;
+    /// The channels hold colour (radiance, reflectance): what a display
+    /// transform, half floats and lossy compression may touch. Positions,
+    /// normals, distances, ids, counts and progressive sums are data.
+    bool colour = false;
 };
 
-/// N of the MAAF channels the contract lists (MAAF Sec. 6.1: 5 filters per
-/// 2D subspace, 25 in 4D); the core API takes any N, the AOV layer is this one.
-inline constexpr int kMaafContractPairs = 3;
+/// The roles declared here, shared by several methods and tracer groups.
+const std::vector<RoleInfo> &shared_roles();
 
-/// Every role, with its default channels. Read by the I/O layer, the tracer,
-/// the filters and `aaf info`; documented in libaaf/AOV_CONTRACT.md.
+/// Every role: the shared ones, then each registered method's own
+/// (MethodRoles::declared) in the method registry's order. Read by the I/O
+/// layer, the tracer, the filters and `aaf info`; documented in
+/// libaaf/AOV_CONTRACT.md. Defined by the method registry (methods/registry.cpp).
 const std::vector<RoleInfo> &role_table();
+/// Throws aaf::Error for a role no one declared.
 const RoleInfo &role_info(Role role);
 
 /// Per-image attributes, stored as EXR header attributes with the prefix "aaf:".
@@ -99,28 +112,11 @@ inline constexpr const char *kFrame = "aaf:frame";                   // float, a
 inline constexpr const char *kSceneFile = "aaf:scene_file";          // string, the scene file rendered
 inline constexpr const char *kSceneHash = "aaf:scene_hash";          // string, 16 hex digits (--resume)
 inline constexpr const char *kApertureRadius = "aaf:camera:aperture_radius_m";  // float, 0 = pinhole
-/// Written by the tracer's isg group (ISG's screen projections need them).
-inline constexpr const char *kCameraEye = "aaf:camera:eye";           // Vec3, world metres
-inline constexpr const char *kCameraFocalPx = "aaf:camera:focal_px";  // float, height / (2 tan(fov_y / 2))
-inline constexpr const char *kFocusDistance = "aaf:camera:focus_distance_m";  // float, plane in focus
 inline constexpr const char *kLightCount =
     "aaf:light_count";  // int, lights in the scene (light = the key light)
 /// Written by the tracer's ratio group: how many lights have their own
 /// ratio.L<i>.* layers beside the summed ratio.* layer (0 or absent = only the sum).
 inline constexpr const char *kRatioLights = "aaf:ratio:lights";  // int
-inline constexpr const char *kMaafPairs = "aaf:maaf:pairs";      // int, N of the MAAF sums
-inline constexpr const char *kMaafOmegaYMax =
-    "aaf:maaf:omega_y_max";  // float, rad/m, the light's Omega_y^max of the MAAF sums
-/// Written by the tracer's maaf6 group (MAAF Sec. 6.2, combined effects).
-inline constexpr const char *kMaaf6Pairs = "aaf:maaf6:pairs";                     // int, N of the maaf6 sums
-inline constexpr const char *kMaaf6OmegaDirect = "aaf:maaf6:omega_y_direct";      // float, rad/m, light band
-inline constexpr const char *kMaaf6OmegaIndirect = "aaf:maaf6:omega_y_indirect";  // float, rad, bounce band
-inline constexpr const char *kMaaf6OmegaLens = "aaf:maaf6:omega_u";               // float, rad/m, 0 = pinhole
-inline constexpr const char *kMaaf6Effects = "aaf:maaf6:effects";  // string, e.g. "defocus,shadows,indirect"
-/// The maaf6 group's timings, handed to render_scene() in memory, which
-/// moves them into trace::RenderTimings: never written to a file.
-inline constexpr const char *kMaaf6SamplingS = "aaf:maaf6:sampling_s";    // float, seconds tracing paths
-inline constexpr const char *kMaaf6PrefilterS = "aaf:maaf6:prefilter_s";  // float, seconds wedges + sums
 }  // namespace attr
 
 void write_light_attributes(const LightPlane &light, AovSet &aovs);
@@ -140,10 +136,13 @@ struct RoleSynonym {
     const char *renderer;
     std::vector<std::string> channels;
 };
-/// The synonym table (documented in libaaf/AOV_CONTRACT.md). Besides these,
-/// every role's contract names are also found under the file's view-layer
-/// prefix (one every channel starts with and that is no role's layer).
+/// The synonym table (documented in libaaf/AOV_CONTRACT.md): the shared
+/// roles' synonyms, then each registered method's (MethodRoles::synonyms).
+/// Besides these, every role's contract names are also found under the
+/// file's view-layer prefix (one every channel starts with and that is no
+/// role's layer). Defined by the method registry, as role_table().
 const std::vector<RoleSynonym> &role_synonyms();
+const std::vector<RoleSynonym> &shared_role_synonyms();
 
 /// Role -> channel names, the defaults overridden by `--map role=channels`.
 class ChannelMap {

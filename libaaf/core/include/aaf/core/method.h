@@ -26,6 +26,13 @@ struct MethodRoles {
     /// the input: a constant input gives that constant (a property every
     /// method's test checks).
     std::vector<std::pair<Role, Role>> filtered;
+    /// The roles this method introduces (its own inputs and outputs, e.g.
+    /// MAAF's sums): their channels, units and meaning join the contract's
+    /// role_table() when the method is registered. A role is declared once,
+    /// here or among the shared roles (aov_contract.h).
+    std::vector<RoleInfo> declared;
+    /// Other renderers' (or older versions') names for declared roles.
+    std::vector<RoleSynonym> synonyms;
 };
 
 /// Another method a method hands a render to when the render lacks the
