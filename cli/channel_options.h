@@ -9,8 +9,8 @@
 
 #include <CLI/CLI.hpp>
 
-#include "aaf/core/aov_contract.h"
-#include "aaf/core/error.h"
+#include "aaf/core/contract/aov_contract.h"
+#include "aaf/core/util/error.h"
 #include "aaf/io/exr_io.h"
 #include "commands.h"
 

@@ -9,9 +9,9 @@
 
 #include <nlohmann/json.hpp>
 
-#include "aaf/core/spectral_filter.h"
-#include "aaf/core/wedge_metrics.h"
-#include "aaf/core/wedge_spectrum.h"
+#include "aaf/core/analysis/spectral_filter.h"
+#include "aaf/core/analysis/wedge_metrics.h"
+#include "aaf/core/analysis/wedge_spectrum.h"
 #include "channel_options.h"
 #include "commands.h"
 

@@ -11,7 +11,7 @@
 #include <utility>
 #include <vector>
 
-#include "aaf/core/error.h"
+#include "aaf/core/util/error.h"
 #include "aaf/io/atomic_file.h"
 #include "aaf/io/compare_files.h"
 #include "aaf/io/heatmap.h"

@@ -5,10 +5,10 @@
 #include <string>
 #include <vector>
 
-#include "aaf/core/aov_contract.h"
-#include "aaf/core/filter_aovs.h"
-#include "aaf/core/method_registry.h"
-#include "aaf/core/sample_statistics.h"
+#include "aaf/core/contract/aov_contract.h"
+#include "aaf/core/framework/filter_aovs.h"
+#include "aaf/core/framework/method_registry.h"
+#include "aaf/core/kernels/sample_statistics.h"
 #include "aaf/io/exr_io.h"
 #include "commands.h"
 #include "light_option.h"

@@ -2,9 +2,9 @@
 #include <string>
 #include <vector>
 
-#include "aaf/core/error.h"
-#include "aaf/core/sampling_plan.h"
-#include "aaf/core/thread_count.h"
+#include "aaf/core/methods/aaf/sampling_plan.h"
+#include "aaf/core/util/error.h"
+#include "aaf/core/util/thread_count.h"
 #include "aaf/io/atomic_file.h"
 #include "aaf/io/exr_io.h"
 #include "channel_options.h"

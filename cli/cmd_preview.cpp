@@ -4,7 +4,7 @@
 #include <string>
 #include <vector>
 
-#include "aaf/core/error.h"
+#include "aaf/core/util/error.h"
 #include "aaf/io/atomic_file.h"
 #include "aaf/io/exr_io.h"
 #include "aaf/io/preview.h"

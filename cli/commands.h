@@ -2,7 +2,7 @@
 
 #include <CLI/CLI.hpp>
 
-#include "aaf/core/error.h"
+#include "aaf/core/util/error.h"
 
 namespace aaf::cli {
 

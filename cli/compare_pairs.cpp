@@ -5,7 +5,7 @@
 #include <set>
 #include <utility>
 
-#include "aaf/core/error.h"
+#include "aaf/core/util/error.h"
 #include "aaf/io/sequence.h"
 #include "commands.h"
 #include "frame_runner.h"

@@ -2,7 +2,7 @@
 
 #include <climits>
 
-#include "aaf/core/error.h"
+#include "aaf/core/util/error.h"
 #include "provenance.h"
 
 namespace aaf::cli {

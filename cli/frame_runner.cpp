@@ -10,7 +10,7 @@
 #include <nlohmann/json.hpp>
 #include <utility>
 
-#include "aaf/core/error.h"
+#include "aaf/core/util/error.h"
 #include "aaf/io/atomic_file.h"
 #include "aaf/io/exr_io.h"
 #include "aaf/io/sequence.h"

@@ -1,6 +1,6 @@
 #include "light_option.h"
 
-#include "aaf/core/aov_contract.h"
+#include "aaf/core/contract/aov_contract.h"
 #include "aaf/trace/light_file.h"
 
 namespace aaf::cli {

@@ -4,7 +4,7 @@
 #include <optional>
 #include <string>
 
-#include "aaf/core/aov_set.h"
+#include "aaf/core/contract/aov_set.h"
 
 namespace aaf::cli {
 

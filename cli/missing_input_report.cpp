@@ -2,8 +2,8 @@
 
 #include <algorithm>
 
-#include "aaf/core/error.h"
-#include "aaf/core/filter_aovs.h"
+#include "aaf/core/framework/filter_aovs.h"
+#include "aaf/core/util/error.h"
 #include "aaf/trace/render.h"
 
 namespace aaf::cli {

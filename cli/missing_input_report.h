@@ -3,10 +3,10 @@
 #include <string>
 #include <vector>
 
-#include "aaf/core/aov_contract.h"
-#include "aaf/core/aov_set.h"
-#include "aaf/core/filter_aovs.h"
-#include "aaf/core/method.h"
+#include "aaf/core/contract/aov_contract.h"
+#include "aaf/core/contract/aov_set.h"
+#include "aaf/core/framework/filter_aovs.h"
+#include "aaf/core/framework/method.h"
 
 namespace aaf::cli {
 

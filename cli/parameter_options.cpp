@@ -1,7 +1,7 @@
 #include "parameter_options.h"
 
-#include "aaf/core/aaf_filter.h"
-#include "aaf/core/error.h"
+#include "aaf/core/methods/aaf/aaf_filter.h"
+#include "aaf/core/util/error.h"
 #include "commands.h"
 
 namespace aaf::cli {

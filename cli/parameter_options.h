@@ -10,8 +10,8 @@
 
 #include <CLI/CLI.hpp>
 
-#include "aaf/core/aaf_params.h"
-#include "aaf/core/parameters.h"
+#include "aaf/core/framework/parameters.h"
+#include "aaf/core/methods/aaf/aaf_params.h"
 
 namespace aaf::cli {
 

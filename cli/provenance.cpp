@@ -6,7 +6,7 @@
 #include <fstream>
 #include <set>
 
-#include "aaf/core/aov_contract.h"
+#include "aaf/core/contract/aov_contract.h"
 #include "aaf/io/exr_io.h"
 
 namespace aaf::cli {

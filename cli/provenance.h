@@ -3,7 +3,7 @@
 #include <string>
 #include <vector>
 
-#include "aaf/core/aov_set.h"
+#include "aaf/core/contract/aov_set.h"
 
 namespace aaf::cli {
 

@@ -5,8 +5,8 @@
 #include <optional>
 #include <string>
 
-#include "aaf/core/error.h"
-#include "aaf/core/instruction_set.h"
+#include "aaf/core/util/error.h"
+#include "aaf/core/util/instruction_set.h"
 #include "aaf/io/atomic_file.h"
 #include "aaf/io/exr_io.h"
 #include "commands.h"

@@ -9,9 +9,9 @@
 #include <variant>
 #include <vector>
 
-#include "aaf/core/aov_contract.h"
-#include "aaf/core/aov_set.h"
-#include "aaf/core/instruction_set.h"
+#include "aaf/core/contract/aov_contract.h"
+#include "aaf/core/contract/aov_set.h"
+#include "aaf/core/util/instruction_set.h"
 
 /// Byte-level hashes of AOV sets for the golden tests: a failing check
 /// prints the new hash; one is updated only when an output is meant to change.

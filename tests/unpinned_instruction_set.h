@@ -1,6 +1,6 @@
 #pragma once
 
-#include "aaf/core/instruction_set.h"
+#include "aaf/core/util/instruction_set.h"
 
 namespace aaf_test {
 

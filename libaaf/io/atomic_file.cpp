@@ -18,7 +18,7 @@
 #include <sys/types.h>
 #include <unistd.h>
 
-#include "aaf/core/error.h"
+#include "aaf/core/util/error.h"
 
 namespace aaf::io {
 

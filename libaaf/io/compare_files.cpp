@@ -5,9 +5,9 @@
 #include <filesystem>
 #include <utility>
 
-#include "aaf/core/aov_contract.h"
-#include "aaf/core/error.h"
-#include "aaf/core/sample_statistics.h"
+#include "aaf/core/contract/aov_contract.h"
+#include "aaf/core/kernels/sample_statistics.h"
+#include "aaf/core/util/error.h"
 #include "aaf/io/atomic_file.h"
 #include "aaf/io/exr_io.h"
 #include "aaf/io/heatmap.h"

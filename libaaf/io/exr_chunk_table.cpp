@@ -7,8 +7,8 @@
 #include <utility>
 #include <vector>
 
-#include "aaf/core/error.h"
-#include "aaf/core/quoted.h"
+#include "aaf/core/util/error.h"
+#include "aaf/core/util/quoted.h"
 
 namespace aaf::io {
 

@@ -13,9 +13,9 @@
 #include <set>
 #include <vector>
 
-#include "aaf/core/aov_contract.h"
-#include "aaf/core/error.h"
-#include "aaf/core/quoted.h"
+#include "aaf/core/contract/aov_contract.h"
+#include "aaf/core/util/error.h"
+#include "aaf/core/util/quoted.h"
 #include "aaf/io/atomic_file.h"
 #include "exr_chunk_table.h"
 #include "one_line.h"

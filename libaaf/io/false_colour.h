@@ -3,7 +3,7 @@
 #include <string>
 #include <vector>
 
-#include "aaf/core/vec3.h"
+#include "aaf/core/math/vec3.h"
 
 namespace aaf::io {
 

@@ -4,10 +4,10 @@
 #include <memory>
 #include <utility>
 
-#include "aaf/core/error.h"
-#include "aaf/core/filter_aovs.h"
-#include "aaf/core/maaf6_roles.h"
-#include "aaf/core/thread_count.h"
+#include "aaf/core/framework/filter_aovs.h"
+#include "aaf/core/methods/maaf6/maaf6_roles.h"
+#include "aaf/core/util/error.h"
+#include "aaf/core/util/thread_count.h"
 #include "aaf/io/atomic_file.h"
 
 namespace aaf::io {

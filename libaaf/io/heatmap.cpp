@@ -9,7 +9,7 @@
 #include <filesystem>
 #include <utility>
 
-#include "aaf/core/error.h"
+#include "aaf/core/util/error.h"
 #include "aaf/io/exr_io.h"
 #include "false_colour.h"
 #include "image_writer.h"

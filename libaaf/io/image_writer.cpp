@@ -3,7 +3,7 @@
 #include <cstdio>
 #include <memory>
 
-#include "aaf/core/error.h"
+#include "aaf/core/util/error.h"
 #include "aaf/io/atomic_file.h"
 #include "one_line.h"
 

@@ -10,9 +10,9 @@
 #include <cmath>
 #include <limits>
 
-#include "aaf/core/aov_contract.h"
-#include "aaf/core/error.h"
-#include "aaf/core/quoted.h"
+#include "aaf/core/contract/aov_contract.h"
+#include "aaf/core/util/error.h"
+#include "aaf/core/util/quoted.h"
 #include "default_ocio_config.h"
 #include "false_colour.h"
 

@@ -12,7 +12,7 @@
 
 #include <OpenImageIO/filesystem.h>
 
-#include "aaf/core/error.h"
+#include "aaf/core/util/error.h"
 
 namespace aaf::io {
 

@@ -11,12 +11,12 @@
 #include <string>
 #include <vector>
 
-#include "aaf/core/aov_contract.h"
-#include "aaf/core/error.h"
-#include "aaf/core/filter_aovs.h"
-#include "aaf/core/instruction_set.h"
-#include "aaf/core/method_registry.h"
-#include "aaf/core/thread_count.h"
+#include "aaf/core/contract/aov_contract.h"
+#include "aaf/core/framework/filter_aovs.h"
+#include "aaf/core/framework/method_registry.h"
+#include "aaf/core/util/error.h"
+#include "aaf/core/util/instruction_set.h"
+#include "aaf/core/util/thread_count.h"
 #include "aaf/io/compare_files.h"
 #include "aaf/io/exr_io.h"
 #include "arguments.h"

@@ -7,7 +7,7 @@
 #include <new>
 #include <string>
 
-#include "aaf/core/error.h"
+#include "aaf/core/util/error.h"
 #include "arguments.h"
 
 namespace py = pybind11;

@@ -3,7 +3,7 @@
 #include <pybind11/numpy.h>
 #include <pybind11/pybind11.h>
 
-#include "aaf/core/aov_set.h"
+#include "aaf/core/contract/aov_set.h"
 
 namespace aaf::python {
 

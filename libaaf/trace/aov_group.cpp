@@ -3,8 +3,8 @@
 #include <algorithm>
 #include <sstream>
 
-#include "aaf/core/error.h"
-#include "aaf/core/method_registry.h"
+#include "aaf/core/framework/method_registry.h"
+#include "aaf/core/util/error.h"
 #include "aov_groups/aov_groups.h"
 
 namespace aaf::trace {

@@ -6,8 +6,8 @@
 #include <utility>
 #include <vector>
 
-#include "aaf/core/aov_contract.h"
-#include "aaf/core/aov_set.h"
+#include "aaf/core/contract/aov_contract.h"
+#include "aaf/core/contract/aov_set.h"
 #include "aaf/trace/render.h"
 #include "light_sample.h"
 #include "renderer.h"

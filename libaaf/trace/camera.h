@@ -2,7 +2,7 @@
 
 #include <cmath>
 
-#include "aaf/core/vec3.h"
+#include "aaf/core/math/vec3.h"
 
 namespace aaf::trace {
 

@@ -5,9 +5,9 @@
 #include <limits>
 #include <string>
 
-#include "aaf/core/error.h"
-#include "aaf/core/instruction_set.h"
-#include "aaf/core/vec3d.h"
+#include "aaf/core/math/vec3d.h"
+#include "aaf/core/util/error.h"
+#include "aaf/core/util/instruction_set.h"
 
 namespace aaf::trace {
 

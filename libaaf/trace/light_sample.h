@@ -2,7 +2,7 @@
 
 #include <cstddef>
 
-#include "aaf/core/vec3.h"
+#include "aaf/core/math/vec3.h"
 #include "stratified_grid.h"
 
 namespace aaf::trace {

@@ -2,7 +2,7 @@
 
 #include <cstddef>
 
-#include "aaf/core/light_plane.h"
+#include "aaf/core/contract/light_plane.h"
 #include "stratified_grid.h"
 #include "truncated_normal.h"
 

@@ -5,8 +5,8 @@
 #include <limits>
 #include <sstream>
 
-#include "aaf/core/concentric_disc.h"
-#include "aaf/core/error.h"
+#include "aaf/core/math/concentric_disc.h"
+#include "aaf/core/util/error.h"
 #include "shading.h"
 
 namespace aaf::trace {

@@ -3,7 +3,7 @@
 #include <cstdint>
 #include <string>
 
-#include "aaf/core/vec3.h"
+#include "aaf/core/math/vec3.h"
 #include "light_sampler.h"
 #include "ray_queries.h"
 #include "scene_description.h"

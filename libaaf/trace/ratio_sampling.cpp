@@ -3,8 +3,8 @@
 #include <algorithm>
 #include <cmath>
 
-#include "aaf/core/ggx.h"
-#include "aaf/core/polygon_irradiance.h"
+#include "aaf/trace/shading/ggx.h"
+#include "aaf/trace/shading/polygon_irradiance.h"
 #include "random.h"
 #include "shading.h"
 #include "spherical_rectangle.h"

@@ -2,7 +2,7 @@
 
 #include <cstdint>
 
-#include "aaf/core/rect_light_shading.h"
+#include "aaf/trace/shading/rect_light_shading.h"
 #include "renderer.h"
 #include "scene_description.h"
 

@@ -3,7 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
-#include "aaf/core/vec3.h"
+#include "aaf/core/math/vec3.h"
 #include "camera.h"
 
 namespace aaf::trace {

@@ -13,12 +13,12 @@
 #include <mutex>
 #include <optional>
 
-#include "aaf/core/aaf_roles.h"
-#include "aaf/core/aov_contract.h"
-#include "aaf/core/error.h"
-#include "aaf/core/maaf6_roles.h"
+#include "aaf/core/contract/aov_contract.h"
+#include "aaf/core/methods/aaf/aaf_roles.h"
+#include "aaf/core/methods/aaf/sampling_plan.h"
+#include "aaf/core/methods/maaf6/maaf6_roles.h"
 #include "aaf/core/parallel.h"
-#include "aaf/core/sampling_plan.h"
+#include "aaf/core/util/error.h"
 #include "aov_group.h"
 #include "renderer.h"
 #include "scene_description.h"

@@ -4,7 +4,7 @@
 #include <array>
 #include <cmath>
 
-#include "aaf/core/concentric_disc.h"
+#include "aaf/core/math/concentric_disc.h"
 #include "aov_group.h"
 #include "embree_scene.h"
 #include "random.h"

@@ -4,7 +4,7 @@
 #include <string>
 #include <vector>
 
-#include "aaf/core/light_plane.h"
+#include "aaf/core/contract/light_plane.h"
 #include "camera.h"
 
 namespace aaf::trace {

@@ -15,7 +15,7 @@
 #include <set>
 #include <sstream>
 
-#include "aaf/core/error.h"
+#include "aaf/core/util/error.h"
 #include "aaf/trace/light_file.h"
 #include "aaf/trace/render.h"
 

@@ -1,7 +1,7 @@
 #pragma once
 
-#include "aaf/core/light_plane.h"
-#include "aaf/core/vec3d.h"
+#include "aaf/core/contract/light_plane.h"
+#include "aaf/core/math/vec3d.h"
 
 namespace aaf::trace {
 

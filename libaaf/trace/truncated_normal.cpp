@@ -4,7 +4,7 @@
 #include <cmath>
 #include <string>
 
-#include "aaf/core/error.h"
+#include "aaf/core/util/error.h"
 #include "truncated_normal_batch.h"
 
 namespace aaf::trace {

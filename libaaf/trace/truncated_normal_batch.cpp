@@ -2,7 +2,7 @@
 // for every instruction set Google Highway targets, chosen at run time.
 #include "truncated_normal_batch.h"
 
-// As libaaf/core/gather_rows.cpp: no scalable (SVE, RVV) targets.
+// As libaaf/core/kernels/gather_rows.cpp: no scalable (SVE, RVV) targets.
 #ifndef HWY_DISABLED_TARGETS
 #define HWY_DISABLED_TARGETS (HWY_SVE | HWY_SVE2 | HWY_SVE_256 | HWY_SVE2_128 | HWY_RVV)
 #endif
@@ -69,7 +69,7 @@ void SampleCubicBatch(const float *cubics, int intervals, float limit, const flo
 HWY_AFTER_NAMESPACE();
 
 #if HWY_ONCE
-#include "aaf/core/instruction_set.h"
+#include "aaf/core/util/instruction_set.h"
 
 namespace aaf::trace::detail {
 

@@ -47,11 +47,11 @@
 #include <opencv2/core.hpp>
 #include <opencv2/imgproc.hpp>
 
-#include "aaf/core/aaf_filter.h"
-#include "aaf/core/fixed_gaussian.h"
-#include "aaf/core/gather.h"
+#include "aaf/core/kernels/fixed_gaussian.h"
+#include "aaf/core/kernels/gather.h"
+#include "aaf/core/methods/aaf/aaf_filter.h"
 #include "aaf/core/occluder_fill.h"
-#include "aaf/core/thread_count.h"
+#include "aaf/core/util/thread_count.h"
 #include "aaf/trace/render.h"
 
 namespace {

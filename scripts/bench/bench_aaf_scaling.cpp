@@ -24,7 +24,7 @@
 #include <opencv2/core.hpp>
 #include <opencv2/imgproc.hpp>
 
-#include "aaf/core/aaf_filter.h"
+#include "aaf/core/methods/aaf/aaf_filter.h"
 #include "aaf/trace/render.h"
 
 namespace {

@@ -8,7 +8,7 @@
 #include <cstdlib>
 #include <string>
 
-#include "aaf/core/error_metrics.h"
+#include "aaf/core/metrics/error_metrics.h"
 #include "aaf/io/exr_io.h"
 
 namespace {

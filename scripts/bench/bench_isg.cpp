@@ -16,8 +16,8 @@
 #include <functional>
 #include <string>
 
-#include "aaf/core/filter_aovs.h"
-#include "aaf/core/method_registry.h"
+#include "aaf/core/framework/filter_aovs.h"
+#include "aaf/core/framework/method_registry.h"
 #include "aaf/trace/render.h"
 
 namespace {

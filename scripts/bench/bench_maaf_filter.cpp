@@ -27,13 +27,13 @@
 #include <string>
 #include <vector>
 
-#include "aaf/core/aaf_filter.h"
-#include "aaf/core/aov_contract.h"
-#include "aaf/core/maaf_accumulation.h"
-#include "aaf/core/maaf_components.h"
-#include "aaf/core/maaf_filter.h"
-#include "aaf/core/maaf_roles.h"
-#include "aaf/core/thread_count.h"
+#include "aaf/core/contract/aov_contract.h"
+#include "aaf/core/methods/aaf/aaf_filter.h"
+#include "aaf/core/methods/maaf/maaf_accumulation.h"
+#include "aaf/core/methods/maaf/maaf_components.h"
+#include "aaf/core/methods/maaf/maaf_filter.h"
+#include "aaf/core/methods/maaf/maaf_roles.h"
+#include "aaf/core/util/thread_count.h"
 #include "aaf/trace/render.h"
 
 namespace {

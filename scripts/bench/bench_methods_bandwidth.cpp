@@ -24,10 +24,10 @@
 #include <string>
 #include <vector>
 
-#include "aaf/core/aov_contract.h"
-#include "aaf/core/filter_aovs.h"
-#include "aaf/core/method_registry.h"
-#include "aaf/core/ratio_layers.h"
+#include "aaf/core/contract/aov_contract.h"
+#include "aaf/core/contract/ratio_layers.h"
+#include "aaf/core/framework/filter_aovs.h"
+#include "aaf/core/framework/method_registry.h"
 #include "aaf/trace/render.h"
 
 namespace {

@@ -29,10 +29,10 @@
 #include <opencv2/core.hpp>
 #include <opencv2/imgproc.hpp>
 
-#include "aaf/core/ratio_bilateral.h"
-#include "aaf/core/ratio_composition.h"
-#include "aaf/core/ratio_noise_estimate.h"
-#include "aaf/core/thread_count.h"
+#include "aaf/core/methods/ratio/ratio_bilateral.h"
+#include "aaf/core/methods/ratio/ratio_composition.h"
+#include "aaf/core/methods/ratio/ratio_noise_estimate.h"
+#include "aaf/core/util/thread_count.h"
 #include "aaf/trace/render.h"
 
 namespace {

@@ -1,5 +1,5 @@
 // The committed LTC table's error against brute-force integration over the
-// light's surface (tests/core/ltc_reference.h), over roughness and view
+// light's surface (tests/trace/shading/ltc_reference.h), over roughness and view
 // angle: prints the Markdown tables of scripts/ltc_fit/README.md.
 //   cmake --build build --target ltc_error && build/scripts/ltc_fit/ltc_error
 #include <algorithm>
@@ -7,7 +7,7 @@
 #include <cstdio>
 #include <vector>
 
-#include "aaf/core/ltc_ggx.h"
+#include "aaf/trace/shading/ltc_ggx.h"
 #include "ltc_reference.h"
 
 int main() {

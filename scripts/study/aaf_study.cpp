@@ -16,10 +16,10 @@
 #include <limits>
 #include <vector>
 
-#include "aaf/core/aaf_filter.h"
-#include "aaf/core/error.h"
-#include "aaf/core/error_metrics.h"
-#include "aaf/core/sample_statistics.h"
+#include "aaf/core/kernels/sample_statistics.h"
+#include "aaf/core/methods/aaf/aaf_filter.h"
+#include "aaf/core/metrics/error_metrics.h"
+#include "aaf/core/util/error.h"
 #include "aaf/io/atomic_file.h"
 #include "aaf/io/exr_io.h"
 #include "aaf/trace/render.h"

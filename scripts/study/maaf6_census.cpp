@@ -12,10 +12,10 @@
 #include <iostream>
 #include <variant>
 
-#include "aaf/core/aov_contract.h"
-#include "aaf/core/error.h"
-#include "aaf/core/maaf6_filter.h"
-#include "aaf/core/maaf6_roles.h"
+#include "aaf/core/contract/aov_contract.h"
+#include "aaf/core/methods/maaf6/maaf6_filter.h"
+#include "aaf/core/methods/maaf6/maaf6_roles.h"
+#include "aaf/core/util/error.h"
 #include "aaf/io/exr_io.h"
 
 using namespace aaf;

@@ -15,9 +15,9 @@
 #include <variant>
 #include <vector>
 
-#include "aaf/core/error.h"
-#include "aaf/core/filter_aovs.h"
-#include "aaf/core/method_registry.h"
+#include "aaf/core/framework/filter_aovs.h"
+#include "aaf/core/framework/method_registry.h"
+#include "aaf/core/util/error.h"
 #include "aaf/io/atomic_file.h"
 #include "aaf/io/exr_io.h"
 #include "aaf/trace/render.h"

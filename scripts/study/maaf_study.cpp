@@ -14,12 +14,12 @@
 #include <iostream>
 #include <vector>
 
-#include "aaf/core/aaf_filter.h"
-#include "aaf/core/error.h"
-#include "aaf/core/error_metrics.h"
-#include "aaf/core/filter_aovs.h"
-#include "aaf/core/method_registry.h"
-#include "aaf/core/sample_statistics.h"
+#include "aaf/core/framework/filter_aovs.h"
+#include "aaf/core/framework/method_registry.h"
+#include "aaf/core/kernels/sample_statistics.h"
+#include "aaf/core/methods/aaf/aaf_filter.h"
+#include "aaf/core/metrics/error_metrics.h"
+#include "aaf/core/util/error.h"
 #include "aaf/io/atomic_file.h"
 #include "aaf/trace/render.h"
 

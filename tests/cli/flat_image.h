@@ -2,7 +2,7 @@
 
 #include <filesystem>
 
-#include "aaf/core/aov_set.h"
+#include "aaf/core/contract/aov_set.h"
 #include "aaf/io/exr_io.h"
 
 namespace aaf_test {

@@ -6,7 +6,7 @@
 #include <utility>
 #include <vector>
 
-#include "aaf/core/wedge_metrics.h"
+#include "aaf/core/analysis/wedge_metrics.h"
 #include "run_aaf.h"
 
 using aaf_test::run_aaf;

@@ -13,7 +13,7 @@
 #include <sstream>
 #include <string>
 
-#include "aaf/core/aov_set.h"
+#include "aaf/core/contract/aov_set.h"
 #include "aaf/io/exr_io.h"
 #include "flat_image.h"
 #include "run_aaf.h"

@@ -4,8 +4,8 @@
 #include <sstream>
 #include <vector>
 
-#include "aaf/core/aaf_filter.h"
-#include "aaf/core/error_metrics.h"
+#include "aaf/core/methods/aaf/aaf_filter.h"
+#include "aaf/core/metrics/error_metrics.h"
 #include "aaf/trace/render.h"
 #include "grids_closeup.h"
 #include "run_aaf.h"

@@ -1,7 +1,7 @@
 #include <catch2/catch.hpp>
 
-#include "aaf/core/aaf_filter.h"
-#include "aaf/core/error_metrics.h"
+#include "aaf/core/methods/aaf/aaf_filter.h"
+#include "aaf/core/metrics/error_metrics.h"
 #include "aaf/trace/render.h"
 #include "grids_closeup.h"
 #include "run_aaf.h"

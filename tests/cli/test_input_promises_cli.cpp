@@ -9,8 +9,8 @@
 #include <filesystem>
 #include <string>
 
-#include "aaf/core/aov_contract.h"
-#include "aaf/core/isg_roles.h"
+#include "aaf/core/contract/aov_contract.h"
+#include "aaf/core/methods/isg/isg_roles.h"
 #include "aaf/io/exr_io.h"
 #include "run_aaf.h"
 

@@ -5,7 +5,7 @@
 #include <algorithm>
 #include <fstream>
 
-#include "aaf/core/aov_contract.h"
+#include "aaf/core/contract/aov_contract.h"
 #include "aaf/io/exr_io.h"
 #include "run_aaf.h"
 

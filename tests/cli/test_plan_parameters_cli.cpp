@@ -8,7 +8,7 @@
 #include <string>
 #include <variant>
 
-#include "aaf/core/aaf_filter.h"
+#include "aaf/core/methods/aaf/aaf_filter.h"
 #include "aaf/io/exr_io.h"
 #include "flat_image.h"
 #include "run_aaf.h"

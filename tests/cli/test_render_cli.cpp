@@ -6,7 +6,7 @@
 #include <iterator>
 #include <string>
 
-#include "aaf/core/aov_contract.h"
+#include "aaf/core/contract/aov_contract.h"
 #include "aaf/io/exr_io.h"
 #include "run_aaf.h"
 

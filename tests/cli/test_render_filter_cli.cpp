@@ -10,7 +10,7 @@
 #include <string>
 #include <vector>
 
-#include "aaf/core/aov_contract.h"
+#include "aaf/core/contract/aov_contract.h"
 #include "aaf/io/exr_io.h"
 #include "run_aaf.h"
 

@@ -8,7 +8,7 @@
 #include <iterator>
 #include <string>
 
-#include "aaf/core/instruction_set.h"
+#include "aaf/core/util/instruction_set.h"
 #include "aaf/io/exr_io.h"
 #include "run_aaf.h"
 

@@ -2,7 +2,7 @@
 # Every C++ file of the tree (.cpp, .h) is formatted by the committed
 # .clang-format: clang-format-14 --dry-run -Werror over the tracked files
 # (every .cpp/.h under the tree when it is not a git checkout).
-# Left out: the generated ltc_ggx_table.cpp (libaaf/core/ltc_ggx_table.cpp),
+# Left out: the generated ltc_ggx_table.cpp (libaaf/trace/shading/ltc_ggx_table.cpp),
 # written by scripts/ltc_fit: its 4,096 table rows are the generator's
 # output, one cell a line, and regenerating the file must reproduce it byte
 # for byte, so it is not reflowed by hand.

@@ -7,9 +7,9 @@
 #include <string>
 #include <vector>
 
-#include "aaf/core/aov_contract.h"
-#include "aaf/core/aov_set.h"
-#include "aaf/core/error.h"
+#include "aaf/core/contract/aov_contract.h"
+#include "aaf/core/contract/aov_set.h"
+#include "aaf/core/util/error.h"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t *data, std::size_t size) {
     if (size == 0) return 0;

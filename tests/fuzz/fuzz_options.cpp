@@ -7,8 +7,8 @@
 #include <cstdint>
 #include <string>
 
-#include "aaf/core/error.h"
-#include "aaf/core/method_registry.h"
+#include "aaf/core/framework/method_registry.h"
+#include "aaf/core/util/error.h"
 #include "aaf/io/sequence.h"
 
 namespace {

@@ -6,7 +6,7 @@
 
 #include <OpenImageIO/imageio.h>
 
-#include "aaf/core/error.h"
+#include "aaf/core/util/error.h"
 #include "aaf/io/exr_io.h"
 #include "fuzz_temp_file.h"
 

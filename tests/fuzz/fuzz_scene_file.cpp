@@ -3,7 +3,7 @@
 // an Embree assertion (non-finite rays) or another exception type.
 #include <cstdint>
 
-#include "aaf/core/error.h"
+#include "aaf/core/util/error.h"
 #include "aaf/trace/render.h"
 #include "fuzz_temp_file.h"
 

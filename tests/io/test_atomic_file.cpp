@@ -6,7 +6,7 @@
 #include <fstream>
 #include <string>
 
-#include "aaf/core/error.h"
+#include "aaf/core/util/error.h"
 #include "aaf/io/atomic_file.h"
 #include "aaf/io/exr_io.h"
 

@@ -6,7 +6,7 @@
 #include <fstream>
 #include <limits>
 
-#include "aaf/core/error.h"
+#include "aaf/core/util/error.h"
 #include "aaf/io/compare_files.h"
 #include "aaf/io/exr_io.h"
 

@@ -5,7 +5,7 @@
 #include <filesystem>
 #include <fstream>
 
-#include "aaf/core/error.h"
+#include "aaf/core/util/error.h"
 #include "aaf/io/exr_io.h"
 #include "aaf/io/preview.h"
 

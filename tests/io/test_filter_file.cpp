@@ -13,9 +13,9 @@
 #include <limits>
 #include <stdexcept>
 
-#include "aaf/core/aov_contract.h"
-#include "aaf/core/error.h"
-#include "aaf/core/thread_count.h"
+#include "aaf/core/contract/aov_contract.h"
+#include "aaf/core/util/error.h"
+#include "aaf/core/util/thread_count.h"
 #include "aaf/io/exr_io.h"
 #include "aaf/io/filter_file.h"
 

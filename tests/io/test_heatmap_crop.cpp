@@ -3,7 +3,7 @@
 #include <filesystem>
 #include <string>
 
-#include "aaf/core/error.h"
+#include "aaf/core/util/error.h"
 #include "aaf/io/heatmap.h"
 
 #include "../scratch_dir.h"

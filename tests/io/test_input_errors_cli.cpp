@@ -11,7 +11,7 @@
 #include <limits>
 #include <string>
 
-#include "aaf/core/aov_contract.h"
+#include "aaf/core/contract/aov_contract.h"
 #include "aaf/io/exr_io.h"
 #include "crafted_exr.h"
 

@@ -3,7 +3,7 @@
 #include <filesystem>
 #include <fstream>
 
-#include "aaf/core/error.h"
+#include "aaf/core/util/error.h"
 #include "aaf/io/sequence.h"
 
 using namespace aaf;

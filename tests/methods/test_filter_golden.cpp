@@ -20,10 +20,10 @@
 
 #include "../cli/run_aaf.h"
 #include "../golden_hash.h"
-#include "aaf/core/error.h"
-#include "aaf/core/filter_aovs.h"
-#include "aaf/core/instruction_set.h"
-#include "aaf/core/method_registry.h"
+#include "aaf/core/framework/filter_aovs.h"
+#include "aaf/core/framework/method_registry.h"
+#include "aaf/core/util/error.h"
+#include "aaf/core/util/instruction_set.h"
 #include "aaf/io/exr_io.h"
 #include "aaf/trace/render.h"
 

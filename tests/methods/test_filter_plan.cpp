@@ -9,9 +9,9 @@
 
 #include "../cli/run_aaf.h"
 #include "../scratch_dir.h"
-#include "aaf/core/error.h"
-#include "aaf/core/filter_aovs.h"
-#include "aaf/core/method_registry.h"
+#include "aaf/core/framework/filter_aovs.h"
+#include "aaf/core/framework/method_registry.h"
+#include "aaf/core/util/error.h"
 #include "aaf/io/exr_io.h"
 #include "aaf/io/filter_file.h"
 #include "aaf/trace/render.h"

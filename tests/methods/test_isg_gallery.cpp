@@ -8,10 +8,10 @@
 #include <vector>
 
 #include "../scratch_dir.h"
-#include "aaf/core/aov_contract.h"
-#include "aaf/core/filter_aovs.h"
-#include "aaf/core/isg_roles.h"
-#include "aaf/core/method_registry.h"
+#include "aaf/core/contract/aov_contract.h"
+#include "aaf/core/framework/filter_aovs.h"
+#include "aaf/core/framework/method_registry.h"
+#include "aaf/core/methods/isg/isg_roles.h"
 #include "aaf/trace/render.h"
 
 using namespace aaf;

@@ -9,11 +9,11 @@
 #include <string>
 #include <vector>
 
-#include "aaf/core/aov_contract.h"
-#include "aaf/core/error.h"
-#include "aaf/core/filter_aovs.h"
-#include "aaf/core/maaf6_roles.h"
-#include "aaf/core/method_registry.h"
+#include "aaf/core/contract/aov_contract.h"
+#include "aaf/core/framework/filter_aovs.h"
+#include "aaf/core/framework/method_registry.h"
+#include "aaf/core/methods/maaf6/maaf6_roles.h"
+#include "aaf/core/util/error.h"
 #include "aaf/trace/render.h"
 
 using namespace aaf;

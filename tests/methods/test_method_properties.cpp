@@ -13,9 +13,9 @@
 #include <string>
 #include <vector>
 
-#include "aaf/core/error.h"
-#include "aaf/core/filter_aovs.h"
-#include "aaf/core/method_registry.h"
+#include "aaf/core/framework/filter_aovs.h"
+#include "aaf/core/framework/method_registry.h"
+#include "aaf/core/util/error.h"
 #include "aaf/trace/render.h"
 
 using namespace aaf;

@@ -6,7 +6,7 @@
 #include <catch2/catch.hpp>
 
 #include "../cli/run_aaf.h"
-#include "aaf/core/aov_contract.h"
+#include "aaf/core/contract/aov_contract.h"
 #include "aaf/io/exr_io.h"
 
 using namespace aaf_test;

@@ -8,7 +8,7 @@
 #include <algorithm>
 #include <cmath>
 
-#include "aaf/core/method_registry.h"
+#include "aaf/core/framework/method_registry.h"
 
 namespace {
 

@@ -3,8 +3,8 @@
 #include <cstring>
 #include <vector>
 
-#include "aaf/core/aov_contract.h"
-#include "aaf/core/method_registry.h"
+#include "aaf/core/contract/aov_contract.h"
+#include "aaf/core/framework/method_registry.h"
 #include "aaf/trace/render.h"
 #include "aov_group.h"
 #include "renderer.h"

@@ -10,7 +10,7 @@
 #include <utility>
 #include <vector>
 
-#include "aaf/core/contract_markdown.h"
+#include "aaf/core/framework/contract_markdown.h"
 #include "aaf/trace/render.h"
 
 namespace {

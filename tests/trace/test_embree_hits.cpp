@@ -6,7 +6,7 @@
 #include <limits>
 #include <random>
 
-#include "aaf/core/instruction_set.h"
+#include "aaf/core/util/instruction_set.h"
 #include "embree_scene.h"
 
 using namespace aaf;

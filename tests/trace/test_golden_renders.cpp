@@ -14,8 +14,8 @@
 #include <vector>
 
 #include "../golden_hash.h"
-#include "aaf/core/aov_contract.h"
-#include "aaf/core/instruction_set.h"
+#include "aaf/core/contract/aov_contract.h"
+#include "aaf/core/util/instruction_set.h"
 #include "aaf/trace/render.h"
 
 // Golden hashes of small renders, taken before the AOV groups became

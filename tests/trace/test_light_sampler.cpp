@@ -9,7 +9,7 @@
 #include <vector>
 
 #include "../unpinned_instruction_set.h"
-#include "aaf/core/error.h"
+#include "aaf/core/util/error.h"
 #include "light_sampler.h"
 #include "random.h"
 #include "stratified_grid.h"

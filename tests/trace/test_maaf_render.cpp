@@ -7,13 +7,13 @@
 #include <utility>
 #include <vector>
 
-#include "aaf/core/aaf_filter.h"
-#include "aaf/core/aov_contract.h"
-#include "aaf/core/error.h"
-#include "aaf/core/filter_aovs.h"
-#include "aaf/core/maaf_accumulation.h"
-#include "aaf/core/maaf_roles.h"
-#include "aaf/core/method_registry.h"
+#include "aaf/core/contract/aov_contract.h"
+#include "aaf/core/framework/filter_aovs.h"
+#include "aaf/core/framework/method_registry.h"
+#include "aaf/core/methods/aaf/aaf_filter.h"
+#include "aaf/core/methods/maaf/maaf_accumulation.h"
+#include "aaf/core/methods/maaf/maaf_roles.h"
+#include "aaf/core/util/error.h"
 #include "aaf/trace/render.h"
 
 using namespace aaf;

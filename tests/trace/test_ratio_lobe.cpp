@@ -2,12 +2,12 @@
 
 #include <cmath>
 
-#include "aaf/core/ggx.h"
+#include "aaf/trace/shading/ggx.h"
 #include "shading.h"
 
 using namespace aaf;
 
-// The analytic U (LTC, fitted to aaf/core/ggx.h) and the tracer's S_N, U_N
+// The analytic U (LTC, fitted to aaf/trace/shading/ggx.h) and the tracer's S_N, U_N
 // and beauty (libaaf/trace/shading.h) must integrate the same lobe.
 TEST_CASE("Ratio: the LTC's GGX lobe is the tracer's BRDF (specular part times the cosine)",
           "[trace][ratio]") {

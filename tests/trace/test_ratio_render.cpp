@@ -8,7 +8,7 @@
 #include <vector>
 
 #include "../scratch_dir.h"
-#include "aaf/core/aov_contract.h"
+#include "aaf/core/contract/aov_contract.h"
 #include "aaf/trace/render.h"
 #include "random.h"
 #include "ratio_sampling.h"

@@ -9,7 +9,7 @@
 #include <string>
 #include <vector>
 
-#include "aaf/core/aov_set.h"
+#include "aaf/core/contract/aov_set.h"
 #include "aaf/trace/render.h"
 #include "aov_group.h"
 #include "embree_scene.h"

@@ -12,11 +12,11 @@
 #include <variant>
 #include <vector>
 
-#include "aaf/core/aaf_filter.h"
-#include "aaf/core/aov_contract.h"
-#include "aaf/core/error.h"
-#include "aaf/core/filter_aovs.h"
-#include "aaf/core/method_registry.h"
+#include "aaf/core/contract/aov_contract.h"
+#include "aaf/core/framework/filter_aovs.h"
+#include "aaf/core/framework/method_registry.h"
+#include "aaf/core/methods/aaf/aaf_filter.h"
+#include "aaf/core/util/error.h"
 #include "aaf/trace/render.h"
 #include "scene_description.h"
 #include "scene_file.h"

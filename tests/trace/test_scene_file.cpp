@@ -5,7 +5,7 @@
 #include <fstream>
 #include <string>
 
-#include "aaf/core/error.h"
+#include "aaf/core/util/error.h"
 #include "scene_file.h"
 
 using namespace aaf;

@@ -7,7 +7,7 @@
 #include <string>
 
 #include "../scratch_dir.h"
-#include "aaf/core/error.h"
+#include "aaf/core/util/error.h"
 #include "scene_file.h"
 #include "surface_texture.h"
 

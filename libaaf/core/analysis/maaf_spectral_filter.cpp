@@ -1,8 +1,8 @@
 #include <limits>
 #include <vector>
 
-#include "aaf/core/maaf_components.h"
-#include "aaf/core/spectral_filter.h"
+#include "aaf/core/analysis/spectral_filter.h"
+#include "aaf/core/methods/maaf/maaf_components.h"
 
 namespace aaf {
 

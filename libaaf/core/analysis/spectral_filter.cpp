@@ -1,9 +1,9 @@
-#include "aaf/core/spectral_filter.h"
+#include "aaf/core/analysis/spectral_filter.h"
 
 #include <cmath>
 #include <string>
 
-#include "aaf/core/error.h"
+#include "aaf/core/util/error.h"
 
 namespace aaf {
 

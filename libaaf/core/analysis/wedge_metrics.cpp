@@ -1,12 +1,12 @@
-#include "aaf/core/wedge_metrics.h"
+#include "aaf/core/analysis/wedge_metrics.h"
 
 #include <algorithm>
 #include <cmath>
 #include <string>
 #include <vector>
 
-#include "aaf/core/error.h"
 #include "aaf/core/parallel.h"
+#include "aaf/core/util/error.h"
 
 namespace aaf {
 

@@ -1,10 +1,10 @@
-#include "aaf/core/wedge_spectrum.h"
+#include "aaf/core/analysis/wedge_spectrum.h"
 
 #include <cmath>
 #include <random>
 #include <string>
 
-#include "aaf/core/error.h"
+#include "aaf/core/util/error.h"
 
 namespace aaf {
 

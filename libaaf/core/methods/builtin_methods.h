@@ -2,7 +2,7 @@
 
 #include <memory>
 
-#include "aaf/core/method.h"
+#include "aaf/core/framework/method.h"
 
 namespace aaf {
 

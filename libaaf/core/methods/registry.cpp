@@ -1,7 +1,7 @@
 #include <algorithm>
 
-#include "aaf/core/error.h"
-#include "aaf/core/method_registry.h"
+#include "aaf/core/framework/method_registry.h"
+#include "aaf/core/util/error.h"
 #include "builtin_methods.h"
 
 namespace aaf {

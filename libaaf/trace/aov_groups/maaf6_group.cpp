@@ -4,11 +4,11 @@
 #include <vector>
 
 #include "../path_sample.h"
-#include "aaf/core/error.h"
-#include "aaf/core/maaf6.h"
-#include "aaf/core/maaf6_roles.h"
-#include "aaf/core/maaf_roles.h"
+#include "aaf/core/methods/maaf/maaf_roles.h"
+#include "aaf/core/methods/maaf6/maaf6_components.h"
+#include "aaf/core/methods/maaf6/maaf6_roles.h"
 #include "aaf/core/parallel.h"
+#include "aaf/core/util/error.h"
 #include "aov_groups.h"
 
 namespace aaf::trace {

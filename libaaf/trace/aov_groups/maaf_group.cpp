@@ -2,9 +2,9 @@
 #include <cstdint>
 #include <vector>
 
-#include "aaf/core/maaf_accumulation.h"
-#include "aaf/core/maaf_roles.h"
-#include "aaf/core/maaf_wedge.h"
+#include "aaf/core/methods/maaf/maaf_accumulation.h"
+#include "aaf/core/methods/maaf/maaf_roles.h"
+#include "aaf/core/methods/maaf/maaf_wedge.h"
 #include "aov_groups.h"
 
 namespace aaf::trace {

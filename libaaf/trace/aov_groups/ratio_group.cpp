@@ -4,9 +4,9 @@
 #include <vector>
 
 #include "../ratio_sampling.h"
-#include "aaf/core/error.h"
+#include "aaf/core/methods/ratio/ratio_roles.h"
 #include "aaf/core/parallel.h"
-#include "aaf/core/ratio_roles.h"
+#include "aaf/core/util/error.h"
 #include "aov_groups.h"
 
 namespace aaf::trace {

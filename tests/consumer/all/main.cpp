@@ -2,7 +2,7 @@
 #include <cstdio>
 #include <exception>
 
-#include "aaf/core/aov_set.h"
+#include "aaf/core/contract/aov_set.h"
 #include "aaf/trace/render.h"
 
 int main(int argc, char **argv) {

@@ -3,8 +3,8 @@
 #include <cstdio>
 #include <vector>
 
-#include "aaf/core/fixed_gaussian.h"
-#include "aaf/core/plane_view.h"
+#include "aaf/core/contract/plane_view.h"
+#include "aaf/core/kernels/fixed_gaussian.h"
 
 namespace {
 

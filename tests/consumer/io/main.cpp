@@ -4,7 +4,7 @@
 #include <string>
 #include <variant>
 
-#include "aaf/core/aov_set.h"
+#include "aaf/core/contract/aov_set.h"
 #include "aaf/io/exr_io.h"
 
 int main(int argc, char **argv) {

@@ -1,12 +1,12 @@
-#include "aaf/core/aaf_bandlimits.h"
+#include "aaf/core/methods/aaf/aaf_bandlimits.h"
 
 #include <algorithm>
 #include <cmath>
 #include <limits>
 
-#include "aaf/core/aaf_params.h"
-#include "aaf/core/error.h"
-#include "aaf/core/quoted.h"
+#include "aaf/core/methods/aaf/aaf_params.h"
+#include "aaf/core/util/error.h"
+#include "aaf/core/util/quoted.h"
 
 namespace aaf {
 

@@ -1,17 +1,17 @@
-#include "aaf/core/aaf_filter.h"
+#include "aaf/core/methods/aaf/aaf_filter.h"
 
 #include <algorithm>
 #include <cmath>
 #include <limits>
 #include <vector>
 
-#include "aaf/core/aaf_bandlimits.h"
 #include "aaf/core/aaf_guide_rows.h"
-#include "aaf/core/error.h"
-#include "aaf/core/gather.h"
-#include "aaf/core/light_bandlimit.h"
+#include "aaf/core/kernels/gather.h"
+#include "aaf/core/kernels/light_bandlimit.h"
+#include "aaf/core/methods/aaf/aaf_bandlimits.h"
 #include "aaf/core/occluder_fill.h"
 #include "aaf/core/parallel.h"
+#include "aaf/core/util/error.h"
 
 namespace aaf {
 

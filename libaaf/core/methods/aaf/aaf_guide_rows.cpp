@@ -8,7 +8,7 @@
 // multiply-add is fused.
 #include "aaf/core/aaf_guide_rows.h"
 
-#include "aaf/core/aaf_params.h"
+#include "aaf/core/methods/aaf/aaf_params.h"
 
 #include <cstdint>
 #include <limits>
@@ -330,7 +330,7 @@ const char *AafGuideRowTarget() {
 HWY_AFTER_NAMESPACE();
 
 #if HWY_ONCE
-#include "aaf/core/instruction_set.h"
+#include "aaf/core/util/instruction_set.h"
 
 namespace aaf::detail {
 

@@ -1,7 +1,7 @@
 #pragma once
 
-#include "aaf/core/aaf_filter.h"
-#include "aaf/core/method.h"
+#include "aaf/core/framework/method.h"
+#include "aaf/core/methods/aaf/aaf_filter.h"
 
 namespace aaf {
 

@@ -1,4 +1,4 @@
-#include "aaf/core/aaf_roles.h"
+#include "aaf/core/methods/aaf/aaf_roles.h"
 
 namespace aaf {
 

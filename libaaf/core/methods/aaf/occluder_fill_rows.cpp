@@ -70,7 +70,7 @@ void SearchOccluderRow(const OccluderSearch &s, int y, const float *centre_id, f
 HWY_AFTER_NAMESPACE();
 
 #if HWY_ONCE
-#include "aaf/core/instruction_set.h"
+#include "aaf/core/util/instruction_set.h"
 
 namespace aaf::detail {
 

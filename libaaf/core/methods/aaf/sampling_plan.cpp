@@ -1,15 +1,15 @@
-#include "aaf/core/sampling_plan.h"
+#include "aaf/core/methods/aaf/sampling_plan.h"
 
 #include <algorithm>
 #include <cmath>
 #include <string>
 
-#include "aaf/core/aaf_bandlimits.h"
-#include "aaf/core/aaf_roles.h"
-#include "aaf/core/error.h"
-#include "aaf/core/light_bandlimit.h"
+#include "aaf/core/kernels/light_bandlimit.h"
+#include "aaf/core/methods/aaf/aaf_bandlimits.h"
+#include "aaf/core/methods/aaf/aaf_roles.h"
 #include "aaf/core/occluder_fill.h"
 #include "aaf/core/parallel.h"
+#include "aaf/core/util/error.h"
 
 namespace aaf {
 

@@ -4,10 +4,10 @@
 #include <limits>
 #include <sstream>
 
-#include "aaf/core/aov_contract.h"
-#include "aaf/core/error.h"
-#include "aaf/core/isg_roles.h"
-#include "aaf/core/quoted.h"
+#include "aaf/core/contract/aov_contract.h"
+#include "aaf/core/methods/isg/isg_roles.h"
+#include "aaf/core/util/error.h"
+#include "aaf/core/util/quoted.h"
 
 namespace aaf::isg {
 

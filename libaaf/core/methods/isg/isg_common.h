@@ -1,6 +1,6 @@
 #pragma once
 
-// What the three ISG methods share beyond the formulas of aaf/core/isg.h:
+// What the three ISG methods share beyond the formulas of aaf/core/methods/isg/isg_formulas.h:
 // their common parameters, header attributes, the scene size of ISG Sec. 5
 // and nearest-pixel point sampling.
 #include <cmath>
@@ -10,10 +10,10 @@
 #include <utility>
 #include <vector>
 
-#include "aaf/core/isg.h"
-#include "aaf/core/isg_roles.h"
-#include "aaf/core/method.h"
-#include "aaf/core/vec3.h"
+#include "aaf/core/framework/method.h"
+#include "aaf/core/math/vec3.h"
+#include "aaf/core/methods/isg/isg_formulas.h"
+#include "aaf/core/methods/isg/isg_roles.h"
 
 namespace aaf::isg {
 

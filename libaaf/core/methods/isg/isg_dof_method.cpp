@@ -9,8 +9,8 @@
 #include <vector>
 
 #include "../builtin_methods.h"
-#include "aaf/core/aov_contract.h"
-#include "aaf/core/isg_roles.h"
+#include "aaf/core/contract/aov_contract.h"
+#include "aaf/core/methods/isg/isg_roles.h"
 #include "aaf/core/parallel.h"
 #include "aaf/core/parameter_defaults.h"
 #include "isg_common.h"

@@ -1,11 +1,11 @@
-// ISG's shared formulas and sample sets (aaf/core/isg.h).
+// ISG's shared formulas and sample sets (aaf/core/methods/isg/isg_formulas.h).
 #include <cmath>
 #include <cstdint>
 #include <limits>
 
-#include "aaf/core/concentric_disc.h"
-#include "aaf/core/error.h"
-#include "aaf/core/isg.h"
+#include "aaf/core/math/concentric_disc.h"
+#include "aaf/core/methods/isg/isg_formulas.h"
+#include "aaf/core/util/error.h"
 
 namespace aaf::isg {
 

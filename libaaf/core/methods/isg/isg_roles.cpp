@@ -1,4 +1,4 @@
-#include "aaf/core/isg_roles.h"
+#include "aaf/core/methods/isg/isg_roles.h"
 
 namespace aaf {
 

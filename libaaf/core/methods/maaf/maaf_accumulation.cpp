@@ -1,8 +1,8 @@
-#include "aaf/core/maaf_accumulation.h"
+#include "aaf/core/methods/maaf/maaf_accumulation.h"
 
 #include <cmath>
 
-#include "aaf/core/error.h"
+#include "aaf/core/util/error.h"
 
 namespace aaf {
 

@@ -1,11 +1,11 @@
-#include "aaf/core/maaf_components.h"
+#include "aaf/core/methods/maaf/maaf_components.h"
 
 #include <algorithm>
 #include <cmath>
 #include <limits>
 #include <string>
 
-#include "aaf/core/error.h"
+#include "aaf/core/util/error.h"
 
 namespace aaf {
 

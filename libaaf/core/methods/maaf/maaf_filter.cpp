@@ -1,16 +1,16 @@
-#include "aaf/core/maaf_filter.h"
+#include "aaf/core/methods/maaf/maaf_filter.h"
 
 #include <algorithm>
 #include <cmath>
 #include <limits>
 #include <string>
 
-#include "aaf/core/error.h"
-#include "aaf/core/gather.h"
-#include "aaf/core/maaf_accumulation.h"
-#include "aaf/core/maaf_components.h"
+#include "aaf/core/kernels/gather.h"
 #include "aaf/core/maaf_separable.h"
+#include "aaf/core/methods/maaf/maaf_accumulation.h"
+#include "aaf/core/methods/maaf/maaf_components.h"
 #include "aaf/core/parallel.h"
+#include "aaf/core/util/error.h"
 
 namespace aaf {
 

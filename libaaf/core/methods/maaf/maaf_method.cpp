@@ -7,14 +7,14 @@
 #include <vector>
 
 #include "../builtin_methods.h"
-#include "aaf/core/aov_contract.h"
-#include "aaf/core/error.h"
-#include "aaf/core/maaf_accumulation.h"
-#include "aaf/core/maaf_filter.h"
-#include "aaf/core/maaf_roles.h"
-#include "aaf/core/method_registry.h"
+#include "aaf/core/contract/aov_contract.h"
+#include "aaf/core/framework/method_registry.h"
+#include "aaf/core/kernels/shadow_composition.h"
+#include "aaf/core/methods/maaf/maaf_accumulation.h"
+#include "aaf/core/methods/maaf/maaf_filter.h"
+#include "aaf/core/methods/maaf/maaf_roles.h"
 #include "aaf/core/parameter_defaults.h"
-#include "aaf/core/shadow_composition.h"
+#include "aaf/core/util/error.h"
 
 namespace aaf {
 

@@ -1,6 +1,6 @@
-#include "aaf/core/maaf_roles.h"
+#include "aaf/core/methods/maaf/maaf_roles.h"
 
-#include "aaf/core/maaf_accumulation.h"
+#include "aaf/core/methods/maaf/maaf_accumulation.h"
 
 namespace aaf {
 

@@ -3,9 +3,9 @@
 #include <algorithm>
 #include <cmath>
 
-#include "aaf/core/error.h"
 #include "aaf/core/fast_exp.h"
 #include "aaf/core/parallel.h"
+#include "aaf/core/util/error.h"
 
 namespace aaf {
 

@@ -1,14 +1,14 @@
-#include "aaf/core/maaf_wedge.h"
+#include "aaf/core/methods/maaf/maaf_wedge.h"
 
 #include <algorithm>
 #include <cmath>
 #include <limits>
 #include <string>
 
-#include "aaf/core/error.h"
-#include "aaf/core/maaf_components.h"
+#include "aaf/core/methods/maaf/maaf_components.h"
 #include "aaf/core/occluder_fill.h"
 #include "aaf/core/parallel.h"
+#include "aaf/core/util/error.h"
 
 namespace aaf {
 

@@ -2,10 +2,10 @@
 #include <cmath>
 #include <string>
 
-#include "aaf/core/error.h"
-#include "aaf/core/maaf6.h"
-#include "aaf/core/maaf_accumulation.h"
-#include "aaf/core/maaf_components.h"
+#include "aaf/core/methods/maaf/maaf_accumulation.h"
+#include "aaf/core/methods/maaf/maaf_components.h"
+#include "aaf/core/methods/maaf6/maaf6_components.h"
+#include "aaf/core/util/error.h"
 
 namespace aaf {
 

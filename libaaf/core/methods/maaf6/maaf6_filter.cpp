@@ -1,14 +1,14 @@
-#include "aaf/core/maaf6_filter.h"
+#include "aaf/core/methods/maaf6/maaf6_filter.h"
 
 #include <algorithm>
 #include <cmath>
 #include <memory>
 #include <string>
 
-#include "aaf/core/error.h"
-#include "aaf/core/maaf6.h"
-#include "aaf/core/maaf_accumulation.h"
+#include "aaf/core/methods/maaf/maaf_accumulation.h"
+#include "aaf/core/methods/maaf6/maaf6_components.h"
 #include "aaf/core/parallel.h"
+#include "aaf/core/util/error.h"
 
 namespace aaf {
 

@@ -1,6 +1,6 @@
-#include "aaf/core/maaf6_roles.h"
+#include "aaf/core/methods/maaf6/maaf6_roles.h"
 
-#include "aaf/core/maaf_roles.h"
+#include "aaf/core/methods/maaf/maaf_roles.h"
 
 namespace aaf {
 

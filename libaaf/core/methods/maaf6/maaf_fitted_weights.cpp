@@ -1,4 +1,4 @@
-#include "aaf/core/maaf_fitted_weights.h"
+#include "aaf/core/methods/maaf6/maaf_fitted_weights.h"
 
 #include <algorithm>
 #include <cmath>
@@ -8,8 +8,8 @@
 #include <string>
 #include <tuple>
 
-#include "aaf/core/error.h"
-#include "aaf/core/maaf_components.h"
+#include "aaf/core/methods/maaf/maaf_components.h"
+#include "aaf/core/util/error.h"
 
 namespace aaf {
 

@@ -1,13 +1,13 @@
 // The separable joint bilateral of the ratio estimator (Heitz, Hill, McGuire
 // 2018, Sec. 4.1): widths from the noise estimate, plane-distance weights.
-#include "aaf/core/ratio_bilateral.h"
+#include "aaf/core/methods/ratio/ratio_bilateral.h"
 
 #include <algorithm>
 #include <cmath>
 
-#include "aaf/core/error.h"
 #include "aaf/core/fast_exp.h"
 #include "aaf/core/parallel.h"
+#include "aaf/core/util/error.h"
 
 namespace aaf {
 

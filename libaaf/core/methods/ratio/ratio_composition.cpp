@@ -1,11 +1,11 @@
 // The three estimators of the shadowed direct light from the same layers
 // (ratio estimator Eq. 10, 11, 15) as planes to denoise and their composition.
-#include "aaf/core/ratio_composition.h"
+#include "aaf/core/methods/ratio/ratio_composition.h"
 
 #include <cmath>
 
-#include "aaf/core/error.h"
 #include "aaf/core/parallel.h"
+#include "aaf/core/util/error.h"
 
 namespace aaf {
 

@@ -10,17 +10,17 @@
 
 #include "../aaf/aaf_method_inputs.h"
 #include "../builtin_methods.h"
-#include "aaf/core/aaf_filter.h"
-#include "aaf/core/error.h"
-#include "aaf/core/fixed_gaussian.h"
-#include "aaf/core/gather.h"
+#include "aaf/core/kernels/fixed_gaussian.h"
+#include "aaf/core/kernels/gather.h"
+#include "aaf/core/methods/aaf/aaf_filter.h"
+#include "aaf/core/methods/ratio/ratio_bilateral.h"
+#include "aaf/core/methods/ratio/ratio_composition.h"
+#include "aaf/core/methods/ratio/ratio_noise_estimate.h"
+#include "aaf/core/methods/ratio/ratio_roles.h"
+#include "aaf/core/methods/ratio/ratio_temporal.h"
 #include "aaf/core/parallel.h"
 #include "aaf/core/parameter_defaults.h"
-#include "aaf/core/ratio_bilateral.h"
-#include "aaf/core/ratio_composition.h"
-#include "aaf/core/ratio_noise_estimate.h"
-#include "aaf/core/ratio_roles.h"
-#include "aaf/core/ratio_temporal.h"
+#include "aaf/core/util/error.h"
 
 namespace aaf {
 

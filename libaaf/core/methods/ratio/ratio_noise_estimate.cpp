@@ -1,13 +1,13 @@
 // The total-variation noise estimate of the ratio estimator (Heitz, Hill,
 // McGuire 2018, Sec. 4.2, ratio estimator Eq. 29).
-#include "aaf/core/ratio_noise_estimate.h"
+#include "aaf/core/methods/ratio/ratio_noise_estimate.h"
 
 #include <algorithm>
 #include <cmath>
 #include <vector>
 
-#include "aaf/core/error.h"
 #include "aaf/core/parallel.h"
+#include "aaf/core/util/error.h"
 
 namespace aaf {
 

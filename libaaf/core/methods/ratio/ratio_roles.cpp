@@ -1,4 +1,4 @@
-#include "aaf/core/ratio_roles.h"
+#include "aaf/core/methods/ratio/ratio_roles.h"
 
 namespace aaf {
 
@@ -9,33 +9,38 @@ std::vector<RoleInfo> ratio_roles() {
          "linear radiance",
          "ratio estimator Eq. 20: the analytic unshadowed direct light U of every light, summed (exact "
          "polygon irradiance for the diffuse lobe, linearly transformed cosines for GGX). Per light: the "
-         "same "
-         "names with `ratio.` replaced by `ratio.L<i>.`, i < aaf:ratio:lights",
-         true},
+         "same names with `ratio.` replaced by `ratio.L<i>.`, i < aaf:ratio:lights",
+         true,
+         true},  // colour, per light
         {roles::RatioShadowed,
          {"ratio.S.R", "ratio.S.G", "ratio.S.B"},
          "linear radiance",
          "ratio estimator Eq. 21 as a mean: (1/N) sum of w R L V / p over the pixel's N samples per light "
          "(MIS weights w), summed over lights; it is also the full-stochastic estimate (ratio estimator Eq. "
-         "10). Per light as "
-         "ratio_u",
-         true},
+         "10). Per light as ratio_u",
+         true,
+         true},  // colour, per light
         {roles::RatioUnshadowed,
          {"ratio.Un.R", "ratio.Un.G", "ratio.Un.B"},
          "linear radiance",
          "ratio estimator Eq. 22 as a mean: the same samples and weights as ratio_s with V = 1, so S_N / U_N "
          "stays in [0, 1]; U - U_N + S_N is the control-variate estimate (ratio estimator Eq. 11). Per light "
          "as ratio_u",
-         true},
+         true,
+         true},  // colour, per light
         {roles::RatioShadowedLuminance,
          {"ratio.S.Y"},
          "luminance",
          "Rec. 709 luminance of ratio_s, for the grey approximation (ratio estimator Sec. 3.4). Per light as "
-         "ratio_u"},
+         "ratio_u",
+         false,
+         true},  // data, per light
         {roles::RatioUnshadowedLuminance,
          {"ratio.Un.Y"},
          "luminance",
-         "Rec. 709 luminance of ratio_un (ratio estimator Sec. 3.4). Per light as ratio_u"},
+         "Rec. 709 luminance of ratio_un (ratio estimator Sec. 3.4). Per light as ratio_u",
+         false,
+         true},  // data, per light
     };
 }
 

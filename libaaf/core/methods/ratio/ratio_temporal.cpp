@@ -1,12 +1,12 @@
 // Temporal integration of the ratio estimator's output by reverse
 // reprojection (Heitz, Hill, McGuire 2018, Sec. 4.1 pass 5).
-#include "aaf/core/ratio_temporal.h"
+#include "aaf/core/methods/ratio/ratio_temporal.h"
 
 #include <cmath>
 #include <vector>
 
-#include "aaf/core/error.h"
 #include "aaf/core/parallel.h"
+#include "aaf/core/util/error.h"
 
 namespace aaf {
 

@@ -1,6 +1,6 @@
 #pragma once
 
-#include "aaf/core/gather.h"
+#include "aaf/core/kernels/gather.h"
 
 namespace aaf::detail {
 

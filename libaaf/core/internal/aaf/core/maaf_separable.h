@@ -2,8 +2,8 @@
 
 #include <vector>
 
-#include "aaf/core/gather.h"
-#include "aaf/core/maaf_accumulation.h"
+#include "aaf/core/kernels/gather.h"
+#include "aaf/core/methods/maaf/maaf_accumulation.h"
 
 namespace aaf {
 

@@ -2,8 +2,8 @@
 
 #include <vector>
 
-#include "aaf/core/frame_allocator.h"
-#include "aaf/core/plane_view.h"
+#include "aaf/core/contract/plane_view.h"
+#include "aaf/core/util/frame_allocator.h"
 
 namespace aaf {
 

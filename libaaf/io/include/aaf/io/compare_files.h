@@ -8,8 +8,8 @@
 #include <string>
 #include <vector>
 
-#include "aaf/core/aov_set.h"
-#include "aaf/core/error_metrics.h"
+#include "aaf/core/contract/aov_set.h"
+#include "aaf/core/metrics/error_metrics.h"
 
 namespace aaf::io {
 

@@ -5,7 +5,7 @@
 #include <string>
 #include <vector>
 
-#include "aaf/core/aov_set.h"
+#include "aaf/core/contract/aov_set.h"
 #include "aaf/io/preview.h"
 
 namespace aaf::io {

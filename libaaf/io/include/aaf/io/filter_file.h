@@ -4,11 +4,11 @@
 #include <string>
 #include <vector>
 
-#include "aaf/core/aov_contract.h"
-#include "aaf/core/aov_set.h"
-#include "aaf/core/filter_aovs.h"
-#include "aaf/core/method.h"
-#include "aaf/core/non_finite.h"
+#include "aaf/core/contract/aov_contract.h"
+#include "aaf/core/contract/aov_set.h"
+#include "aaf/core/framework/filter_aovs.h"
+#include "aaf/core/framework/method.h"
+#include "aaf/core/util/non_finite.h"
 #include "aaf/io/exr_io.h"
 
 namespace aaf::io {

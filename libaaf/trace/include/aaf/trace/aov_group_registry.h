@@ -5,8 +5,8 @@
 #include <string>
 #include <vector>
 
-#include "aaf/core/aov_contract.h"
-#include "aaf/core/parameters.h"
+#include "aaf/core/contract/aov_contract.h"
+#include "aaf/core/framework/parameters.h"
 
 namespace aaf::trace {
 

@@ -2,7 +2,7 @@
 
 #include <string>
 
-#include "aaf/core/light_plane.h"
+#include "aaf/core/contract/light_plane.h"
 
 namespace aaf::trace {
 

@@ -6,11 +6,11 @@
 #include <string>
 #include <vector>
 
-#include "aaf/core/aaf_params.h"
-#include "aaf/core/aov_contract.h"
-#include "aaf/core/aov_set.h"
-#include "aaf/core/light_plane.h"
-#include "aaf/core/sampling_plan.h"
+#include "aaf/core/contract/aov_contract.h"
+#include "aaf/core/contract/aov_set.h"
+#include "aaf/core/contract/light_plane.h"
+#include "aaf/core/methods/aaf/aaf_params.h"
+#include "aaf/core/methods/aaf/sampling_plan.h"
 #include "aaf/trace/aov_group_registry.h"
 
 namespace aaf::trace {
