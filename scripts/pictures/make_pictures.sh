@@ -1,0 +1,73 @@
+#!/usr/bin/env bash
+# The documentation's pictures: for each method, its scene's input, its
+# filtered output and a converged reference side by side (a crop of a small
+# render), and for AAF its filter widths and adaptive sample counts in false
+# colour (AAF Fig. 7). Writes small PNGs beside each method's page,
+# libaaf/core/methods/<name>/pictures/, which README.md and the pages show.
+# Every method runs at its CLI defaults; the settings are the studies'
+# (scripts/study, scripts/isg_study.sh, scripts/ratio_study.py) at a smaller size.
+# About two minutes on 2 cores.
+set -euo pipefail
+root="$(cd "$(dirname "${BASH_SOURCE[0]}")/../.." && pwd)"
+aaf="${AAF:-$root/build/cli/aaf}"
+[ -x "$aaf" ] || "$root/scripts/build.sh"
+methods="$root/libaaf/core/methods"
+work="$(mktemp -d)"
+trap 'rm -rf "$work"' EXIT
+quiet=(--progress none)
+
+# strip OUT CROP IMAGE:CHANNELS...: each image previewed (OCIO default view),
+# cropped to CROP (WxH+X+Y) and laid side by side with a 2-pixel gap.
+strip() {
+  local out=$1 crop=$2 panels=() i=0
+  shift 2
+  for spec in "$@"; do
+    local file=${spec%%:*} channels
+    IFS=, read -ra channels <<< "${spec#*:}"
+    "$aaf" preview "$file" --channels "${channels[@]}" -o "$work/panel_$i.png" > /dev/null
+    oiiotool "$work/panel_$i.png" --cut "$crop" -o "$work/crop_$i.png"
+    panels+=("$work/crop_$i.png")
+    i=$((i + 1))
+  done
+  mkdir -p "$(dirname "$out")"
+  oiiotool "${panels[@]}" --mosaic:pad=2 "${#panels[@]}x1" -d uint8 -o "$out"
+  echo "wrote ${out#"$root"/}"
+}
+
+# AAF (grids): 9 spp, filtered, 1024 spp; then beta and the plan's spp.
+"$aaf" render grids --width 320 --height 240 --spp 9 --seed 1 -o "$work/grids.exr" "${quiet[@]}"
+"$aaf" render grids --width 320 --height 240 --spp 1024 --seed 1000 -o "$work/grids_ref.exr" "${quiet[@]}"
+"$aaf" filter aaf "$work/grids.exr" -o "$work/grids_aaf.exr" "${quiet[@]}"
+"$aaf" plan "$work/grids.exr" -o "$work/grids_plan.exr"
+crop=160x120+80+60
+strip "$methods/aaf/pictures/grids.png" $crop "$work/grids.exr:R,G,B" "$work/grids_aaf.exr:R,G,B" \
+  "$work/grids_ref.exr:R,G,B"
+"$aaf" preview "$work/grids_aaf.exr" --channels aaf_beta.X --false-colour -o "$work/beta.png" > /dev/null
+"$aaf" preview "$work/grids_plan.exr" --channels plan.spp --false-colour -o "$work/spp.png" > /dev/null
+oiiotool "$work/beta.png" "$work/spp.png" --mosaic:pad=2 2x1 -d uint8 -o "$methods/aaf/pictures/grids_beta_spp.png"
+echo "wrote libaaf/core/methods/aaf/pictures/grids_beta_spp.png"
+
+# MAAF 6D (room): 16 path samples, filtered, 256.
+"$aaf" render room --width 160 --height 120 --spp 16 --seed 1 --aovs maaf6 -o "$work/room.exr" "${quiet[@]}"
+"$aaf" render room --width 160 --height 120 --spp 256 --seed 1000 --aovs maaf6 -o "$work/room_ref.exr" "${quiet[@]}"
+"$aaf" filter maaf6 "$work/room.exr" -o "$work/room_maaf6.exr" "${quiet[@]}"
+strip "$methods/maaf6/pictures/room.png" 160x120+0+0 "$work/room.exr:R,G,B" "$work/room_maaf6.exr:R,G,B" \
+  "$work/room_ref.exr:R,G,B"
+
+# ISG (gallery): one ray per pixel and effect against distribution ray tracing.
+"$aaf" render gallery --width 320 --height 240 --spp 1 --seed 2 --aovs isg,aaf,depth -o "$work/one.exr" "${quiet[@]}"
+"$aaf" render gallery --width 320 --height 240 --spp 256 --seed 1 --aovs isg,aaf,depth -o "$work/ref.exr" "${quiet[@]}"
+"$aaf" filter isg-shadow "$work/one.exr" -o "$work/isg_shadow.exr" "${quiet[@]}"
+"$aaf" filter isg-glossy "$work/one.exr" -o "$work/isg_glossy.exr" "${quiet[@]}"
+crop=200x120+60+100
+strip "$methods/isg/pictures/gallery_shadow.png" $crop "$work/one.exr:isg.V" "$work/isg_shadow.exr:aaf.V" \
+  "$work/ref.exr:shadow.V"
+strip "$methods/isg/pictures/gallery_glossy.png" $crop "$work/one.exr:reflect.R,reflect.G,reflect.B" \
+  "$work/isg_glossy.exr:isg_glossy.R,isg_glossy.G,isg_glossy.B" "$work/ref.exr:glossy.R,glossy.G,glossy.B"
+
+# The ratio estimator (livingroom): 2 rays per light, denoised, 256.
+"$aaf" render livingroom --width 160 --height 120 --spp 2 --seed 1 --aovs ratio -o "$work/lr.exr" "${quiet[@]}"
+"$aaf" render livingroom --width 160 --height 120 --spp 256 --seed 1000 --aovs ratio -o "$work/lr_ref.exr" "${quiet[@]}"
+"$aaf" filter ratio "$work/lr.exr" -o "$work/lr_ratio.exr" "${quiet[@]}"
+strip "$methods/ratio/pictures/livingroom.png" 160x120+0+0 "$work/lr.exr:ratio.S.R,ratio.S.G,ratio.S.B" \
+  "$work/lr_ratio.exr:R,G,B" "$work/lr_ref.exr:ratio.S.R,ratio.S.G,ratio.S.B"
