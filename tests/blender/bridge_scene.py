@@ -7,6 +7,7 @@ multilayer EXR with Position, Normal and Object Index passes.
 Arguments after --: BRIDGE_DIR OUT_DIR WIDTH HEIGHT."""
 import json
 import math
+import os
 import sys
 
 import bpy
@@ -71,3 +72,5 @@ settings.color_depth = "32"
 scene.render.filepath = f"{out_dir}/cycles.exr"
 bpy.ops.render.render(write_still=True)
 print("aaf-bridge-test: view layer", layer.name, "rendered to", scene.render.filepath)
+if len(args) > 4:  # the shot itself, for a test that exports it again (tests/docs/test_doc_commands.py)
+    bpy.ops.wm.save_as_mainfile(filepath=os.path.abspath(args[4]))
