@@ -1,5 +1,7 @@
 #include <catch2/catch.hpp>
 
+#include <algorithm>
+#include <cmath>
 #include <cstdint>
 #include <cstring>
 #include <filesystem>
@@ -24,11 +26,14 @@
 // AOVs are written. A failing check prints the new hash; update one only
 // when a render is meant to change.
 //
-// Every render is checked under each instruction set this CPU runs (sse4.2
-// on every x86-64 machine, then avx2 and avx512 where present), against one
-// hash: Embree only finds the triangle, the tracer computes where the ray
-// meets it (EmbreeScene::intersect), so the bytes hold on any x86-64 CPU
-// for this build (GCC or Clang, Release, Embree 3).
+// The bytes are pinned to sse4.2, which every x86-64 CPU has: Embree only
+// finds the triangle and the tracer computes where the ray meets it
+// (EmbreeScene::intersect), so under that pin the hash holds on any x86-64
+// CPU for this build (GCC or Clang, Release, Embree 3). Under the wider sets
+// this CPU runs (avx2, avx512) Embree's kernels may pick the neighbouring
+// triangle for a ray through a shared edge, so there the render must match
+// the pinned one value for value but for at most 0.1% of its values (the
+// bound of test_instruction_sets.cpp).
 
 using namespace aaf;
 using aaf_test::golden_hash;
@@ -37,17 +42,40 @@ using aaf_test::instruction_sets_here;
 
 namespace {
 
-/// Checks the hash of `render()` under every instruction set this CPU runs;
-/// the process's own setting is restored afterwards.
+/// The fraction of `test`'s channel values that differ from `reference`'s
+/// (NaN equals NaN); differing channel names or sizes count as all.
+double fraction_differing(const AovSet &reference, const AovSet &test) {
+    if (reference.channel_names() != test.channel_names()) return 1.0;
+    std::size_t differ = 0, values = 0;
+    for (std::size_t c = 0; c < reference.channel_names().size(); ++c) {
+        const AovSet::Plane &a = reference.plane(c), &b = test.plane(c);
+        if (a.size() != b.size()) return 1.0;
+        for (std::size_t i = 0; i < a.size(); ++i, ++values)
+            if (std::memcmp(&a[i], &b[i], sizeof(float)) != 0 && !(std::isnan(a[i]) && std::isnan(b[i])))
+                ++differ;
+    }
+    return double(differ) / double(std::max<std::size_t>(values, 1));
+}
+
+/// Checks the hash of `render()` pinned to sse4.2, and that every wider set
+/// this CPU runs gives the same bytes or differs in at most 0.1% of the
+/// values; the process's own setting is restored afterwards.
 template <typename Render>
 void check_golden(const Render &render, std::uint64_t expected) {
     const InstructionSet before = instruction_set();
+    set_instruction_set(InstructionSet::Sse42);
+    const AovSet pinned = render();
+    const std::uint64_t hash = golden_hash(pinned);
+    INFO("pinned to sse4.2: hash " << hex(hash) << ", golden " << hex(expected));
+    CHECK(hash == expected);
     for (InstructionSet set : instruction_sets_here()) {
+        if (set == InstructionSet::Sse42) continue;
         set_instruction_set(set);
-        const std::uint64_t hash = golden_hash(render());
-        INFO("instruction set " << instruction_set_name(set) << ": hash " << hex(hash) << ", golden "
-                                << hex(expected));
-        CHECK(hash == expected);
+        const AovSet wider = render();
+        if (golden_hash(wider) == hash) continue;
+        const double differing = fraction_differing(pinned, wider);
+        INFO(instruction_set_name(set) << " against sse4.2: fraction of values that differ " << differing);
+        CHECK(differing <= 1e-3);
     }
     set_instruction_set(before);
 }
