@@ -47,6 +47,17 @@ strip "$methods/aaf/pictures/grids.png" $crop "$work/grids.exr:R,G,B" "$work/gri
 oiiotool "$work/beta.png" "$work/spp.png" --mosaic:pad=2 2x1 -d uint8 -o "$methods/aaf/pictures/grids_beta_spp.png"
 echo "wrote libaaf/core/methods/aaf/pictures/grids_beta_spp.png"
 
+# The gaussian baseline (grids): the same 9 spp, one screen-space width.
+"$aaf" filter gaussian "$work/grids.exr" -o "$work/grids_gaussian.exr" "${quiet[@]}"
+strip "$methods/gaussian/pictures/grids.png" 160x120+80+60 "$work/grids.exr:R,G,B" \
+  "$work/grids_gaussian.exr:R,G,B" "$work/grids_ref.exr:R,G,B"
+
+# MAAF (grids): 16 spp soft shadows, 25 filters in 4D, against AAF's 1024 spp reference.
+"$aaf" render grids --width 320 --height 240 --spp 16 --seed 1 --aovs maaf -o "$work/grids_m.exr" "${quiet[@]}"
+"$aaf" filter maaf "$work/grids_m.exr" -o "$work/grids_maaf.exr" "${quiet[@]}"
+strip "$methods/maaf/pictures/grids.png" 160x120+80+60 "$work/grids_m.exr:R,G,B" "$work/grids_maaf.exr:R,G,B" \
+  "$work/grids_ref.exr:R,G,B"
+
 # MAAF 6D (room): 16 path samples, filtered, 256.
 "$aaf" render room --width 160 --height 120 --spp 16 --seed 1 --aovs maaf6 -o "$work/room.exr" "${quiet[@]}"
 "$aaf" render room --width 160 --height 120 --spp 256 --seed 1000 --aovs maaf6 -o "$work/room_ref.exr" "${quiet[@]}"
@@ -71,3 +82,18 @@ strip "$methods/isg/pictures/gallery_glossy.png" $crop "$work/one.exr:reflect.R,
 "$aaf" filter ratio "$work/lr.exr" -o "$work/lr_ratio.exr" "${quiet[@]}"
 strip "$methods/ratio/pictures/livingroom.png" 160x120+0+0 "$work/lr.exr:ratio.S.R,ratio.S.G,ratio.S.B" \
   "$work/lr_ratio.exr:R,G,B" "$work/lr_ref.exr:ratio.S.R,ratio.S.G,ratio.S.B"
+
+# ISG depth of field (gallery through a thin lens focused on the post, as
+# scripts/isg_study.sh): the pinhole image, isg-dof, the thin-lens reference.
+/usr/bin/python3 - "$root/testdata/scenes/gallery.json" "$work/gallery_lens.json" <<'PY'
+import json, sys
+scene = json.load(open(sys.argv[1]))
+scene["name"] = "gallery_lens"
+scene["camera"].update({"type": "thin_lens", "aperture_radius_m": 0.15, "focus_distance_m": 4.6})
+json.dump(scene, open(sys.argv[2], "w"), indent=1)
+PY
+"$aaf" render "$work/gallery_lens.json" --width 160 --height 120 --spp 256 --seed 1 --aovs isg,depth -o "$work/lens.exr" \
+  "${quiet[@]}"
+"$aaf" filter isg-dof "$work/lens.exr" -o "$work/isg_dof.exr" "${quiet[@]}"
+strip "$methods/isg/pictures/gallery_dof.png" 100x60+30+50 "$work/lens.exr:pinhole.R,pinhole.G,pinhole.B" \
+  "$work/isg_dof.exr:isg_dof.R,isg_dof.G,isg_dof.B" "$work/lens.exr:R,G,B"

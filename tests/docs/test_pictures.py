@@ -6,7 +6,7 @@ Usage: test_pictures.py SOURCE_DIR
 Every image a page links (`![...](path)` in README.md and the method pages)
 exists; every PNG under libaaf/core/methods/*/pictures/ is written by
 scripts/pictures/make_pictures.sh and shown by README.md and by its
-method's page. Exits 1 listing every problem."""
+method's page; every method folder with a page has a picture. Exits 1 listing every problem."""
 import glob
 import os
 import re
@@ -27,6 +27,10 @@ for page in pages:
 pictures = sorted(glob.glob(os.path.join(root, "libaaf/core/methods/*/pictures/*.png")))
 if not pictures:
     problems.append("no pictures under libaaf/core/methods/*/pictures/")
+for folder in sorted(glob.glob(os.path.join(root, "libaaf/core/methods/*/README.md"))):
+    method = os.path.basename(os.path.dirname(folder))
+    if not glob.glob(os.path.join(os.path.dirname(folder), "pictures", "*.png")):
+        problems.append(f"libaaf/core/methods/{method} has a page but no picture")
 for picture in pictures:
     method, name = picture.split(os.sep)[-3], os.path.basename(picture)
     if f"$methods/{method}/pictures/{name}" not in script:
