@@ -1,5 +1,7 @@
 #pragma once
 
+#include <algorithm>
+#include <cmath>
 #include <cstdint>
 #include <cstring>
 #include <filesystem>
@@ -85,6 +87,35 @@ inline std::vector<aaf::InstructionSet> instruction_sets_here() {
     for (aaf::InstructionSet set : aaf::kInstructionSets)
         if (set != aaf::InstructionSet::Native && aaf::cpu_supports(set)) sets.push_back(set);
     return sets;
+}
+
+/// How far `test` is from `reference`: the largest difference of any channel
+/// value relative to max(1, |reference|), and the fraction of values that
+/// differ by more than `tolerance` in that measure (NaN against NaN agrees;
+/// differing channel names or plane sizes count as every value beyond).
+struct Agreement {
+    double largest = 0;
+    double fraction_beyond = 0;
+};
+
+inline Agreement agreement(const aaf::AovSet &reference, const aaf::AovSet &test, double tolerance) {
+    Agreement result;
+    if (reference.channel_names() != test.channel_names()) return {INFINITY, 1.0};
+    std::size_t beyond = 0, values = 0;
+    for (std::size_t c = 0; c < reference.channel_names().size(); ++c) {
+        const aaf::AovSet::Plane &a = reference.plane(c), &b = test.plane(c);
+        if (a.size() != b.size()) return {INFINITY, 1.0};
+        for (std::size_t i = 0; i < a.size(); ++i, ++values) {
+            if (std::isnan(a[i]) && std::isnan(b[i])) continue;
+            const double difference =
+                std::abs(double(a[i]) - double(b[i])) / std::max(1.0, std::abs(double(a[i])));
+            if (!(difference <= tolerance)) ++beyond;  // NaN against a number counts too
+            if (!(difference <= result.largest))
+                result.largest = std::isnan(difference) ? INFINITY : difference;
+        }
+    }
+    result.fraction_beyond = double(beyond) / double(std::max<std::size_t>(values, 1));
+    return result;
 }
 
 }  // namespace aaf_test

@@ -12,6 +12,7 @@
 #include <string>
 #include <vector>
 
+#include "../golden_hash.h"
 #include "aaf/core/contract/aov_contract.h"
 #include "aaf/core/framework/filter_aovs.h"
 #include "aaf/core/framework/method_registry.h"
@@ -19,6 +20,8 @@
 #include "aaf/trace/render.h"
 
 using namespace aaf;
+using aaf_test::Agreement;
+using aaf_test::agreement;
 
 namespace {
 
@@ -56,34 +59,6 @@ AovSet render(const std::string &scene, InstructionSet set) {
     settings.seed = 3;
     settings.aovs = kEveryGroup;
     return trace::render_scene(scene, settings);
-}
-
-/// How far `test` is from `reference`: the largest difference of any
-/// channel value relative to max(1, |reference|), and the fraction of values
-/// that differ by more than `tolerance` in that measure.
-struct Agreement {
-    double largest = 0;
-    double fraction_beyond = 0;
-};
-
-Agreement agreement(const AovSet &reference, const AovSet &test, double tolerance) {
-    REQUIRE(reference.channel_names() == test.channel_names());
-    Agreement result;
-    std::size_t beyond = 0, values = 0;
-    for (std::size_t c = 0; c < reference.channel_names().size(); ++c) {
-        const AovSet::Plane &a = reference.plane(c), &b = test.plane(c);
-        REQUIRE(a.size() == b.size());
-        for (std::size_t i = 0; i < a.size(); ++i, ++values) {
-            if (std::isnan(a[i]) && std::isnan(b[i])) continue;
-            const double difference =
-                std::abs(double(a[i]) - double(b[i])) / std::max(1.0, std::abs(double(a[i])));
-            if (!(difference <= tolerance)) ++beyond;  // NaN against a number counts too
-            if (!(difference <= result.largest))
-                result.largest = std::isnan(difference) ? INFINITY : difference;
-        }
-    }
-    result.fraction_beyond = double(beyond) / double(std::max<std::size_t>(values, 1));
-    return result;
 }
 
 }  // namespace

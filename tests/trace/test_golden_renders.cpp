@@ -1,7 +1,5 @@
 #include <catch2/catch.hpp>
 
-#include <algorithm>
-#include <cmath>
 #include <cstdint>
 #include <cstring>
 #include <filesystem>
@@ -42,21 +40,6 @@ using aaf_test::instruction_sets_here;
 
 namespace {
 
-/// The fraction of `test`'s channel values that differ from `reference`'s
-/// (NaN equals NaN); differing channel names or sizes count as all.
-double fraction_differing(const AovSet &reference, const AovSet &test) {
-    if (reference.channel_names() != test.channel_names()) return 1.0;
-    std::size_t differ = 0, values = 0;
-    for (std::size_t c = 0; c < reference.channel_names().size(); ++c) {
-        const AovSet::Plane &a = reference.plane(c), &b = test.plane(c);
-        if (a.size() != b.size()) return 1.0;
-        for (std::size_t i = 0; i < a.size(); ++i, ++values)
-            if (std::memcmp(&a[i], &b[i], sizeof(float)) != 0 && !(std::isnan(a[i]) && std::isnan(b[i])))
-                ++differ;
-    }
-    return double(differ) / double(std::max<std::size_t>(values, 1));
-}
-
 /// Checks the hash of `render()` pinned to sse4.2, and that every wider set
 /// this CPU runs gives the same bytes or differs in at most 0.1% of the
 /// values; the process's own setting is restored afterwards.
@@ -73,9 +56,10 @@ void check_golden(const Render &render, std::uint64_t expected) {
         set_instruction_set(set);
         const AovSet wider = render();
         if (golden_hash(wider) == hash) continue;
-        const double differing = fraction_differing(pinned, wider);
-        INFO(instruction_set_name(set) << " against sse4.2: fraction of values that differ " << differing);
-        CHECK(differing <= 1e-3);
+        const aaf_test::Agreement a = aaf_test::agreement(pinned, wider, 0.0);
+        INFO(instruction_set_name(set)
+             << " against sse4.2: fraction of values that differ " << a.fraction_beyond);
+        CHECK(a.fraction_beyond <= 1e-3);
     }
     set_instruction_set(before);
 }
