@@ -24,13 +24,7 @@ scene="$root/testdata/scenes/gallery.json"
 # AAF at the same scene with 9 shadow rays per pixel.
 "$aaf" render "$scene" "${size[@]}" --spp "$AAF_SPP" --seed 3 --aovs aaf -o "$work/aaf_in.exr"
 # Depth of field: the gallery through a thin lens focused on the post.
-/usr/bin/python3 - "$scene" "$work/gallery_lens.json" <<'PY'
-import json, sys
-scene = json.load(open(sys.argv[1]))
-scene["name"] = "gallery_lens"
-scene["camera"].update({"type": "thin_lens", "aperture_radius_m": 0.15, "focus_distance_m": 4.6})
-json.dump(scene, open(sys.argv[2], "w"), indent=1)
-PY
+/usr/bin/python3 "$root/scripts/scenes/gallery_lens.py" "$scene" "$work/gallery_lens.json"
 "$aaf" render "$work/gallery_lens.json" "${size[@]}" --spp "$REF" --seed 1 --aovs isg,depth -o "$work/lens.exr"
 "$aaf" render "$work/gallery_lens.json" "${size[@]}" --spp 1 --seed 2 --aovs isg,depth -o "$work/lens_one.exr"
 

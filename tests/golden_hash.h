@@ -89,6 +89,11 @@ inline std::vector<aaf::InstructionSet> instruction_sets_here() {
     return sets;
 }
 
+/// The fraction of a render's values that may differ between instruction
+/// sets: a ray through an edge two triangles share may find the other
+/// triangle under another set of Embree's kernels.
+inline constexpr double kEdgeGrazingFraction = 1e-3;
+
 /// How far `test` is from `reference`: the largest difference of any channel
 /// value relative to max(1, |reference|), and the fraction of values that
 /// differ by more than `tolerance` in that measure (NaN against NaN agrees;

@@ -85,13 +85,7 @@ strip "$methods/ratio/pictures/livingroom.png" 160x120+0+0 "$work/lr.exr:ratio.S
 
 # ISG depth of field (gallery through a thin lens focused on the post, as
 # scripts/isg_study.sh): the pinhole image, isg-dof, the thin-lens reference.
-/usr/bin/python3 - "$root/testdata/scenes/gallery.json" "$work/gallery_lens.json" <<'PY'
-import json, sys
-scene = json.load(open(sys.argv[1]))
-scene["name"] = "gallery_lens"
-scene["camera"].update({"type": "thin_lens", "aperture_radius_m": 0.15, "focus_distance_m": 4.6})
-json.dump(scene, open(sys.argv[2], "w"), indent=1)
-PY
+/usr/bin/python3 "$root/scripts/scenes/gallery_lens.py" "$root/testdata/scenes/gallery.json" "$work/gallery_lens.json"
 "$aaf" render "$work/gallery_lens.json" --width 160 --height 120 --spp 256 --seed 1 --aovs isg,depth -o "$work/lens.exr" \
   "${quiet[@]}"
 "$aaf" filter isg-dof "$work/lens.exr" -o "$work/isg_dof.exr" "${quiet[@]}"

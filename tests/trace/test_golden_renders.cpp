@@ -30,8 +30,8 @@
 // CPU for this build (GCC or Clang, Release, Embree 3). Under the wider sets
 // this CPU runs (avx2, avx512) Embree's kernels may pick the neighbouring
 // triangle for a ray through a shared edge, so there the render must match
-// the pinned one value for value but for at most 0.1% of its values (the
-// bound of test_instruction_sets.cpp).
+// the pinned one's header and all but at most 0.1% of its values
+// (aaf_test::kEdgeGrazingFraction, the bound of test_instruction_sets.cpp).
 
 using namespace aaf;
 using aaf_test::golden_hash;
@@ -55,11 +55,11 @@ void check_golden(const Render &render, std::uint64_t expected) {
         if (set == InstructionSet::Sse42) continue;
         set_instruction_set(set);
         const AovSet wider = render();
-        if (golden_hash(wider) == hash) continue;
         const aaf_test::Agreement a = aaf_test::agreement(pinned, wider, 0.0);
         INFO(instruction_set_name(set)
              << " against sse4.2: fraction of values that differ " << a.fraction_beyond);
-        CHECK(a.fraction_beyond <= 1e-3);
+        CHECK(wider.attributes == pinned.attributes);
+        CHECK(a.fraction_beyond <= aaf_test::kEdgeGrazingFraction);
     }
     set_instruction_set(before);
 }
