@@ -50,7 +50,7 @@
 #include "aaf/core/kernels/fixed_gaussian.h"
 #include "aaf/core/kernels/gather.h"
 #include "aaf/core/methods/aaf/aaf_filter.h"
-#include "aaf/core/occluder_fill.h"
+#include "aaf/core/methods/aaf/occluder_fill.h"
 #include "aaf/core/util/thread_count.h"
 #include "aaf/trace/render.h"
 

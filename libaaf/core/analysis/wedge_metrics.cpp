@@ -5,8 +5,8 @@
 #include <string>
 #include <vector>
 
-#include "aaf/core/parallel.h"
 #include "aaf/core/util/error.h"
+#include "aaf/core/util/parallel.h"
 
 namespace aaf {
 

@@ -7,10 +7,10 @@
 #include <string>
 #include <utility>
 
-#include "aaf/core/fast_exp.h"
-#include "aaf/core/gather_rows.h"
-#include "aaf/core/parallel.h"
+#include "aaf/core/kernels/fast_exp.h"
+#include "aaf/core/kernels/gather_rows.h"
 #include "aaf/core/util/error.h"
+#include "aaf/core/util/parallel.h"
 
 namespace aaf {
 

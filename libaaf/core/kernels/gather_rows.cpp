@@ -1,7 +1,7 @@
 // The unmodulated gather's inner loops (gather_rows.h) for every instruction
 // set Google Highway targets, chosen at run time. Highway is a private
 // implementation dependency of aaf_core: no public header includes it.
-#include "aaf/core/gather_rows.h"
+#include "aaf/core/kernels/gather_rows.h"
 
 #include <algorithm>
 #include <cstddef>
@@ -122,6 +122,28 @@ HWY_INLINE void accumulate(const TapPlanes &g, const float *const *source, std::
     }
 }
 
+/// Pixel `c`'s guides, broadcast to every lane.
+template <bool Sheared>
+HWY_INLINE Centre make_centre(const GatherGuides &g, std::size_t c, float cos_threshold) {
+    const D d;
+    Centre centre;
+    centre.u = hn::Set(d, g.coord_u_m[c]);
+    centre.v = hn::Set(d, g.coord_v_m[c]);
+    centre.n = hn::Set(d, Sheared ? g.coord_n_m[c] : 0.0f);
+    centre.shear_u = hn::Set(d, Sheared ? g.shear_u[c] : 0.0f);
+    centre.shear_v = hn::Set(d, Sheared ? g.shear_v[c] : 0.0f);
+    centre.inv_two_sigma_sq_n = hn::Set(d, Sheared ? g.inv_two_sigma_sq_n[c] : 0.0f);
+    centre.normal_x = hn::Set(d, g.normal_x[c]);
+    centre.normal_y = hn::Set(d, g.normal_y[c]);
+    centre.normal_z = hn::Set(d, g.normal_z[c]);
+    centre.id = hn::Set(d, g.object_id[c]);
+    centre.neg_inv_two_sigma_sq = hn::Set(d, -g.inv_two_sigma_sq[c]);
+    centre.anisotropic = g.anisotropic();
+    centre.neg_inv_two_sigma_sq_v = hn::Set(d, centre.anisotropic ? -g.inv_two_sigma_sq_v[c] : 0.0f);
+    centre.cos_threshold = hn::Set(d, cos_threshold);
+    return centre;
+}
+
 /// gather.cpp's gather_pixel for an unmodulated sweep: pixel (x, y) over
 /// taps |ox| <= reach_x, |oy| <= reach_y.
 template <int K, bool Sheared>
@@ -131,21 +153,7 @@ void gather_pixel(const GatherSweep &s, int x, int y, int reach_x, int reach_y) 
     const std::size_t c = g.index(x, y);
     const float normal_x = g.normal_x[c], normal_y = g.normal_y[c], normal_z = g.normal_z[c],
                 id = g.object_id[c];
-    Centre centre;
-    centre.u = hn::Set(d, g.coord_u_m[c]);
-    centre.v = hn::Set(d, g.coord_v_m[c]);
-    centre.n = hn::Set(d, Sheared ? g.coord_n_m[c] : 0.0f);
-    centre.shear_u = hn::Set(d, Sheared ? g.shear_u[c] : 0.0f);
-    centre.shear_v = hn::Set(d, Sheared ? g.shear_v[c] : 0.0f);
-    centre.inv_two_sigma_sq_n = hn::Set(d, Sheared ? g.inv_two_sigma_sq_n[c] : 0.0f);
-    centre.normal_x = hn::Set(d, normal_x);
-    centre.normal_y = hn::Set(d, normal_y);
-    centre.normal_z = hn::Set(d, normal_z);
-    centre.id = hn::Set(d, id);
-    centre.neg_inv_two_sigma_sq = hn::Set(d, -g.inv_two_sigma_sq[c]);
-    centre.anisotropic = g.anisotropic();
-    centre.neg_inv_two_sigma_sq_v = hn::Set(d, centre.anisotropic ? -g.inv_two_sigma_sq_v[c] : 0.0f);
-    centre.cos_threshold = hn::Set(d, s.cos_threshold);
+    const Centre centre = make_centre<Sheared>(g, c, s.cos_threshold);
     const TapPlanes planes{g.coord_u_m.data(), g.coord_v_m.data(), Sheared ? g.coord_n_m.data() : nullptr,
                            g.normal_x.data(),  g.normal_y.data(),  g.normal_z.data(),
                            g.object_id.data()};
@@ -241,6 +249,32 @@ struct WideCentres {
     std::ptrdiff_t c0 = 0;  ///< the first centre's index in the planes
 };
 
+/// The guides of the kWideLanes centres from index `c0`, with their reach and columns.
+template <bool Sheared>
+HWY_INLINE WideCentres load_wide_centres(const GatherGuides &g, std::ptrdiff_t c0, hn::Vec<DWI> reach,
+                                         hn::Vec<DWI> lane_x) {
+    const DW d;
+    const std::ptrdiff_t size = std::ptrdiff_t(g.width) * g.height;
+    WideCentres c;
+    c.c0 = c0;
+    c.u = load_guarded(g.coord_u_m.data(), c0, size);
+    c.v = load_guarded(g.coord_v_m.data(), c0, size);
+    c.n = Sheared ? load_guarded(g.coord_n_m.data(), c0, size) : hn::Zero(d);
+    c.shear_u = Sheared ? load_guarded(g.shear_u.data(), c0, size) : hn::Zero(d);
+    c.shear_v = Sheared ? load_guarded(g.shear_v.data(), c0, size) : hn::Zero(d);
+    c.inv_two_sigma_sq_n = Sheared ? load_guarded(g.inv_two_sigma_sq_n.data(), c0, size) : hn::Zero(d);
+    c.normal_x = load_guarded(g.normal_x.data(), c0, size);
+    c.normal_y = load_guarded(g.normal_y.data(), c0, size);
+    c.normal_z = load_guarded(g.normal_z.data(), c0, size);
+    c.id = load_guarded(g.object_id.data(), c0, size);
+    c.neg_inv_two_sigma_sq = hn::Neg(load_guarded(g.inv_two_sigma_sq.data(), c0, size));
+    c.neg_inv_two_sigma_sq_v =
+        g.anisotropic() ? hn::Neg(load_guarded(g.inv_two_sigma_sq_v.data(), c0, size)) : hn::Zero(d);
+    c.reach = reach;
+    c.x = lane_x;
+    return c;
+}
+
 /// Adds the taps at offsets o_begin..o_end of the centres `c` into their
 /// sums, in that order. Without `Guarded` every tap vector must lie inside
 /// the planes (then no load checks its bounds).
@@ -295,9 +329,6 @@ void gather_row_along(const GatherSweep &s, int y, int x_begin, int x_end) {
     const GatherGuides &g = *s.guides;
     const std::ptrdiff_t size = std::ptrdiff_t(g.width) * g.height, row = std::ptrdiff_t(y) * g.width;
     const std::ptrdiff_t step = AlongY ? std::ptrdiff_t(g.width) : 1;  // between neighbouring taps
-    const float *const normal_x = g.normal_x.data(), *const normal_y = g.normal_y.data(),
-                       *const normal_z = g.normal_z.data(), *const id = g.object_id.data();
-    const bool anisotropic = g.anisotropic();
     const VW cos_threshold = hn::Set(d, s.cos_threshold), one = hn::Set(d, 1.0f);
     const auto lane_offsets = hn::Iota(di, 0);
     for (int x0 = x_begin; x0 < x_end; x0 += kWideLanes) {
@@ -329,24 +360,7 @@ void gather_row_along(const GatherSweep &s, int y, int x_begin, int x_end) {
         if (widest < 0) {
             for (int k = 0; k < K; ++k) out[k] = centre_source[k];
         } else {
-            WideCentres c;
-            c.c0 = c0;
-            c.u = load_guarded(g.coord_u_m.data(), c0, size);
-            c.v = load_guarded(g.coord_v_m.data(), c0, size);
-            c.n = Sheared ? load_guarded(g.coord_n_m.data(), c0, size) : hn::Zero(d);
-            c.shear_u = Sheared ? load_guarded(g.shear_u.data(), c0, size) : hn::Zero(d);
-            c.shear_v = Sheared ? load_guarded(g.shear_v.data(), c0, size) : hn::Zero(d);
-            c.inv_two_sigma_sq_n =
-                Sheared ? load_guarded(g.inv_two_sigma_sq_n.data(), c0, size) : hn::Zero(d);
-            c.normal_x = load_guarded(normal_x, c0, size);
-            c.normal_y = load_guarded(normal_y, c0, size);
-            c.normal_z = load_guarded(normal_z, c0, size);
-            c.id = load_guarded(id, c0, size);
-            c.neg_inv_two_sigma_sq = hn::Neg(load_guarded(g.inv_two_sigma_sq.data(), c0, size));
-            c.neg_inv_two_sigma_sq_v =
-                anisotropic ? hn::Neg(load_guarded(g.inv_two_sigma_sq_v.data(), c0, size)) : hn::Zero(d);
-            c.reach = reach;
-            c.x = lane_x;
+            const WideCentres c = load_wide_centres<Sheared>(g, c0, reach, lane_x);
             VW sum[K], weight_sum = hn::Zero(d);
             for (int k = 0; k < K; ++k) sum[k] = hn::Zero(d);
             // Along y the taps' rows are shared by all lanes: 0 <= y + o < height.
@@ -443,8 +457,8 @@ void GatherRow(const GatherSweep &s, int y, int x_begin, int x_end) {
 HWY_AFTER_NAMESPACE();
 
 #if HWY_ONCE
-#include "aaf/core/parallel.h"
 #include "aaf/core/util/instruction_set.h"
+#include "aaf/core/util/parallel.h"
 
 namespace aaf::detail {
 

@@ -1,8 +1,8 @@
 #include <cmath>
 
 #include "aaf/core/methods/isg/isg_roles.h"
-#include "aaf/core/parallel.h"
 #include "aaf/core/util/error.h"
+#include "aaf/core/util/parallel.h"
 #include "aov_groups.h"
 #include "random.h"
 #include "stratified_grid.h"

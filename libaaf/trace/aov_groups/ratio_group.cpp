@@ -5,8 +5,8 @@
 
 #include "../ratio_sampling.h"
 #include "aaf/core/methods/ratio/ratio_roles.h"
-#include "aaf/core/parallel.h"
 #include "aaf/core/util/error.h"
+#include "aaf/core/util/parallel.h"
 #include "aov_groups.h"
 
 namespace aaf::trace {

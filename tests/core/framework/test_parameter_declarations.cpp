@@ -7,9 +7,9 @@
 #include <vector>
 
 #include "aaf/core/framework/method_registry.h"
+#include "aaf/core/framework/parameter_defaults.h"
 #include "aaf/core/framework/parameters.h"
 #include "aaf/core/methods/aaf/aaf_filter.h"
-#include "aaf/core/parameter_defaults.h"
 #include "aaf/core/util/error.h"
 
 using namespace aaf;

@@ -3,7 +3,7 @@
 #include <cmath>
 #include <limits>
 
-#include "aaf/core/fast_exp.h"
+#include "aaf/core/kernels/fast_exp.h"
 
 TEST_CASE("fast_exp_nonpositive matches std::exp to float accuracy on [-87, 0]", "[math]") {
     double worst = 0;

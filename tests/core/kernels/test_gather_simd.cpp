@@ -16,9 +16,9 @@
 #include <vector>
 
 #include "../../unpinned_instruction_set.h"
-#include "aaf/core/fast_exp.h"
-#include "aaf/core/gather_rows.h"
+#include "aaf/core/kernels/fast_exp.h"
 #include "aaf/core/kernels/gather.h"
+#include "aaf/core/kernels/gather_rows.h"
 #include "aaf/core/util/thread_count.h"
 
 using namespace aaf;

@@ -5,13 +5,13 @@
 #include <limits>
 #include <vector>
 
-#include "aaf/core/aaf_guide_rows.h"
 #include "aaf/core/kernels/gather.h"
 #include "aaf/core/kernels/light_bandlimit.h"
 #include "aaf/core/methods/aaf/aaf_bandlimits.h"
-#include "aaf/core/occluder_fill.h"
-#include "aaf/core/parallel.h"
+#include "aaf/core/methods/aaf/aaf_guide_rows.h"
+#include "aaf/core/methods/aaf/occluder_fill.h"
 #include "aaf/core/util/error.h"
+#include "aaf/core/util/parallel.h"
 
 namespace aaf {
 

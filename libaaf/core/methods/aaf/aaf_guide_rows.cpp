@@ -6,7 +6,7 @@
 // comparisons they are defined by (NaN picks the same operand), IEEE
 // divides and square roots, and -ffp-contract=off (CMakeLists.txt) so no
 // multiply-add is fused.
-#include "aaf/core/aaf_guide_rows.h"
+#include "aaf/core/methods/aaf/aaf_guide_rows.h"
 
 #include "aaf/core/methods/aaf/aaf_params.h"
 

@@ -7,10 +7,10 @@
 #include "../builtin_methods.h"
 #include "aaf/core/framework/filter_aovs.h"
 #include "aaf/core/framework/method_registry.h"
+#include "aaf/core/framework/parameter_defaults.h"
 #include "aaf/core/kernels/shadow_composition.h"
 #include "aaf/core/methods/aaf/aaf_filter.h"
 #include "aaf/core/methods/aaf/aaf_roles.h"
-#include "aaf/core/parameter_defaults.h"
 #include "aaf/core/util/error.h"
 #include "aaf_method_inputs.h"
 

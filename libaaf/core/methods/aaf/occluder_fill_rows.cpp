@@ -1,6 +1,6 @@
 // The occluder fill's search (occluder_fill_rows.h) for every instruction set
 // Google Highway targets, chosen at run time.
-#include "aaf/core/occluder_fill_rows.h"
+#include "aaf/core/methods/aaf/occluder_fill_rows.h"
 
 #include <cstdlib>
 

@@ -7,9 +7,9 @@
 #include "aaf/core/kernels/light_bandlimit.h"
 #include "aaf/core/methods/aaf/aaf_bandlimits.h"
 #include "aaf/core/methods/aaf/aaf_roles.h"
-#include "aaf/core/occluder_fill.h"
-#include "aaf/core/parallel.h"
+#include "aaf/core/methods/aaf/occluder_fill.h"
 #include "aaf/core/util/error.h"
+#include "aaf/core/util/parallel.h"
 
 namespace aaf {
 

@@ -5,9 +5,9 @@
 #include <vector>
 
 #include "../builtin_methods.h"
+#include "aaf/core/framework/parameter_defaults.h"
 #include "aaf/core/kernels/fixed_gaussian.h"
 #include "aaf/core/kernels/shadow_composition.h"
-#include "aaf/core/parameter_defaults.h"
 
 namespace aaf {
 

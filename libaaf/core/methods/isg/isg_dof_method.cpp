@@ -10,9 +10,9 @@
 
 #include "../builtin_methods.h"
 #include "aaf/core/contract/aov_contract.h"
+#include "aaf/core/framework/parameter_defaults.h"
 #include "aaf/core/methods/isg/isg_roles.h"
-#include "aaf/core/parallel.h"
-#include "aaf/core/parameter_defaults.h"
+#include "aaf/core/util/parallel.h"
 #include "isg_common.h"
 
 namespace aaf {

@@ -6,11 +6,11 @@
 #include <string>
 
 #include "aaf/core/kernels/gather.h"
-#include "aaf/core/maaf_separable.h"
 #include "aaf/core/methods/maaf/maaf_accumulation.h"
 #include "aaf/core/methods/maaf/maaf_components.h"
-#include "aaf/core/parallel.h"
+#include "aaf/core/methods/maaf/maaf_separable.h"
 #include "aaf/core/util/error.h"
+#include "aaf/core/util/parallel.h"
 
 namespace aaf {
 

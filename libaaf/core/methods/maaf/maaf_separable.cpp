@@ -1,11 +1,11 @@
-#include "aaf/core/maaf_separable.h"
+#include "aaf/core/methods/maaf/maaf_separable.h"
 
 #include <algorithm>
 #include <cmath>
 
-#include "aaf/core/fast_exp.h"
-#include "aaf/core/parallel.h"
+#include "aaf/core/kernels/fast_exp.h"
 #include "aaf/core/util/error.h"
+#include "aaf/core/util/parallel.h"
 
 namespace aaf {
 

@@ -5,10 +5,10 @@
 #include <limits>
 #include <string>
 
+#include "aaf/core/methods/aaf/occluder_fill.h"
 #include "aaf/core/methods/maaf/maaf_components.h"
-#include "aaf/core/occluder_fill.h"
-#include "aaf/core/parallel.h"
 #include "aaf/core/util/error.h"
+#include "aaf/core/util/parallel.h"
 
 namespace aaf {
 

@@ -7,8 +7,8 @@
 
 #include "aaf/core/methods/maaf/maaf_accumulation.h"
 #include "aaf/core/methods/maaf6/maaf6_components.h"
-#include "aaf/core/parallel.h"
 #include "aaf/core/util/error.h"
+#include "aaf/core/util/parallel.h"
 
 namespace aaf {
 

@@ -9,11 +9,11 @@
 #include "../builtin_methods.h"
 #include "aaf/core/contract/aov_contract.h"
 #include "aaf/core/framework/method_registry.h"
+#include "aaf/core/framework/parameter_defaults.h"
 #include "aaf/core/methods/maaf/maaf_roles.h"
 #include "aaf/core/methods/maaf6/maaf6_components.h"
 #include "aaf/core/methods/maaf6/maaf6_filter.h"
 #include "aaf/core/methods/maaf6/maaf6_roles.h"
-#include "aaf/core/parameter_defaults.h"
 #include "aaf/core/util/error.h"
 
 namespace aaf {

@@ -5,9 +5,9 @@
 #include <algorithm>
 #include <cmath>
 
-#include "aaf/core/fast_exp.h"
-#include "aaf/core/parallel.h"
+#include "aaf/core/kernels/fast_exp.h"
 #include "aaf/core/util/error.h"
+#include "aaf/core/util/parallel.h"
 
 namespace aaf {
 

@@ -10,6 +10,7 @@
 
 #include "../aaf/aaf_method_inputs.h"
 #include "../builtin_methods.h"
+#include "aaf/core/framework/parameter_defaults.h"
 #include "aaf/core/kernels/fixed_gaussian.h"
 #include "aaf/core/kernels/gather.h"
 #include "aaf/core/methods/aaf/aaf_filter.h"
@@ -18,9 +19,8 @@
 #include "aaf/core/methods/ratio/ratio_noise_estimate.h"
 #include "aaf/core/methods/ratio/ratio_roles.h"
 #include "aaf/core/methods/ratio/ratio_temporal.h"
-#include "aaf/core/parallel.h"
-#include "aaf/core/parameter_defaults.h"
 #include "aaf/core/util/error.h"
+#include "aaf/core/util/parallel.h"
 
 namespace aaf {
 

@@ -6,8 +6,8 @@
 #include <cmath>
 #include <vector>
 
-#include "aaf/core/parallel.h"
 #include "aaf/core/util/error.h"
+#include "aaf/core/util/parallel.h"
 
 namespace aaf {
 

@@ -16,10 +16,10 @@
 #include <vector>
 
 #include "../../../unpinned_instruction_set.h"
-#include "aaf/core/aaf_guide_rows.h"
 #include "aaf/core/methods/aaf/aaf_bandlimits.h"
 #include "aaf/core/methods/aaf/aaf_filter.h"
-#include "aaf/core/occluder_fill.h"
+#include "aaf/core/methods/aaf/aaf_guide_rows.h"
+#include "aaf/core/methods/aaf/occluder_fill.h"
 #include "aaf/core/util/frame_allocator.h"
 
 using namespace aaf;

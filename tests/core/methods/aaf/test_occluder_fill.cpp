@@ -12,7 +12,7 @@
 #include <vector>
 
 #include "../../../unpinned_instruction_set.h"
-#include "aaf/core/occluder_fill.h"
+#include "aaf/core/methods/aaf/occluder_fill.h"
 #include "aaf/core/util/thread_count.h"
 
 using namespace aaf;
