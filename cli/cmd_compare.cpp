@@ -11,13 +11,16 @@
 #include <utility>
 #include <vector>
 
+#include "aaf/core/framework/method_registry.h"
 #include "aaf/core/util/error.h"
 #include "aaf/io/atomic_file.h"
 #include "aaf/io/compare_files.h"
+#include "aaf/io/exr_io.h"
 #include "aaf/io/heatmap.h"
 #include "channel_options.h"
 #include "commands.h"
 #include "compare_pairs.h"
+#include "provenance.h"
 
 namespace aaf::cli {
 
@@ -207,7 +210,8 @@ struct Options {
     std::vector<std::string> metric_keys{"rmse", "mse", "psnr"};
     std::vector<int> crop;
     std::vector<std::string> fail_above, fail_below;
-    const CLI::Option *frames_option = nullptr;  ///< tells `--frames ''` from no --frames
+    const CLI::Option *frames_option = nullptr;    ///< tells `--frames ''` from no --frames
+    const CLI::Option *channels_option = nullptr;  ///< tells --channels R,G,B from none
     double peak = 1.0;
     float ppd = 67.0206f;
     bool json = false;
@@ -239,6 +243,24 @@ io::CompareFilesOptions library_options(const Options &o, const Metrics &chosen,
     return compare;
 }
 
+/// The channels measured when none are given: what the method that wrote
+/// `test` estimates (MethodInfo::compared) against the role holding the same
+/// quantity in the reference; R,G,B for a beauty, a render, or another file.
+std::vector<std::string> channels_by_role(const std::string &test) {
+    const std::string name = io::read_string_attribute(test, provenance_attr::kMethod);
+    const Method *method = nullptr;
+    for (const Method *candidate : methods())
+        if (candidate->info().name == name) method = candidate;
+    if (!method) return {"R", "G", "B"};
+    const auto &[estimate, reference] = method->info().compared;
+    const std::vector<std::string> &tested = role_info(estimate).channels;
+    const std::vector<std::string> &against = role_info(reference).channels;
+    std::vector<std::string> channels;
+    for (std::size_t c = 0; c < tested.size() && c < against.size(); ++c)
+        channels.push_back(tested[c] == against[c] ? tested[c] : tested[c] + "=" + against[c]);
+    return channels;
+}
+
 /// Measures, prints the results (text, JSON, CSV) and applies the gates.
 void run_compare(const Options &o) {
     Metrics chosen;
@@ -247,6 +269,9 @@ void run_compare(const Options &o) {
     for (const std::string &spec : o.fail_above) gates.push_back(parse_gate(spec, true));
     for (const std::string &spec : o.fail_below) gates.push_back(parse_gate(spec, false));
     io::CompareFilesOptions compare = library_options(o, chosen, gates);
+    // One file: a filter's output is compared by what its method estimates.
+    if (o.channels_option->count() == 0 && o.layer.empty() && !is_batch_input(o.test))
+        compare.channels = channels_by_role(o.test);
 
     std::vector<std::string> unmatched;
     const io::ImagePairs pairs =
@@ -302,11 +327,13 @@ void add_compare_command(CLI::App &app) {
                     "Metrics: rmse, mse, mae, relmse, psnr, ssim, flip (mean), flip_median (weighted median)")
         ->delimiter(',')
         ->capture_default_str();
-    cmd->add_option("--channels", options->channels,
-                    "Channels to compare: NAME (in both) or TEST=REFERENCE (aaf.V=shadow.V); R,G,B and other "
-                    "contract names find a renderer's channels of the role (ViewLayer.Combined.R)")
-        ->delimiter(',')
-        ->capture_default_str();
+    options->channels_option =
+        cmd->add_option(
+               "--channels", options->channels,
+               "Channels to compare: NAME (in both) or TEST=REFERENCE (aaf.V=shadow.V); R,G,B and other "
+               "contract names find a renderer's channels of the role (ViewLayer.Combined.R)")
+            ->delimiter(',')
+            ->capture_default_str();
     cmd->add_option("--layer", options->layer,
                     "Compare every channel of this layer (e.g. aaf); refused when they mix units "
                     "(shadow.V with shadow.d1)");

@@ -64,6 +64,7 @@ struct FilterOptions {
     const CLI::Option *frames_option = nullptr;  ///< tells `--frames ''` from no --frames
     bool skip_existing = false, skip_bad_frames = false;
     bool replace_beauty = true;
+    Composition composition = Composition::Correct;
     io::WriteOptions write;
 };
 
@@ -88,6 +89,14 @@ void add_common_options(CLI::App &cmd, FilterOptions &options) {
     cmd.add_flag("--replace-beauty,!--keep-beauty", options.replace_beauty,
                  "R,G,B become the filtered image, the input's kept as noisy.R/G/B (default); "
                  "--keep-beauty leaves R,G,B as they were and adds the filtered image as aaf.R/G/B");
+    const std::map<std::string, Composition> compositions = {{"correct", Composition::Correct},
+                                                             {"paper", Composition::Paper}};
+    cmd.add_option("--compose", options.composition,
+                   "How R,G,B are made: correct (default) replaces only what the method models in the input "
+                   "beauty, keeping everything else the renderer wrote; paper recomposes them from the "
+                   "method's inputs as its paper does (AAF Eq. 1: r(x) V(x) plus the other lights)")
+        ->transform(CLI::CheckedTransformer(compositions, CLI::ignore_case))
+        ->default_str("correct");
     add_write_options(cmd, options.write, "the output");
     add_map_and_threads_options(cmd, options.maps, options.threads);
 }
@@ -119,7 +128,9 @@ Provenance filter_provenance(const Method &method, const ParameterSet &parameter
     provenance.method = method.info().name;
     for (const ParameterInfo &parameter : method.info().parameters)
         provenance.parameters += parameter.name + "=" + parameters.text(parameter.name) + " ";
-    provenance.parameters += std::string("keep_beauty=") + (options.replace_beauty ? "false" : "true") +
+    provenance.parameters += std::string("compose=") +
+                             (options.composition == Composition::Paper ? "paper" : "correct") +
+                             std::string(" keep_beauty=") + (options.replace_beauty ? "false" : "true") +
                              " half=" + (options.write.half_colour ? "true" : "false") +
                              " compression=" + options.write.compression;
     for (const std::string &map : options.maps) provenance.parameters += " map:" + map;
@@ -164,7 +175,7 @@ void add_method_command(CLI::App &filter, const Method &method) {
         const ChannelMap channels = channel_map_from(options->maps);
         const auto light = light_option(options->light);
         const ParameterSet parameters = parameters_from(method, options->parameters);
-        io::FrameFilter filter = io::method_filter(method, parameters, channels);
+        io::FrameFilter filter = io::method_filter(method, parameters, channels, options->composition);
         const Provenance provenance = filter_provenance(method, parameters, *options);
         // The files a frame is made from, besides its history's.
         const auto own_inputs = [&](const std::string &input) {

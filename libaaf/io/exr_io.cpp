@@ -463,6 +463,21 @@ std::vector<std::string> add_channels_from_other_parts(const std::string &path, 
     return added;
 }
 
+std::string read_string_attribute(const std::string &path, const std::string &name) {
+    try {
+        check_before_opening(path);
+        std::unique_ptr<OIIO::ImageInput> input = OIIO::ImageInput::open(path);
+        if (!input) {
+            OIIO::geterror();  // clear the pending message
+            return {};
+        }
+        const OIIO::ParamValue *value = input->spec().find_attribute(name, OIIO::TypeString);
+        return value ? std::string(value->get_string()) : std::string();
+    } catch (const std::exception &) {
+        return {};
+    }
+}
+
 bool is_readable_image(const std::string &path) {
     try {
         check_before_opening(path);

@@ -56,11 +56,12 @@ AovSet without_channels(const AovSet &aovs, const std::vector<std::string> &drop
     return with_channels(aovs, from_to);
 }
 
-/// A method that composes the beauty from the in-focus shadow drops the
-/// input's defocus: say so, naming it, when the input was rendered through a lens.
+/// A method that recomposes the beauty from the in-focus shadow (--compose
+/// paper) drops the input's defocus: say so, naming it, when the input was
+/// rendered through a lens. (Corrected, such a beauty is kept, with a note.)
 void warn_if_defocused(const std::string &path, const AovSet &aovs, const FrameFilter &filter,
-                       FilterFileReport &report) {
-    if (filter.composes_beauty.empty()) return;
+                       const FilterPlan &plan, FilterFileReport &report) {
+    if (filter.composes_beauty.empty() || plan.composition != Composition::Paper) return;
     // A maaf6 render's layers are traced through the lens: its filter keeps the defocus.
     if (aovs.attributes.count(attr::kMaaf6Pairs)) return;
     auto it = aovs.attributes.find(attr::kApertureRadius);
@@ -86,13 +87,14 @@ void warn_if_non_finite(const std::string &path, FilterFileReport &report) {
 
 }  // namespace
 
-FrameFilter method_filter(const Method &method, const ParameterSet &parameters, const ChannelMap &channels) {
+FrameFilter method_filter(const Method &method, const ParameterSet &parameters, const ChannelMap &channels,
+                          Composition composition) {
     FrameFilter filter;
     filter.candidate_channels = [&method, channels](const AovSet &first_part) {
         return filter_input_candidates(method, first_part, channels);
     };
-    filter.prepare = [&method, parameters, channels](const AovSet &frame) {
-        return prepare_filter(method, parameters, frame, channels);
+    filter.prepare = [&method, parameters, channels, composition](const AovSet &frame) {
+        return prepare_filter(method, parameters, frame, channels, composition);
     };
     // A method that reads the previous frame's output gets the last frame
     // this pipeline filtered (frames run in order, one at a time).
@@ -114,7 +116,7 @@ FrameFilter method_filter(const Method &method, const ParameterSet &parameters, 
 AovSet filter_frame(AovSet input, const FilterPlan &plan, const std::string &source,
                     const FrameFilter &filter, const FilterFileOptions &options, FilterFileReport &report) {
     if (!plan.note.empty()) report.notes.push_back(source + ": " + plan.note);
-    warn_if_defocused(source, input, filter, report);
+    warn_if_defocused(source, input, filter, plan, report);
     if (options.replace_non_finite) report.non_finite = replace_non_finite(input, plan.input_channels);
     warn_if_non_finite(source, report);
 

@@ -212,7 +212,10 @@ AovGroups aov_groups_writing(const std::vector<Role> &roles) {
 }
 
 AovGroups aov_groups_for_method(const std::string &method) {
-    return aov_groups_writing(find_method(method).info().roles.required);
+    const MethodRoles &roles = find_method(method).info().roles;
+    std::vector<Role> written = roles.required;
+    written.insert(written.end(), roles.rendered.begin(), roles.rendered.end());
+    return aov_groups_writing(written);
 }
 
 AovGroups parse_aov_groups(const std::string &list) {

@@ -458,8 +458,10 @@ TEST_CASE("CLI filter: AOVs in other parts are read, left in place, and must sha
     CHECK_FALSE(fs::exists(dir / "out.exr"));
 }
 
-TEST_CASE("CLI filter: a thin-lens render gets a warning that AAF's output has no defocus",
-          "[cli][pipeline]") {
+TEST_CASE(
+    "CLI filter: a thin-lens render keeps its defocused beauty with a note; --compose paper warns that "
+    "AAF's output has no defocus",
+    "[cli][pipeline]") {
     const fs::path dir = scratch_dir("pipeline_lens");
     REQUIRE(
         run_aaf("render studio --width 24 --height 18 --spp 4 -o " + (dir / "lens.exr").string()).exit_code ==
@@ -467,7 +469,15 @@ TEST_CASE("CLI filter: a thin-lens render gets a warning that AAF's output has n
     const auto lens =
         run_aaf("filter aaf " + (dir / "lens.exr").string() + " -o " + (dir / "out.exr").string());
     CHECK(lens.exit_code == 0);
-    CHECK_THAT(lens.output, Catch::Contains("lens.exr: rendered through a thin lens; aaf filters"));
+    CHECK_THAT(lens.output, Catch::Contains("lens.exr: R,G,B left as rendered"));
+    CHECK(lens.output.find("warning") == std::string::npos);
+    const aaf::AovSet in = aaf::io::read_aovs((dir / "lens.exr").string());
+    const aaf::AovSet out = aaf::io::read_aovs((dir / "out.exr").string());
+    for (const char *c : {"R", "G", "B"}) CHECK(in.plane(in.index_of(c)) == out.plane(out.index_of(c)));
+    const auto paper = run_aaf("filter aaf " + (dir / "lens.exr").string() + " --compose paper -o " +
+                               (dir / "paper.exr").string());
+    CHECK(paper.exit_code == 0);
+    CHECK_THAT(paper.output, Catch::Contains("lens.exr: rendered through a thin lens; aaf filters"));
     aaf::io::write_aovs(small_render(), (dir / "pinhole.exr").string());
     const auto pinhole =
         run_aaf("filter aaf " + (dir / "pinhole.exr").string() + " -o " + (dir / "p.exr").string());

@@ -40,14 +40,14 @@ struct Golden {
 };
 
 const Golden kGolden[] = {
-    {"aaf", 0x365e1d13a340e530, 0xe21ee875cb854e1a, 0xece1f0ce2d944f6d, 0x6998987c0339da2c},
-    {"gaussian", 0x78e37bbe0855e1ee, 0x78e37bbe0855e1ee, 0xe563c08506aa4719, 0xe563c08506aa4719},
-    {"maaf", 0xa9930e294626ac62, 0xa9930e294626ac62, 0xdd53ae2de611c078, 0xdd53ae2de611c078},
-    {"isg-shadow", 0x1c9191c854784c13, 0x1c9191c854784c13, 0x5ac78786cabfa543, 0x5ac78786cabfa543},
-    {"isg-glossy", 0x03bcbdd2b445a2e3, 0x03bcbdd2b445a2e3, 0xe47911939bb27072, 0xe47911939bb27072},
-    {"isg-dof", 0x3b1e3bc85ecdacc3, 0x3b1e3bc85ecdacc3, 0x7d8dad3c1c092267, 0x7d8dad3c1c092267},
-    {"ratio", 0x0186c19a1ae62c2c, 0x0186c19a1ae62c2c, 0xcea4c88bc999299b, 0xcea4c88bc999299b},
-    {"maaf6", 0x97df58ce73d022ff, 0x97df58ce73d022ff, 0xec10987962380a48, 0xec10987962380a48},
+    {"aaf", 0x025423b1c7fc12db, 0x5c51743312edcf3e, 0xece1f0ce2d944f6d, 0x6998987c0339da2c},
+    {"gaussian", 0x4fe7ddefcaa5bcd8, 0x4fe7ddefcaa5bcd8, 0xe563c08506aa4719, 0xe563c08506aa4719},
+    {"maaf", 0x056dd751882229d6, 0x056dd751882229d6, 0xdd53ae2de611c078, 0xdd53ae2de611c078},
+    {"isg-shadow", 0x8d7682cd1a551488, 0x8d7682cd1a551488, 0x0c8b83c37a5d285c, 0x0c8b83c37a5d285c},
+    {"isg-glossy", 0x1c21d6f8ec0f885c, 0x1c21d6f8ec0f885c, 0xe47911939bb27072, 0xe47911939bb27072},
+    {"isg-dof", 0xc877da8fef10832e, 0xc877da8fef10832e, 0x9819c505026c321b, 0x9819c505026c321b},
+    {"ratio", 0x25c71d052a2e45ef, 0x25c71d052a2e45ef, 0x3d88cddc6bc885e1, 0x3d88cddc6bc885e1},
+    {"maaf6", 0x9884dd716b1e485b, 0x9884dd716b1e485b, 0xf29bc0b22e6581f5, 0xf29bc0b22e6581f5},
 };
 
 bool without_fma(InstructionSet set) {

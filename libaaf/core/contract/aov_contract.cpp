@@ -97,8 +97,21 @@ const std::vector<RoleInfo> &shared_roles() {
          "noisy shadowed shading of every light but the key light (scenes with several lights); "
          "the beauty is r(x) V(x) plus this",
          true},
+        {Role::KeyLight,
+         {"keylight.R", "keylight.G", "keylight.B"},
+         "linear radiance",
+         "another renderer's own pass of the key light alone (a light group): filtered with the method's "
+         "widths and swapped into that renderer's beauty",
+         true},
     };
     return table;
+}
+
+bool beauty_holds_exactly(const std::map<std::string, AttributeValue> &attributes, const char *holds) {
+    const auto found = attributes.find(attr::kBeauty);
+    if (found == attributes.end()) return false;
+    const std::string *value = std::get_if<std::string>(&found->second);
+    return value && *value == holds;
 }
 
 const std::vector<std::string> &light_attribute_names() {
@@ -251,6 +264,10 @@ const std::vector<RoleSynonym> &shared_role_synonyms() {
         {Role::Albedo, "Blender", {"*.DiffCol.R", "*.DiffCol.G", "*.DiffCol.B"}},
         {Role::Albedo, "pbrt-v4", {"Albedo.R", "Albedo.G", "Albedo.B"}},
         {Role::Albedo, "Arnold", {"albedo.R", "albedo.G", "albedo.B"}},
+        {Role::KeyLight,
+         "Blender (light group 'key')",
+         {"*.Combined_key.R", "*.Combined_key.G", "*.Combined_key.B"}},
+        {Role::KeyLight, "Arnold (light group 'key')", {"RGBA_key.R", "RGBA_key.G", "RGBA_key.B"}},
     };
     return table;
 }

@@ -186,7 +186,7 @@ MethodChoice choose_method(const Method &method, const ParameterSet &parameters,
 }
 
 FilterPlan prepare_filter(const Method &method, const ParameterSet &parameters, const AovSet &frame,
-                          const ChannelMap &channels) {
+                          const ChannelMap &channels, Composition composition) {
     FilterPlan plan;
     plan.asked = &method;
     // Other renderers' names are found through the synonym table.
@@ -200,6 +200,13 @@ FilterPlan prepare_filter(const Method &method, const ParameterSet &parameters, 
     for (const std::string &name : per_light_channels(*plan.method, frame, plan.channels))
         plan.input_channels.push_back(name);
     plan.reads_history = plan.method->reads_history(plan.parameters);
+    plan.composition = composition;
+    const auto has = [&](Role role) {
+        const std::vector<std::string> &names = plan.channels.channels(role);
+        return !names.empty() && has_all(frame, names);
+    };
+    const std::string kept = plan.method->composition_note(frame.attributes, has, composition);
+    if (!kept.empty()) plan.note += (plan.note.empty() ? "" : "; ") + kept;
     return plan;
 }
 
@@ -288,7 +295,8 @@ void check_finite_outputs(const Method &method, const MethodImages &images, cons
 }
 
 AovSet run_method(const Method &method, AovSet &&input, const ChannelMap &found,
-                  const ParameterSet &parameters, const ProgressMonitor &monitor, const AovSet *history) {
+                  const ParameterSet &parameters, Composition composition, const ProgressMonitor &monitor,
+                  const AovSet *history) {
     const std::vector<Role> &outputs = method.info().roles.outputs;
     const bool composes_beauty = std::find(outputs.begin(), outputs.end(), Role::Beauty) != outputs.end();
 
@@ -302,6 +310,7 @@ AovSet run_method(const Method &method, AovSet &&input, const ChannelMap &found,
     AovSet out = move_except(input, replaced);
 
     MethodImages images(input.width(), input.height(), input.attributes);
+    images.set_composition(composition);
     bind_inputs(method, SplitInput{out, input}, found, images);
     if (history && (history->width() != input.width() || history->height() != input.height()))
         throw InputError("the previous frame is " + std::to_string(history->width()) + "x" +
@@ -366,7 +375,8 @@ AovSet run_method(const Method &method, AovSet &&input, const ChannelMap &found,
 AovSet run_filter(const FilterPlan &plan, AovSet &&input, const ProgressMonitor &monitor,
                   const AovSet *history) {
     check_inputs(plan, input);
-    return run_method(*plan.method, std::move(input), plan.channels, plan.parameters, monitor, history);
+    return run_method(*plan.method, std::move(input), plan.channels, plan.parameters, plan.composition,
+                      monitor, history);
 }
 
 }  // namespace aaf

@@ -12,6 +12,8 @@ class BeautyGroup final : public AovAccumulator {
     void write(const RenderState &state, AovSet &aovs) const override {
         const bool thin_lens = state.scene.camera.is_thin_lens();
         const auto beauty = add_role_channels(aovs, Role::Beauty);
+        // What a filter may replace: through a pinhole, exactly r(x) V(x) plus the other lights.
+        if (!thin_lens) aovs.attributes[attr::kBeauty] = std::string(beauty_holds::kDirect);
         state.for_each_pixel([&](int x, int y, const PrimaryHit &primary, const ShadowStats &s) {
             if (thin_lens)
                 set3(beauty, x, y, s.mean_radiance());  // defocused: the lens rays' radiance

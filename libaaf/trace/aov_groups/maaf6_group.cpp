@@ -243,6 +243,7 @@ void Maaf6Group::write(const RenderState &state, AovSet &aovs) const {
     const std::vector<PlaneView> wedge_views = add_role_channels(aovs, roles::Maaf6Wedge);
     const std::vector<PlaneView> spp_view = add_role_channels(aovs, roles::Maaf6Spp);
     const PlaneView beauty[3] = {aovs.channel("R"), aovs.channel("G"), aovs.channel("B")};
+    aovs.attributes[attr::kBeauty] = std::string(beauty_holds::kMaaf6);  // what maaf6 replaces
     const int channels = maaf6_channel_count(kMaafContractPairs);
     // MAAF Eq. 23: each layer's sums with its pixel's parameters.
     parallel_for_rows(height, [&](int y) {

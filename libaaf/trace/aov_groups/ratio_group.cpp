@@ -97,6 +97,17 @@ class RatioGroup final : public AovAccumulator {
                 views[target].push_back(add_channels(aovs, names));
             }
         aovs.attributes[attr::kRatioLights] = int(lights);
+        // A pinhole's beauty is the direct light of every light: its estimate
+        // from these samples, S_N (area lights with their BRDF, MIS), rather than
+        // the key light's r(x) V(x), so that `aaf filter ratio` replaces exactly
+        // it (attr::kBeauty). Through a lens the beauty keeps its defocus.
+        const bool beauty_is_s = !state.scene.camera.is_thin_lens();
+        std::vector<PlaneView> beauty;
+        if (beauty_is_s) {
+            for (const std::string &name : role_info(Role::Beauty).channels)
+                beauty.push_back(aovs.channel(name));
+            aovs.attributes[attr::kBeauty] = std::string(beauty_holds::kRatio);
+        }
         state.for_each_pixel([&](int x, int y, const PrimaryHit &, const ShadowStats &) {
             const std::size_t pixel = std::size_t(y) * std::size_t(state.width) + std::size_t(x);
             double sum[3][3] = {{0, 0, 0}, {0, 0, 0}, {0, 0, 0}};
@@ -115,6 +126,7 @@ class RatioGroup final : public AovAccumulator {
                 totals[k] = Vec3{float(sum[k][0]), float(sum[k][1]), float(sum[k][2])};
                 set3(views[0][std::size_t(k)], x, y, totals[k]);
             }
+            if (beauty_is_s) set3(beauty, x, y, totals[1]);
             views[0][3][0](x, y) = float(luminance(totals[1]));
             views[0][4][0](x, y) = float(luminance(totals[2]));
         });

@@ -18,6 +18,38 @@ namespace aaf {
 
 namespace {
 
+/// Another renderer's pass of the key light, filtered with AAF's widths and
+/// rejection (the guides of its visibility filter): demodulated by the albedo
+/// where the frame has one, so that texture is not blurred, and modulated back.
+void filter_key_light_pass(const MethodImages &images, const AafInputs &in, const LightPlane &light,
+                           const AafParams &params, const std::array<ConstPlaneView, 3> &pass,
+                           const std::array<PlaneView, 3> &filtered) {
+    const int width = images.width(), height = images.height();
+    const std::size_t count = std::size_t(width) * std::size_t(height);
+    const bool albedo = images.has(Role::Albedo);
+    std::vector<std::vector<float>> demodulated(3, std::vector<float>(count));
+    std::vector<ConstPlaneView> sources;
+    std::vector<PlaneView> outputs;
+    for (std::size_t c = 0; c < 3; ++c) {
+        for (int y = 0; y < height; ++y)
+            for (int x = 0; x < width; ++x) {
+                const float a = albedo ? images.input(Role::Albedo, c)(x, y) : 1.0f;
+                demodulated[c][std::size_t(y) * std::size_t(width) + std::size_t(x)] =
+                    a > 0 ? pass[c](x, y) / a : pass[c](x, y);
+            }
+        sources.push_back(plane_view(demodulated[c].data(), width, height));
+        outputs.push_back(filtered[c]);
+    }
+    gather(aaf_gather_guides(in, light, params), aaf_gather_settings(params), sources, outputs);
+    if (!albedo) return;
+    for (std::size_t c = 0; c < 3; ++c)
+        for (int y = 0; y < height; ++y)
+            for (int x = 0; x < width; ++x) {
+                const float a = images.input(Role::Albedo, c)(x, y);
+                if (a > 0) filtered[c](x, y) *= a;
+            }
+}
+
 constexpr double kInf = std::numeric_limits<double>::infinity();
 
 /// The parameters, each bound to its AafParams member: AafParams' defaults (AAF Sec. 6) and
@@ -94,7 +126,9 @@ class AafMethod final : public Method {
         info_.roles.required = {Role::Visibility, Role::D1,        Role::D2Min,
                                 Role::D2Max,      Role::Position,  Role::Normal,
                                 Role::ObjectId,   Role::PixelSize, Role::Unshadowed};
-        info_.roles.optional = {Role::SamplesPerPixel, Role::OtherLights};
+        info_.roles.optional = {Role::SamplesPerPixel, Role::Albedo};
+        for (Role role : shadow_composition_roles())
+            if (role != Role::Visibility) info_.roles.optional.push_back(role);
         info_.roles.outputs = {Role::FilteredVisibility, roles::FilterWidth, Role::Beauty};
         info_.roles.filtered = {{Role::Visibility, Role::FilteredVisibility}};
         info_.parameters = aaf_parameter_declarations().infos();
@@ -130,9 +164,20 @@ class AafMethod final : public Method {
         AafOutputs out;
         out.filtered_visibility = images.output(Role::FilteredVisibility);
         out.beta_m = images.output(roles::FilterWidth);
-        aaf_filter(in, read_light_attributes(images.attributes()), params, out);
+        const LightPlane light = read_light_attributes(images.attributes());
+        aaf_filter(in, light, params, out);
         progress.report(0.9);
-        compose_shadowed_beauty(images, out.filtered_visibility);  // AAF Eq. 1
+        const PassFilter filter_pass = [&](const std::array<ConstPlaneView, 3> &pass,
+                                           const std::array<PlaneView, 3> &filtered) {
+            filter_key_light_pass(images, in, light, params, pass, filtered);
+        };
+        compose_shadowed_beauty(images, out.filtered_visibility, filter_pass);
+    }
+
+    std::string composition_note(const std::map<std::string, AttributeValue> &attributes,
+                                 const std::function<bool(Role)> &has,
+                                 Composition composition) const override {
+        return shadow_beauty_note(shadow_beauty(attributes, has, composition, true), info_.title, true);
     }
 
   private:

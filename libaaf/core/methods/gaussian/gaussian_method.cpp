@@ -34,7 +34,8 @@ class GaussianMethod final : public Method {
             "Fixed-width screen-space Gaussian of the visibility (the non-adaptive baseline of AAF Fig. 6)";
         info_.reference = "baseline; Mehta, Wang, Ramamoorthi 2012, Fig. 6 and 10";
         info_.roles.required = {Role::Visibility, Role::Unshadowed};
-        info_.roles.optional = {Role::OtherLights};
+        for (Role role : shadow_composition_roles())
+            if (role != Role::Visibility) info_.roles.optional.push_back(role);
         info_.roles.outputs = {Role::FilteredVisibility, Role::Beauty};
         info_.roles.filtered = {{Role::Visibility, Role::FilteredVisibility}};
         info_.parameters = gaussian_parameters().infos();
@@ -55,7 +56,13 @@ class GaussianMethod final : public Method {
         const PlaneView filtered = images.output(Role::FilteredVisibility);
         fixed_gaussian_filter(plane_view(visibility.data(), width, height), settings.sigma_px, filtered);
         progress.report(0.9);
-        compose_shadowed_beauty(images, filtered);  // AAF Eq. 1
+        compose_shadowed_beauty(images, filtered);  // AAF Eq. 1, or the beauty corrected
+    }
+
+    std::string composition_note(const std::map<std::string, AttributeValue> &attributes,
+                                 const std::function<bool(Role)> &has,
+                                 Composition composition) const override {
+        return shadow_beauty_note(shadow_beauty(attributes, has, composition, false), info_.title, false);
     }
 
   private:

@@ -61,7 +61,8 @@ class IsgDofMethod final : public Method {
         info_.reference = "Robison, Shirley: Image Space Gathering, HPG 2009, Sec. 3.3";
         info_.roles.declared = isg_dof_roles();
         info_.roles.required = {roles::PinholeBeauty, Role::Depth};
-        info_.roles.outputs = {roles::Defocused};
+        // Defocus touches the whole image: the defocused pinhole image is the beauty.
+        info_.roles.outputs = {roles::Defocused, Role::Beauty};
         info_.roles.filtered = {{roles::PinholeBeauty, roles::Defocused}};
         info_.parameters = isg_dof_parameters().infos();
         info_.required_attributes = {attr::kCameraFocalPx};
@@ -139,6 +140,11 @@ class IsgDofMethod final : public Method {
                     for (int c = 0; c < 3; ++c) out[c](x, y) = mean[c];
             }
         });
+        for (int c = 0; c < 3; ++c) {
+            const PlaneView beauty = images.output(Role::Beauty, std::size_t(c));
+            for (int y = 0; y < height; ++y)
+                for (int x = 0; x < width; ++x) beauty(x, y) = out[c](x, y);
+        }
         progress.report(0.95);
     }
 

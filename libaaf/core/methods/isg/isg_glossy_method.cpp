@@ -50,6 +50,9 @@ class IsgGlossyMethod final : public Method {
         info_.roles.required = {roles::Reflection, roles::ReflectionDistance, roles::ThetaMax, Role::Position,
                                 Role::Normal};
         info_.roles.outputs = {roles::GlossyReflection};
+        // The tracer's beauty holds no glossy reflection (SCENE_FORMAT.md):
+        // the estimate is compared with the cone-sampled reference.
+        info_.compared = {roles::GlossyReflection, roles::GlossyReference};
         info_.roles.filtered = {{roles::Reflection, roles::GlossyReflection}};
         info_.parameters = isg_glossy_parameters().infos();
         info_.required_attributes = {attr::kCameraEye, attr::kCameraFocalPx};

@@ -50,7 +50,8 @@ class IsgShadowMethod final : public Method {
         info_.roles.declared = isg_shadow_roles();
         info_.roles.required = {roles::HardVisibility, roles::OccluderDistance, Role::Position, Role::Depth,
                                 Role::Unshadowed};
-        info_.roles.optional = {Role::OtherLights};
+        info_.roles.optional = shadow_composition_roles();
+        info_.roles.rendered = {Role::Visibility};  // the beauty's own, replaced by the filtered one
         info_.roles.outputs = {Role::FilteredVisibility, Role::Beauty};
         info_.roles.filtered = {{roles::HardVisibility, Role::FilteredVisibility}};
         info_.parameters = isg_shadow_parameters().infos();
@@ -129,7 +130,13 @@ class IsgShadowMethod final : public Method {
             }
         });
         progress.report(0.9);
-        compose_shadowed_beauty(images, out);  // AAF Eq. 1: r(x) times the visibility
+        compose_shadowed_beauty(images, out);  // AAF Eq. 1, or the beauty corrected
+    }
+
+    std::string composition_note(const std::map<std::string, AttributeValue> &attributes,
+                                 const std::function<bool(Role)> &has,
+                                 Composition composition) const override {
+        return shadow_beauty_note(shadow_beauty(attributes, has, composition, false), info_.title, false);
     }
 
   private:

@@ -65,7 +65,7 @@ class MaafMethod final : public Method {
         info_.roles.required = {
             roles::MaafValueSums, roles::MaafUnoccludedSums, roles::MaafWedge, Role::Position, Role::Normal,
             Role::ObjectId,       Role::PixelSize,           Role::Unshadowed};
-        info_.roles.optional = {Role::OtherLights};
+        info_.roles.optional = shadow_composition_roles();
         info_.roles.outputs = {Role::FilteredVisibility, Role::Beauty};
         info_.parameters = maaf_parameters().infos();
         info_.required_attributes = light_attribute_names();
@@ -105,7 +105,13 @@ class MaafMethod final : public Method {
         const PlaneView filtered = images.output(Role::FilteredVisibility);
         maaf_filter(in, read_light_attributes(images.attributes()), params, filtered);
         progress.report(0.9);
-        compose_shadowed_beauty(images, filtered);  // AAF Eq. 1
+        compose_shadowed_beauty(images, filtered);  // AAF Eq. 1, or the beauty corrected
+    }
+
+    std::string composition_note(const std::map<std::string, AttributeValue> &attributes,
+                                 const std::function<bool(Role)> &has,
+                                 Composition composition) const override {
+        return shadow_beauty_note(shadow_beauty(attributes, has, composition, false), info_.title, false);
     }
 
   private:

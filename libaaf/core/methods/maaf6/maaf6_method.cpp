@@ -83,6 +83,51 @@ const ParameterDeclarations<Maaf6Settings> &maaf6_parameters() {
     return declarations;
 }
 
+/// How maaf6's beauty is made.
+enum class Maaf6Beauty {
+    Sum,        ///< filtered direct plus indirect (Composition::Paper, or no input beauty)
+    Corrected,  ///< the input beauty less the render's two means plus the filtered ones
+    Kept,       ///< the input beauty as it was: it is not the sum of the two means
+};
+
+Maaf6Beauty maaf6_beauty(const std::map<std::string, AttributeValue> &attributes,
+                         const std::function<bool(Role)> &has, Composition composition) {
+    if (composition == Composition::Paper || !has(Role::Beauty)) return Maaf6Beauty::Sum;
+    return beauty_holds_exactly(attributes, beauty_holds::kMaaf6) && has(roles::Maaf6Direct) &&
+                   has(roles::Maaf6Indirect)
+               ? Maaf6Beauty::Corrected
+               : Maaf6Beauty::Kept;
+}
+
+/// MAAF Sec. 6.2: direct and indirect filtered apart, then summed, in place
+/// of the render's own sum in its beauty.
+void write_beauty(const MethodImages &images) {
+    const auto has = [&](Role role) { return images.has(role); };
+    const Maaf6Beauty how = maaf6_beauty(images.attributes(), has, images.composition());
+    for (std::size_t c = 0; c < 3; ++c) {
+        const PlaneView beauty = images.output(Role::Beauty, c);
+        const ConstPlaneView direct = images.output(roles::Maaf6Direct, c);
+        const ConstPlaneView indirect = images.output(roles::Maaf6Indirect, c);
+        const bool sum = how == Maaf6Beauty::Sum;
+        const ConstPlaneView in = sum ? ConstPlaneView{} : images.input(Role::Beauty, c);
+        const bool corrected = how == Maaf6Beauty::Corrected;
+        const ConstPlaneView noisy_direct =
+            corrected ? images.input(roles::Maaf6Direct, c) : ConstPlaneView{};
+        const ConstPlaneView noisy_indirect =
+            corrected ? images.input(roles::Maaf6Indirect, c) : ConstPlaneView{};
+        for (int y = 0; y < images.height(); ++y)
+            for (int x = 0; x < images.width(); ++x) {
+                const float filtered = direct(x, y) + indirect(x, y);
+                if (sum)
+                    beauty(x, y) = filtered;
+                else if (corrected)
+                    beauty(x, y) = (in(x, y) - (noisy_direct(x, y) + noisy_indirect(x, y))) + filtered;
+                else
+                    beauty(x, y) = in(x, y);
+            }
+    }
+}
+
 class Maaf6Method final : public Method {
   public:
     Maaf6Method() {
@@ -101,6 +146,8 @@ class Maaf6Method final : public Method {
                                 roles::Maaf6Wedge,        roles::Maaf6Spp,
                                 Role::Position,           Role::Normal,
                                 Role::ObjectId,           Role::PixelSize};
+        // The render's own means of the two layers, replaced by the filtered ones.
+        info_.roles.optional = {Role::Beauty, roles::Maaf6Direct, roles::Maaf6Indirect};
         info_.roles.outputs = {roles::Maaf6Direct, roles::Maaf6Indirect, Role::Beauty};
         info_.parameters = maaf6_parameters().infos();
         info_.required_attributes = light_attribute_names();
@@ -174,14 +221,17 @@ class Maaf6Method final : public Method {
             maaf6_filter_layer(layer, shared, light, layer_params, out);
             progress.report(0.45 * (l + 1));
         }
-        // MAAF Sec. 6.2: direct and indirect filtered apart, then summed.
-        for (int c = 0; c < 3; ++c) {
-            const PlaneView beauty = images.output(Role::Beauty, std::size_t(c));
-            const ConstPlaneView direct = images.output(roles::Maaf6Direct, std::size_t(c));
-            const ConstPlaneView indirect = images.output(roles::Maaf6Indirect, std::size_t(c));
-            for (int y = 0; y < images.height(); ++y)
-                for (int x = 0; x < images.width(); ++x) beauty(x, y) = direct(x, y) + indirect(x, y);
-        }
+        write_beauty(images);
+    }
+
+    std::string composition_note(const std::map<std::string, AttributeValue> &attributes,
+                                 const std::function<bool(Role)> &has,
+                                 Composition composition) const override {
+        if (maaf6_beauty(attributes, has, composition) != Maaf6Beauty::Kept) return {};
+        return "R,G,B left as rendered: the beauty does not hold maaf6.direct + maaf6.indirect (no " +
+               std::string(attr::kBeauty) + " = " + beauty_holds::kMaaf6 +
+               "); the estimate is in maaf6.direct and maaf6.indirect, or --compose paper writes their sum "
+               "to R,G,B";
     }
 
   private:

@@ -217,6 +217,45 @@ void compose_planes(const RatioComposition &composition, const std::vector<std::
     });
 }
 
+/// How the ratio estimator's beauty is made.
+enum class RatioBeauty {
+    Estimate,   ///< the estimate alone (Composition::Paper, or no input beauty)
+    Corrected,  ///< the input beauty less S_N plus the estimate: the tracer's beauty holds S_N
+    Kept,       ///< the input beauty as it was: it does not hold S_N
+};
+
+RatioBeauty ratio_beauty(const std::map<std::string, AttributeValue> &attributes,
+                         const std::function<bool(Role)> &has, Composition composition) {
+    if (composition == Composition::Paper || !has(Role::Beauty)) return RatioBeauty::Estimate;
+    return beauty_holds_exactly(attributes, beauty_holds::kRatio) ? RatioBeauty::Corrected
+                                                                  : RatioBeauty::Kept;
+}
+
+/// R,G,B from the estimate `direct`: the beauty's S_N replaced by it, so that
+/// whatever else the renderer wrote passes through.
+void write_beauty(const MethodImages &images, const std::array<PlaneView, 3> &direct) {
+    const auto has = [&](Role role) { return images.has(role); };
+    const RatioBeauty how = ratio_beauty(images.attributes(), has, images.composition());
+    parallel_for_rows(images.height(), [&](int y) {
+        for (std::size_t c = 0; c < 3; ++c) {
+            const PlaneView beauty = images.output(Role::Beauty, c);
+            const ConstPlaneView estimate = direct[c];
+            if (how == RatioBeauty::Estimate) {
+                for (int x = 0; x < images.width(); ++x) beauty(x, y) = estimate(x, y);
+                continue;
+            }
+            const ConstPlaneView in = images.input(Role::Beauty, c);
+            if (how == RatioBeauty::Kept) {
+                for (int x = 0; x < images.width(); ++x) beauty(x, y) = in(x, y);
+                continue;
+            }
+            const ConstPlaneView shadowed = images.input(roles::RatioShadowed, c);
+            for (int x = 0; x < images.width(); ++x)
+                beauty(x, y) = (in(x, y) - shadowed(x, y)) + estimate(x, y);
+        }
+    });
+}
+
 class RatioMethod final : public Method {
   public:
     RatioMethod() {
@@ -227,6 +266,11 @@ class RatioMethod final : public Method {
         info_.reference =
             "Heitz, Hill, McGuire: Combining Analytic Direct Illumination and Stochastic Shadows, 2018";
         info_.roles.declared = ratio_roles();
+        // A render with the ratio group has the key light's S_N alone: the
+        // pass a visibility filter swaps into that beauty (shadow_composition.h).
+        info_.roles.synonyms = {{Role::KeyLight,
+                                 "aaf's ratio group (light 0)",
+                                 {"ratio.L0.S.R", "ratio.L0.S.G", "ratio.L0.S.B"}}};
         info_.roles.required = {roles::RatioAnalytic, roles::RatioShadowed, roles::RatioUnshadowed,
                                 Role::Position, Role::Normal};
         info_.roles.optional = {roles::RatioShadowedLuminance,
@@ -237,8 +281,9 @@ class RatioMethod final : public Method {
                                 Role::D2Min,
                                 Role::D2Max,
                                 Role::ObjectId,
-                                Role::SamplesPerPixel};
-        info_.roles.outputs = {Role::Beauty};
+                                Role::SamplesPerPixel,
+                                Role::Beauty};
+        info_.roles.outputs = {roles::RatioDirect, Role::Beauty};
         info_.parameters = ratio_parameters().infos();
         info_.uses_history = true;
     }
@@ -265,8 +310,9 @@ class RatioMethod final : public Method {
     void run(const MethodImages &images, const ParameterSet &parameters, Progress &progress) const override {
         const RatioSettings s = settings_from(parameters);
         const int width = images.width(), height = images.height();
-        const std::array<PlaneView, 3> rgb = {images.output(Role::Beauty, 0), images.output(Role::Beauty, 1),
-                                              images.output(Role::Beauty, 2)};
+        const std::array<PlaneView, 3> rgb = {images.output(roles::RatioDirect, 0),
+                                              images.output(roles::RatioDirect, 1),
+                                              images.output(roles::RatioDirect, 2)};
         const std::vector<float> scale = scene_scale_m(images);
         RatioBilateralGuides guides;
         for (std::size_t c = 0; c < 3; ++c) {
@@ -315,6 +361,17 @@ class RatioMethod final : public Method {
             progress.report(0.9 * double(pass + 1) / double(passes.size()));
         }
         if (s.temporal) accumulate_history(images, s, scale, rgb);
+        write_beauty(images, rgb);
+    }
+
+    std::string composition_note(const std::map<std::string, AttributeValue> &attributes,
+                                 const std::function<bool(Role)> &has,
+                                 Composition composition) const override {
+        if (ratio_beauty(attributes, has, composition) != RatioBeauty::Kept) return {};
+        return "R,G,B left as rendered: the beauty does not hold ratio.S (no " + std::string(attr::kBeauty) +
+               " = " + beauty_holds::kRatio +
+               "), so its direct light cannot be replaced; the estimate is in " +
+               "ratio.direct.R/G/B, or --compose paper writes it to R,G,B";
     }
 
   private:
@@ -324,7 +381,7 @@ class RatioMethod final : public Method {
         if (!images.has(Role::Motion))
             throw InputError("--temporal needs the 'motion' input (channels " +
                              images.channel_names(Role::Motion) + ")");
-        for (Role role : {Role::Beauty, Role::Position, Role::Normal})
+        for (Role role : {roles::RatioDirect, Role::Position, Role::Normal})
             if (!images.has_history(role)) return;
         const int width = images.width(), height = images.height();
         TemporalFrame current, previous;
@@ -332,7 +389,7 @@ class RatioMethod final : public Method {
             current.colour[c] = rgb[c];
             current.position[c] = images.input(Role::Position, c);
             current.normal[c] = images.input(Role::Normal, c);
-            previous.colour[c] = images.history(Role::Beauty, c);
+            previous.colour[c] = images.history(roles::RatioDirect, c);
             previous.position[c] = images.history(Role::Position, c);
             previous.normal[c] = images.history(Role::Normal, c);
         }

@@ -41,6 +41,12 @@ std::vector<RoleInfo> ratio_roles() {
          "Rec. 709 luminance of ratio_un (ratio estimator Sec. 3.4). Per light as ratio_u",
          false,
          true},  // data, per light
+        {roles::RatioDirect,
+         {"ratio.direct.R", "ratio.direct.G", "ratio.direct.B"},
+         "linear radiance",
+         "output of `aaf filter ratio`: the direct light it estimates, U den(S_N) / den(U_N) summed over the "
+         "lights (ratio estimator Eq. 9); R,G,B are the beauty with ratio_s replaced by it",
+         true},
     };
 }
 

@@ -64,6 +64,10 @@ std::vector<PartSummary> other_parts(const std::string &path, const ImageLayout 
 std::vector<std::string> add_channels_from_other_parts(const std::string &path, const ImageLayout &layout,
                                                        const std::vector<std::string> &wanted, AovSet &aovs);
 
+/// The string attribute `name` of `path`'s first part, or "" when the file
+/// cannot be opened or has no such string; reads the header only, never throws.
+std::string read_string_attribute(const std::string &path, const std::string &name);
+
 /// True when `path` exists and reads back completely: every part's header
 /// and every pixel (e.g. a finished output frame, not a truncated one);
 /// never throws.

@@ -45,8 +45,10 @@ struct FrameFilter {
 
 /// The registered method `method` with `parameters` as the pipeline runs it:
 /// it borrows filter_input_candidates(), prepares with prepare_filter() and
-/// runs with run_filter() (filter_aovs.h). `method` must outlive the result.
-FrameFilter method_filter(const Method &method, const ParameterSet &parameters, const ChannelMap &channels);
+/// runs with run_filter() (filter_aovs.h), making the beauty as `composition`
+/// says. `method` must outlive the result.
+FrameFilter method_filter(const Method &method, const ParameterSet &parameters, const ChannelMap &channels,
+                          Composition composition = Composition::Correct);
 
 /// Every policy of the file pipeline; the defaults are `aaf filter`'s.
 struct FilterFileOptions {

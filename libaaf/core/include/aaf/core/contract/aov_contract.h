@@ -38,6 +38,7 @@ struct Role {
     static const Role Albedo;          ///< diffuse reflectance
     static const Role Motion;          ///< screen-space motion since the previous frame
     static const Role OtherLights;     ///< shadowed shading of every light but the key light
+    static const Role KeyLight;        ///< a renderer's own pass of the key light alone
 };
 
 inline constexpr Role Role::Beauty{"beauty"};
@@ -58,6 +59,7 @@ inline constexpr Role Role::Depth{"depth"};
 inline constexpr Role Role::Albedo{"albedo"};
 inline constexpr Role Role::Motion{"motion"};
 inline constexpr Role Role::OtherLights{"other_lights"};
+inline constexpr Role Role::KeyLight{"key_light"};
 
 constexpr bool operator==(Role a, Role b) {
     return std::string_view(a.key) == std::string_view(b.key);
@@ -120,7 +122,24 @@ inline constexpr const char *kLightCount =
 /// Written by the tracer's ratio group: how many lights have their own
 /// ratio.L<i>.* layers beside the summed ratio.* layer (0 or absent = only the sum).
 inline constexpr const char *kRatioLights = "aaf:ratio:lights";  // int
+/// Written by the tracer: what its beauty R,G,B holds (beauty_holds).
+inline constexpr const char *kBeauty = "aaf:beauty";  // string
 }  // namespace attr
+
+/// The values of attr::kBeauty: what the tracer's beauty is the sum of, so
+/// that a filter can replace exactly the part it models.
+namespace beauty_holds {
+/// A pinhole render: r(x) V(x) of the key light (AAF Eq. 1, Role::Unshadowed
+/// times Role::Visibility, as written) plus Role::OtherLights.
+inline constexpr const char *kDirect = "unshadowed*visibility+other_lights";
+/// The ratio estimator's S_N summed over the lights (ratio.S), as written.
+inline constexpr const char *kRatio = "ratio.S";
+/// MAAF's combined effects: maaf6.direct plus maaf6.indirect, as written.
+inline constexpr const char *kMaaf6 = "maaf6.direct+maaf6.indirect";
+}  // namespace beauty_holds
+
+/// Whether `attributes` say the beauty holds `holds` (a beauty_holds value).
+bool beauty_holds_exactly(const std::map<std::string, AttributeValue> &attributes, const char *holds);
 
 void write_light_attributes(const LightPlane &light, AovSet &aovs);
 /// The light's attributes (attr::kLight*), in the order read_light_attributes() reads them.

@@ -72,6 +72,7 @@ struct FilterPlan {
     /// scrubs of NaN before the filter runs.
     std::vector<std::string> input_channels;
     bool reads_history = false;  ///< `method` reads the previous frame's output (Method::reads_history)
+    Composition composition = Composition::Correct;  ///< how `method` makes the beauty
     bool ready() const { return method != nullptr && missing.empty(); }
 };
 
@@ -81,7 +82,7 @@ struct FilterPlan {
 /// attr::kRatioLights; a frame that lacks inputs gives a plan that lists
 /// them (FilterPlan::missing) for the caller to report.
 FilterPlan prepare_filter(const Method &method, const ParameterSet &parameters, const AovSet &frame,
-                          const ChannelMap &channels);
+                          const ChannelMap &channels, Composition composition = Composition::Correct);
 
 /// The channels a plan for `frame` may read, whichever of `method` and its
 /// delegates it runs, as `channels` names them in `frame` (per-light layers

@@ -19,6 +19,9 @@ namespace aaf {
 struct MethodRoles {
     std::vector<Role> required;  ///< cannot run without these
     std::vector<Role> optional;  ///< used when present (a parameter may make one necessary)
+    /// Optional roles a render made for this method writes too (`aaf render
+    /// --aovs METHOD`): those it needs to correct the beauty rather than keep it.
+    std::vector<Role> rendered;
     /// Written, in this order. Role::Beauty here means the method composes a
     /// new beauty; the input beauty is then kept as Role::NoisyBeauty.
     std::vector<Role> outputs;
@@ -60,9 +63,23 @@ struct MethodInfo {
     /// True when the method reads the previous frame's output (MethodImages::history)
     /// on a sequence: the pipeline then keeps each frame's output for the next.
     bool uses_history = false;
+    /// What `aaf compare OUT REF` measures by default: this method's output
+    /// role and the role holding the same quantity in a reference render.
+    /// The beauty for both, unless the estimate is not part of the beauty.
+    std::pair<Role, Role> compared{Role::Beauty, Role::Beauty};
     /// Methods that filter renders made for them instead, tried in order
     /// when this method's own inputs are missing (MethodDelegate).
     std::vector<MethodDelegate> delegates;
+};
+
+/// How a method that writes Role::Beauty makes it (`aaf filter --compose`).
+enum class Composition {
+    /// The input beauty with only the component the method models replaced
+    /// by its estimate: everything else the renderer wrote passes through.
+    Correct,
+    /// The paper's recomposition from the method's inputs alone (AAF Eq. 1:
+    /// r(x) V(x) plus the other lights).
+    Paper,
 };
 
 /// The images a method runs on: read-only views of its input roles (those
@@ -98,6 +115,10 @@ class MethodImages {
     /// Creates every deferred output not asked for yet, in the order they
     /// were declared (filter_aovs, after the method ran).
     void make_deferred_outputs() const;
+
+    /// How the method makes Role::Beauty (Composition::Correct unless the caller chose otherwise).
+    Composition composition() const { return composition_; }
+    void set_composition(Composition composition) { composition_ = composition; }
 
     /// Per-light layers of the ratio roles (ratio_layers.h): how many lights
     /// the input declares (attr::kRatioLights, 0 = only the summed layers),
@@ -139,6 +160,7 @@ class MethodImages {
     std::map<Role, DeferredOutput> deferred_outputs_;
     std::vector<Role> deferred_order_;
     std::map<Role, std::string> names_;
+    Composition composition_ = Composition::Correct;
     int light_count_ = 0;
     std::map<std::pair<Role, int>, std::vector<ConstPlaneView>> light_inputs_;
     std::map<std::pair<Role, int>, std::string> light_names_;
@@ -171,6 +193,16 @@ class Method {
     virtual std::vector<Role> roles_needed(const ParameterSet &parameters) const {
         (void)parameters;
         return info().roles.required;
+    }
+    /// What run() will leave as it was in the beauty of a frame with these
+    /// attributes and found channels (`has(role)`), for the user's note: empty
+    /// when it replaces what it models; else one sentence saying why and how
+    /// to give it what it needs (e.g. another renderer's pass of the key light).
+    virtual std::string composition_note(const std::map<std::string, AttributeValue> &attributes,
+                                         const std::function<bool(Role)> &has,
+                                         Composition composition) const {
+        (void)attributes, (void)has, (void)composition;
+        return {};
     }
     /// Whether run() reads the previous frame's output under `parameters`
     /// (a method with MethodInfo::uses_history may read it only when asked).

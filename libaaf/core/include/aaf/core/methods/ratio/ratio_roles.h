@@ -16,6 +16,8 @@ inline constexpr Role RatioShadowed{"ratio_s"};     ///< stochastic shadowed dir
 inline constexpr Role RatioUnshadowed{"ratio_un"};  ///< stochastic unshadowed direct light U_N (Eq. 22)
 inline constexpr Role RatioShadowedLuminance{"ratio_s_y"};     ///< luminance of S_N (Sec. 3.4)
 inline constexpr Role RatioUnshadowedLuminance{"ratio_un_y"};  ///< luminance of U_N (Sec. 3.4)
+/// Output: the estimate of the direct light, U den(S_N) / den(U_N) summed over the lights.
+inline constexpr Role RatioDirect{"ratio_direct"};
 }  // namespace roles
 
 /// Their channels, units and meanings.
