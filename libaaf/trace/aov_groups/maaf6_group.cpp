@@ -1,6 +1,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <string>
 #include <vector>
 
 #include "../path_sample.h"
@@ -339,13 +340,22 @@ void write_channels(const RenderState &state, const Maaf6Samples &samples, const
     });
 }
 
+/// What the beauty holds once the group replaced it (aaf:beauty_effects).
+std::string beauty_effects(unsigned effects, bool lens) {
+    std::string text = "key_light";  // the path samples trace no other light
+    text += (effects & kMaaf6Shadows) ? ",soft_shadows" : ",hard_shadows";
+    if (lens) text += ",defocus";
+    if (effects & kMaaf6Indirect) text += ",indirect";
+    return text;
+}
+
 /// MAAF for combined effects (Sec. 6.2) in two passes: 16 path samples give
 /// each pixel's slopes (direct, indirect, defocus), averaged over 5x5; pixels
 /// whose defocus slopes straddle 0 (the focal-plane box) get extra samples;
 /// then every sample is accumulated into the 6D product channels, direct and
 /// indirect apart. The group traces its own path samples when it writes
 /// (through the render's Renderer, as isg does); the render's beauty is
-/// replaced by the mean of direct + indirect.
+/// replaced by the mean of direct + indirect, and aaf:beauty_effects says so.
 class Maaf6Group final : public AovAccumulator {
   public:
     AovGroupInfo info() const override {
@@ -355,7 +365,6 @@ class Maaf6Group final : public AovAccumulator {
             "traces its own path samples (lens, area light, one diffuse bounce) and replaces R, G, B",
             roles());
         info.parameters = maaf6_group_parameters().infos();
-        info.in_all = false;  // traces path samples of its own
         info.not_resumable_because = "they trace their own samples";
         return info;
     }
@@ -398,6 +407,7 @@ class Maaf6Group final : public AovAccumulator {
         aovs.attributes[attr::kMaaf6OmegaIndirect] = float(kIndirectOmegaMax);
         aovs.attributes[attr::kMaaf6OmegaLens] = float(bands.omega_u);
         aovs.attributes[attr::kMaaf6Effects] = maaf6_effects_name(effects);
+        aovs.attributes[attr::kBeautyEffects] = beauty_effects(effects, lens);
         aovs.attributes[attr::kMaaf6SamplingS] = float(sampling_s);
         aovs.attributes[attr::kMaaf6PrefilterS] =
             float(std::chrono::duration<double>(Clock::now() - accumulate_start).count());

@@ -36,7 +36,6 @@ class MaafGroup final : public AovAccumulator {
                        "maaf.omegay; two passes (the first of min(16, spp) samples gives the wedges)",
                        roles());
         info.parameters = maaf_group_parameters().infos();
-        info.in_all = false;  // its first pass changes how the samples are stratified
         info.not_resumable_because = "they need every sample, kept in memory";
         return info;
     }
