@@ -33,7 +33,8 @@ class MaafGroup final : public AovAccumulator {
         AovGroupInfo info =
             group_info("maaf",
                        "maaf.V_<a><b> and maaf.W_<a><b> (25 each, N = 3), maaf.smin, maaf.smax, maaf.omegax, "
-                       "maaf.omegay; two passes (the first of min(16, spp) samples gives the wedges)",
+                       "maaf.omegay; two passes (the first, of --maaf-first-pass-spp samples or spp if "
+                       "fewer, gives the wedges)",
                        roles());
         info.parameters = maaf_group_parameters().infos();
         info.not_resumable_because = "they need every sample, kept in memory";
