@@ -79,6 +79,10 @@ void add_info_command(CLI::App &app) {
         std::printf("attributes:\n");
         for (const auto &[name, value] : aovs.attributes)
             std::printf("  %-24s %s\n", name.c_str(), format_attribute(value).c_str());
+        const auto beauty = aovs.attributes.find(attr::kBeautyEffects);
+        if (beauty != aovs.attributes.end())
+            std::printf("R,G,B holds %s (aaf:beauty_effects), not the direct light of every light\n",
+                        format_attribute(beauty->second).c_str());
         std::printf("methods (what each lacks, with how to produce it):\n");
         for (const Method *method : methods()) {
             // A render made for one of its delegates is ready too, as that delegate (choose_method).

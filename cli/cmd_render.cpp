@@ -165,7 +165,10 @@ void check_outputs_spare_inputs(const std::string &scene, const std::string &out
 std::string render_parameters(const trace::RenderSettings &settings) {
     std::ostringstream text;
     text << "width=" << settings.width << " height=" << settings.height << " spp=" << settings.spp
-         << " seed=" << settings.seed << " frame=" << settings.frame << " aovs=" << settings.aovs.text()
+         << " seed=" << trace::effective_seed(settings);
+    // Only for a frame's mixed seed, so that earlier single renders stay up to date.
+    if (settings.seed_per_frame) text << " base_seed=" << settings.seed;
+    text << " frame=" << settings.frame << " aovs=" << settings.aovs.text()
          << " adaptive=" << settings.adaptive << " "
          << adaptive_parameters_text(settings.plan, settings.max_spp)
          << " light=" << (settings.light_profile ? to_string(*settings.light_profile) : "scene")
@@ -274,7 +277,7 @@ struct RenderOptions {
     /// The group parameters given (--maaf6-effects shadows): value by group and parameter name.
     std::map<std::pair<std::string, std::string>, std::string> group_values;
     double checkpoint_s = 60;
-    bool list = false, skip_existing = false, timings = false;
+    bool list = false, skip_existing = false, timings = false, fixed_noise = false;
 };
 
 /// The scene, the output, the image and its samples, the AOV groups.
@@ -287,22 +290,29 @@ void add_image_options(CLI::App &cmd, RenderOptions &o) {
     cmd.add_option("--spp", o.settings.spp,
                    "Light samples per pixel, stratified over the light, in rounds of 1024")
         ->capture_default_str();
-    cmd.add_option("--seed", o.settings.seed, "Random seed")
+    cmd.add_option("--seed", o.settings.seed,
+                   "Random seed; with --frames each frame draws with it mixed with the frame number "
+                   "(header aaf:seed, the seed itself aaf:base_seed)")
         ->check(non_negative_seed())
         ->capture_default_str();
+    cmd.add_flag("--fixed-noise", o.fixed_noise,
+                 "With --frames: every frame draws with --seed itself, so a static shot's frames are "
+                 "identical");
     cmd.add_option("--threads", o.settings.threads, "Worker threads, 0 = all (output is identical)")
         ->capture_default_str();
     cmd.add_option("--frame", o.settings.frame, "Animation time of a single render, frames")
         ->capture_default_str();
     cmd.add_option("--frames", o.frames, "Render a sequence: 1-24, 1-24x2, 1-24:2, 1,5,7-9");
-    std::string in_all, by_name;  // `all` renders the first; the others trace samples of their own
-    for (const trace::AovGroupInfo &group : trace::aov_group_table()) {
-        std::string &list = group.in_all ? in_all : by_name;
-        list += (list.empty() ? "" : ", ") + group.name;
-    }
+    std::string groups, method_names;
+    for (const trace::AovGroupInfo &group : trace::aov_group_table())
+        groups += (groups.empty() ? "" : ", ") + group.name;
+    for (const Method *method : methods())
+        method_names += (method_names.empty() ? "" : ", ") + method->info().name;
     cmd.add_option("--aovs", o.aovs,
-                   "AOV groups, comma-separated: aaf (default); all (" + in_all +
-                       "); and, each tracing samples of its own, " + by_name)
+                   "AOVs beside the beauty, comma-separated: all (every group); a method (" + method_names +
+                       "): the groups it reads; or a group (" + groups +
+                       "): it and what the methods reading its own channels read. A name that is both is "
+                       "the method's")
         ->capture_default_str();
 }
 
@@ -640,6 +650,10 @@ void run_render_command(RenderOptions &o, const CLI::App &cmd) {
     if (sequence != io::is_sequence_pattern(o.output))
         throw UsageError(sequence ? "--frames needs an output pattern such as shot.####.exr"
                                   : "an output pattern needs --frames");
+    // A sequence's frames get independent noise; a single render keeps --seed.
+    o.settings.seed_per_frame = sequence && !o.fixed_noise;
+    if (o.fixed_noise && !sequence)
+        std::fprintf(stderr, "aaf: warning: --fixed-noise has no effect without --frames\n");
     if (sequence && !o.resume.empty()) throw UsageError("--resume continues a single render, not a sequence");
 
     // Frames are produced as they come: `--frames 1-2000000000` costs one job's memory.

@@ -100,6 +100,13 @@ bool is_method(const std::string &name) {
     return false;
 }
 
+/// Whether `role` is a method's own (declared in its folder), not one several share.
+bool is_methods_own_role(Role role) {
+    const std::vector<RoleInfo> &shared = shared_roles();
+    return std::none_of(shared.begin(), shared.end(),
+                        [role](const RoleInfo &info) { return info.role == role; });
+}
+
 }  // namespace
 
 AovGroupRegistration::AovGroupRegistration(Maker make) {
@@ -120,13 +127,6 @@ AovGroups::AovGroups(std::initializer_list<std::string> names) {
 
 AovGroups::AovGroups(const std::vector<std::string> &names) {
     for (const std::string &name : names) insert(name);
-}
-
-AovGroups AovGroups::all() {
-    AovGroups groups;
-    for (const AovGroupInfo &info : aov_group_table())
-        if (info.in_all) groups.names_.push_back(info.name);
-    return groups;
 }
 
 AovGroups AovGroups::every() {
@@ -218,6 +218,20 @@ AovGroups aov_groups_for_method(const std::string &method) {
     return aov_groups_writing(written);
 }
 
+AovGroups aov_groups_with_readers(const std::string &group) {
+    AovGroups groups{group};
+    std::vector<Role> own;
+    for (Role role : find_aov_group(group).roles)
+        if (is_methods_own_role(role)) own.push_back(role);
+    for (const Method *method : methods()) {
+        const std::vector<Role> &required = method->info().roles.required;
+        if (std::any_of(required.begin(), required.end(),
+                        [&own](Role role) { return std::find(own.begin(), own.end(), role) != own.end(); }))
+            groups |= aov_groups_writing(required);
+    }
+    return groups;
+}
+
 AovGroups parse_aov_groups(const std::string &list) {
     AovGroups groups;
     std::stringstream items(list);
@@ -225,9 +239,9 @@ AovGroups parse_aov_groups(const std::string &list) {
         if (is_method(item))
             groups |= aov_groups_for_method(item);
         else if (item == "all")
-            groups |= AovGroups::all();
+            groups |= AovGroups::every();
         else if (index_of(item) >= 0)
-            groups.insert(item);
+            groups |= aov_groups_with_readers(item);
         else {
             std::string known = "all";
             for (const Method *method : methods()) known += ", " + method->info().name;

@@ -111,7 +111,7 @@ class AovAccumulator {
 };
 
 /// A declaration of the group `name` writing `contents` (in words) through
-/// `roles`; parameters none, in `--aovs all`, resumable.
+/// `roles`; parameters none, resumable.
 inline AovGroupInfo group_info(std::string name, std::string contents, std::vector<Role> roles) {
     AovGroupInfo info;
     info.name = std::move(name);

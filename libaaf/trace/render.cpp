@@ -9,6 +9,7 @@
 #include <atomic>
 #include <chrono>
 #include <cmath>
+#include <cstring>
 #include <memory>
 #include <mutex>
 #include <optional>
@@ -20,6 +21,7 @@
 #include "aaf/core/util/error.h"
 #include "aaf/core/util/parallel.h"
 #include "aov_group.h"
+#include "random.h"
 #include "renderer.h"
 #include "scene_description.h"
 #include "scene_file.h"
@@ -291,7 +293,26 @@ int trace_rounds(Tracing &tracing, const RenderSettings &settings, int spp_done,
     return spp_done;
 }
 
+/// `given` drawing with its effective seed (seed_per_frame done).
+RenderSettings with_effective_seed(const RenderSettings &given) {
+    RenderSettings settings = given;
+    settings.seed = effective_seed(given);
+    settings.seed_per_frame = false;
+    return settings;
+}
+
 }  // namespace
+
+std::uint64_t frame_seed(std::uint64_t seed, double frame) {
+    std::uint64_t frame_bits = 0;
+    static_assert(sizeof frame_bits == sizeof frame);
+    std::memcpy(&frame_bits, &frame, sizeof frame);
+    return mix64(seed ^ mix64(frame_bits)) & 0x7fffffffu;
+}
+
+std::uint64_t effective_seed(const RenderSettings &settings) {
+    return settings.seed_per_frame ? frame_seed(settings.seed, settings.frame) : settings.seed;
+}
 
 std::vector<std::string> scene_input_files(const std::string &scene) {
     return scene_file_inputs(resolve_scene(scene));
@@ -331,8 +352,9 @@ void validate_render_settings(const RenderSettings &settings) {
     make_aov_accumulators(settings.aovs, settings.group_parameters);
 }
 
-AovSet render_scene(const std::string &scene_name, const RenderSettings &settings, RenderTimings *timings) {
-    validate_render_settings(settings);
+AovSet render_scene(const std::string &scene_name, const RenderSettings &given, RenderTimings *timings) {
+    validate_render_settings(given);
+    const RenderSettings settings = with_effective_seed(given);
     SceneDescription scene = load_scene_file(resolve_scene(scene_name), settings.width, settings.height);
     scene.set_frame(settings.frame);
     if (settings.light_profile)
@@ -358,6 +380,7 @@ AovSet render_scene(const std::string &scene_name, const RenderSettings &setting
         AovSet aovs(settings.width, settings.height);
         write_aovs(state, accumulators, groups, aovs);
         write_attributes(scene, settings, done, aovs);
+        if (given.seed_per_frame) aovs.attributes[attr::kBaseSeed] = int(given.seed);
         // Timings go to the caller, not into the header: equal renders are equal bytes.
         for (auto [name, seconds] : {std::pair{attr::kMaaf6SamplingS, &measured.maaf6_sampling_s},
                                      std::pair{attr::kMaaf6PrefilterS, &measured.maaf6_prefilter_s}}) {

@@ -47,13 +47,24 @@ void with_attribute(const fs::path &source, const fs::path &target, const std::s
     aaf::io::write_aovs(aovs, target.string());
 }
 
+/// `source` without channel `name`, written as `target`.
+void without_channel(const fs::path &source, const fs::path &target, const std::string &name) {
+    aaf::AovSet aovs = aaf::io::read_aovs(source.string());
+    aovs.take_channel(name);
+    aaf::io::write_aovs(aovs, target.string());
+}
+
 }  // namespace
 
 TEST_CASE("CLI: a role is read only from its own name, a --map, or a renderer synonym", "[cli][inputs]") {
     const fs::path dir = scratch_dir("promise_own_names");
     const std::string in = (dir / "s.exr").string(), out = (dir / "o.exr").string();
     // No Z and no R,G,B: depth must not come from P.Z, nor the beauty from unshadowed.R/G/B.
-    REQUIRE(run_aaf("render grids -o " + in + " --aovs isg,position,unshadowed" + kSmall).exit_code == 0);
+    const std::string rendered_isg = (dir / "isg.exr").string();
+    REQUIRE(
+        run_aaf("render grids -o " + rendered_isg + " --aovs isg,position,unshadowed" + kSmall).exit_code ==
+        0);
+    without_channel(rendered_isg, in, "Z");
     const auto isg = run_aaf("filter isg-shadow " + in + " -o " + out);
     CHECK(isg.exit_code == 3);
     CHECK(one_error_line(isg.output));

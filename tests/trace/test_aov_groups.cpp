@@ -1,12 +1,15 @@
 #include <catch2/catch.hpp>
 
+#include <algorithm>
 #include <cstring>
 #include <vector>
 
 #include "aaf/core/contract/aov_contract.h"
 #include "aaf/core/framework/method_registry.h"
+#include "aaf/core/util/error.h"
 #include "aaf/trace/render.h"
 #include "aov_group.h"
+#include "aov_groups/aov_groups.h"
 #include "renderer.h"
 #include "scene_file.h"
 
@@ -158,11 +161,47 @@ TEST_CASE("The groups AAF reads follow from the roles it declares", "[trace][gro
     CHECK(parse_aov_groups("aaf") == aaf_groups);
     CHECK(parse_aov_groups("gaussian") == AovGroups{"shadow", "unshadowed"});
     CHECK(aov_groups_writing({}).empty());
-    // "all" leaves out maaf, whose first pass restratifies the samples, and isg,
-    // the ratio groups and maaf6, which trace rays of their own
-    CHECK(AovGroups::every() ==
-          (AovGroups::all() | AovGroups{"maaf", "isg", "ratio", "ratio_estimators", "maaf6"}));
-    CHECK(!AovGroups::all().contains("maaf6"));
-    CHECK(parse_aov_groups("all").text() ==
-          "shadow,position,normal,id,unshadowed,depth,albedo,motion,progress");
+}
+
+TEST_CASE("The --aovs entry all is every registered group", "[trace][groups]") {
+    CHECK(parse_aov_groups("all") == AovGroups::every());
+    for (const AovGroupInfo &group : aov_group_table()) CHECK(parse_aov_groups("all").contains(group.name));
+}
+
+TEST_CASE("The --aovs entry GROUP renders what every method reading one of the group's own roles reads",
+          "[trace][groups]") {
+    std::vector<Role> shared;
+    for (const RoleInfo &info : shared_roles()) shared.push_back(info.role);
+    for (const AovGroupInfo &group : aov_group_table())
+        for (const Method *method : methods()) {
+            const std::vector<Role> &required = method->info().roles.required;
+            const bool reads_own_role = std::any_of(group.roles.begin(), group.roles.end(), [&](Role role) {
+                return std::find(shared.begin(), shared.end(), role) == shared.end() &&
+                       std::find(required.begin(), required.end(), role) != required.end();
+            });
+            if (!reads_own_role) continue;
+            INFO("--aovs " << group.name << " for " << method->info().name);
+            CHECK(parse_aov_groups(group.name).contains(aov_groups_for_method(method->info().name)));
+        }
+    // isg's maps are read by three methods, none of them named isg.
+    CHECK(parse_aov_groups("isg").contains(aov_groups_for_method("isg-shadow")));
+    // A group of shared roles stays alone: AAF, MAAF and gaussian read the shadow group's.
+    CHECK(parse_aov_groups("shadow") == AovGroups{"shadow"});
+}
+
+TEST_CASE("A group parameter's declared default is its settings member's initialiser", "[trace][groups]") {
+    CHECK(maaf_group_parameters().defaults_read_back_differently().empty());
+    CHECK(maaf6_group_parameters().defaults_read_back_differently().empty());
+    // The registry declares the groups' parameters as their declarations do.
+    CHECK(find_aov_group("maaf").parameters.front().default_value ==
+          maaf_group_parameters().infos().front().default_value);
+    CHECK(find_aov_group("maaf6").parameters.front().default_value ==
+          maaf6_group_parameters().infos().front().default_value);
+    // A value read and written back is the same text; one the group cannot use is refused.
+    ParameterSet effects = maaf6_group_parameters().defaults();
+    effects.set("maaf6_effects", std::string("indirect,shadows"));
+    CHECK(maaf6_group_parameters().write(maaf6_group_parameters().read(effects)).text("maaf6_effects") ==
+          "shadows,indirect");
+    effects.set("maaf6_effects", std::string("bogus"));
+    CHECK_THROWS_AS(maaf6_group_parameters().read(effects), Error);
 }

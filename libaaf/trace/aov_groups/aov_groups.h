@@ -3,6 +3,7 @@
 #include <memory>
 
 #include "../aov_group.h"
+#include "../path_sample.h"
 
 /// The tracer's AOV groups, one accumulator each (aov_group.h); the
 /// registry in aov_group.cpp lists them in channel order.
@@ -26,6 +27,11 @@ std::unique_ptr<AovAccumulator> make_motion_group();
 std::unique_ptr<AovAccumulator> make_progress_group();
 /// maaf.*: MAAF's light-side sums and wedges (maaf_group.cpp).
 std::unique_ptr<AovAccumulator> make_maaf_group();
+/// The maaf group's settings, each declared once by maaf_group_parameters().
+struct MaafGroupSettings {
+    int first_pass_spp = 16;  ///< samples of its own first pass; MAAF Sec. 6.2 "Sampling" takes 16
+};
+const ParameterDeclarations<MaafGroupSettings> &maaf_group_parameters();
 /// ISG's image-space maps and distribution-ray-traced references (isg_group.cpp).
 std::unique_ptr<AovAccumulator> make_isg_group();
 /// ratio.*: the ratio estimator's U, S_N, U_N, summed and per light (ratio_group.cpp).
@@ -34,5 +40,10 @@ std::unique_ptr<AovAccumulator> make_ratio_group();
 std::unique_ptr<AovAccumulator> make_ratio_estimators_group();
 /// maaf6.*: MAAF for combined effects, path samples of its own (maaf6_group.cpp).
 std::unique_ptr<AovAccumulator> make_maaf6_group();
+/// The maaf6 group's settings, each declared once by maaf6_group_parameters().
+struct Maaf6GroupSettings {
+    unsigned effects = kMaaf6Defocus | kMaaf6Shadows | kMaaf6Indirect;  ///< what its path samples trace
+};
+const ParameterDeclarations<Maaf6GroupSettings> &maaf6_group_parameters();
 
 }  // namespace aaf::trace

@@ -36,7 +36,6 @@ class IsgGroup final : public AovAccumulator {
                                        "isg.V, isg.occluder_m, reflect.R/G/B, reflect.E, gloss.theta_max, "
                                        "glossy.R/G/B, pinhole.R/G/B",
                                        roles());
-        info.in_all = false;  // traces rays of its own (a glossy reference of spp rays)
         return info;
     }
     std::vector<Role> roles() const override {

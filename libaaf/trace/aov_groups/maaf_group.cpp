@@ -9,6 +9,14 @@
 
 namespace aaf::trace {
 
+const ParameterDeclarations<MaafGroupSettings> &maaf_group_parameters() {
+    using P = MaafGroupSettings;
+    static const auto declarations = std::move(ParameterDeclarations<P>("maaf").integer(
+        "maaf_first_pass_spp", &P::first_pass_spp, "samples per pixel",
+        "the samples of MAAF's first pass (Sec. 6.2), a pass of their own that sets the wedges", 1, 1 << 20));
+    return declarations;
+}
+
 namespace {
 
 /// MAAF's light-side sums (Wu et al. 2017, MAAF Eq. 20/23) in two passes as the
@@ -25,13 +33,10 @@ class MaafGroup final : public AovAccumulator {
         AovGroupInfo info =
             group_info("maaf",
                        "maaf.V_<a><b> and maaf.W_<a><b> (25 each, N = 3), maaf.smin, maaf.smax, maaf.omegax, "
-                       "maaf.omegay; two passes (the first of min(16, spp) samples gives the wedges)",
+                       "maaf.omegay; two passes (the first, of --maaf-first-pass-spp samples or spp if "
+                       "fewer, gives the wedges)",
                        roles());
-        info.parameters = {ParameterInfo::integer(
-            "maaf_first_pass_spp", "16", "samples per pixel",
-            "the samples of MAAF's first pass (Sec. 6.2), a pass of their own that sets the wedges", 1,
-            1 << 20)};
-        info.in_all = false;  // its first pass changes how the samples are stratified
+        info.parameters = maaf_group_parameters().infos();
         info.not_resumable_because = "they need every sample, kept in memory";
         return info;
     }
@@ -40,9 +45,9 @@ class MaafGroup final : public AovAccumulator {
     }
     bool wants_samples() const override { return true; }
     void set_parameters(const ParameterSet &values) override {
-        first_pass_spp_ = values.get_int("maaf_first_pass_spp");
+        settings_ = maaf_group_parameters().read(values);
     }
-    int first_pass_spp() const override { return first_pass_spp_; }
+    int first_pass_spp() const override { return settings_.first_pass_spp; }
 
     void begin_render(std::size_t pixel_count) override {
         samples_.assign(pixel_count, {});
@@ -139,7 +144,7 @@ class MaafGroup final : public AovAccumulator {
     std::vector<std::vector<Stored>> samples_;
     std::vector<std::uint32_t> first_batch_size_;
     std::vector<std::uint32_t> batches_;
-    int first_pass_spp_ = 16;
+    MaafGroupSettings settings_;
 };
 
 }  // namespace

@@ -74,7 +74,6 @@ class RatioGroup final : public AovAccumulator {
             "ratio.U.R/G/B, ratio.S.R/G/B, ratio.Un.R/G/B, ratio.S.Y, ratio.Un.Y, the same per light "
             "as ratio.L<i>.*, and aaf:ratio:lights; spp samples per light (MIS of light and GGX)",
             roles());
-        info.in_all = false;  // traces spp samples per light of its own
         return info;
     }
     std::vector<Role> roles() const override {
@@ -145,7 +144,6 @@ class RatioEstimatorsGroup final : public AovAccumulator {
         AovGroupInfo info = group_info(
             "ratio_estimators",
             "ratio.sto.R/G/B (Eq. 10), ratio.cv.R/G/B (Eq. 11): the ratio group's samples", roles());
-        info.in_all = false;  // the ratio group's samples, traced again when both are asked for
         return info;
     }
     std::vector<Role> roles() const override { return {}; }

@@ -26,9 +26,6 @@ struct AovGroupInfo {
     /// `aaf render` spelled as ParameterInfo::option_name(); snake_case names
     /// unique over every group.
     std::vector<ParameterInfo> parameters;
-    /// Whether `--aovs all` renders it: false for a group that traces rays of
-    /// its own or changes how the light samples are stratified.
-    bool in_all = true;
     /// Why a render with it cannot be resumed ("they trace their own
     /// samples"); empty when it can.
     std::string not_resumable_because;
@@ -51,9 +48,7 @@ class AovGroups {
     AovGroups(std::initializer_list<std::string> names);
     explicit AovGroups(const std::vector<std::string> &names);
 
-    /// What `--aovs all` renders: every group whose AovGroupInfo::in_all is set.
-    static AovGroups all();
-    /// Every registered group.
+    /// Every registered group: what `--aovs all` renders.
     static AovGroups every();
 
     bool contains(const std::string &group) const;
@@ -92,10 +87,19 @@ class AovGroupParameters {
     std::map<std::string, ParameterSet> values_;  ///< the groups given values; others are at their defaults
 };
 
-/// Parses a comma-separated list of group names, names of registered
-/// methods (method_registry.h: "aaf" is the groups AAF reads) and "all";
-/// throws aaf::Error naming an unknown entry.
+/// Parses a comma-separated list of `--aovs` entries: "all" (every
+/// registered group), a registered method's name (method_registry.h: the
+/// groups it reads, aov_groups_for_method) and a group's name (the group
+/// with what its readers read, aov_groups_with_readers); a name that is both
+/// a method's and a group's is read as the method's. Throws aaf::Error naming
+/// an unknown entry.
 AovGroups parse_aov_groups(const std::string &list);
+/// The group `group` and the groups every method reading one of its own
+/// roles (one no other group shares: not in shared_roles()) reads, so that
+/// `--aovs isg` feeds isg-shadow, isg-glossy and isg-dof; `--aovs shadow`,
+/// whose roles are shared, is the shadow group alone. Throws aaf::Error for
+/// an unknown group.
+AovGroups aov_groups_with_readers(const std::string &group);
 /// The groups that write any of `roles` (aov_contract.h), e.g. those a
 /// method's declared inputs need; the progress group writes no role.
 AovGroups aov_groups_writing(const std::vector<Role> &roles);

@@ -34,8 +34,12 @@ struct RenderSettings {
     /// kSamplesPerRound. With `adaptive`, the first pass (AAF Sec. 6 uses 9).
     int spp = 9;
     std::uint64_t seed = 1;  ///< with pixel index and pass, fixes every random number
-    int threads = 0;         ///< 0 = all hardware threads; the result does not depend on it
-    double frame = 1;        ///< animation time (scene keyframes), frames
+    /// Draws with frame_seed(seed, frame) instead of `seed`, so that the
+    /// frames of a sequence get independent noise (`aaf render --frames`
+    /// sets it unless --fixed-noise); the header then records both.
+    bool seed_per_frame = false;
+    int threads = 0;   ///< 0 = all hardware threads; the result does not depend on it
+    double frame = 1;  ///< animation time (scene keyframes), frames
     AovGroups aovs = aov_groups_for_method("aaf");  ///< beside the beauty; by default the groups AAF reads
     /// The values of the groups' own parameters (AovGroupInfo::parameters):
     /// maaf's first-pass samples, maaf6's effects, a plug-in group's own.
@@ -87,6 +91,16 @@ struct RenderSettings {
     std::function<bool()> stop_requested;
 };
 
+/// The seed frame `frame` of a sequence draws with: SplitMix64's finaliser
+/// (a bijective 64-bit mix) of `seed` xor the mix of the frame's IEEE-754
+/// bits, kept to its low 31 bits so that the int header attribute aaf:seed
+/// holds it exactly. Any two frames get unrelated seeds; the same frame
+/// and seed always the same one.
+std::uint64_t frame_seed(std::uint64_t seed, double frame);
+/// The seed `settings` draws with: frame_seed(seed, frame) with
+/// seed_per_frame, else seed.
+std::uint64_t effective_seed(const RenderSettings &settings);
+
 /// Wall-clock seconds of a render's stages (AAF Table 1's columns).
 struct RenderTimings {
     double first_pass_s = 0;   ///< primary rays and the first (or only) shadow pass
@@ -122,7 +136,8 @@ void validate_render_settings(const RenderSettings &settings);
 
 /// Renders a scene, given as a JSON scene file or by name, with Embree and
 /// returns the selected AOVs (aov_contract.h) plus the beauty, with the key
-/// light and render settings as header attributes. Throws aaf::InputError on
+/// light and render settings as header attributes (aaf:seed the seed drawn
+/// with, and with seed_per_frame aaf:base_seed the settings' seed). Throws aaf::InputError on
 /// a bad scene or resume file and aaf::Error on bad settings.
 /// When `timings` is given it receives the stages' durations.
 AovSet render_scene(const std::string &scene, const RenderSettings &settings,

@@ -107,10 +107,13 @@ inline constexpr const char *kLightHeight = "aaf:light:height_m";  // float, ext
 inline constexpr const char *kLightSigma = "aaf:light:sigma_m";    // float, Gaussian sigma before truncation
 inline constexpr const char *kLightKind = "aaf:light:kind";        // "gaussian" or "uniform"
 inline constexpr const char *kScene = "aaf:scene";                 // string
-inline constexpr const char *kSeed = "aaf:seed";                   // int
-inline constexpr const char *kSpp = "aaf:spp";                     // int, (first-pass) samples
-inline constexpr const char *kAdaptiveMu = "aaf:adaptive_mu";      // float, mu of the sampling plan
-inline constexpr const char *kMaxSpp = "aaf:max_spp";              // int, adaptive cap
+inline constexpr const char *kSeed = "aaf:seed";                   // int, the seed the render drew with
+/// The --seed a sequence frame's aaf:seed was mixed from with its frame
+/// number; absent when aaf:seed is the --seed itself.
+inline constexpr const char *kBaseSeed = "aaf:base_seed";            // int
+inline constexpr const char *kSpp = "aaf:spp";                       // int, (first-pass) samples
+inline constexpr const char *kAdaptiveMu = "aaf:adaptive_mu";        // float, mu of the sampling plan
+inline constexpr const char *kMaxSpp = "aaf:max_spp";                // int, adaptive cap
 inline constexpr const char *kCosineFalloff = "aaf:cosine_falloff";  // int 0/1, falloff in l(y)
 inline constexpr const char *kSppDone = "aaf:spp_done";              // int, samples per pixel traced so far
 inline constexpr const char *kFrame = "aaf:frame";                   // float, animation time
@@ -124,6 +127,12 @@ inline constexpr const char *kLightCount =
 inline constexpr const char *kRatioLights = "aaf:ratio:lights";  // int
 /// Written by the tracer: what its beauty R,G,B holds (beauty_holds).
 inline constexpr const char *kBeauty = "aaf:beauty";  // string
+/// Written by a tracer group that replaces the beauty R,G,B (maaf6): what
+/// R,G,B then holds, comma-separated from key_light (that light alone),
+/// soft_shadows or hard_shadows, defocus, indirect (one diffuse bounce).
+/// Absent: the tracer's own beauty, every light's direct light with soft
+/// shadows, through the lens when the camera has one.
+inline constexpr const char *kBeautyEffects = "aaf:beauty_effects";  // string
 }  // namespace attr
 
 /// The values of attr::kBeauty: what the tracer's beauty is the sum of, so

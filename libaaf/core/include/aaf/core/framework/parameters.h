@@ -208,6 +208,27 @@ class ParameterDeclarations {
         return choice<std::string, Base>(std::move(name), member, std::move(choices), std::move(help));
     }
 
+    /// A Text bound to a member of any type (a bit set, a list): `parse`
+    /// reads the text, throwing aaf::Error for one it cannot use, and
+    /// `format` is its inverse; the default is format(Params{}'s member).
+    template <class T, class Base>
+    ParameterDeclarations &parsed_text(std::string name, T Base::*member, T (*parse)(const std::string &),
+                                       std::string (*format)(T), std::string unit, std::string help) {
+        static_assert(std::is_base_of_v<Base, Params>);
+        ParameterInfo info =
+            ParameterInfo::text(name, format(Params{}.*member), std::move(unit), std::move(help));
+        return add(std::move(info),
+                   Binding{
+                       [member, name, parse](const ParameterSet &set, Params &p) {
+                           p.*member = parse(set.get_text(name));
+                       },
+                       [member, name, format](const Params &p, ParameterSet &set) {
+                           set.set(name, format(p.*member));
+                       },
+                       [member](const Params &a, const Params &b) { return a.*member == b.*member; },
+                   });
+    }
+
     const std::string &owner() const { return owner_; }
     /// The declarations in order: MethodInfo::parameters.
     const std::vector<ParameterInfo> &infos() const { return infos_; }
