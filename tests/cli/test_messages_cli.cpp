@@ -94,6 +94,10 @@ TEST_CASE("CLI: a mistyped name or a wrong file gets one line naming it, what wa
     aaf::io::write_aovs(blender_file(render, /*tracer_ids=*/false), unset);
     write_png(png);
     aaf_test::write_flat(beauty, 0.5f);
+    const std::string arnold = (dir / "arnold.exr").string();  // Arnold's beauty AOV
+    aaf::AovSet rgba(4, 4);
+    for (const char *name : {"RGBA.R", "RGBA.G", "RGBA.B", "RGBA.A"}) rgba.add_channel(name, 0.5f);
+    aaf::io::write_aovs(rgba, arnold);
 
     const std::vector<Row> rows = {
         {"fliter aaf " + contract + out, 2,
@@ -117,6 +121,7 @@ TEST_CASE("CLI: a mistyped name or a wrong file gets one line naming it, what wa
         {"filter aaf " + unset + out, 0,
          "blender.exr: AAF changed nothing: ViewLayer.aaf.V equals ViewLayer.shadow.V at every pixel"},
         {"preview " + unset + " -o " + (dir / "blender.png").string(), 0, ""},
+        {"preview " + arnold + " -o " + (dir / "arnold.png").string(), 0, ""},
         {"preview " + contract + " --channels shadow.v -o " + (dir / "v.png").string(), 3,
          "contract.exr: no channel 'shadow.v' to preview (it has "},
         {"preview " + contract + " --channels shadow.v -o " + (dir / "v.png").string(), 3,
