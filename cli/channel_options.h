@@ -1,5 +1,6 @@
 #pragma once
 
+#include <algorithm>
 #include <cctype>
 #include <cmath>
 #include <filesystem>
@@ -13,6 +14,7 @@
 #include "aaf/core/util/error.h"
 #include "aaf/io/exr_io.h"
 #include "commands.h"
+#include "suggestion.h"
 
 namespace aaf::cli {
 
@@ -85,7 +87,11 @@ inline ChannelMap channel_map_from(const std::vector<std::string> &specs) {
     for (const std::string &spec : specs) try {
             map.set_override(spec);
         } catch (const Error &e) {
-            throw UsageError(std::string("--map: ") + e.what());
+            std::vector<std::string> keys;
+            for (const RoleInfo &info : role_table()) keys.push_back(info.role.key);
+            const std::string key = spec.substr(0, spec.find('='));
+            const bool known = std::find(keys.begin(), keys.end(), key) != keys.end();
+            throw UsageError(std::string("--map: ") + e.what() + (known ? "" : did_you_mean(key, keys)));
         }
     return map;
 }

@@ -137,12 +137,16 @@ Provenance filter_provenance(const Method &method, const ParameterSet &parameter
     return provenance;
 }
 
-/// `filter` as `aaf filter` runs it: a frame's plan that lacks inputs is
-/// refused with every missing input and its recipe, before anything is
-/// scrubbed or run; each output is stamped with `*current` (the frame being filtered).
-void report_and_stamp(io::FrameFilter &filter, const Provenance *const &current) {
-    filter.prepare = [prepare = filter.prepare](const AovSet &frame) {
+/// `filter` as `aaf filter` runs it: a frame's plan that reads a channel a
+/// `--map` of `maps` misspells, or that lacks inputs, is refused (the
+/// channel and what it resembles; every missing input and its recipe)
+/// before anything is scrubbed or run; each output is stamped with
+/// `*current` (the frame being filtered).
+void report_and_stamp(io::FrameFilter &filter, const std::vector<std::string> &maps,
+                      const Provenance *const &current) {
+    filter.prepare = [prepare = filter.prepare, maps](const AovSet &frame) {
         FilterPlan plan = prepare(frame);
+        require_mapped_channels(frame, maps, plan);
         require_plan_inputs(plan);
         return plan;
     };
@@ -219,7 +223,7 @@ void add_method_command(CLI::App &filter, const Method &method) {
             source.forget = [&filter] { filter.forget_history(); };
             history.emplace(std::move(source));
         }
-        report_and_stamp(filter, current);
+        report_and_stamp(filter, options->maps, current);
         RunOptions run;
         run.progress = progress_from_string(options->progress);
         run.skip_existing = options->skip_existing;

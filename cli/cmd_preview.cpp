@@ -6,10 +6,12 @@
 
 #include "aaf/core/util/error.h"
 #include "aaf/io/atomic_file.h"
+#include "aaf/io/channel_lookup.h"
 #include "aaf/io/exr_io.h"
 #include "aaf/io/preview.h"
 #include "channel_options.h"
 #include "commands.h"
+#include "suggestion.h"
 
 namespace aaf::cli {
 
@@ -38,7 +40,7 @@ std::vector<std::string> layer_channels(const AovSet &aovs, const std::string &l
 }
 
 /// Refuses channels `input` does not have, naming the input (the output is
-/// not at fault) and listing what it has.
+/// not at fault), listing what it has and the one most like the name.
 void check_channels_present(const AovSet &aovs, const std::vector<std::string> &channels,
                             const std::string &input) {
     for (const std::string &name : channels)
@@ -46,7 +48,8 @@ void check_channels_present(const AovSet &aovs, const std::vector<std::string> &
             std::string listed;
             for (const std::string &present : aovs.channel_names())
                 listed += (listed.empty() ? "" : ", ") + present;
-            throw InputError(input + ": no channel '" + name + "' to preview (it has " + listed + ")");
+            throw InputError(input + ": no channel '" + name + "' to preview (it has " + listed + ")" +
+                             did_you_mean(name, aovs.channel_names()));
         }
 }
 
@@ -108,7 +111,9 @@ void add_preview_command(CLI::App &app) {
             }
         io::ImageLayout layout;
         const AovSet aovs = io::read_aovs(options->input, &layout);
-        std::vector<std::string> channels = options->channels;
+        // R, G, B (or shadow.V...) as the renderer names them, as `aaf compare` finds them.
+        std::vector<std::string> channels;
+        for (const std::string &name : options->channels) channels.push_back(io::resolve_channel(name, aovs));
         if (!options->layer.empty())
             channels = with_context(options->input, [&] { return layer_channels(aovs, options->layer); });
         check_channels_present(aovs, channels, options->input);

@@ -5,6 +5,7 @@
 #include "aaf/core/framework/filter_aovs.h"
 #include "aaf/core/util/error.h"
 #include "aaf/trace/render.h"
+#include "suggestion.h"
 
 namespace aaf::cli {
 
@@ -62,6 +63,24 @@ std::string missing_inputs_message(const Method &method, const std::vector<std::
 void require_plan_inputs(const FilterPlan &plan) {
     const std::vector<std::string> recipes = missing_input_recipes(plan.missing, plan.channels);
     if (!recipes.empty()) throw InputError(missing_inputs_message(*plan.method, recipes));
+}
+
+void require_mapped_channels(const AovSet &frame, const std::vector<std::string> &maps,
+                             const FilterPlan &plan) {
+    for (const std::string &spec : maps) {
+        ChannelMap map;
+        map.set_override(spec);  // a bad spec was refused when the options were read
+        const std::string key = spec.substr(0, spec.find('='));
+        for (const RoleInfo &info : role_table()) {
+            if (key != info.role.key) continue;
+            for (const std::string &name : map.channels(info.role))
+                if (!frame.has_channel(name) &&
+                    std::find(plan.input_channels.begin(), plan.input_channels.end(), name) !=
+                        plan.input_channels.end())
+                    throw InputError("no such channel '" + name + "' (--map " + spec + ")" +
+                                     did_you_mean(name, frame.channel_names()));
+        }
+    }
 }
 
 }  // namespace aaf::cli

@@ -33,4 +33,11 @@ std::string missing_inputs_message(const Method &method, const std::vector<std::
 /// a delegate is checked as the delegate's (the plan's method).
 void require_plan_inputs(const FilterPlan &plan);
 
+/// Throws aaf::InputError "no such channel 'X' (--map SPEC); did you mean
+/// 'Y'?" for the first channel that a `--map` of `maps` names, `plan` reads
+/// and `frame` (the frame `plan` was made for) lacks: a misspelt name is
+/// named as such, not as a missing input.
+void require_mapped_channels(const AovSet &frame, const std::vector<std::string> &maps,
+                             const FilterPlan &plan);
+
 }  // namespace aaf::cli

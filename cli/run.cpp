@@ -4,6 +4,7 @@
 #include <iostream>
 #include <optional>
 #include <string>
+#include <vector>
 
 #include "aaf/core/util/error.h"
 #include "aaf/core/util/instruction_set.h"
@@ -11,6 +12,7 @@
 #include "aaf/io/exr_io.h"
 #include "commands.h"
 #include "provenance.h"
+#include "suggestion.h"
 
 namespace aaf::cli {
 
@@ -41,27 +43,51 @@ int report(const std::string &message, int code) {
     return code;
 }
 
-/// Throws UsageError naming an unknown subcommand: CLI11 would only say "A
-/// subcommand is required" for `aaf frobnicate` or `aaf filter nosuch`.
+/// Throws UsageError naming an unknown subcommand and the one meant: CLI11
+/// would only say "A subcommand is required" for `aaf frobnicate` or `aaf
+/// filter nosuch`.
 void check_subcommand_names(const CLI::App &app, int argc, char **argv) {
     const CLI::App *level = &app;
     for (int i = 1; i < argc && level->get_require_subcommand_min() > 0; ++i) {
         const std::string word = argv[i];
         if (word.empty() || word[0] == '-') return;  // an option: CLI11 reports what is wrong with it
         std::string known;
+        std::vector<std::string> names;
         const CLI::App *next = nullptr;
         for (const CLI::App *sub : level->get_subcommands([](const CLI::App *) { return true; })) {
             known += (known.empty() ? "" : ", ") + sub->get_name();
+            names.push_back(sub->get_name());
             if (sub->get_name() == word) next = sub;
         }
         if (!next) {
             const char *what = level == &app                   ? "command"
                                : level->get_name() == "filter" ? "method"
                                                                : "subcommand";
-            throw UsageError(std::string("unknown ") + what + " '" + word + "' (" + known + ")");
+            throw UsageError(std::string("unknown ") + what + " '" + word + "' (" + known + ")" +
+                             did_you_mean(word, names));
         }
         level = next;
     }
+}
+
+/// "; did you mean '--x'?" for the first unexpected argument that is a
+/// misspelt option of the subcommand given (or of a command above it, whose
+/// options it accepts too), else "". CLI11 itself only lists what it did not expect.
+std::string option_suggestion(const CLI::App &app) {
+    const CLI::App *level = &app;
+    for (std::vector<CLI::App *> parsed = level->get_subcommands(); !parsed.empty();
+         parsed = level->get_subcommands())
+        level = parsed.front();
+    std::vector<std::string> names;
+    for (const CLI::App *owner = level; owner != nullptr; owner = owner->get_parent())
+        for (const CLI::Option *option : owner->get_options())
+            for (const std::string &name : option->get_lnames()) names.push_back("--" + name);
+    for (const std::string &argument : app.remaining(/*recurse=*/true)) {
+        if (argument.rfind("--", 0) != 0) continue;
+        const std::string hint = did_you_mean(argument.substr(0, argument.find('=')), names);
+        if (!hint.empty()) return hint;
+    }
+    return {};
 }
 
 }  // namespace
@@ -118,6 +144,8 @@ int run(int argc, char **argv) {
         return report(e.what(), kExitInputError);
     } catch (const ParameterError &e) {  // UsageError among them
         return report(e.what(), kExitUsage);
+    } catch (const CLI::ExtrasError &e) {
+        return report(e.what() + option_suggestion(app), kExitUsage);
     } catch (const CLI::ParseError &e) {
         // --help and --version print as CLI11 prints them and exit 0; a parse
         // error is one line, like every other error, and exits 2.

@@ -9,6 +9,7 @@
 #include "aaf/core/kernels/sample_statistics.h"
 #include "aaf/core/util/error.h"
 #include "aaf/io/atomic_file.h"
+#include "aaf/io/channel_lookup.h"
 #include "aaf/io/exr_io.h"
 #include "aaf/io/heatmap.h"
 
@@ -67,22 +68,6 @@ const RoleInfo *role_of(const std::string &channel, const ChannelMap &resolved) 
         if (std::find(names.begin(), names.end(), channel) != names.end()) return &info;
     }
     return nullptr;
-}
-
-/// `name` as `image` holds it: itself when present, else the channel a
-/// renderer writes for the same role (the beauty's R as Blender's
-/// ViewLayer.Combined.R, shadow.V under a view-layer prefix), else `name`
-/// (compare_images then names it missing).
-std::string resolve_channel(const std::string &name, const AovSet &image) {
-    if (image.has_channel(name)) return name;
-    const ChannelMap contract;
-    const ChannelMap resolved = contract.resolved(image);
-    for (const RoleInfo &info : role_table()) {
-        const std::vector<std::string> &names = contract.channels(info.role);
-        const auto at = std::find(names.begin(), names.end(), name);
-        if (at != names.end()) return resolved.channels(info.role)[std::size_t(at - names.begin())];
-    }
-    return name;
 }
 
 /// The channels of `options.layer` in `test`; refuses a layer whose

@@ -29,6 +29,7 @@ struct ImageLayout::Impl {
     std::string source_path;
     OIIO::ImageSpec first_part;  ///< header of part 0 (its pixels live in the AovSet)
     int parts = 1;
+    std::string format;  ///< OpenImageIO's name of the file's format ("openexr", "png")
 };
 
 ImageLayout::ImageLayout() : impl_(std::make_unique<Impl>()) {}
@@ -41,6 +42,9 @@ int ImageLayout::part_count() const {
 PixelWindow ImageLayout::data_window() const {
     const OIIO::ImageSpec &spec = impl_->first_part;
     return {spec.x, spec.y, spec.width, spec.height};
+}
+std::string ImageLayout::format_name() const {
+    return impl_->format;
 }
 PixelWindow ImageLayout::display_window() const {
     const OIIO::ImageSpec &spec = impl_->first_part;
@@ -410,6 +414,7 @@ AovSet read_aovs(const std::string &path, ImageLayout *layout) {
         carried.source_path = path;
         carried.first_part = spec;
         carried.parts = 1;
+        carried.format = input->format_name();
         while (input->seek_subimage(carried.parts, 0)) {
             if (input->spec().deep) throw InputError(path + ": deep parts are not supported");
             ++carried.parts;

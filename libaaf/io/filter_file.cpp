@@ -9,6 +9,7 @@
 #include "aaf/core/util/error.h"
 #include "aaf/core/util/thread_count.h"
 #include "aaf/io/atomic_file.h"
+#include "filter_checks.h"
 
 namespace aaf::io {
 
@@ -94,7 +95,7 @@ FrameFilter method_filter(const Method &method, const ParameterSet &parameters, 
         return filter_input_candidates(method, first_part, channels);
     };
     filter.prepare = [&method, parameters, channels, composition](const AovSet &frame) {
-        return prepare_filter(method, parameters, frame, channels, composition);
+        return prepare_filter(method, parameters, frame, with_varying_object_id(frame, channels), composition);
     };
     // A method that reads the previous frame's output gets the last frame
     // this pipeline filtered (frames run in order, one at a time).
@@ -116,6 +117,7 @@ FrameFilter method_filter(const Method &method, const ParameterSet &parameters, 
 AovSet filter_frame(AovSet input, const FilterPlan &plan, const std::string &source,
                     const FrameFilter &filter, const FilterFileOptions &options, FilterFileReport &report) {
     if (!plan.note.empty()) report.notes.push_back(source + ": " + plan.note);
+    report_constant_object_id(source, input, plan, options.channels, report);
     warn_if_defocused(source, input, filter, plan, report);
     if (options.replace_non_finite) report.non_finite = replace_non_finite(input, plan.input_channels);
     warn_if_non_finite(source, report);
@@ -126,6 +128,7 @@ AovSet filter_frame(AovSet input, const FilterPlan &plan, const std::string &sou
     run_with_threads(options.threads, [&] {
         output = with_context(source, [&] { return filter.run(plan, std::move(input)); });
     });
+    warn_if_unchanged(source, output, plan, report);
     if (options.keep_beauty) output = keep_beauty(output, resolved);
     return output;
 }
@@ -145,6 +148,7 @@ AovSet read_and_filter(const std::string &input_path, const FrameFilter &filter,
         const std::vector<std::string> wanted =
             with_context(input_path, [&] { return filter.candidate_channels(input); });
         report.borrowed = add_channels_from_other_parts(input_path, layout, wanted, input);
+        require_aovs(input_path, input, layout, options.channels, wanted);
     }
     // The frame is complete: its one plan decides what is scrubbed, noted and run.
     const FilterPlan plan =

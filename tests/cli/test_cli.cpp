@@ -102,15 +102,22 @@ TEST_CASE("CLI: bad input is one clear line, exit 3, no output written", "[cli]"
     CHECK_THAT(r.output, Catch::StartsWith("aaf: error: ") && Catch::Contains("missing.exr"));
     CHECK(!fs::exists(out));
 
-    // An EXR without the AAF AOVs: the missing role and the file are named.
-    const std::string plain = (dir / "plain.exr").string();
+    // An EXR with some of the AAF AOVs: the missing role and the file are named.
+    const std::string partial = (dir / "partial.exr").string();
     aaf::AovSet aovs(4, 4);
     aovs.add_channel("R");
-    aaf::io::write_aovs(aovs, plain);
-    r = run_aaf("filter aaf " + plain + " -o " + out);
+    aovs.add_channel("shadow.d1");
+    aaf::io::write_aovs(aovs, partial);
+    r = run_aaf("filter aaf " + partial + " -o " + out);
     CHECK(r.exit_code == 3);
-    CHECK_THAT(r.output, Catch::Contains("plain.exr") && Catch::Contains("shadow.V"));
+    CHECK_THAT(r.output, Catch::Contains("partial.exr") && Catch::Contains("shadow.V"));
     CHECK(!fs::exists(out));
+
+    // One with none of them, a beauty alone.
+    const std::string plain = (dir / "plain.exr").string();
+    aaf::AovSet beauty(4, 4);
+    beauty.add_channel("R");
+    aaf::io::write_aovs(beauty, plain);
 
     r = run_aaf("plan " + plain + " -o " + out);
     CHECK(r.exit_code == 3);

@@ -27,6 +27,9 @@ class ImageLayout {
     /// The first part's data window (where its pixels lie) and display window.
     PixelWindow data_window() const;
     PixelWindow display_window() const;
+    /// OpenImageIO's name of the source file's format: "openexr", "png",
+    /// "jpeg", "tiff"...; empty before a read.
+    std::string format_name() const;
 
     struct Impl;  ///< OpenImageIO details, private to aaf_io
     const Impl &impl() const { return *impl_; }

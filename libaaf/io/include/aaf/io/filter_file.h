@@ -19,12 +19,14 @@ namespace aaf::io {
 struct FrameFilter {
     /// Channel names, as resolved in `first_part`, that a plan may read
     /// (filter_input_candidates()): borrowed from the file's other parts when
-    /// the first part lacks them, before the plan is prepared. Unset: none.
+    /// the first part lacks them, before the plan is prepared; a file that
+    /// then holds none of them but the beauty, nor any other role's channel,
+    /// is refused as not an AOV EXR. Unset: none (and no such check).
     std::function<std::vector<std::string>(const AovSet &first_part)> candidate_channels;
     /// The frame's plan (prepare_filter()), made once per frame from its
-    /// channel names and header attributes (its pixels are not read), after
-    /// borrowing: its input_channels are scrubbed of NaN/Inf and its note is
-    /// reported. The pipeline calls it with the frame's name as context.
+    /// channel names and header attributes, after borrowing: its
+    /// input_channels are scrubbed of NaN/Inf and its note is reported. The
+    /// pipeline calls it with the frame's name as context.
     std::function<FilterPlan(const AovSet &frame)> prepare;
     /// Runs the plan on the frame it was made for: returns the full output set
     /// (the input channels kept, the beauty roles as aov_contract.h names
@@ -46,7 +48,11 @@ struct FrameFilter {
 /// The registered method `method` with `parameters` as the pipeline runs it:
 /// it borrows filter_input_candidates(), prepares with prepare_filter() and
 /// runs with run_filter() (filter_aovs.h), making the beauty as `composition`
-/// says. `method` must outlive the result.
+/// says. An object-id channel that holds one value over the frame (Blender's
+/// IndexOB with every pass index at 0) gives way to the next channel the role
+/// resolves to, when there is one that varies (the tracer's ids that
+/// scripts/blender/aaf_complete.py adds); filter_frame() says so. `method`
+/// must outlive the result.
 FrameFilter method_filter(const Method &method, const ParameterSet &parameters, const ChannelMap &channels,
                           Composition composition = Composition::Correct);
 
@@ -76,10 +82,13 @@ struct FilterFileOptions {
 /// What filter_file() did besides writing the output.
 struct FilterFileReport {
     /// Messages for the user that are not warnings, each "<input>: <note>":
-    /// the input was handed to another method (FilterPlan::note).
+    /// the input was handed to another method (FilterPlan::note), a
+    /// constant object id was read from another channel.
     std::vector<std::string> notes;
     /// Messages for the user, each "<input>: <problem>", in the order found:
-    /// a thin-lens input (AAF's output has no defocus), NaN/Inf replaced.
+    /// an object id that is 0 everywhere (every pixel background), a
+    /// thin-lens input (AAF's output has no defocus), NaN/Inf replaced, a
+    /// filtered output equal to its varying input (the filter changed nothing).
     std::vector<std::string> warnings;
     /// NaN/Inf values replaced per input channel (only channels that had any).
     NonFiniteCounts non_finite;
@@ -91,10 +100,10 @@ struct FilterFileReport {
 /// Filters one frame in memory with the plan prepared for it
 /// (FrameFilter::prepare), as filter_file() does between reading and
 /// writing: reports `plan`'s note, warns (into `report`, each message
-/// prefixed with `source`) of a thin-lens input and of NaN/Inf, scrubs them,
-/// runs `filter` under `options.threads` workers and optionally keeps the
-/// beauty. `source` names the frame in messages and errors (a file, or a
-/// scene for a render filtered before it is written). `options.write` and
+/// prefixed with `source`) of a constant object id, a thin-lens input and
+/// NaN/Inf, scrubs them, runs `filter` under `options.threads` workers, warns
+/// when it changed nothing and optionally keeps the beauty. `source` names the frame in messages and errors
+/// (a file, or a scene for a render filtered before it is written). `options.write` and
 /// `options.complete_header` are not used.
 AovSet filter_frame(AovSet input, const FilterPlan &plan, const std::string &source,
                     const FrameFilter &filter, const FilterFileOptions &options, FilterFileReport &report);
@@ -114,7 +123,9 @@ AovSet filter_file_in_memory(const std::string &input_path, const FrameFilter &f
 /// writes `output_path` atomically (a temporary renamed into place) with the
 /// input's layout. The input is never modified and a failure leaves no
 /// output. Throws aaf::InputError "<file>: <problem>" for unreadable,
-/// mismatched or unwritable files and `output_path` naming the input, and
+/// mismatched or unwritable files, a file that holds no AOV but a beauty
+/// ("<file>: not an AOV EXR (a 64x64 PNG image with channels R, G, B, ...)")
+/// and `output_path` naming the input, and
 /// the filter's own aaf::Error (kind kept) prefixed with "<input_path>: ".
 FilterFileReport filter_file(const std::string &input_path, const std::string &output_path,
                              const FrameFilter &filter, const FilterFileOptions &options = {});
