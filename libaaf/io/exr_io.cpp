@@ -8,6 +8,7 @@
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <fstream>
 #include <memory>
 #include <new>
 #include <set>
@@ -422,6 +423,19 @@ AovSet read_aovs(const std::string &path, ImageLayout *layout) {
         OIIO::geterror();  // the failed seek past the last part leaves a message
     }
     return aovs;
+}
+
+void require_exr_file(const std::string &path) {
+    struct stat info {};
+    if (stat(path.c_str(), &info) != 0 || !S_ISREG(info.st_mode)) return;
+    std::ifstream file(path, std::ios::binary);
+    if (!file) return;
+    char magic[4] = {};
+    // OpenEXR's magic number, 20000630 as a little-endian int.
+    if (file.read(magic, sizeof magic) && std::string(magic, sizeof magic) == "\x76\x2f\x31\x01") return;
+    throw InputError(path + ": not an AOV EXR (" +
+                     (has_png_signature(path) ? "a PNG image" : "not an OpenEXR file") +
+                     "; the AOVs are read from OpenEXR files)");
 }
 
 std::vector<PartSummary> other_parts(const std::string &path, const ImageLayout &layout) {

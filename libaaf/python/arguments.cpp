@@ -13,11 +13,16 @@ std::string type_name_of(const py::handle &value) {
 }
 
 std::string string_arg(const py::handle &value, const std::string &what, bool path_like) {
-    if (py::isinstance<py::str>(value)) return value.cast<std::string>();
-    if (path_like && py::hasattr(value, "__fspath__")) {
-        const py::object path = py::module_::import("os").attr("fspath")(value);
-        if (py::isinstance<py::str>(path)) return path.cast<std::string>();
+    // A str or any os.PathLike (its os.fspath a str or bytes), as the bytes
+    // open() would use: os.fsencode, so a name that is not UTF-8 works too.
+    if (path_like && (py::isinstance<py::str>(value) || py::hasattr(value, "__fspath__"))) {
+        try {
+            return py::module_::import("os").attr("fsencode")(value).cast<std::string>();
+        } catch (const py::error_already_set &e) {
+            throw Error(what + ": " + std::string(py::str(e.value())));
+        }
     }
+    if (py::isinstance<py::str>(value)) return value.cast<std::string>();
     throw Error(what + ": expected " + (path_like ? "a path (str or os.PathLike)" : "a str") + ", got " +
                 type_name_of(value));
 }

@@ -14,7 +14,7 @@ namespace aaf::python {
 /// The Python type name of `value` ("int", "NoneType").
 std::string type_name_of(const pybind11::handle &value);
 
-/// A str, or an os.PathLike when `path_like` (its os.fspath, which must be a str).
+/// A str, or when `path_like` a path: a str or any os.PathLike, as os.fsencode gives its bytes.
 std::string string_arg(const pybind11::handle &value, const std::string &what, bool path_like = false);
 
 /// An int (a bool is refused) in [low, high].

@@ -155,4 +155,10 @@ AovSet from_python(const PyAovs &aovs) {
     return set;
 }
 
+const PyAovs &aovs_arg(const py::handle &value, const std::string &what) {
+    if (!py::isinstance<PyAovs>(value))
+        throw Error(what + ": expected an aaf.Aovs, got " + type_name_of(value));
+    return value.cast<const PyAovs &>();
+}
+
 }  // namespace aaf::python

@@ -3,6 +3,8 @@
 #include <pybind11/numpy.h>
 #include <pybind11/pybind11.h>
 
+#include <string>
+
 #include "aaf/core/contract/aov_set.h"
 
 namespace aaf::python {
@@ -26,5 +28,8 @@ PyAovs to_python(const AovSet &aovs);
 /// of another type than int (32-bit), float (32-bit range), str or a
 /// sequence of 3 numbers.
 AovSet from_python(const PyAovs &aovs);
+
+/// `value` as the aaf.Aovs it must be; throws aaf::Error naming `what` otherwise.
+const PyAovs &aovs_arg(const pybind11::handle &value, const std::string &what);
 
 }  // namespace aaf::python

@@ -60,7 +60,7 @@ class Methods(unittest.TestCase):
         described = aaf.method("aaf")
         self.assertIn("visibility", described["required"])
         mu = [p for p in described["parameters"] if p["name"] == "mu"][0]
-        self.assertEqual((mu["type"], mu["default"]), ("float", "2"))
+        self.assertEqual((mu["type"], mu["default"]), ("float", 2.0))
         for name in names:  # the filter docstring is generated from the same registry
             self.assertIn("  " + name + ": ", aaf.filter.__doc__)
 
@@ -74,7 +74,9 @@ class Methods(unittest.TestCase):
             name = "--" + p["name"].replace("_", "-")
             if p["type"] == "bool":
                 return name + " "
-            return "%s %s=%s " % (name, {"float": "FLOAT", "int": "INT"}.get(p["type"], "TEXT"), p["default"])
+            # The help shows a float default as its shortest decimal: 2, 0.001.
+            default = ("%.9g" % p["default"]) if p["type"] == "float" else p["default"]
+            return "%s %s=%s " % (name, {"float": "FLOAT", "int": "INT"}.get(p["type"], "TEXT"), default)
 
         for method in [m["name"] for m in aaf.methods()]:
             text = helped("filter", method)

@@ -48,6 +48,11 @@ class ImageLayout {
 /// when the file is missing, unreadable, deep, or has duplicate channel names.
 AovSet read_aovs(const std::string &path, ImageLayout *layout = nullptr);
 
+/// Throws aaf::InputError "<path>: not an AOV EXR (...)" when `path` is a
+/// file of another format (a PNG, a JPEG): the AOVs are read from OpenEXR
+/// files. A missing or unreadable path passes, for read_aovs() to report.
+void require_exr_file(const std::string &path);
+
 /// One part of a multi-part file beyond the first, as `aaf info` lists it.
 struct PartSummary {
     int index = 0;
