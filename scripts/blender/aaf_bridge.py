@@ -452,6 +452,9 @@ class AafJob:
 
 def shot_paths(scene):
     """The shot's files: (scene JSON, aaf's render of it, the filtered render), from the scene's aaf settings."""
+    if scene.aaf.shot_path.startswith("//") and not bpy.data.filepath:
+        raise StepError(3, f"shot path {scene.aaf.shot_path} is relative to the .blend file, which is not saved: "
+                           "save it, or give the shot an absolute path")
     path = bpy.path.ensure_ext(os.path.abspath(bpy.path.abspath(scene.aaf.shot_path)), ".json")
     base = os.path.splitext(path)[0]
     return path, base + ".aovs.exr", base + ".filtered.exr"

@@ -54,6 +54,12 @@ bpy.context.object.data.size = 0.8
 bpy.ops.object.camera_add(location=(0, -4.0, 3.0), rotation=(math.radians(53), 0, 0))
 scene.camera = bpy.context.object
 settings = scene.aaf
+if mode == "drive":  # the default shot path is beside the .blend file, which is not saved
+    try:
+        addon.shot_paths(scene)
+        check(False, f"an unsaved file's shot went to {addon.shot_paths(scene)[0]}")
+    except addon.StepError as e:
+        check(e.code == 3 and "not saved" in str(e), f"an unsaved file's shot path: {e}")
 out = os.path.join(work, mode)
 settings.shot_path = os.path.join(out, "shot.json")
 settings.spp = 8
