@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # Installs Debian's Blender 3.4 (about 300 MB with its dependencies), which the
-# compositor test (tests/blender/compositor_test.sh) needs; scripts/test.sh
-# runs it, so the test runs rather than reports itself skipped.
+# Blender tests (tests/blender: the compositor, the bridge, the add-on) need; scripts/test.sh
+# runs it, so those tests run rather than report themselves skipped.
 set -euo pipefail
 if command -v blender >/dev/null; then
   blender --version | head -1
