@@ -10,7 +10,9 @@ every aaf channel it lacks (visibility, d1, d2min/d2max, pixel size,
 unshadowed, spp, ...) under the Cycles file's view-layer prefix
 (ViewLayer.shadow.V), where `aaf filter` finds them (the contract's names
 under a view-layer prefix) and where its outputs then land. aaf's beauty
-R,G,B is not copied: the Cycles Combined pass is the beauty. The light is
+R,G,B and keylight.* (parts of aaf's own beauty) are not copied: the Cycles
+Combined pass is the beauty, and its light group 'key' (Combined_key) the
+key light's pass that `aaf filter aaf` filters and swaps into it. The light is
 not in the header: filter with `--light OUT_SCENE.light.json`.
 OUT.exr is written through a temporary file beside it and renamed into
 place, so a failure leaves nothing behind; an OUT that is one of the inputs
@@ -101,7 +103,7 @@ def main(args):
         fail(f"{aaf_path}: {aaf_spec.width}x{aaf_spec.height}, the Cycles file is "
              f"{cycles_spec.width}x{cycles_spec.height} (render both at the same size)")
     added = [(i, prefix + n) for i, n in enumerate(aaf_spec.channelnames)
-             if n not in ("R", "G", "B", "A") and prefix + n not in names]
+             if n not in ("R", "G", "B", "A") and not n.startswith("keylight.") and prefix + n not in names]
     spec = oiio.ImageSpec(cycles_spec)
     spec.nchannels = len(names) + len(added)
     spec.channelnames = tuple(names + [n for _, n in added])

@@ -8,8 +8,8 @@
 #include "aaf/core/methods/maaf/maaf_roles.h"
 #include "aaf/core/methods/maaf6/maaf6_components.h"
 #include "aaf/core/methods/maaf6/maaf6_roles.h"
-#include "aaf/core/parallel.h"
 #include "aaf/core/util/error.h"
+#include "aaf/core/util/parallel.h"
 #include "aov_groups.h"
 
 namespace aaf::trace {

@@ -101,10 +101,13 @@ class RatioGroup final : public AovAccumulator {
         // the key light's r(x) V(x), so that `aaf filter ratio` replaces exactly
         // it (attr::kBeauty). Through a lens the beauty keeps its defocus.
         const bool beauty_is_s = !state.scene.camera.is_thin_lens();
-        std::vector<PlaneView> beauty;
+        std::vector<PlaneView> beauty, key_light;
         if (beauty_is_s) {
             for (const std::string &name : role_info(Role::Beauty).channels)
                 beauty.push_back(aovs.channel(name));
+            // The key light's part of that beauty, for the filters of its shadow alone
+            // (shadow_composition.h).
+            key_light = add_role_channels(aovs, Role::KeyLight);
             aovs.attributes[attr::kBeauty] = std::string(beauty_holds::kRatio);
         }
         state.for_each_pixel([&](int x, int y, const PrimaryHit &, const ShadowStats &) {
@@ -125,7 +128,10 @@ class RatioGroup final : public AovAccumulator {
                 totals[k] = Vec3{float(sum[k][0]), float(sum[k][1]), float(sum[k][2])};
                 set3(views[0][std::size_t(k)], x, y, totals[k]);
             }
-            if (beauty_is_s) set3(beauty, x, y, totals[1]);
+            if (beauty_is_s) {
+                set3(beauty, x, y, totals[1]);
+                if (lights > 0) set3(key_light, x, y, layers[pixel * lights].shadowed);
+            }
             views[0][3][0](x, y) = float(luminance(totals[1]));
             views[0][4][0](x, y) = float(luminance(totals[2]));
         });

@@ -266,11 +266,6 @@ class RatioMethod final : public Method {
         info_.reference =
             "Heitz, Hill, McGuire: Combining Analytic Direct Illumination and Stochastic Shadows, 2018";
         info_.roles.declared = ratio_roles();
-        // A render with the ratio group has the key light's S_N alone: the
-        // pass a visibility filter swaps into that beauty (shadow_composition.h).
-        info_.roles.synonyms = {{Role::KeyLight,
-                                 "aaf's ratio group (light 0)",
-                                 {"ratio.L0.S.R", "ratio.L0.S.G", "ratio.L0.S.B"}}};
         info_.roles.required = {roles::RatioAnalytic, roles::RatioShadowed, roles::RatioUnshadowed,
                                 Role::Position, Role::Normal};
         info_.roles.optional = {roles::RatioShadowedLuminance,
