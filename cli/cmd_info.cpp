@@ -83,14 +83,19 @@ void add_info_command(CLI::App &app) {
         if (beauty != aovs.attributes.end())
             std::printf("R,G,B holds %s (aaf:beauty_effects), not the direct light of every light\n",
                         format_attribute(beauty->second).c_str());
+        const auto holds = aovs.attributes.find(attr::kBeauty);
+        if (holds != aovs.attributes.end())
+            std::printf("R,G,B is %s (aaf:beauty): what the filters replace their estimate in\n",
+                        format_attribute(holds->second).c_str());
         std::printf("methods (what each lacks, with how to produce it):\n");
         for (const Method *method : methods()) {
             // A render made for one of its delegates is ready too, as that delegate (choose_method).
-            const MethodChoice choice = choose_method(*method, method->default_parameters(), aovs, channels);
-            const std::vector<std::string> recipes = missing_input_recipes(*choice.method, aovs, channels);
-            const std::string status = !recipes.empty()      ? "missing " + std::to_string(recipes.size())
-                                       : choice.note.empty() ? std::string("ready")
-                                                             : "ready: " + choice.note;
+            // The plan's note also says when the method would keep R,G,B as rendered.
+            const FilterPlan plan = prepare_filter(*method, method->default_parameters(), aovs, channels);
+            const std::vector<std::string> recipes = missing_input_recipes(*plan.method, aovs, channels);
+            const std::string status = !recipes.empty()    ? "missing " + std::to_string(recipes.size())
+                                       : plan.note.empty() ? std::string("ready")
+                                                           : "ready: " + plan.note;
             std::printf("  %-8s %s\n", method->info().name.c_str(), status.c_str());
             for (const std::string &recipe : recipes) std::printf("             - %s\n", recipe.c_str());
         }

@@ -485,6 +485,7 @@ std::vector<std::string> add_channels_from_other_parts(const std::string &path, 
 std::string read_string_attribute(const std::string &path, const std::string &name) {
     try {
         check_before_opening(path);
+        const QuietStderr quiet_libpng(has_png_signature(path));
         std::unique_ptr<OIIO::ImageInput> input = OIIO::ImageInput::open(path);
         if (!input) {
             OIIO::geterror();  // clear the pending message

@@ -95,7 +95,8 @@ FrameFilter method_filter(const Method &method, const ParameterSet &parameters, 
         return filter_input_candidates(method, first_part, channels);
     };
     filter.prepare = [&method, parameters, channels, composition](const AovSet &frame) {
-        return prepare_filter(method, parameters, frame, with_varying_object_id(frame, channels), composition);
+        return prepare_filter(method, parameters, frame, with_varying_object_id(frame, channels),
+                              composition);
     };
     // A method that reads the previous frame's output gets the last frame
     // this pipeline filtered (frames run in order, one at a time).

@@ -227,7 +227,7 @@ AovGroups aov_groups_with_readers(const std::string &group) {
         const std::vector<Role> &required = method->info().roles.required;
         if (std::any_of(required.begin(), required.end(),
                         [&own](Role role) { return std::find(own.begin(), own.end(), role) != own.end(); }))
-            groups |= aov_groups_writing(required);
+            groups |= aov_groups_for_method(method->info().name);
     }
     return groups;
 }

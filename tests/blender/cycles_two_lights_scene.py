@@ -1,5 +1,5 @@
 """A Cycles shot with two lights and indirect light, a fixture for work on
-light groups (not a ctest: it takes about 25 s on 2 cores):
+light groups (tests/blender/cycles_key_light_test.sh runs it at 8 and 1024 samples):
 
   blender -b --factory-startup --python-exit-code 1 \\
     --python tests/blender/cycles_two_lights_scene.py -- OUT_DIR AAF [NOISY_SPP REFERENCE_SPP]

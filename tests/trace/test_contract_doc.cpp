@@ -62,9 +62,10 @@ TEST_CASE("AOV_CONTRACT.md holds the contract as the code declares it", "[contra
 
 TEST_CASE("The generated contract names every role and every registered method", "[contract][doc]") {
     const std::string roles = aaf::roles_markdown();
-    // Visibility is read by both visibility filters, its filtered version written by both.
+    // Visibility is read by both visibility filters, and by the others that correct the beauty with it.
     CHECK_THAT(roles, Catch::Contains("| `visibility` | `shadow.V` |") &&
-                          Catch::Contains("the unoccluded fraction) | `aaf`, `gaussian` | - |\n"));
+                          Catch::Contains("the unoccluded fraction) | `aaf`, `gaussian`, `maaf (optional)`, "
+                                          "`isg-shadow (optional)` | - |\n"));
     CHECK_THAT(roles,
                Catch::Contains("filtered visibility | - | `aaf`, `gaussian`, `maaf`, `isg-shadow` |\n"));
     const std::string methods = aaf::methods_markdown();

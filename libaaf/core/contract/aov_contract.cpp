@@ -13,7 +13,8 @@ const std::vector<RoleInfo> &shared_roles() {
         {Role::Beauty,
          {"R", "G", "B"},
          "linear radiance",
-         "final noisy image, r(x) times the noisy visibility",
+         "final noisy image, the one a filter corrects; the tracer records what it holds in aaf:beauty "
+         "(through a pinhole r(x) V(x) plus the other lights)",
          true},
         {Role::Visibility,
          {"shadow.V"},

@@ -205,7 +205,9 @@ FilterPlan prepare_filter(const Method &method, const ParameterSet &parameters, 
         const std::vector<std::string> &names = plan.channels.channels(role);
         return !names.empty() && has_all(frame, names);
     };
-    const std::string kept = plan.method->composition_note(frame.attributes, has, composition);
+    // Only a plan that can run says what it will do with the beauty.
+    const std::string kept =
+        plan.missing.empty() ? plan.method->composition_note(frame.attributes, has, composition) : "";
     if (!kept.empty()) plan.note += (plan.note.empty() ? "" : "; ") + kept;
     return plan;
 }

@@ -1,6 +1,7 @@
 // Axis-Aligned Filtering of soft shadows (Mehta, Wang, Ramamoorthi 2012) as a
 // registered method: its declaration (roles, parameters) and the wiring from
 // the images to aaf_filter().
+#include <cmath>
 #include <limits>
 #include <vector>
 
@@ -34,8 +35,10 @@ void filter_key_light_pass(const MethodImages &images, const AafInputs &in, cons
         for (int y = 0; y < height; ++y)
             for (int x = 0; x < width; ++x) {
                 const float a = albedo ? images.input(Role::Albedo, c)(x, y) : 1.0f;
+                const float value = a > 0 ? pass[c](x, y) / a : pass[c](x, y);
+                // A non-finite value is read as 0, so it cannot spread (it stays in its own pixel's beauty).
                 demodulated[c][std::size_t(y) * std::size_t(width) + std::size_t(x)] =
-                    a > 0 ? pass[c](x, y) / a : pass[c](x, y);
+                    std::isfinite(value) ? value : 0.0f;
             }
         sources.push_back(plane_view(demodulated[c].data(), width, height));
         outputs.push_back(filtered[c]);

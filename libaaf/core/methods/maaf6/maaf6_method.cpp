@@ -120,8 +120,10 @@ void write_beauty(const MethodImages &images) {
                 const float filtered = direct(x, y) + indirect(x, y);
                 if (sum)
                     beauty(x, y) = filtered;
-                else if (corrected)
-                    beauty(x, y) = (in(x, y) - (noisy_direct(x, y) + noisy_indirect(x, y))) + filtered;
+                else if (corrected)  // in double: the two layers' sums may pass float's range
+                    beauty(x, y) = float(
+                        (double(in(x, y)) - (double(noisy_direct(x, y)) + double(noisy_indirect(x, y)))) +
+                        (double(direct(x, y)) + double(indirect(x, y))));
                 else
                     beauty(x, y) = in(x, y);
             }
