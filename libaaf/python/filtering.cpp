@@ -105,11 +105,16 @@ class ProgressCallback {
 
 PyAovs filter(const py::object &method_name, const py::object &aovs, const py::object &map,
               const py::object &threads_arg, const py::object &light, const py::object &progress_arg,
-              const py::kwargs &given) {
+              const py::object &compose_arg, const py::kwargs &given) {
     const Method &method = find_method(string_arg(method_name, "method"));
     const ParameterSet parameters = parameters_from(method, given);
     const ChannelMap channels = channel_map_from(map);
     const int threads = int_arg(threads_arg, "threads", 0, kMaxThreads);
+    // As `aaf filter --compose`.
+    const std::string compose = string_arg(compose_arg, "compose");
+    if (compose != "correct" && compose != "paper")
+        throw ParameterError("compose: '" + compose + "' is neither 'correct' nor 'paper'");
+    const Composition composition = compose == "paper" ? Composition::Paper : Composition::Correct;
     ProgressCallback progress(progress_arg);
     AovSet input = from_python(aovs_arg(aovs, "aovs"));
     // As `aaf filter --light`: the file's key light replaces all of the frame's aaf:light:* attributes.
@@ -117,7 +122,7 @@ PyAovs filter(const py::object &method_name, const py::object &aovs, const py::o
         write_light_attributes(trace::load_light_file(string_arg(light, "light", true)), input);
     // The same plan as `aaf filter` makes for this frame: the same method (or
     // delegate) and channels, and every missing input named in one error.
-    const FilterPlan plan = prepare_filter(method, parameters, input, channels);
+    const FilterPlan plan = prepare_filter(method, parameters, input, channels, composition);
     io::require_plan_inputs(plan, groups_writing);
     AovSet output;
     try {
@@ -133,13 +138,16 @@ PyAovs filter(const py::object &method_name, const py::object &aovs, const py::o
 /// The filter() docstring, generated from the registry like `aaf filter --help`.
 std::string filter_doc() {
     std::string doc =
-        "filter(method, aovs, *, map=None, threads=0, light=None, progress=None, **parameters) -> Aovs\n\n"
+        "filter(method, aovs, *, map=None, threads=0, light=None, progress=None, compose='correct', "
+        "**parameters) -> Aovs\n\n"
         "Runs a registered method on `aovs` (as `aaf filter METHOD` does on a file) and returns\n"
         "every input channel plus the method's outputs. `map`: a dict role -> channel name(s), or a\n"
         "list of 'role=channels' (the CLI's --map). `light`: a path to a light file whose key light\n"
         "replaces the aaf:light:* attributes (the CLI's --light). `progress`: called with the fraction\n"
         "done, 0 to 1; returning False (or raising) stops the filter, which raises aaf.Cancelled (or\n"
-        "that exception). Missing inputs raise one aaf.InputError naming them all.\n"
+        "that exception). `compose`: 'correct' replaces only what the method models in the input\n"
+        "beauty, 'paper' recomposes R,G,B as the paper does (the CLI's --compose). Missing inputs\n"
+        "raise one aaf.InputError naming them all.\n"
         "Parameters by their snake_case names:\n";
     for (const Method *method : methods()) {
         doc += "\n  " + method->info().name + ": " + method->info().summary + "\n";
@@ -155,7 +163,7 @@ std::string filter_doc() {
 void def_filtering(py::module_ &m) {
     m.def("filter", &filter, py::arg("method"), py::arg("aovs"), py::kw_only(), py::arg("map") = py::none(),
           py::arg("threads") = 0, py::arg("light") = py::none(), py::arg("progress") = py::none(),
-          filter_doc().c_str());
+          py::arg("compose") = "correct", filter_doc().c_str());
 }
 
 }  // namespace aaf::python

@@ -82,6 +82,18 @@ class MultiPart(unittest.TestCase):
         self.assertIn("aaf.V", refiltered.channels)
 
 
+class Compose(unittest.TestCase):
+    def test_compose_gives_the_cli_compose_result_and_a_bad_value_is_refused(self):
+        noisy = aaf.read(scratch("noisy.exr"))
+        for compose in ("correct", "paper"):
+            out = scratch("compose_%s.exr" % compose)
+            subprocess.run([AAF_EXE, "filter", "aaf", scratch("noisy.exr"), "-o", out, "--compose", compose],
+                           check=True)
+            assert_same_channels(self, aaf.filter("aaf", noisy, compose=compose), aaf.read(out))
+        with self.assertRaisesRegex(aaf.Error, "compose"):
+            aaf.filter("aaf", noisy, compose="recomposed")
+
+
 class Light(unittest.TestCase):
     def light_file(self, aovs, shift_m):
         """A light object file (scene format) of the render's key light moved by `shift_m` along its normal."""
