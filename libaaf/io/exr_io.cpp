@@ -482,15 +482,24 @@ std::vector<std::string> add_channels_from_other_parts(const std::string &path, 
     return added;
 }
 
+namespace {
+
+/// `path` opened for reading, or null (OIIO's message cleared); libpng's own
+/// complaints stay off stderr. Throws as check_before_opening().
+std::unique_ptr<OIIO::ImageInput> open_quietly(const std::string &path) {
+    check_before_opening(path);
+    const QuietStderr quiet_libpng(has_png_signature(path));
+    std::unique_ptr<OIIO::ImageInput> input = OIIO::ImageInput::open(path);
+    if (!input) OIIO::geterror();  // clear the pending message
+    return input;
+}
+
+}  // namespace
+
 std::string read_string_attribute(const std::string &path, const std::string &name) {
     try {
-        check_before_opening(path);
-        const QuietStderr quiet_libpng(has_png_signature(path));
-        std::unique_ptr<OIIO::ImageInput> input = OIIO::ImageInput::open(path);
-        if (!input) {
-            OIIO::geterror();  // clear the pending message
-            return {};
-        }
+        const std::unique_ptr<OIIO::ImageInput> input = open_quietly(path);
+        if (!input) return {};
         const OIIO::ParamValue *value = input->spec().find_attribute(name, OIIO::TypeString);
         return value ? std::string(value->get_string()) : std::string();
     } catch (const std::exception &) {
@@ -500,13 +509,9 @@ std::string read_string_attribute(const std::string &path, const std::string &na
 
 bool is_readable_image(const std::string &path) {
     try {
-        check_before_opening(path);
         const QuietStderr quiet_libpng(has_png_signature(path));
-        std::unique_ptr<OIIO::ImageInput> input = OIIO::ImageInput::open(path);
-        if (!input) {
-            OIIO::geterror();  // clear the pending message
-            return false;
-        }
+        const std::unique_ptr<OIIO::ImageInput> input = open_quietly(path);
+        if (!input) return false;
         bool complete = true;
         for (int part = 0; complete && input->seek_subimage(part, 0); ++part) {
             const OIIO::ImageSpec spec = input->spec();

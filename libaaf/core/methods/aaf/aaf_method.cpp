@@ -32,9 +32,10 @@ void filter_key_light_pass(const MethodImages &images, const AafInputs &in, cons
     std::vector<ConstPlaneView> sources;
     std::vector<PlaneView> outputs;
     for (std::size_t c = 0; c < 3; ++c) {
+        const ConstPlaneView reflectance = albedo ? images.input(Role::Albedo, c) : ConstPlaneView{};
         for (int y = 0; y < height; ++y)
             for (int x = 0; x < width; ++x) {
-                const float a = albedo ? images.input(Role::Albedo, c)(x, y) : 1.0f;
+                const float a = albedo ? reflectance(x, y) : 1.0f;
                 const float value = a > 0 ? pass[c](x, y) / a : pass[c](x, y);
                 // A non-finite value is read as 0, so it cannot spread (it stays in its own pixel's beauty).
                 demodulated[c][std::size_t(y) * std::size_t(width) + std::size_t(x)] =
@@ -45,12 +46,14 @@ void filter_key_light_pass(const MethodImages &images, const AafInputs &in, cons
     }
     gather(aaf_gather_guides(in, light, params), aaf_gather_settings(params), sources, outputs);
     if (!albedo) return;
-    for (std::size_t c = 0; c < 3; ++c)
+    for (std::size_t c = 0; c < 3; ++c) {
+        const ConstPlaneView reflectance = images.input(Role::Albedo, c);
         for (int y = 0; y < height; ++y)
             for (int x = 0; x < width; ++x) {
-                const float a = images.input(Role::Albedo, c)(x, y);
+                const float a = reflectance(x, y);
                 if (a > 0) filtered[c](x, y) *= a;
             }
+    }
 }
 
 constexpr double kInf = std::numeric_limits<double>::infinity();
