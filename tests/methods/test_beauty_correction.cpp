@@ -116,3 +116,52 @@ TEST_CASE("aaf compare OUT REF measures what every registered method estimates, 
         CHECK(result.at("channels").get<std::vector<std::string>>() == expected);
     }
 }
+
+TEST_CASE(
+    "Another renderer's beauty is corrected through its pass of the key light by aaf and gaussian; "
+    "other light added to it survives",
+    "[methods][beauty]") {
+    for (const char *name : {"aaf", "gaussian"}) {
+        INFO("method " << name);
+        const Method &method = find_method(name);
+        AovSet foreign = trace::render_scene("grids", small(name, 4, 3));
+        foreign.attributes.erase(attr::kBeauty);  // not the tracer's beauty
+        // Its key light alone, as a light group would hold it: here all of its direct light.
+        const std::vector<std::string> &pass = role_info(Role::KeyLight).channels;
+        for (std::size_t c = 0; c < 3; ++c) {
+            PlaneView key = foreign.add_channel(pass[c]);
+            const ConstPlaneView beauty = foreign.channel(role_info(Role::Beauty).channels[c]);
+            for (int y = 0; y < key.height; ++y)
+                for (int x = 0; x < key.width; ++x) key(x, y) = beauty(x, y);
+        }
+        AovSet lit = foreign;
+        for (const char *c : {"R", "G", "B"}) {
+            PlaneView plane = lit.channel(c);
+            for (int y = 0; y < plane.height; ++y)
+                for (int x = 0; x < plane.width; ++x) plane(x, y) += 0.05f;
+        }
+        const AovSet out = filter_aovs(method, foreign, ChannelMap{}, method.default_parameters());
+        const AovSet out_lit = filter_aovs(method, lit, ChannelMap{}, method.default_parameters());
+        double worst = 0;
+        for (const char *c : {"R", "G", "B"})
+            for (int y = 0; y < out.height(); ++y)
+                for (int x = 0; x < out.width(); ++x)
+                    worst = std::max(worst, std::fabs(double(out_lit.channel(c)(x, y)) -
+                                                      double(out.channel(c)(x, y)) - 0.05));
+        CHECK(worst < 1e-4);
+        CHECK(rmse_rgb(out, foreign) > 1e-3);  // the pass was filtered and swapped in
+    }
+}
+
+TEST_CASE("Filtering a filtered frame again keeps its R,G,B and says so, never correcting twice",
+          "[methods][beauty]") {
+    const Method &aaf = find_method("aaf");
+    const AovSet render = trace::render_scene("grids", small("aaf", 4, 3));
+    const AovSet once = filter_aovs(aaf, render, ChannelMap{}, aaf.default_parameters());
+    CHECK(once.attributes.count(attr::kBeauty) == 0);
+    const FilterPlan plan = prepare_filter(aaf, aaf.default_parameters(), once, ChannelMap{});
+    CHECK_THAT(plan.note, Catch::Contains("R,G,B left as rendered"));
+    const AovSet twice = run_filter(plan, once);
+    for (const char *c : {"R", "G", "B"})
+        CHECK(once.plane(once.index_of(c)) == twice.plane(twice.index_of(c)));
+}

@@ -360,6 +360,8 @@ AovSet run_method(const Method &method, AovSet &&input, const ChannelMap &found,
             return views;
         });
     }
+    // A filtered beauty is no longer the tracer's sum: filtering it again keeps it (with a note).
+    if (composes_beauty) out.attributes.erase(attr::kBeauty);
     Progress progress(monitor);
     progress.report(0.0);
     method.run(images, parameters, progress);

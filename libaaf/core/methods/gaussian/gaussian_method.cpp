@@ -1,6 +1,7 @@
 // The fixed-width screen-space Gaussian: the "non-adaptive filter" baseline
 // of AAF Fig. 6 and 10, as a registered method, so every method is compared
 // against it through the same pipeline.
+#include <array>
 #include <cmath>
 #include <vector>
 
@@ -56,13 +57,25 @@ class GaussianMethod final : public Method {
         const PlaneView filtered = images.output(Role::FilteredVisibility);
         fixed_gaussian_filter(plane_view(visibility.data(), width, height), settings.sigma_px, filtered);
         progress.report(0.9);
-        compose_shadowed_beauty(images, filtered);  // AAF Eq. 1, or the beauty corrected
+        // Another renderer's pass of the key light gets the same screen-space blur.
+        const PassFilter filter_pass = [&](const std::array<ConstPlaneView, 3> &pass,
+                                           const std::array<PlaneView, 3> &out) {
+            std::vector<float> finite(visibility.size());
+            for (std::size_t c = 0; c < 3; ++c) {
+                for (int y = 0; y < height; ++y)
+                    for (int x = 0; x < width; ++x)
+                        finite[std::size_t(y) * std::size_t(width) + std::size_t(x)] =
+                            std::isfinite(pass[c](x, y)) ? pass[c](x, y) : 0.0f;
+                fixed_gaussian_filter(plane_view(finite.data(), width, height), settings.sigma_px, out[c]);
+            }
+        };
+        compose_shadowed_beauty(images, filtered, filter_pass);  // AAF Eq. 1, or the beauty corrected
     }
 
     std::string composition_note(const std::map<std::string, AttributeValue> &attributes,
                                  const std::function<bool(Role)> &has,
                                  Composition composition) const override {
-        return shadow_beauty_note(shadow_beauty(attributes, has, composition, false), info_.title, false);
+        return shadow_beauty_note(shadow_beauty(attributes, has, composition, true), info_.title, true);
     }
 
   private:
