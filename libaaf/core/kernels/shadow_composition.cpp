@@ -34,9 +34,10 @@ ShadowBeauty shadow_beauty(const std::map<std::string, AttributeValue> &attribut
 
 std::string shadow_beauty_note(ShadowBeauty beauty, const std::string &title, bool filters_pass) {
     if (beauty != ShadowBeauty::Kept) return {};
-    std::string note = "R,G,B left as rendered: the beauty is not aaf's (no " + std::string(attr::kBeauty) +
-                       " attribute), so its key light cannot be told from the rest; " + title +
-                       "'s filtered visibility is in its own layer";
+    std::string note =
+        "R,G,B left as rendered: the beauty is not the tracer's r(x) V(x) plus the other lights (" +
+        std::string(attr::kBeauty) + "), so its key light cannot be told from the rest; " + title +
+        "'s filtered visibility is in its own layer";
     if (filters_pass)
         note +=
             "; render the key light alone as a pass (Blender: a light group 'key', Combined_key; "
