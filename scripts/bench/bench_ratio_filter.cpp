@@ -1,7 +1,8 @@
 // Speed of the ratio estimator's denoise (libaaf core, `aaf filter ratio`)
-// against OpenCV's cv::GaussianBlur of the same mean width on the same image
-// in the same run, at 640x480, 1920x1080 (also on one thread) and 3840x2160
-// (the paper's GPU denoise: 3.5 ms, Table 1).
+// against OpenCV's cv::bilateralFilter and cv::GaussianBlur of the same mean
+// width on the same image in the same run, at 640x480, 1920x1080 (also on
+// one thread) and 3840x2160 (the paper's GPU denoise: 3.5 ms, Table 1).
+// OpenCV runs on as many threads as oneTBB (cv::setNumThreads).
 // Run: ./scripts/bench_ratio.sh
 //
 // Input: the bundled tracer's `grids` at 2 spp, its geometry (P, N,
@@ -15,9 +16,16 @@
 //   grey_ms       the same with the grey approximation (2 planes)
 //   opencv_ms     cv::GaussianBlur of S_N and U_N as two CV_32FC3 images (the same 6 planes),
 //                 sigma = the mean bilateral sigma over the pixels it filters, OpenCV's kernel size
+//   cv_bilateral_ms  cv::bilateralFilter of the same two images, spatial sigma the same mean
+//                 sigma (OpenCV's window: radius round(1.5 sigma), a disc), range sigma
+//                 kCvRangeSigma (0.1, in the radiance's units; the cost does not depend on it)
 // The OpenCV blur has one width, no per-pixel width, no weights: a lower bound
-// for a filter of that width. Counters: filtered_fraction (pixels with
-// sigma > 0), mean_sigma_px, tbb_threads, opencv_threads.
+// for a filter of that width; OpenCV's bilateral weighs its taps by colour
+// where ours weighs them by plane distance. Counters: filtered_fraction
+// (pixels with sigma > 0), mean_sigma_px, tbb_threads, opencv_threads,
+// opencv_avx2 and opencv_avx512 (whether OpenCV may use them: env
+// OPENCV_CPU_DISABLE=AVX512_SKX restricts it to AVX2); the label names our
+// instruction set (env AAF_ISA=sse4.2|avx2|avx512 pins it).
 #include <benchmark/benchmark.h>
 
 #include <chrono>
@@ -32,6 +40,7 @@
 #include "aaf/core/methods/ratio/ratio_bilateral.h"
 #include "aaf/core/methods/ratio/ratio_composition.h"
 #include "aaf/core/methods/ratio/ratio_noise_estimate.h"
+#include "aaf/core/util/instruction_set.h"
 #include "aaf/core/util/thread_count.h"
 #include "aaf/trace/render.h"
 
@@ -40,6 +49,8 @@ namespace {
 // The `aaf filter ratio` defaults (ratio_method.cpp).
 constexpr int kNoiseRadiusPx = 6;
 constexpr float kSigmaPerNoisePx = 3.0f, kMaxSigmaPx = 8.0f;
+/// OpenCV bilateral's range sigma (S_N and U_N of `grids` lie in about [0, 1]).
+constexpr double kCvRangeSigma = 0.1;
 
 struct Fixture {
     int width = 0, height = 0;
@@ -146,13 +157,18 @@ void BM_RatioDenoiseVsOpenCv(benchmark::State &state) {
         cv::GaussianBlur(cv_s, cv_s_out, cv::Size(0, 0), mean_sigma, mean_sigma);
         cv::GaussianBlur(cv_u, cv_u_out, cv::Size(0, 0), mean_sigma, mean_sigma);
     };
+    const auto opencv_bilateral = [&] {
+        cv::bilateralFilter(cv_s, cv_s_out, 0, kCvRangeSigma, mean_sigma);
+        cv::bilateralFilter(cv_u, cv_u_out, 0, kCvRangeSigma, mean_sigma);
+    };
     cv::setNumThreads(threads == 0 ? -1 : threads);
     const int opencv_threads = cv::getNumThreads();
     int tbb_threads = 0;
-    double noise_ms = 0, bilateral_ms = 0, denoise_ms = 0, grey_ms = 0, opencv_ms = 0;
+    double noise_ms = 0, bilateral_ms = 0, denoise_ms = 0, grey_ms = 0, opencv_ms = 0, cv_bilateral_ms = 0;
     aaf::run_with_threads(threads, [&] {
         tbb_threads = tbb::this_task_arena::max_concurrency();
         opencv_blur();  // warm-up, untimed
+        opencv_bilateral();
         for (auto _ : state) {
             auto t = std::chrono::steady_clock::now();
             const std::vector<std::vector<float>> sources = composition.sources();
@@ -186,6 +202,12 @@ void BM_RatioDenoiseVsOpenCv(benchmark::State &state) {
             opencv_ms += ms_since(t);
             benchmark::DoNotOptimize(cv_s_out.data);
             benchmark::ClobberMemory();
+
+            t = std::chrono::steady_clock::now();
+            opencv_bilateral();
+            cv_bilateral_ms += ms_since(t);
+            benchmark::DoNotOptimize(cv_s_out.data);
+            benchmark::ClobberMemory();
         }
     });
     const double iters = double(state.iterations());
@@ -196,10 +218,15 @@ void BM_RatioDenoiseVsOpenCv(benchmark::State &state) {
     state.counters["opencv_ms"] = opencv_ms / iters;
     state.counters["denoise_over_opencv"] = denoise_ms / opencv_ms;
     state.counters["grey_over_opencv"] = grey_ms / opencv_ms;
+    state.counters["cv_bilateral_ms"] = cv_bilateral_ms / iters;
+    state.counters["denoise_over_cv_bilateral"] = denoise_ms / cv_bilateral_ms;
     state.counters["mean_sigma_px"] = mean_sigma;
     state.counters["filtered_fraction"] = double(count) / double(n);
     state.counters["tbb_threads"] = tbb_threads;
     state.counters["opencv_threads"] = opencv_threads;
+    state.counters["opencv_avx2"] = cv::checkHardwareSupport(CV_CPU_AVX2);
+    state.counters["opencv_avx512"] = cv::checkHardwareSupport(CV_CPU_AVX512_SKX);
+    state.SetLabel(std::string("aaf ") + aaf::instruction_set_name(aaf::instruction_set()));
 }
 
 }  // namespace

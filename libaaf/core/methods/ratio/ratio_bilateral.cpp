@@ -5,7 +5,7 @@
 #include <algorithm>
 #include <cmath>
 
-#include "aaf/core/kernels/fast_exp.h"
+#include "aaf/core/methods/ratio/ratio_rows.h"
 #include "aaf/core/util/error.h"
 #include "aaf/core/util/parallel.h"
 
@@ -13,24 +13,31 @@ namespace aaf {
 
 namespace {
 
-/// Per-pixel tangent planes in packed form; scale 0 marks "not a surface".
-struct Planes {
-    int width = 0, height = 0;
-    std::vector<float> px, py, pz, nx, ny, nz, inv_scale;  ///< inv_scale: 1 / (plane_sigma scale_m)
-    std::size_t index(int x, int y) const { return std::size_t(y) * std::size_t(width) + std::size_t(x); }
-};
+using detail::RatioBilateralPlanes;
 
-Planes planes_from(const RatioBilateralGuides &guides, float plane_sigma) {
-    Planes planes;
+/// The centre's Gaussian of one pixel: sigma_px there, 0 reach where it is
+/// not a positive finite width or the pixel is no surface.
+void set_reach(RatioBilateralPlanes &planes, std::size_t i, float sigma_px, float cutoff_sigmas) {
+    if (!(sigma_px > 0) || !std::isfinite(sigma_px) || planes.inv_scale[i] == 0) return;
+    planes.minus_half_inv_sigma_sq[i] = -0.5f / (sigma_px * sigma_px);
+    planes.radius_px[i] = int(std::ceil(cutoff_sigmas * sigma_px));
+}
+
+/// Per-pixel tangent planes and Gaussians in packed form; inv_scale 0 marks "not a surface".
+RatioBilateralPlanes planes_from(const RatioBilateralGuides &guides, ConstPlaneView sigma_px,
+                                 const RatioBilateralSettings &settings) {
+    RatioBilateralPlanes planes;
     planes.width = guides.scale_m.width;
     planes.height = guides.scale_m.height;
-    const std::size_t count = std::size_t(planes.width) * std::size_t(planes.height);
-    for (std::vector<float> *v :
-         {&planes.px, &planes.py, &planes.pz, &planes.nx, &planes.ny, &planes.nz, &planes.inv_scale})
+    const std::size_t count =
+        std::size_t(planes.width) * std::size_t(planes.height) + detail::kRatioPlaneSlack;
+    for (std::vector<float> *v : {&planes.px, &planes.py, &planes.pz, &planes.nx, &planes.ny, &planes.nz,
+                                  &planes.plane_m, &planes.inv_scale, &planes.minus_half_inv_sigma_sq})
         v->assign(count, 0.0f);
+    planes.radius_px.assign(count, 0);
     parallel_for_rows(planes.height, [&](int y) {
         for (int x = 0; x < planes.width; ++x) {
-            const std::size_t i = planes.index(x, y);
+            const std::size_t i = std::size_t(y) * std::size_t(planes.width) + std::size_t(x);
             const float p[3] = {guides.position[0](x, y), guides.position[1](x, y), guides.position[2](x, y)};
             float n[3] = {guides.normal[0](x, y), guides.normal[1](x, y), guides.normal[2](x, y)};
             const float scale = guides.scale_m(x, y);
@@ -38,136 +45,73 @@ Planes planes_from(const RatioBilateralGuides &guides, float plane_sigma) {
             if (!(scale > 0) || !std::isfinite(scale) || !std::isfinite(p[0] + p[1] + p[2]) ||
                 !(length > 0) || !std::isfinite(length))
                 continue;
+            for (int c = 0; c < 3; ++c) n[c] /= length;
             planes.px[i] = p[0];
             planes.py[i] = p[1];
             planes.pz[i] = p[2];
-            planes.nx[i] = n[0] / length;
-            planes.ny[i] = n[1] / length;
-            planes.nz[i] = n[2] / length;
-            planes.inv_scale[i] = 1.0f / (plane_sigma * scale);
+            planes.nx[i] = n[0];
+            planes.ny[i] = n[1];
+            planes.nz[i] = n[2];
+            planes.plane_m[i] = n[0] * p[0] + n[1] * p[1] + n[2] * p[2];
+            planes.inv_scale[i] = 1.0f / (settings.plane_sigma * scale);
+            set_reach(planes, i, sigma_px(x, y), settings.cutoff_sigmas);
         }
     });
     return planes;
 }
 
-/// The weights of `count` taps from pixel index `first` in steps of
-/// `stride`, the first at `offset` pixels from centre c: a branch-free loop
-/// over the packed planes, so it vectorises.
-void tap_weights(const Planes &planes, std::size_t c, std::size_t first, std::size_t stride, int offset,
-                 int count, float minus_half_inv_sigma_sq, std::vector<float> &weights) {
-    const float nx = planes.nx[c], ny = planes.ny[c], nz = planes.nz[c], inv_scale = planes.inv_scale[c];
-    const float plane_c = nx * planes.px[c] + ny * planes.py[c] + nz * planes.pz[c];
-    for (int j = 0; j < count; ++j) {
-        const std::size_t t = first + std::size_t(j) * stride;
-        // Distance of the tap from the centre's tangent plane, in plane_sigma footprints.
-        const float q = (nx * planes.px[t] + ny * planes.py[t] + nz * planes.pz[t] - plane_c) * inv_scale;
-        const float o = float(offset + j);
-        const float w = fast_exp_nonpositive(minus_half_inv_sigma_sq * o * o - 0.5f * q * q);
-        weights[std::size_t(j)] = planes.inv_scale[t] == 0 ? 0.0f : w;  // no surface: never a tap
-    }
-}
-
-/// sums[k] = sum_j weights[j] values[j * stride + k] / sum_j weights[j], in tap order.
-void accumulate(const std::vector<float> &weights, int count, const float *values, std::size_t stride,
-                std::size_t k_count, float *sums) {
-    float weight_sum = 0;
-    for (std::size_t k = 0; k < k_count; ++k) sums[k] = 0;
-    for (int j = 0; j < count; ++j) {
-        const float w = weights[std::size_t(j)];
-        weight_sum += w;
-        const float *value = values + std::size_t(j) * stride;
-        for (std::size_t k = 0; k < k_count; ++k) sums[k] += w * value[k];
-    }
-    for (std::size_t k = 0; k < k_count; ++k) sums[k] /= weight_sum;
-}
-
-/// The largest finite value of `view` (0 if none).
-float max_finite(ConstPlaneView view) {
-    float largest = 0;
-    for (int y = 0; y < view.height; ++y)
-        for (int x = 0; x < view.width; ++x)
-            if (std::isfinite(view(x, y))) largest = std::max(largest, view(x, y));
-    return largest;
-}
-
-void check_inputs(const Planes &planes, ConstPlaneView sigma_px,
-                  const std::vector<std::vector<float>> &sources) {
-    if (!sigma_px.valid() || sigma_px.width != planes.width || sigma_px.height != planes.height)
+void check_inputs(const RatioBilateralGuides &guides, ConstPlaneView sigma_px,
+                  const RatioBilateralSettings &settings, const std::vector<std::vector<float>> &sources) {
+    if (!(settings.plane_sigma > 0) || !(settings.cutoff_sigmas > 0))
+        throw Error("ratio bilateral: plane sigma and cut-off must be > 0");
+    if (sources.empty() || sources.size() > std::size_t(detail::kRatioMaxPlanes))
+        throw Error("ratio bilateral: 1 to 8 planes per pass");
+    const int width = guides.scale_m.width, height = guides.scale_m.height;
+    if (!sigma_px.valid() || sigma_px.width != width || sigma_px.height != height)
         throw Error("ratio bilateral: sigma is missing or has another size");
     for (const std::vector<float> &s : sources)
-        if (s.size() != std::size_t(planes.width) * std::size_t(planes.height))
+        if (s.size() != std::size_t(width) * std::size_t(height))
             throw Error("ratio bilateral: a source has another size");
 }
 
-/// At most this many planes per pass (the ratio estimator filters 6: S_N and U_N RGB).
-constexpr std::size_t kMaxPlanes = 8;
+/// Columns and rows of the vertical pass's tiles: a tile's window of rows
+/// (up to 2 reach + 1 of them, 4 guide planes and the sources) stays in the
+/// core's cache from one row to the next at any image width.
+constexpr int kStripPixels = 256, kTileRows = 64;
 
-/// The horizontal pass into an interleaved buffer (K floats per pixel, so a
-/// tap's values share a cache line); then the vertical pass, which hands each
-/// pixel's K filtered values to `sink(x, y, values)`. Sums run over the taps
-/// in a fixed order, so the result does not depend on the thread count.
+/// The horizontal pass into planes of the sources' size; then the vertical
+/// pass, which hands each pixel's filtered values to `sink(x, y, values)`.
+/// Each pixel sums its taps in a fixed order, so the result does not depend
+/// on the thread count (nor on the instruction set: ratio_rows.cpp).
 template <typename Sink>
 void two_passes(const RatioBilateralGuides &guides, ConstPlaneView sigma_px,
                 const RatioBilateralSettings &settings, const std::vector<std::vector<float>> &sources,
                 const Sink &sink) {
-    if (!(settings.plane_sigma > 0) || !(settings.cutoff_sigmas > 0))
-        throw Error("ratio bilateral: plane sigma and cut-off must be > 0");
-    if (sources.empty() || sources.size() > kMaxPlanes)
-        throw Error("ratio bilateral: 1 to 8 planes per pass");
-    const Planes planes = planes_from(guides, settings.plane_sigma);
-    check_inputs(planes, sigma_px, sources);
-    const int width = planes.width, height = planes.height;
-    const std::size_t k_count = sources.size(), count = planes.px.size();
-    auto radius_of = [&](int x, int y, float &minus_half_inv_sigma_sq) {
-        const float sigma = sigma_px(x, y);
-        if (!(sigma > 0) || !std::isfinite(sigma) || planes.inv_scale[planes.index(x, y)] == 0) return 0;
-        minus_half_inv_sigma_sq = -0.5f / (sigma * sigma);
-        return int(std::ceil(settings.cutoff_sigmas * sigma));
-    };
-    std::vector<float> interleaved(count * k_count), horizontal(count * k_count);
-    parallel_for_rows(height, [&](int y) {
-        for (int x = 0; x < width; ++x) {
-            const std::size_t i = planes.index(x, y);
-            for (std::size_t k = 0; k < k_count; ++k) interleaved[i * k_count + k] = sources[k][i];
-        }
-    });
-    const int max_taps = 2 * int(std::ceil(settings.cutoff_sigmas * max_finite(sigma_px))) + 1;
-    parallel_for_rows(height, [&](int y) {
-        std::vector<float> weights(std::size_t(std::max(max_taps, 1)));
-        for (int x = 0; x < width; ++x) {
-            const std::size_t c = planes.index(x, y);
-            float g = 0;
-            const int radius = radius_of(x, y, g);
-            float *out = &horizontal[c * k_count];
-            if (radius == 0) {
-                std::copy_n(&interleaved[c * k_count], k_count, out);
-                continue;
+    check_inputs(guides, sigma_px, settings, sources);
+    const RatioBilateralPlanes planes = planes_from(guides, sigma_px, settings);
+    const int width = planes.width, height = planes.height, k_count = int(sources.size());
+    const std::size_t count = std::size_t(width) * std::size_t(height);
+    // The planes one after another, slack after the last (the vertical pass's vectors).
+    std::vector<float> horizontal(count * std::size_t(k_count) + detail::kRatioPlaneSlack);
+    detail::RatioBilateralSweep along_x, along_y;
+    along_x.planes = along_y.planes = &planes;
+    along_x.count = along_y.count = k_count;
+    for (int k = 0; k < k_count; ++k) {
+        along_x.source[k] = sources[std::size_t(k)].data();
+        along_x.output[k] = &horizontal[std::size_t(k) * count];
+        along_y.source[k] = along_x.output[k];
+    }
+    parallel_for_rows(height, [&](int y) { detail::ratio_bilateral_row_x(along_x, y); });
+    const int strips = (width + kStripPixels - 1) / kStripPixels;
+    parallel_for_tiles(height, kTileRows, strips, 1, [&](const TileRange &tile) {
+        float values[kStripPixels * detail::kRatioMaxPlanes];
+        for (int strip = tile.col_begin; strip != tile.col_end; ++strip) {
+            const int x_begin = strip * kStripPixels, x_end = std::min(width, x_begin + kStripPixels);
+            for (int y = tile.row_begin; y != tile.row_end; ++y) {
+                detail::ratio_bilateral_row_y(along_y, y, x_begin, x_end, values);
+                for (int x = x_begin; x < x_end; ++x)
+                    sink(x, y, &values[std::size_t(x - x_begin) * std::size_t(k_count)]);
             }
-            const int first = std::max(0, x - radius), last = std::min(width - 1, x + radius);
-            tap_weights(planes, c, planes.index(first, y), 1, first - x, last - first + 1, g, weights);
-            weights[std::size_t(x - first)] = 1.0f;  // the centre always counts
-            accumulate(weights, last - first + 1, &interleaved[planes.index(first, y) * k_count], k_count,
-                       k_count, out);
-        }
-    });
-    parallel_for_rows(height, [&](int y) {
-        std::vector<float> weights(std::size_t(std::max(max_taps, 1)));
-        for (int x = 0; x < width; ++x) {
-            const std::size_t c = planes.index(x, y);
-            float g = 0;
-            const int radius = radius_of(x, y, g);
-            if (radius == 0) {
-                sink(x, y, &horizontal[c * k_count]);
-                continue;
-            }
-            const int first = std::max(0, y - radius), last = std::min(height - 1, y + radius);
-            tap_weights(planes, c, planes.index(x, first), std::size_t(width), first - y, last - first + 1, g,
-                        weights);
-            weights[std::size_t(y - first)] = 1.0f;
-            float sums[kMaxPlanes];
-            accumulate(weights, last - first + 1, &horizontal[planes.index(x, first) * k_count],
-                       std::size_t(width) * k_count, k_count, sums);
-            sink(x, y, sums);
         }
     });
 }

@@ -6,6 +6,7 @@
 #include <cmath>
 #include <vector>
 
+#include "aaf/core/methods/ratio/ratio_rows.h"
 #include "aaf/core/util/error.h"
 #include "aaf/core/util/parallel.h"
 
@@ -16,18 +17,6 @@ namespace {
 void check_same_size(ConstPlaneView a, ConstPlaneView b, const char *what) {
     if (!a.valid() || !b.valid() || a.width != b.width || a.height != b.height)
         throw Error(std::string("ratio noise estimate: ") + what + " is missing or has another size");
-}
-
-/// A per-pixel hash (PCG-style integer mix) in [0, 1), so the asterisk's turn
-/// depends only on the pixel and the seed, never on the thread count.
-float pixel_random(int x, int y, std::uint32_t seed) {
-    std::uint32_t h = std::uint32_t(x) * 0x8da6b343u ^ std::uint32_t(y) * 0xd8163841u ^ seed * 0xcb1ab31fu;
-    h ^= h >> 16;
-    h *= 0x7feb352du;
-    h ^= h >> 15;
-    h *= 0x846ca68bu;
-    h ^= h >> 16;
-    return float(h >> 8) * (1.0f / 16777216.0f);
 }
 
 /// 1 where the (2 radius + 1)^2 window around the pixel holds two different
@@ -85,40 +74,27 @@ void ratio_noise_estimate(ConstPlaneView w, int line_radius_px, std::uint32_t se
     check_same_size(w, e, "E");
     if (line_radius_px < 1) throw Error("ratio noise estimate: the line radius must be >= 1 pixel");
     const int width = w.width, height = w.height;
-    const int taps = 2 * line_radius_px + 1;
-    const float per_difference = 1.0f / float(taps - 2);
-    constexpr float kQuarterPi = 0.78539816f;
     std::vector<float> raw(std::size_t(width) * std::size_t(height), 0.0f);
+    // Every line's taps of an inactive pixel lie in a constant window: E is 0 exactly, without the work.
     const std::vector<unsigned char> active = varying_windows(w, line_radius_px);
-    parallel_for_rows(height, [&](int y) {
-        std::vector<float> line(std::size_t(taps), 0.0f);
-        for (int x = 0; x < width; ++x) {
-            // Every line's taps lie in a constant window: E is 0 exactly, without the work.
-            if (!active[std::size_t(y) * std::size_t(width) + std::size_t(x)]) continue;
-            const float turn = pixel_random(x, y, seed) * kQuarterPi;
-            // The asterisk's 4 directions, 45 degrees apart, from one cosine and sine.
-            const float c = std::cos(turn), s = std::sin(turn), h = 0.70710678f;
-            const float directions[4][2] = {
-                {c, s}, {h * (c - s), h * (c + s)}, {-s, c}, {-h * (c + s), h * (c - s)}};
-            float sum = 0.0f;
-            for (int l = 0; l < 4; ++l) {
-                const float dx = directions[l][0], dy = directions[l][1];
-                for (int t = -line_radius_px; t <= line_radius_px; ++t) {
-                    const int sx = std::clamp(x + int(std::floor(float(t) * dx + 0.5f)), 0, width - 1);
-                    const int sy = std::clamp(y + int(std::floor(float(t) * dy + 0.5f)), 0, height - 1);
-                    const float v = w(sx, sy);
-                    line[std::size_t(t + line_radius_px)] = std::isfinite(v) ? v : 1.0f;
-                }
-                // ratio estimator Eq. 29: the integral of |d^2 W_N / dt^2| along the line.
-                float variation = 0.0f;
-                for (int t = 1; t + 1 < taps; ++t)
-                    variation += std::fabs(line[std::size_t(t - 1)] - 2.0f * line[std::size_t(t)] +
-                                           line[std::size_t(t + 1)]);
-                sum += variation * per_difference;
-            }
-            raw[std::size_t(y) * std::size_t(width) + std::size_t(x)] = 0.25f * sum;  // mean over n = 4 lines
-        }
-    });
+    // The lines read W_N packed (a strided view is copied once).
+    std::vector<float> packed;
+    if (w.pixel_stride != 1 || w.row_stride != width) {
+        packed.resize(raw.size());
+        parallel_for_rows(height, [&](int y) {
+            for (int x = 0; x < width; ++x)
+                packed[std::size_t(y) * std::size_t(width) + std::size_t(x)] = w(x, y);
+        });
+    }
+    detail::RatioNoiseSweep sweep;
+    sweep.w = packed.empty() ? w.data : packed.data();
+    sweep.width = width;
+    sweep.height = height;
+    sweep.line_radius_px = line_radius_px;
+    sweep.seed = seed;
+    sweep.active = active.data();
+    parallel_for_rows(
+        height, [&](int y) { detail::ratio_noise_row(sweep, y, &raw[std::size_t(y) * std::size_t(width)]); });
     // Sec. 4.2: E is noisy itself (random lines), so a 3x3 box filter over it.
     parallel_for_rows(height, [&](int y) {
         for (int x = 0; x < width; ++x) {

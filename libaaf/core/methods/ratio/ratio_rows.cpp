@@ -1,0 +1,347 @@
+// The ratio estimator's joint bilateral passes and noise estimate lines
+// (ratio_rows.h) for every instruction set Google Highway targets, chosen at
+// run time. Neighbouring centre pixels share the lanes, each summing its own
+// taps in the scalar order with multiplies and adds kept apart (this file is
+// built without contraction), so every instruction set gives the same bits.
+#include "aaf/core/methods/ratio/ratio_rows.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstring>
+
+// As gather_rows.cpp: no scalable (SVE, RVV) targets.
+#ifndef HWY_DISABLED_TARGETS
+#define HWY_DISABLED_TARGETS (HWY_SVE | HWY_SVE2 | HWY_SVE_256 | HWY_SVE2_128 | HWY_RVV)
+#endif
+#undef HWY_TARGET_INCLUDE
+#define HWY_TARGET_INCLUDE "methods/ratio/ratio_rows.cpp"
+#include <hwy/foreach_target.h>  // IWYU pragma: keep
+#include <hwy/highway.h>
+
+HWY_BEFORE_NAMESPACE();
+namespace aaf::detail {
+namespace HWY_NAMESPACE {
+namespace hn = hwy::HWY_NAMESPACE;
+
+using D = hn::ScalableTag<float>;
+using DI = hn::RebindToSigned<D>;
+using V = hn::Vec<D>;
+using VI = hn::Vec<DI>;
+constexpr int kMaxLanes = int(HWY_LANES(float));
+static_assert(kMaxLanes <= int(kRatioPlaneSlack), "the slack covers a vector");
+
+/// fast_exp_nonpositive (fast_exp.h) lane by lane, operation for operation
+/// (its Taylor polynomial, truncating conversion and separate roundings), so
+/// every lane gives that function's bits.
+HWY_INLINE V fast_exp_nonpositive(D d, V x) {
+    const DI di;
+    // Max(NaN, -87) is -87 as the scalar comparison; Min(-0, 0) may keep -0
+    // where the scalar gives 0: both round to k = 0 and the same polynomial.
+    const V clamped = hn::Min(hn::Max(x, hn::Set(d, -87.0f)), hn::Zero(d));
+    const V k = hn::ConvertTo(
+        d, hn::ConvertTo(di, hn::Sub(hn::Mul(clamped, hn::Set(d, 1.44269504088896341f)), hn::Set(d, 0.5f))));
+    const V r = hn::Sub(hn::Sub(clamped, hn::Mul(k, hn::Set(d, 0.693145751953125f))),
+                        hn::Mul(k, hn::Set(d, 1.428606765330187045e-06f)));
+    V p = hn::Set(d, 1.0f / 720.0f);
+    p = hn::Add(hn::Mul(p, r), hn::Set(d, 1.0f / 120.0f));
+    p = hn::Add(hn::Mul(p, r), hn::Set(d, 1.0f / 24.0f));
+    p = hn::Add(hn::Mul(p, r), hn::Set(d, 1.0f / 6.0f));
+    p = hn::Add(hn::Mul(p, r), hn::Set(d, 0.5f));
+    p = hn::Add(hn::Mul(p, r), hn::Set(d, 1.0f));
+    p = hn::Add(hn::Mul(p, r), hn::Set(d, 1.0f));
+    const V scale = hn::BitCast(d, hn::ShiftLeft<23>(hn::Add(hn::ConvertTo(di, k), hn::Set(di, 127))));
+    return hn::Mul(p, scale);
+}
+
+/// The centre pixels of the lanes: their tangent planes, Gaussians and tap ranges.
+struct Centres {
+    V nx, ny, nz, plane_m, inv_scale, minus_half_inv_sigma_sq;
+    VI radius;
+    VI lo, hi;       ///< the first and last tap offset of each lane
+    V lo_px, hi_px;  ///< the same as floats (exact), to compare with
+};
+
+HWY_INLINE Centres load_centres(const RatioBilateralPlanes &p, std::size_t c, VI radius) {
+    const D d;
+    return {hn::LoadU(d, &p.nx[c]),
+            hn::LoadU(d, &p.ny[c]),
+            hn::LoadU(d, &p.nz[c]),
+            hn::LoadU(d, &p.plane_m[c]),
+            hn::LoadU(d, &p.inv_scale[c]),
+            hn::LoadU(d, &p.minus_half_inv_sigma_sq[c]),
+            radius,
+            hn::Zero(DI()),
+            hn::Zero(DI()),
+            hn::Zero(D()),
+            hn::Zero(D())};
+}
+
+/// Where the taps' guides and values start (offset 0 at the lanes' centres).
+struct Taps {
+    const float *px, *py, *pz, *inv_scale;
+    const float *source[kRatioMaxPlanes];
+};
+
+/// Adds the taps at offsets [o_begin, o_end] `stride` floats apart, each lane
+/// only those in its [lo, hi], in order (ratio_bilateral.cpp's scalar loops:
+/// the weight exp(-o^2 / (2 sigma^2) - q^2 / 2) of a tap q plane sigmas from
+/// the centre's tangent plane, 0 off a surface, 1 at the centre).
+template <int K>
+HWY_INLINE void add_taps(const Centres &c, const Taps &taps, std::ptrdiff_t stride, int o_begin, int o_end,
+                         V (&sums)[K], V &weight_sum) {
+    const D d;
+    for (int k = 0; k < K; ++k) sums[k] = hn::Zero(d);
+    weight_sum = hn::Zero(d);
+    const V half = hn::Set(d, 0.5f), zero = hn::Zero(d), one = hn::Set(d, 1.0f);
+    for (int o = o_begin; o <= o_end; ++o) {
+        const std::ptrdiff_t t = std::ptrdiff_t(o) * stride;
+        const V o_px = hn::Set(d, float(o));
+        const auto inside = hn::And(hn::Ge(o_px, c.lo_px), hn::Le(o_px, c.hi_px));
+        const V plane_m = hn::Add(
+            hn::Add(hn::Mul(c.nx, hn::LoadU(d, taps.px + t)), hn::Mul(c.ny, hn::LoadU(d, taps.py + t))),
+            hn::Mul(c.nz, hn::LoadU(d, taps.pz + t)));
+        const V q = hn::Mul(hn::Sub(plane_m, c.plane_m), c.inv_scale);
+        const V exponent =
+            hn::Sub(hn::Mul(hn::Mul(c.minus_half_inv_sigma_sq, o_px), o_px), hn::Mul(hn::Mul(half, q), q));
+        V w = hn::IfThenZeroElse(hn::Eq(hn::LoadU(d, taps.inv_scale + t), zero),
+                                 fast_exp_nonpositive(d, exponent));
+        if (o == 0) w = one;  // the centre always counts
+        weight_sum = hn::IfThenElse(inside, hn::Add(weight_sum, w), weight_sum);
+        for (int k = 0; k < K; ++k)
+            sums[k] = hn::IfThenElse(inside, hn::Add(sums[k], hn::Mul(w, hn::LoadU(d, taps.source[k] + t))),
+                                     sums[k]);
+    }
+}
+
+/// The lanes' filtered values: the sums over the weight, or the centre's own
+/// value where the radius is 0 (bit for bit, -0 included).
+template <int K>
+HWY_INLINE void finish(const Centres &c, const Taps &taps, const V (&sums)[K], V weight_sum,
+                       float (&out)[K][kMaxLanes]) {
+    const D d;
+    const auto keep = hn::RebindMask(d, hn::Eq(c.radius, hn::Zero(DI())));
+    for (int k = 0; k < K; ++k)
+        hn::StoreU(hn::IfThenElse(keep, hn::LoadU(d, taps.source[k]), hn::Div(sums[k], weight_sum)), d,
+                   out[k]);
+}
+
+/// The reach of lanes [0, n) of `radius`, 0 for the others.
+HWY_INLINE VI load_radius(const std::int32_t *radius, int n) {
+    const DI di;
+    return hn::IfThenElseZero(hn::FirstN(di, std::size_t(n)), hn::LoadU(di, radius));
+}
+
+template <int K>
+void row_x(const RatioBilateralSweep &s, int y) {
+    const D d;
+    const DI di;
+    const int lanes = int(hn::Lanes(d));
+    const RatioBilateralPlanes &p = *s.planes;
+    const int width = p.width;
+    const std::size_t row = std::size_t(y) * std::size_t(width);
+    const std::int32_t *radius = &p.radius_px[row];
+    const int reach = std::max(0, *std::max_element(radius, radius + width));
+    // The row's guides and values with `reach` floats before and a vector
+    // after, zeros there: every lane's taps load from inside the copy.
+    const std::size_t padded = std::size_t(reach + width + lanes);
+    thread_local std::vector<float> scratch;
+    scratch.assign(padded * std::size_t(4 + K), 0.0f);
+    auto copy_row = [&](int plane, const float *from) {
+        float *to = &scratch[std::size_t(plane) * padded + std::size_t(reach)];
+        std::memcpy(to, from, std::size_t(width) * sizeof(float));
+        return to;
+    };
+    Taps taps{copy_row(0, &p.px[row]),
+              copy_row(1, &p.py[row]),
+              copy_row(2, &p.pz[row]),
+              copy_row(3, &p.inv_scale[row]),
+              {}};
+    for (int k = 0; k < K; ++k) taps.source[k] = copy_row(4 + k, s.source[k] + row);
+    const VI last = hn::Set(di, width - 1);
+    for (int x0 = 0; x0 < width; x0 += lanes) {
+        const int n = std::min(lanes, width - x0);
+        Centres c = load_centres(p, row + std::size_t(x0), load_radius(radius + x0, n));
+        const VI x = hn::Iota(di, x0);
+        c.lo = hn::Max(hn::Neg(c.radius), hn::Neg(x));
+        c.hi = hn::Min(c.radius, hn::Sub(last, x));
+        c.lo_px = hn::ConvertTo(d, c.lo);
+        c.hi_px = hn::ConvertTo(d, c.hi);
+        Taps at = taps;
+        for (const float **plane : {&at.px, &at.py, &at.pz, &at.inv_scale}) *plane += x0;
+        for (int k = 0; k < K; ++k) at.source[k] += x0;
+        V sums[K], weight_sum;
+        add_taps<K>(c, at, 1, hn::GetLane(hn::MinOfLanes(di, c.lo)), hn::GetLane(hn::MaxOfLanes(di, c.hi)),
+                    sums, weight_sum);
+        alignas(64) float out[K][kMaxLanes];
+        finish<K>(c, at, sums, weight_sum, out);
+        for (int k = 0; k < K; ++k)
+            std::memcpy(s.output[k] + row + std::size_t(x0), out[k], std::size_t(n) * sizeof(float));
+    }
+}
+
+template <int K>
+void row_y(const RatioBilateralSweep &s, int y, int x_begin, int x_end, float *values) {
+    const D d;
+    const DI di;
+    const int lanes = int(hn::Lanes(d));
+    const RatioBilateralPlanes &p = *s.planes;
+    const std::ptrdiff_t width = p.width;
+    const std::size_t row = std::size_t(y) * std::size_t(width);
+    const VI up = hn::Set(di, -y), down = hn::Set(di, p.height - 1 - y);
+    for (int x0 = x_begin; x0 < x_end; x0 += lanes) {
+        const int n = std::min(lanes, x_end - x0);
+        const std::size_t c0 = row + std::size_t(x0);
+        Centres c = load_centres(p, c0, load_radius(&p.radius_px[c0], n));
+        c.lo = hn::Max(hn::Neg(c.radius), up);
+        c.hi = hn::Min(c.radius, down);
+        c.lo_px = hn::ConvertTo(d, c.lo);
+        c.hi_px = hn::ConvertTo(d, c.hi);
+        Taps at{&p.px[c0], &p.py[c0], &p.pz[c0], &p.inv_scale[c0], {}};
+        for (int k = 0; k < K; ++k) at.source[k] = s.source[k] + c0;
+        V sums[K], weight_sum;
+        add_taps<K>(c, at, width, hn::GetLane(hn::MinOfLanes(di, c.lo)),
+                    hn::GetLane(hn::MaxOfLanes(di, c.hi)), sums, weight_sum);
+        alignas(64) float out[K][kMaxLanes];
+        finish<K>(c, at, sums, weight_sum, out);
+        float *pixel = values + std::size_t(x0 - x_begin) * K;
+        for (int l = 0; l < n; ++l)
+            for (int k = 0; k < K; ++k) *pixel++ = out[k][l];
+    }
+}
+
+/// row_x or row_y with the plane count a compile-time constant (the sums stay in registers).
+template <template <int> class Pass, typename... Args>
+void with_count(int count, Args &&...args) {
+    switch (count) {
+        case 1:
+            return Pass<1>::run(args...);
+        case 2:
+            return Pass<2>::run(args...);
+        case 3:
+            return Pass<3>::run(args...);
+        case 4:
+            return Pass<4>::run(args...);
+        case 5:
+            return Pass<5>::run(args...);
+        case 6:
+            return Pass<6>::run(args...);
+        case 7:
+            return Pass<7>::run(args...);
+        default:
+            return Pass<8>::run(args...);
+    }
+}
+
+template <int K>
+struct RowX {
+    static void run(const RatioBilateralSweep &s, int y) { row_x<K>(s, y); }
+};
+template <int K>
+struct RowY {
+    static void run(const RatioBilateralSweep &s, int y, int x_begin, int x_end, float *values) {
+        row_y<K>(s, y, x_begin, x_end, values);
+    }
+};
+
+void RatioBilateralRowX(const RatioBilateralSweep &s, int y) {
+    with_count<RowX>(s.count, s, y);
+}
+
+void RatioBilateralRowY(const RatioBilateralSweep &s, int y, int x_begin, int x_end, float *values) {
+    with_count<RowY>(s.count, s, y, x_begin, x_end, values);
+}
+
+/// The lanes' raw E (ratio_noise_estimate.cpp's definition, lane by lane):
+/// along 4 lines 45 degrees apart, turned by the pixel's hashed angle, the
+/// mean absolute second difference of W_N over nearest-pixel taps clamped
+/// to the image (non-finite read as 1).
+void RatioNoiseRow(const RatioNoiseSweep &s, int y, float *raw) {
+    const D d;
+    const DI di;
+    const int lanes = int(hn::Lanes(d)), radius = s.line_radius_px;
+    const float per_difference = 1.0f / float(2 * radius + 1 - 2);
+    constexpr float kQuarterPi = 0.78539816f, kHalfSqrt2 = 0.70710678f;
+    const V half = hn::Set(d, 0.5f), two = hn::Set(d, 2.0f), one = hn::Set(d, 1.0f),
+            h = hn::Set(d, kHalfSqrt2);
+    const VI last_x = hn::Set(di, s.width - 1), last_y = hn::Set(di, s.height - 1), zero_i = hn::Zero(di);
+    const VI row_y = hn::Set(di, y), width = hn::Set(di, s.width);
+    const unsigned char *active = s.active + std::size_t(y) * std::size_t(s.width);
+    alignas(64) float cosines[kMaxLanes], sines[kMaxLanes];
+    for (int x0 = 0; x0 < s.width; x0 += lanes) {
+        const int n = std::min(lanes, s.width - x0);
+        bool any = false;
+        for (int l = 0; l < lanes; ++l) {
+            // std::cos and std::sin, as the scalar definition (one angle per pixel).
+            const bool on = l < n && active[x0 + l];
+            const float turn = on ? ratio_pixel_random(x0 + l, y, s.seed) * kQuarterPi : 0.0f;
+            cosines[l] = on ? std::cos(turn) : 1.0f;
+            sines[l] = on ? std::sin(turn) : 0.0f;
+            any |= on;
+        }
+        if (!any) {
+            std::fill_n(raw + x0, n, 0.0f);
+            continue;
+        }
+        const V c = hn::Load(d, cosines), sn = hn::Load(d, sines);
+        const V directions[4][2] = {{c, sn},
+                                    {hn::Mul(h, hn::Sub(c, sn)), hn::Mul(h, hn::Add(c, sn))},
+                                    {hn::Neg(sn), c},
+                                    {hn::Mul(hn::Neg(h), hn::Add(c, sn)), hn::Mul(h, hn::Sub(c, sn))}};
+        const VI x = hn::Iota(di, x0);
+        V sum = hn::Zero(d);
+        for (const auto &direction : directions) {
+            auto tap = [&](int t) {
+                const V t_px = hn::Set(d, float(t));
+                const VI dx = hn::ConvertTo(di, hn::Floor(hn::Add(hn::Mul(t_px, direction[0]), half)));
+                const VI dy = hn::ConvertTo(di, hn::Floor(hn::Add(hn::Mul(t_px, direction[1]), half)));
+                const VI sx = hn::Min(hn::Max(hn::Add(x, dx), zero_i), last_x);
+                const VI sy = hn::Min(hn::Max(hn::Add(row_y, dy), zero_i), last_y);
+                const V v = hn::GatherIndex(d, s.w, hn::Add(hn::Mul(sy, width), sx));
+                return hn::IfThenElse(hn::IsFinite(v), v, one);
+            };
+            // ratio estimator Eq. 29: the integral of |d^2 W_N / dt^2| along the line.
+            V before = tap(-radius), at = tap(1 - radius), variation = hn::Zero(d);
+            for (int t = 2 - radius; t <= radius; ++t) {
+                const V after = tap(t);
+                variation = hn::Add(variation, hn::Abs(hn::Add(hn::Sub(before, hn::Mul(two, at)), after)));
+                before = at;
+                at = after;
+            }
+            sum = hn::Add(sum, hn::Mul(variation, hn::Set(d, per_difference)));
+        }
+        alignas(64) float out[kMaxLanes];
+        hn::Store(hn::Mul(hn::Set(d, 0.25f), sum), d, out);  // the mean over n = 4 lines
+        for (int l = 0; l < n; ++l) raw[x0 + l] = active[x0 + l] ? out[l] : 0.0f;
+    }
+}
+
+}  // namespace HWY_NAMESPACE
+}  // namespace aaf::detail
+HWY_AFTER_NAMESPACE();
+
+#if HWY_ONCE
+#include "aaf/core/util/instruction_set.h"
+
+namespace aaf::detail {
+
+HWY_EXPORT(RatioBilateralRowX);
+HWY_EXPORT(RatioBilateralRowY);
+HWY_EXPORT(RatioNoiseRow);
+
+void ratio_bilateral_row_x(const RatioBilateralSweep &sweep, int y) {
+    (void)instruction_set();  // applies $AAF_ISA before the first dispatch
+    HWY_DYNAMIC_DISPATCH(RatioBilateralRowX)(sweep, y);
+}
+
+void ratio_bilateral_row_y(const RatioBilateralSweep &sweep, int y, int x_begin, int x_end, float *values) {
+    (void)instruction_set();
+    HWY_DYNAMIC_DISPATCH(RatioBilateralRowY)(sweep, y, x_begin, x_end, values);
+}
+
+void ratio_noise_row(const RatioNoiseSweep &sweep, int y, float *raw) {
+    (void)instruction_set();
+    HWY_DYNAMIC_DISPATCH(RatioNoiseRow)(sweep, y, raw);
+}
+
+}  // namespace aaf::detail
+#endif
