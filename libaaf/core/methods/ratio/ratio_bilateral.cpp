@@ -15,47 +15,46 @@ namespace {
 
 using detail::RatioBilateralPlanes;
 
-/// The centre's Gaussian of one pixel: sigma_px there, 0 reach where it is
-/// not a positive finite width or the pixel is no surface.
-void set_reach(RatioBilateralPlanes &planes, std::size_t i, float sigma_px, float cutoff_sigmas) {
-    if (!(sigma_px > 0) || !std::isfinite(sigma_px) || planes.inv_scale[i] == 0) return;
-    planes.minus_half_inv_sigma_sq[i] = -0.5f / (sigma_px * sigma_px);
-    planes.radius_px[i] = int(std::ceil(cutoff_sigmas * sigma_px));
+/// Row `y` of `view` packed: the view's own row when its pixels are
+/// adjacent, else a copy in `buffer` (width floats).
+const float *packed_row(ConstPlaneView view, int y, float *buffer) {
+    if (view.pixel_stride == 1) return &view(0, y);
+    for (int x = 0; x < view.width; ++x) buffer[x] = view(x, y);
+    return buffer;
 }
 
 /// Per-pixel tangent planes and Gaussians in packed form; inv_scale 0 marks "not a surface".
 RatioBilateralPlanes planes_from(const RatioBilateralGuides &guides, ConstPlaneView sigma_px,
                                  const RatioBilateralSettings &settings) {
     RatioBilateralPlanes planes;
-    planes.width = guides.scale_m.width;
+    const int width = guides.scale_m.width;
+    planes.width = width;
     planes.height = guides.scale_m.height;
-    const std::size_t count =
-        std::size_t(planes.width) * std::size_t(planes.height) + detail::kRatioPlaneSlack;
-    for (std::vector<float> *v : {&planes.px, &planes.py, &planes.pz, &planes.nx, &planes.ny, &planes.nz,
-                                  &planes.plane_m, &planes.inv_scale, &planes.minus_half_inv_sigma_sq})
-        v->assign(count, 0.0f);
-    planes.radius_px.assign(count, 0);
+    const std::size_t count = std::size_t(width) * std::size_t(planes.height);
+    auto size = [count](auto &plane) {
+        plane.resize(count + detail::kRatioPlaneSlack);  // every pixel is written below
+        std::fill(plane.begin() + std::ptrdiff_t(count), plane.end(), 0);
+    };
+    for (FramePlane<float> *plane : {&planes.px, &planes.py, &planes.pz, &planes.nx, &planes.ny, &planes.nz,
+                                     &planes.plane_m, &planes.inv_scale, &planes.minus_half_inv_sigma_sq})
+        size(*plane);
+    size(planes.radius_px);
     parallel_for_rows(planes.height, [&](int y) {
-        for (int x = 0; x < planes.width; ++x) {
-            const std::size_t i = std::size_t(y) * std::size_t(planes.width) + std::size_t(x);
-            const float p[3] = {guides.position[0](x, y), guides.position[1](x, y), guides.position[2](x, y)};
-            float n[3] = {guides.normal[0](x, y), guides.normal[1](x, y), guides.normal[2](x, y)};
-            const float scale = guides.scale_m(x, y);
-            const float length = std::sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
-            if (!(scale > 0) || !std::isfinite(scale) || !std::isfinite(p[0] + p[1] + p[2]) ||
-                !(length > 0) || !std::isfinite(length))
-                continue;
-            for (int c = 0; c < 3; ++c) n[c] /= length;
-            planes.px[i] = p[0];
-            planes.py[i] = p[1];
-            planes.pz[i] = p[2];
-            planes.nx[i] = n[0];
-            planes.ny[i] = n[1];
-            planes.nz[i] = n[2];
-            planes.plane_m[i] = n[0] * p[0] + n[1] * p[1] + n[2] * p[2];
-            planes.inv_scale[i] = 1.0f / (settings.plane_sigma * scale);
-            set_reach(planes, i, sigma_px(x, y), settings.cutoff_sigmas);
+        thread_local std::vector<float> buffer;  // strided views' rows, packed
+        buffer.resize(std::max(buffer.size(), std::size_t(width) * 8));
+        auto row = [&](ConstPlaneView view, int slot) {
+            return packed_row(view, y, &buffer[std::size_t(slot) * std::size_t(width)]);
+        };
+        detail::RatioGuideRow in;
+        for (int c = 0; c < 3; ++c) {
+            in.position[c] = row(guides.position[std::size_t(c)], c);
+            in.normal[c] = row(guides.normal[std::size_t(c)], 3 + c);
         }
+        in.scale_m = row(guides.scale_m, 6);
+        in.sigma_px = row(sigma_px, 7);
+        in.plane_sigma = settings.plane_sigma;
+        in.cutoff_sigmas = settings.cutoff_sigmas;
+        detail::ratio_planes_row(in, y, planes);
     });
     return planes;
 }
@@ -92,7 +91,9 @@ void two_passes(const RatioBilateralGuides &guides, ConstPlaneView sigma_px,
     const int width = planes.width, height = planes.height, k_count = int(sources.size());
     const std::size_t count = std::size_t(width) * std::size_t(height);
     // The planes one after another, slack after the last (the vertical pass's vectors).
-    std::vector<float> horizontal(count * std::size_t(k_count) + detail::kRatioPlaneSlack);
+    FramePlane<float> horizontal;
+    horizontal.resize(count * std::size_t(k_count) + detail::kRatioPlaneSlack);  // written in full below
+    std::fill(horizontal.end() - std::ptrdiff_t(detail::kRatioPlaneSlack), horizontal.end(), 0.0f);
     detail::RatioBilateralSweep along_x, along_y;
     along_x.planes = along_y.planes = &planes;
     along_x.count = along_y.count = k_count;

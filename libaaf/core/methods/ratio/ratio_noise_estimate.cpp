@@ -19,37 +19,43 @@ void check_same_size(ConstPlaneView a, ConstPlaneView b, const char *what) {
         throw Error(std::string("ratio noise estimate: ") + what + " is missing or has another size");
 }
 
+/// out[x] = 1 where any of in[x - radius .. x + radius] (clipped to
+/// [0, count)) is non-zero, else 0: one pass per offset, so it vectorises.
+void dilate(const unsigned char *in, int count, int radius, unsigned char *out) {
+    std::fill_n(out, count, 0);
+    for (int offset = -radius; offset <= radius; ++offset)
+        for (int x = std::max(0, -offset); x < std::min(count, count - offset); ++x) out[x] |= in[x + offset];
+}
+
 /// 1 where the (2 radius + 1)^2 window around the pixel holds two different
-/// values of `w`, else 0: a window with two values holds two neighbours that
-/// differ, so it is enough to flag each pixel that differs from its right or
-/// lower neighbour and dilate the flags by `radius` (a square, separably).
-std::vector<unsigned char> varying_windows(ConstPlaneView w, int radius) {
-    const int width = w.width, height = w.height;
+/// values of `w` (packed, width x height), else 0: a window with two values
+/// holds two neighbours that differ, so it is enough to flag each pixel that
+/// differs from its right or lower neighbour and dilate the flags by
+/// `radius` (a square, separably).
+FramePlane<unsigned char> varying_windows(const float *w, int width, int height, int radius) {
     const std::size_t count = std::size_t(width) * std::size_t(height);
-    std::vector<unsigned char> flags(count, 0), rows(count, 0), out(count, 0);
-    auto differ = [](float a, float b) { return !(a == b); };  // NaN differs from everything
+    FramePlane<unsigned char> flags, rows, out;
+    for (FramePlane<unsigned char> *plane : {&flags, &rows, &out}) plane->resize(count);  // written in full
     parallel_for_rows(height, [&](int y) {
-        for (int x = 0; x < width; ++x)
-            flags[std::size_t(y) * std::size_t(width) + std::size_t(x)] =
-                (x + 1 < width && differ(w(x, y), w(x + 1, y))) ||
-                (y + 1 < height && differ(w(x, y), w(x, y + 1)));
+        const float *row = w + std::size_t(y) * std::size_t(width);
+        const bool has_below = y + 1 < height;
+        const float *below = has_below ? row + width : row;  // read, then ignored, on the last row
+        unsigned char *flag = &flags[std::size_t(y) * std::size_t(width)];
+        // a != b holds where either is NaN: NaN differs from everything.
+        for (int x = 0; x + 1 < width; ++x)
+            flag[x] = (row[x] != row[x + 1]) | (has_below & (row[x] != below[x]));
+        flag[width - 1] = has_below & (row[width - 1] != below[width - 1]);
     });
     parallel_for_rows(height, [&](int y) {
-        const unsigned char *row = &flags[std::size_t(y) * std::size_t(width)];
-        int last = -(1 << 30);  // the last flagged column seen
-        for (int x = 0; x < std::min(width, radius); ++x)
-            if (row[x]) last = x;
-        for (int x = 0; x < width; ++x) {
-            if (x + radius < width && row[x + radius]) last = x + radius;
-            rows[std::size_t(y) * std::size_t(width) + std::size_t(x)] = last >= x - radius;
-        }
+        const std::size_t first = std::size_t(y) * std::size_t(width);
+        dilate(&flags[first], width, radius, &rows[first]);
     });
     parallel_for_rows(height, [&](int y) {
-        for (int x = 0; x < width; ++x) {
-            unsigned char any = 0;
-            for (int ty = std::max(0, y - radius); ty <= std::min(height - 1, y + radius) && !any; ++ty)
-                any = rows[std::size_t(ty) * std::size_t(width) + std::size_t(x)];
-            out[std::size_t(y) * std::size_t(width) + std::size_t(x)] = any;
+        unsigned char *row = &out[std::size_t(y) * std::size_t(width)];
+        std::fill_n(row, width, 0);
+        for (int ty = std::max(0, y - radius); ty <= std::min(height - 1, y + radius); ++ty) {
+            const unsigned char *from = &rows[std::size_t(ty) * std::size_t(width)];
+            for (int x = 0; x < width; ++x) row[x] |= from[x];
         }
     });
     return out;
@@ -74,39 +80,39 @@ void ratio_noise_estimate(ConstPlaneView w, int line_radius_px, std::uint32_t se
     check_same_size(w, e, "E");
     if (line_radius_px < 1) throw Error("ratio noise estimate: the line radius must be >= 1 pixel");
     const int width = w.width, height = w.height;
-    std::vector<float> raw(std::size_t(width) * std::size_t(height), 0.0f);
-    // Every line's taps of an inactive pixel lie in a constant window: E is 0 exactly, without the work.
-    const std::vector<unsigned char> active = varying_windows(w, line_radius_px);
     // The lines read W_N packed (a strided view is copied once).
-    std::vector<float> packed;
+    std::vector<float> copy;
     if (w.pixel_stride != 1 || w.row_stride != width) {
-        packed.resize(raw.size());
+        copy.resize(std::size_t(width) * std::size_t(height));
         parallel_for_rows(height, [&](int y) {
             for (int x = 0; x < width; ++x)
-                packed[std::size_t(y) * std::size_t(width) + std::size_t(x)] = w(x, y);
+                copy[std::size_t(y) * std::size_t(width) + std::size_t(x)] = w(x, y);
         });
     }
+    const float *packed = copy.empty() ? w.data : copy.data();
+    // Every line's taps of an inactive pixel lie in a constant window: E is 0 exactly, without the work.
+    const FramePlane<unsigned char> active = varying_windows(packed, width, height, line_radius_px);
     detail::RatioNoiseSweep sweep;
-    sweep.w = packed.empty() ? w.data : packed.data();
+    sweep.w = packed;
     sweep.width = width;
     sweep.height = height;
     sweep.line_radius_px = line_radius_px;
     sweep.seed = seed;
     sweep.active = active.data();
+    FramePlane<float> raw;
+    raw.resize(std::size_t(width) * std::size_t(height));  // written in full
     parallel_for_rows(
         height, [&](int y) { detail::ratio_noise_row(sweep, y, &raw[std::size_t(y) * std::size_t(width)]); });
     // Sec. 4.2: E is noisy itself (random lines), so a 3x3 box filter over it.
     parallel_for_rows(height, [&](int y) {
-        for (int x = 0; x < width; ++x) {
-            float sum = 0.0f;
-            int count = 0;
-            for (int ty = std::max(0, y - 1); ty <= std::min(height - 1, y + 1); ++ty)
-                for (int tx = std::max(0, x - 1); tx <= std::min(width - 1, x + 1); ++tx) {
-                    sum += raw[std::size_t(ty) * std::size_t(width) + std::size_t(tx)];
-                    ++count;
-                }
-            e(x, y) = sum / float(count);
-        }
+        const float *rows[3];
+        int row_count = 0;
+        for (int ty = std::max(0, y - 1); ty <= std::min(height - 1, y + 1); ++ty)
+            rows[row_count++] = &raw[std::size_t(ty) * std::size_t(width)];
+        if (e.pixel_stride == 1) return detail::ratio_box_row(rows, row_count, width, &e(0, y));
+        std::vector<float> out(static_cast<std::size_t>(width));
+        detail::ratio_box_row(rows, row_count, width, out.data());
+        for (int x = 0; x < width; ++x) e(x, y) = out[std::size_t(x)];
     });
 }
 

@@ -8,6 +8,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstring>
+#include <vector>
 
 // As gather_rows.cpp: no scalable (SVE, RVV) targets.
 #ifndef HWY_DISABLED_TARGETS
@@ -251,7 +252,97 @@ void RatioBilateralRowY(const RatioBilateralSweep &s, int y, int x_begin, int x_
     with_count<RowY>(s.count, s, y, x_begin, x_end, values);
 }
 
-/// The lanes' raw E (ratio_noise_estimate.cpp's definition, lane by lane):
+/// Lanes [0, n) of `from`, zeros after (a row's last, partial vector).
+HWY_INLINE V load_part(const float *from, int n) {
+    const D d;
+    if (n == int(hn::Lanes(d))) return hn::LoadU(d, from);
+    alignas(64) float lane[kMaxLanes] = {};
+    std::copy_n(from, n, lane);
+    return hn::Load(d, lane);
+}
+
+/// Stores lanes [0, n) of `v`, nothing after (the next row may be another thread's).
+template <class DV, class VV, typename T>
+HWY_INLINE void store_part(DV dv, VV v, T *to, int n) {
+    if (n == int(hn::Lanes(dv))) return hn::StoreU(v, dv, to);
+    alignas(64) T lane[kMaxLanes];
+    hn::Store(v, dv, lane);
+    std::copy_n(lane, n, to);
+}
+
+/// ratio_bilateral.cpp's per-pixel planes, lane by lane: square roots and
+/// quotients are correctly rounded on every instruction set, the sums kept in order.
+void RatioPlanesRow(const RatioGuideRow &in, int y, RatioBilateralPlanes &p) {
+    const D d;
+    const DI di;
+    const int lanes = int(hn::Lanes(d)), width = p.width;
+    const V zero = hn::Zero(d), one = hn::Set(d, 1.0f), plane_sigma = hn::Set(d, in.plane_sigma);
+    const V cutoff = hn::Set(d, in.cutoff_sigmas), reach_cap = hn::Set(d, float(std::max(width, p.height)));
+    const std::size_t row = std::size_t(y) * std::size_t(width);
+    for (int x0 = 0; x0 < width; x0 += lanes) {
+        const int n = std::min(lanes, width - x0);
+        const V p0 = load_part(in.position[0] + x0, n), p1 = load_part(in.position[1] + x0, n),
+                p2 = load_part(in.position[2] + x0, n);
+        const V n0 = load_part(in.normal[0] + x0, n), n1 = load_part(in.normal[1] + x0, n),
+                n2 = load_part(in.normal[2] + x0, n);
+        const V scale = load_part(in.scale_m + x0, n), sigma = load_part(in.sigma_px + x0, n);
+        const V length = hn::Sqrt(hn::Add(hn::Add(hn::Mul(n0, n0), hn::Mul(n1, n1)), hn::Mul(n2, n2)));
+        const auto surface = hn::And(hn::And(hn::Gt(scale, zero), hn::IsFinite(scale)),
+                                     hn::And(hn::IsFinite(hn::Add(hn::Add(p0, p1), p2)),
+                                             hn::And(hn::Gt(length, zero), hn::IsFinite(length))));
+        const V nx = hn::Div(n0, length), ny = hn::Div(n1, length), nz = hn::Div(n2, length);
+        const V plane_m = hn::Add(hn::Add(hn::Mul(nx, p0), hn::Mul(ny, p1)), hn::Mul(nz, p2));
+        const V inv_scale = hn::IfThenElseZero(surface, hn::Div(one, hn::Mul(plane_sigma, scale)));
+        const std::size_t c = row + std::size_t(x0);
+        store_part(d, hn::IfThenElseZero(surface, p0), &p.px[c], n);
+        store_part(d, hn::IfThenElseZero(surface, p1), &p.py[c], n);
+        store_part(d, hn::IfThenElseZero(surface, p2), &p.pz[c], n);
+        store_part(d, hn::IfThenElseZero(surface, nx), &p.nx[c], n);
+        store_part(d, hn::IfThenElseZero(surface, ny), &p.ny[c], n);
+        store_part(d, hn::IfThenElseZero(surface, nz), &p.nz[c], n);
+        store_part(d, hn::IfThenElseZero(surface, plane_m), &p.plane_m[c], n);
+        store_part(d, inv_scale, &p.inv_scale[c], n);
+        // A tap reaching past the image adds nothing: the reach is capped there.
+        const auto filtered =
+            hn::And(hn::And(hn::Gt(sigma, zero), hn::IsFinite(sigma)), hn::Ne(inv_scale, zero));
+        store_part(d, hn::IfThenElseZero(filtered, hn::Div(hn::Set(d, -0.5f), hn::Mul(sigma, sigma))),
+                   &p.minus_half_inv_sigma_sq[c], n);
+        const VI radius = hn::ConvertTo(di, hn::Min(hn::Ceil(hn::Mul(cutoff, sigma)), reach_cap));
+        store_part(di, hn::IfThenElseZero(hn::RebindMask(di, filtered), radius), &p.radius_px[c], n);
+    }
+}
+
+/// The 3x3 box's interior columns in lanes (each sum in the scalar order),
+/// its first and last column and short rows one by one.
+void RatioBoxRow(const float *const *rows, int row_count, int width, float *out) {
+    const D d;
+    const int lanes = int(hn::Lanes(d));
+    auto scalar = [&](int x) {
+        float sum = 0.0f;
+        int count = 0;
+        for (int r = 0; r < row_count; ++r)
+            for (int tx = std::max(0, x - 1); tx <= std::min(width - 1, x + 1); ++tx) {
+                sum += rows[r][tx];
+                ++count;
+            }
+        out[x] = sum / float(count);
+    };
+    scalar(0);
+    int x = 1;
+    const V count = hn::Set(d, float(3 * row_count));
+    for (; x + lanes <= width - 1; x += lanes) {
+        V sum = hn::Zero(d);
+        for (int r = 0; r < row_count; ++r) {
+            sum = hn::Add(sum, hn::LoadU(d, rows[r] + x - 1));
+            sum = hn::Add(sum, hn::LoadU(d, rows[r] + x));
+            sum = hn::Add(sum, hn::LoadU(d, rows[r] + x + 1));
+        }
+        hn::StoreU(hn::Div(sum, count), d, out + x);
+    }
+    for (; x < width; ++x) scalar(x);
+}
+
+/// The raw E of the row's active pixels, in lanes (ratio estimator Eq. 29):
 /// along 4 lines 45 degrees apart, turned by the pixel's hashed angle, the
 /// mean absolute second difference of W_N over nearest-pixel taps clamped
 /// to the image (non-finite read as 1).
@@ -265,29 +356,31 @@ void RatioNoiseRow(const RatioNoiseSweep &s, int y, float *raw) {
             h = hn::Set(d, kHalfSqrt2);
     const VI last_x = hn::Set(di, s.width - 1), last_y = hn::Set(di, s.height - 1), zero_i = hn::Zero(di);
     const VI row_y = hn::Set(di, y), width = hn::Set(di, s.width);
+    // The active pixels packed into the lanes (a row's are often scattered);
+    // a last partial vector repeats the last pixel.
     const unsigned char *active = s.active + std::size_t(y) * std::size_t(s.width);
-    alignas(64) float cosines[kMaxLanes], sines[kMaxLanes];
-    for (int x0 = 0; x0 < s.width; x0 += lanes) {
-        const int n = std::min(lanes, s.width - x0);
-        bool any = false;
+    thread_local std::vector<std::int32_t> columns;
+    columns.clear();
+    for (int x = 0; x < s.width; ++x)
+        if (active[x]) columns.push_back(x);
+    std::fill_n(raw, s.width, 0.0f);
+    if (columns.empty()) return;
+    const std::size_t active_count = columns.size();
+    columns.resize(active_count + std::size_t(lanes), columns.back());
+    alignas(64) float cosines[kMaxLanes], sines[kMaxLanes], out[kMaxLanes];
+    for (std::size_t i = 0; i < active_count; i += std::size_t(lanes)) {
         for (int l = 0; l < lanes; ++l) {
             // std::cos and std::sin, as the scalar definition (one angle per pixel).
-            const bool on = l < n && active[x0 + l];
-            const float turn = on ? ratio_pixel_random(x0 + l, y, s.seed) * kQuarterPi : 0.0f;
-            cosines[l] = on ? std::cos(turn) : 1.0f;
-            sines[l] = on ? std::sin(turn) : 0.0f;
-            any |= on;
-        }
-        if (!any) {
-            std::fill_n(raw + x0, n, 0.0f);
-            continue;
+            const float turn = ratio_pixel_random(columns[i + std::size_t(l)], y, s.seed) * kQuarterPi;
+            cosines[l] = std::cos(turn);
+            sines[l] = std::sin(turn);
         }
         const V c = hn::Load(d, cosines), sn = hn::Load(d, sines);
         const V directions[4][2] = {{c, sn},
                                     {hn::Mul(h, hn::Sub(c, sn)), hn::Mul(h, hn::Add(c, sn))},
                                     {hn::Neg(sn), c},
                                     {hn::Mul(hn::Neg(h), hn::Add(c, sn)), hn::Mul(h, hn::Sub(c, sn))}};
-        const VI x = hn::Iota(di, x0);
+        const VI x = hn::LoadU(di, &columns[i]);
         V sum = hn::Zero(d);
         for (const auto &direction : directions) {
             auto tap = [&](int t) {
@@ -309,9 +402,9 @@ void RatioNoiseRow(const RatioNoiseSweep &s, int y, float *raw) {
             }
             sum = hn::Add(sum, hn::Mul(variation, hn::Set(d, per_difference)));
         }
-        alignas(64) float out[kMaxLanes];
         hn::Store(hn::Mul(hn::Set(d, 0.25f), sum), d, out);  // the mean over n = 4 lines
-        for (int l = 0; l < n; ++l) raw[x0 + l] = active[x0 + l] ? out[l] : 0.0f;
+        const std::size_t n = std::min(std::size_t(lanes), active_count - i);
+        for (std::size_t l = 0; l < n; ++l) raw[columns[i + l]] = out[l];
     }
 }
 
@@ -327,6 +420,8 @@ namespace aaf::detail {
 HWY_EXPORT(RatioBilateralRowX);
 HWY_EXPORT(RatioBilateralRowY);
 HWY_EXPORT(RatioNoiseRow);
+HWY_EXPORT(RatioPlanesRow);
+HWY_EXPORT(RatioBoxRow);
 
 void ratio_bilateral_row_x(const RatioBilateralSweep &sweep, int y) {
     (void)instruction_set();  // applies $AAF_ISA before the first dispatch
@@ -341,6 +436,16 @@ void ratio_bilateral_row_y(const RatioBilateralSweep &sweep, int y, int x_begin,
 void ratio_noise_row(const RatioNoiseSweep &sweep, int y, float *raw) {
     (void)instruction_set();
     HWY_DYNAMIC_DISPATCH(RatioNoiseRow)(sweep, y, raw);
+}
+
+void ratio_planes_row(const RatioGuideRow &in, int y, RatioBilateralPlanes &planes) {
+    (void)instruction_set();
+    HWY_DYNAMIC_DISPATCH(RatioPlanesRow)(in, y, planes);
+}
+
+void ratio_box_row(const float *const *rows, int row_count, int width, float *out) {
+    (void)instruction_set();
+    HWY_DYNAMIC_DISPATCH(RatioBoxRow)(rows, row_count, width, out);
 }
 
 }  // namespace aaf::detail

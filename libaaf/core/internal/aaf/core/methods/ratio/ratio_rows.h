@@ -2,7 +2,8 @@
 
 #include <cstddef>
 #include <cstdint>
-#include <vector>
+
+#include "aaf/core/util/frame_allocator.h"
 
 namespace aaf::detail {
 
@@ -17,15 +18,31 @@ inline constexpr std::size_t kRatioPlaneSlack = 16;
 /// planar, row-major, each vector kRatioPlaneSlack floats longer than the image.
 struct RatioBilateralPlanes {
     int width = 0, height = 0;
-    std::vector<float> px, py, pz;  ///< the position, metres
-    std::vector<float> nx, ny, nz;  ///< the unit normal
-    std::vector<float> plane_m;     ///< n . p: the tangent plane's offset, metres
+    FramePlane<float> px, py, pz;  ///< the position, metres
+    FramePlane<float> nx, ny, nz;  ///< the unit normal
+    FramePlane<float> plane_m;     ///< n . p: the tangent plane's offset, metres
     /// 1 / (plane_sigma scale_m); 0 marks no surface: never a tap, never filtered.
-    std::vector<float> inv_scale;
-    std::vector<float> minus_half_inv_sigma_sq;  ///< -1 / (2 sigma^2), sigma in pixels
-    /// ceil(cutoff x sigma): how far the taps reach; 0 keeps the pixel's value.
-    std::vector<std::int32_t> radius_px;
+    FramePlane<float> inv_scale;
+    FramePlane<float> minus_half_inv_sigma_sq;  ///< -1 / (2 sigma^2), sigma in pixels
+    /// ceil(cutoff x sigma) (at most the image's larger side): how far the
+    /// taps reach; 0 keeps the pixel's value.
+    FramePlane<std::int32_t> radius_px;
 };
+
+/// One row of the guides and widths RatioBilateralPlanes is made from, packed.
+struct RatioGuideRow {
+    const float *position[3], *normal[3];
+    const float *scale_m;   ///< the world length a pixel covers, metres
+    const float *sigma_px;  ///< the bilateral's sigma
+    float plane_sigma = 1, cutoff_sigmas = 3;
+};
+
+/// Writes row `y` of every plane of `planes` (sized already) from `in`: the
+/// unit normal, n . p, 1 / (plane_sigma scale_m) and the Gaussian where the
+/// pixel is a surface (positive finite scale, finite position, non-zero
+/// finite normal), zeros elsewhere; the reach 0 where sigma is not positive
+/// and finite.
+void ratio_planes_row(const RatioGuideRow &in, int y, RatioBilateralPlanes &planes);
 
 /// One pass of the bilateral over `count` planes with the same weights.
 struct RatioBilateralSweep {
@@ -69,5 +86,10 @@ struct RatioNoiseSweep {
 /// Row `y` of E before its box filter (ratio estimator Eq. 29, the mean over 4 lines) to `raw` (width
 /// floats).
 void ratio_noise_row(const RatioNoiseSweep &sweep, int y, float *raw);
+
+/// One row of a 3x3 box filter clipped to the image: out[x] = the mean of
+/// rows[r][x - 1 .. x + 1] (clipped to [0, width)) over the `row_count`
+/// rows (1 to 3, top to bottom), summed in reading order from 0.
+void ratio_box_row(const float *const *rows, int row_count, int width, float *out);
 
 }  // namespace aaf::detail
