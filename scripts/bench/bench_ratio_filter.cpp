@@ -117,6 +117,14 @@ void sigma_from_noise(const Fixture &f, std::vector<float> &w, std::vector<float
     for (float &e : sigma) e = std::min(kSigmaPerNoisePx * e, kMaxSigmaPx);
 }
 
+std::vector<aaf::ConstPlaneView> views(const std::vector<aaf::FramePlane<float>> &planes, int width,
+                                       int height) {
+    std::vector<aaf::ConstPlaneView> out;
+    for (const aaf::FramePlane<float> &plane : planes)
+        out.push_back(aaf::plane_view(plane.data(), width, height));
+    return out;
+}
+
 double ms_since(std::chrono::steady_clock::time_point start) {
     return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
 }
@@ -171,7 +179,8 @@ void BM_RatioDenoiseVsOpenCv(benchmark::State &state) {
         opencv_bilateral();
         for (auto _ : state) {
             auto t = std::chrono::steady_clock::now();
-            const std::vector<std::vector<float>> sources = composition.sources();
+            const std::vector<aaf::FramePlane<float>> planes = composition.sources();
+            const std::vector<aaf::ConstPlaneView> sources = views(planes, width, height);
             const double prepare_ms = ms_since(t);
             t = std::chrono::steady_clock::now();
             sigma_from_noise(f, w, sigma);
@@ -188,7 +197,8 @@ void BM_RatioDenoiseVsOpenCv(benchmark::State &state) {
             denoise_ms += prepare_ms + this_noise_ms + this_bilateral_ms;
 
             t = std::chrono::steady_clock::now();
-            const std::vector<std::vector<float>> grey_sources = grey.sources();
+            const std::vector<aaf::FramePlane<float>> grey_planes = grey.sources();
+            const std::vector<aaf::ConstPlaneView> grey_sources = views(grey_planes, width, height);
             sigma_from_noise(f, w, sigma);
             aaf::ratio_bilateral_compose(
                 f.guides, aaf::plane_view(static_cast<const float *>(sigma.data()), width, height), {},

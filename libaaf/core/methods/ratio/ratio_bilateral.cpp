@@ -60,7 +60,7 @@ RatioBilateralPlanes planes_from(const RatioBilateralGuides &guides, ConstPlaneV
 }
 
 void check_inputs(const RatioBilateralGuides &guides, ConstPlaneView sigma_px,
-                  const RatioBilateralSettings &settings, const std::vector<std::vector<float>> &sources) {
+                  const RatioBilateralSettings &settings, const std::vector<ConstPlaneView> &sources) {
     if (!(settings.plane_sigma > 0) || !(settings.cutoff_sigmas > 0))
         throw Error("ratio bilateral: plane sigma and cut-off must be > 0");
     if (sources.empty() || sources.size() > std::size_t(detail::kRatioMaxPlanes))
@@ -68,8 +68,8 @@ void check_inputs(const RatioBilateralGuides &guides, ConstPlaneView sigma_px,
     const int width = guides.scale_m.width, height = guides.scale_m.height;
     if (!sigma_px.valid() || sigma_px.width != width || sigma_px.height != height)
         throw Error("ratio bilateral: sigma is missing or has another size");
-    for (const std::vector<float> &s : sources)
-        if (s.size() != std::size_t(width) * std::size_t(height))
+    for (const ConstPlaneView &s : sources)
+        if (!s.valid() || s.width != width || s.height != height)
             throw Error("ratio bilateral: a source has another size");
 }
 
@@ -84,7 +84,7 @@ constexpr int kStripPixels = 256, kTileRows = 64;
 /// on the thread count (nor on the instruction set: ratio_rows.cpp).
 template <typename Sink>
 void two_passes(const RatioBilateralGuides &guides, ConstPlaneView sigma_px,
-                const RatioBilateralSettings &settings, const std::vector<std::vector<float>> &sources,
+                const RatioBilateralSettings &settings, const std::vector<ConstPlaneView> &sources,
                 const Sink &sink) {
     check_inputs(guides, sigma_px, settings, sources);
     const RatioBilateralPlanes planes = planes_from(guides, sigma_px, settings);
@@ -98,11 +98,17 @@ void two_passes(const RatioBilateralGuides &guides, ConstPlaneView sigma_px,
     along_x.planes = along_y.planes = &planes;
     along_x.count = along_y.count = k_count;
     for (int k = 0; k < k_count; ++k) {
-        along_x.source[k] = sources[std::size_t(k)].data();
         along_x.output[k] = &horizontal[std::size_t(k) * count];
         along_y.source[k] = along_x.output[k];
     }
-    parallel_for_rows(height, [&](int y) { detail::ratio_bilateral_row_x(along_x, y); });
+    parallel_for_rows(height, [&](int y) {
+        thread_local std::vector<float> buffer;  // strided views' rows, packed
+        buffer.resize(std::max(buffer.size(), std::size_t(width) * std::size_t(k_count)));
+        const float *rows[detail::kRatioMaxPlanes];
+        for (int k = 0; k < k_count; ++k)
+            rows[k] = packed_row(sources[std::size_t(k)], y, &buffer[std::size_t(k) * std::size_t(width)]);
+        detail::ratio_bilateral_row_x(along_x, y, rows);
+    });
     const int strips = (width + kStripPixels - 1) / kStripPixels;
     parallel_for_tiles(height, kTileRows, strips, 1, [&](const TileRange &tile) {
         float values[kStripPixels * detail::kRatioMaxPlanes];
@@ -121,9 +127,8 @@ void two_passes(const RatioBilateralGuides &guides, ConstPlaneView sigma_px,
 
 void ratio_bilateral_compose(const RatioBilateralGuides &guides, ConstPlaneView sigma_px,
                              const RatioBilateralSettings &settings,
-                             const std::vector<std::vector<float>> &sources,
-                             const RatioComposition &composition, const std::array<PlaneView, 3> &rgb,
-                             bool accumulate) {
+                             const std::vector<ConstPlaneView> &sources, const RatioComposition &composition,
+                             const std::array<PlaneView, 3> &rgb, bool accumulate) {
     if (int(sources.size()) != composition.plane_count())
         throw Error("ratio bilateral: the sources do not match the estimator");
     for (const PlaneView &out : rgb)
@@ -138,7 +143,7 @@ void ratio_bilateral_compose(const RatioBilateralGuides &guides, ConstPlaneView 
 }
 
 void ratio_bilateral(const RatioBilateralGuides &guides, ConstPlaneView sigma_px,
-                     const RatioBilateralSettings &settings, const std::vector<std::vector<float>> &sources,
+                     const RatioBilateralSettings &settings, const std::vector<ConstPlaneView> &sources,
                      const std::vector<PlaneView> &outputs) {
     if (outputs.size() != sources.size()) throw Error("ratio bilateral: as many outputs as sources needed");
     for (const PlaneView &out : outputs)

@@ -15,8 +15,9 @@ float finite_or_zero(float v) {
     return std::isfinite(v) ? v : 0.0f;
 }
 
-std::vector<float> plane_of(ConstPlaneView view) {
-    std::vector<float> plane(std::size_t(view.width) * std::size_t(view.height));
+FramePlane<float> plane_of(ConstPlaneView view) {
+    FramePlane<float> plane;
+    plane.resize(std::size_t(view.width) * std::size_t(view.height));  // written in full below
     parallel_for_rows(view.height, [&](int y) {
         for (int x = 0; x < view.width; ++x)
             plane[std::size_t(y) * std::size_t(view.width) + std::size_t(x)] = finite_or_zero(view(x, y));
@@ -52,8 +53,8 @@ int RatioComposition::plane_count() const {
     return 3;
 }
 
-std::vector<std::vector<float>> RatioComposition::sources() const {
-    std::vector<std::vector<float>> planes;
+std::vector<FramePlane<float>> RatioComposition::sources() const {
+    std::vector<FramePlane<float>> planes;
     switch (estimator_) {
         case RatioEstimator::Ratio:
             if (grey_) {
@@ -72,7 +73,8 @@ std::vector<std::vector<float>> RatioComposition::sources() const {
             for (int c = 0; c < 3; ++c) {
                 const ConstPlaneView u = layers_.analytic[c], u_n = layers_.unshadowed[c],
                                      s_n = layers_.shadowed[c];
-                std::vector<float> plane(std::size_t(u.width) * std::size_t(u.height));
+                FramePlane<float> plane;
+                plane.resize(std::size_t(u.width) * std::size_t(u.height));  // written in full below
                 parallel_for_rows(u.height, [&](int y) {
                     for (int x = 0; x < u.width; ++x)  // ratio estimator Eq. 11 with c = 1: U - (U_N - S_N)
                         plane[std::size_t(y) * std::size_t(u.width) + std::size_t(x)] =

@@ -187,7 +187,7 @@ std::vector<float> bilateral_sigma_px(const RatioLayers &layers, bool grey, cons
 }
 
 /// AAF's frequency-derived per-pixel widths (AAF Eq. 13, Mehta et al. 2012) as gather guides.
-GatherGuides aaf_guides(const MethodImages &images, const std::vector<float> &any_plane) {
+GatherGuides aaf_guides(const MethodImages &images, const float *any_plane) {
     for (Role role : {Role::D1, Role::D2Min, Role::D2Max, Role::ObjectId, Role::PixelSize})
         if (!images.has(role))
             throw InputError(std::string("--denoiser aaf needs the '") + role.key + "' input (channels " +
@@ -196,7 +196,7 @@ GatherGuides aaf_guides(const MethodImages &images, const std::vector<float> &an
         if (!images.attributes().count(name))
             throw InputError("--denoiser aaf needs the key light's header attribute '" + name + "'");
     AafInputs in = aaf_geometry_inputs(images);
-    in.visibility = plane_view(any_plane.data(), images.width(), images.height());
+    in.visibility = plane_view(any_plane, images.width(), images.height());
     // AAF's consistency rule (AAF Sec. 5.2): the widths follow the samples taken when they are known.
     if (images.has(Role::SamplesPerPixel)) in.spp = images.input(Role::SamplesPerPixel);
     return aaf_gather_guides(in, read_light_attributes(images.attributes()), AafParams{});
@@ -327,11 +327,14 @@ class RatioMethod final : public Method {
         for (std::size_t pass = 0; pass < passes.size(); ++pass) {
             const RatioLayers layers = layers_of(images, passes[pass], s.grey);
             const RatioComposition composition(layers, s.estimator, s.grey);
-            const std::vector<std::vector<float>> sources = composition.sources();
+            const std::vector<FramePlane<float>> sources = composition.sources();
             const bool accumulate = pass > 0;
             if (s.denoiser == "bilateral") {
                 const std::vector<float> sigma = bilateral_sigma_px(layers, s.grey, s, width, height);
-                ratio_bilateral_compose(guides, plane_view(sigma.data(), width, height), bilateral, sources,
+                std::vector<ConstPlaneView> views;
+                for (const FramePlane<float> &plane : sources)
+                    views.push_back(plane_view(plane.data(), width, height));
+                ratio_bilateral_compose(guides, plane_view(sigma.data(), width, height), bilateral, views,
                                         composition, rgb, accumulate);
             } else {
                 std::vector<std::vector<float>> denoised(sources.size(),
@@ -342,7 +345,7 @@ class RatioMethod final : public Method {
                                               s.gaussian_sigma_px,
                                               plane_view(denoised[k].data(), width, height));
                 } else {
-                    if (pass == 0) frequency_guides = aaf_guides(images, sources.front());
+                    if (pass == 0) frequency_guides = aaf_guides(images, sources.front().data());
                     std::vector<ConstPlaneView> in;
                     std::vector<PlaneView> out;
                     for (std::size_t k = 0; k < sources.size(); ++k) {

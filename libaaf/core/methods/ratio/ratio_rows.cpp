@@ -133,7 +133,7 @@ HWY_INLINE VI load_radius(const std::int32_t *radius, int n) {
 }
 
 template <int K>
-void row_x(const RatioBilateralSweep &s, int y) {
+void row_x(const RatioBilateralSweep &s, int y, const float *const *source_rows) {
     const D d;
     const DI di;
     const int lanes = int(hn::Lanes(d));
@@ -157,7 +157,7 @@ void row_x(const RatioBilateralSweep &s, int y) {
               copy_row(2, &p.pz[row]),
               copy_row(3, &p.inv_scale[row]),
               {}};
-    for (int k = 0; k < K; ++k) taps.source[k] = copy_row(4 + k, s.source[k] + row);
+    for (int k = 0; k < K; ++k) taps.source[k] = copy_row(4 + k, source_rows[k]);
     const VI last = hn::Set(di, width - 1);
     for (int x0 = 0; x0 < width; x0 += lanes) {
         const int n = std::min(lanes, width - x0);
@@ -235,7 +235,9 @@ void with_count(int count, Args &&...args) {
 
 template <int K>
 struct RowX {
-    static void run(const RatioBilateralSweep &s, int y) { row_x<K>(s, y); }
+    static void run(const RatioBilateralSweep &s, int y, const float *const *source_rows) {
+        row_x<K>(s, y, source_rows);
+    }
 };
 template <int K>
 struct RowY {
@@ -244,8 +246,8 @@ struct RowY {
     }
 };
 
-void RatioBilateralRowX(const RatioBilateralSweep &s, int y) {
-    with_count<RowX>(s.count, s, y);
+void RatioBilateralRowX(const RatioBilateralSweep &s, int y, const float *const *source_rows) {
+    with_count<RowX>(s.count, s, y, source_rows);
 }
 
 void RatioBilateralRowY(const RatioBilateralSweep &s, int y, int x_begin, int x_end, float *values) {
@@ -423,9 +425,9 @@ HWY_EXPORT(RatioNoiseRow);
 HWY_EXPORT(RatioPlanesRow);
 HWY_EXPORT(RatioBoxRow);
 
-void ratio_bilateral_row_x(const RatioBilateralSweep &sweep, int y) {
+void ratio_bilateral_row_x(const RatioBilateralSweep &sweep, int y, const float *const *source_rows) {
     (void)instruction_set();  // applies $AAF_ISA before the first dispatch
-    HWY_DYNAMIC_DISPATCH(RatioBilateralRowX)(sweep, y);
+    HWY_DYNAMIC_DISPATCH(RatioBilateralRowX)(sweep, y, source_rows);
 }
 
 void ratio_bilateral_row_y(const RatioBilateralSweep &sweep, int y, int x_begin, int x_end, float *values) {

@@ -320,8 +320,7 @@ TEST_CASE("Ratio bilateral: taps across a depth discontinuity are rejected, on o
         }
         guides.scale_m = aovs.channel("pixel.size");
         std::vector<float> sigma(width * height, 6.0f);
-        std::vector<std::vector<float>> sources = {std::vector<float>(
-            aovs.channel("ratio.S.G").data, aovs.channel("ratio.S.G").data + width * height)};
+        const std::vector<ConstPlaneView> sources = {aovs.channel("ratio.S.G")};
         std::vector<float> out(width * height);
         ratio_bilateral(guides, plane_view(static_cast<const float *>(sigma.data()), width, height), {},
                         sources, {plane_view(out.data(), width, height)});

@@ -34,18 +34,17 @@ struct RatioBilateralSettings {
 /// weights in the same pass. A pixel with sigma_px = 0 costs nothing and keeps
 /// its value. The vertical pass writes `composition`'s radiance (U x den(S_N) /
 /// den(U_N) for the ratio estimator) straight to `rgb`, added to it when
-/// `accumulate`. `sources` hold composition.plane_count() guide-sized planes of finite values.
+/// `accumulate`. `sources` are composition.plane_count() guide-sized planes of finite values.
 /// Deterministic for any thread count; throws aaf::Error on mismatched sizes.
 void ratio_bilateral_compose(const RatioBilateralGuides &guides, ConstPlaneView sigma_px,
                              const RatioBilateralSettings &settings,
-                             const std::vector<std::vector<float>> &sources,
-                             const RatioComposition &composition, const std::array<PlaneView, 3> &rgb,
-                             bool accumulate);
+                             const std::vector<ConstPlaneView> &sources, const RatioComposition &composition,
+                             const std::array<PlaneView, 3> &rgb, bool accumulate);
 
 /// The same two passes writing the filtered planes themselves (`outputs`,
 /// one per source, guide-sized; they may not alias the sources; at most 8 sources).
 void ratio_bilateral(const RatioBilateralGuides &guides, ConstPlaneView sigma_px,
-                     const RatioBilateralSettings &settings, const std::vector<std::vector<float>> &sources,
+                     const RatioBilateralSettings &settings, const std::vector<ConstPlaneView> &sources,
                      const std::vector<PlaneView> &outputs);
 
 }  // namespace aaf

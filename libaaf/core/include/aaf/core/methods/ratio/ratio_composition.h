@@ -4,6 +4,7 @@
 #include <vector>
 
 #include "aaf/core/contract/plane_view.h"
+#include "aaf/core/util/frame_allocator.h"
 
 namespace aaf {
 
@@ -42,7 +43,7 @@ class RatioComposition {
     /// The planes the denoiser filters, all with the same weights, non-finite
     /// values read as 0: Ratio: S_N R,G,B then U_N R,G,B (grey: S_N Y, U_N Y);
     /// Stochastic: S_N R,G,B; ControlVariate: U - U_N + S_N, R,G,B.
-    std::vector<std::vector<float>> sources() const;
+    std::vector<FramePlane<float>> sources() const;
     /// How many planes sources() returns.
     int plane_count() const;
 

@@ -48,14 +48,14 @@ void ratio_planes_row(const RatioGuideRow &in, int y, RatioBilateralPlanes &plan
 struct RatioBilateralSweep {
     const RatioBilateralPlanes *planes = nullptr;
     int count = 1;  ///< [1, kRatioMaxPlanes]
-    /// Guide-sized row-major planes; those of the vertical pass with kRatioPlaneSlack floats after them.
+    /// The vertical pass's sources: guide-sized row-major planes, kRatioPlaneSlack floats after the last.
     const float *source[kRatioMaxPlanes] = {};
     float *output[kRatioMaxPlanes] = {};  ///< the horizontal pass's, guide-sized
 };
 
 /// The horizontal pass over row `y`: output[k](x, y) = the weighted mean of
-/// source[k] over the row's taps of pixel x, for every x.
-void ratio_bilateral_row_x(const RatioBilateralSweep &sweep, int y);
+/// source_rows[k][x'] over the row's taps x' of pixel x, for every x.
+void ratio_bilateral_row_x(const RatioBilateralSweep &sweep, int y, const float *const *source_rows);
 
 /// The vertical pass over pixels [x_begin, x_end) of row `y`: their `count`
 /// filtered values pixel after pixel to `values` ((x_end - x_begin) x count floats).
