@@ -90,15 +90,17 @@ void two_passes(const RatioBilateralGuides &guides, ConstPlaneView sigma_px,
     const RatioBilateralPlanes planes = planes_from(guides, sigma_px, settings);
     const int width = planes.width, height = planes.height, k_count = int(sources.size());
     const std::size_t count = std::size_t(width) * std::size_t(height);
-    // The planes one after another, slack after the last (the vertical pass's vectors).
-    FramePlane<float> horizontal;
-    horizontal.resize(count * std::size_t(k_count) + detail::kRatioPlaneSlack);  // written in full below
-    std::fill(horizontal.end() - std::ptrdiff_t(detail::kRatioPlaneSlack), horizontal.end(), 0.0f);
+    // One allocation per plane (frame-sized blocks are reused, much larger ones may not be).
+    std::vector<FramePlane<float>> horizontal(static_cast<std::size_t>(k_count));
+    for (FramePlane<float> &plane : horizontal) {
+        plane.resize(count + detail::kRatioPlaneSlack);  // written in full below
+        std::fill(plane.begin() + std::ptrdiff_t(count), plane.end(), 0.0f);
+    }
     detail::RatioBilateralSweep along_x, along_y;
     along_x.planes = along_y.planes = &planes;
     along_x.count = along_y.count = k_count;
     for (int k = 0; k < k_count; ++k) {
-        along_x.output[k] = &horizontal[std::size_t(k) * count];
+        along_x.output[k] = horizontal[std::size_t(k)].data();
         along_y.source[k] = along_x.output[k];
     }
     parallel_for_rows(height, [&](int y) {
