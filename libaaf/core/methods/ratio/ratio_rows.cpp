@@ -86,7 +86,9 @@ struct Taps {
 /// Adds the taps at offsets [o_begin, o_end] `stride` floats apart, each lane
 /// only those in its [lo, hi], in order (ratio_bilateral.cpp's scalar loops:
 /// the weight exp(-o^2 / (2 sigma^2) - q^2 / 2) of a tap q plane sigmas from
-/// the centre's tangent plane, 0 off a surface, 1 at the centre).
+/// the centre's tangent plane, 0 off a surface, 1 at the centre). A tap
+/// outside a lane's range weighs 0 there: with finite values it adds +0 or
+/// -0, which leaves every sum as it was (a sum that starts at +0 is never -0).
 template <int K>
 HWY_INLINE void add_taps(const Centres &c, const Taps &taps, std::ptrdiff_t stride, int o_begin, int o_end,
                          V (&sums)[K], V &weight_sum) {
@@ -97,20 +99,18 @@ HWY_INLINE void add_taps(const Centres &c, const Taps &taps, std::ptrdiff_t stri
     for (int o = o_begin; o <= o_end; ++o) {
         const std::ptrdiff_t t = std::ptrdiff_t(o) * stride;
         const V o_px = hn::Set(d, float(o));
-        const auto inside = hn::And(hn::Ge(o_px, c.lo_px), hn::Le(o_px, c.hi_px));
         const V plane_m = hn::Add(
             hn::Add(hn::Mul(c.nx, hn::LoadU(d, taps.px + t)), hn::Mul(c.ny, hn::LoadU(d, taps.py + t))),
             hn::Mul(c.nz, hn::LoadU(d, taps.pz + t)));
         const V q = hn::Mul(hn::Sub(plane_m, c.plane_m), c.inv_scale);
         const V exponent =
             hn::Sub(hn::Mul(hn::Mul(c.minus_half_inv_sigma_sq, o_px), o_px), hn::Mul(hn::Mul(half, q), q));
-        V w = hn::IfThenZeroElse(hn::Eq(hn::LoadU(d, taps.inv_scale + t), zero),
-                                 fast_exp_nonpositive(d, exponent));
-        if (o == 0) w = one;  // the centre always counts
-        weight_sum = hn::IfThenElse(inside, hn::Add(weight_sum, w), weight_sum);
-        for (int k = 0; k < K; ++k)
-            sums[k] = hn::IfThenElse(inside, hn::Add(sums[k], hn::Mul(w, hn::LoadU(d, taps.source[k] + t))),
-                                     sums[k]);
+        const auto counts = hn::And(hn::And(hn::Ge(o_px, c.lo_px), hn::Le(o_px, c.hi_px)),
+                                    hn::Ne(hn::LoadU(d, taps.inv_scale + t), zero));
+        // The centre always counts (o = 0 lies in every lane's range).
+        const V w = o == 0 ? one : hn::IfThenElseZero(counts, fast_exp_nonpositive(d, exponent));
+        weight_sum = hn::Add(weight_sum, w);
+        for (int k = 0; k < K; ++k) sums[k] = hn::Add(sums[k], hn::Mul(w, hn::LoadU(d, taps.source[k] + t)));
     }
 }
 
