@@ -79,7 +79,8 @@ void check_inputs(const RatioBilateralGuides &guides, ConstPlaneView sigma_px,
 constexpr int kStripPixels = 256, kTileRows = 64;
 
 /// The horizontal pass into planes of the sources' size; then the vertical
-/// pass, which hands each pixel's filtered values to `sink(x, y, values)`.
+/// pass, which hands pixels [x_begin, x_end) of row y to `sink(y, x_begin,
+/// x_end, values)`, values[k] their filtered plane k.
 /// Each pixel sums its taps in a fixed order, so the result does not depend
 /// on the thread count (nor on the instruction set: ratio_rows.cpp).
 template <typename Sink>
@@ -118,8 +119,10 @@ void two_passes(const RatioBilateralGuides &guides, ConstPlaneView sigma_px,
             const int x_begin = strip * kStripPixels, x_end = std::min(width, x_begin + kStripPixels);
             for (int y = tile.row_begin; y != tile.row_end; ++y) {
                 detail::ratio_bilateral_row_y(along_y, y, x_begin, x_end, values);
-                for (int x = x_begin; x < x_end; ++x)
-                    sink(x, y, &values[std::size_t(x - x_begin) * std::size_t(k_count)]);
+                const float *planes_out[detail::kRatioMaxPlanes];
+                for (int k = 0; k < k_count; ++k)
+                    planes_out[k] = &values[std::size_t(k) * std::size_t(x_end - x_begin)];
+                sink(y, x_begin, x_end, planes_out);
             }
         }
     });
@@ -137,11 +140,10 @@ void ratio_bilateral_compose(const RatioBilateralGuides &guides, ConstPlaneView 
         if (!out.valid() || out.width != sigma_px.width || out.height != sigma_px.height)
             throw Error("ratio bilateral: an output is missing or has another size");
     // Sec. 4.1 pass 4: the vertical pass writes the final radiance directly.
-    two_passes(guides, sigma_px, settings, sources, [&](int x, int y, const float *values) {
-        float pixel[3] = {rgb[0](x, y), rgb[1](x, y), rgb[2](x, y)};
-        composition.compose(x, y, values, pixel, accumulate);
-        for (int c = 0; c < 3; ++c) rgb[c](x, y) = pixel[c];
-    });
+    two_passes(guides, sigma_px, settings, sources,
+               [&](int y, int x_begin, int x_end, const float *const *values) {
+                   composition.compose_row(y, x_begin, x_end, values, rgb, accumulate);
+               });
 }
 
 void ratio_bilateral(const RatioBilateralGuides &guides, ConstPlaneView sigma_px,
@@ -151,9 +153,11 @@ void ratio_bilateral(const RatioBilateralGuides &guides, ConstPlaneView sigma_px
     for (const PlaneView &out : outputs)
         if (!out.valid() || out.width != sigma_px.width || out.height != sigma_px.height)
             throw Error("ratio bilateral: an output is missing or has another size");
-    two_passes(guides, sigma_px, settings, sources, [&](int x, int y, const float *values) {
-        for (std::size_t k = 0; k < outputs.size(); ++k) outputs[k](x, y) = values[k];
-    });
+    two_passes(guides, sigma_px, settings, sources,
+               [&](int y, int x_begin, int x_end, const float *const *values) {
+                   for (std::size_t k = 0; k < outputs.size(); ++k)
+                       for (int x = x_begin; x < x_end; ++x) outputs[k](x, y) = values[k][x - x_begin];
+               });
 }
 
 }  // namespace aaf

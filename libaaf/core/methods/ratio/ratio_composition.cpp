@@ -25,7 +25,38 @@ FramePlane<float> plane_of(ConstPlaneView view) {
     return plane;
 }
 
+/// ratio_weight and U x W over a row of adjacent pixels, written without
+/// branches so that it vectorises (the same values).
+void compose_ratio_row(const float *u, const float *s_den, const float *u_den, float *rgb, int count,
+                       bool accumulate) {
+    for (int x = 0; x < count; ++x) {
+        const float quotient = s_den[x] / u_den[x];
+        const float clamped = quotient < 0 ? 0.0f : (quotient > 1 ? 1.0f : quotient);
+        const float out = u[x] * (u_den[x] > 0 ? clamped : 1.0f);  // ratio estimator Eq. 25, times U
+        rgb[x] = accumulate ? rgb[x] + out : out;
+    }
+}
+
 }  // namespace
+
+void RatioComposition::compose_row(int y, int x_begin, int x_end, const float *const *denoised,
+                                   const std::array<PlaneView, 3> &rgb, bool accumulate) const {
+    bool adjacent = estimator_ == RatioEstimator::Ratio;
+    for (int c = 0; c < 3; ++c) adjacent &= rgb[c].pixel_stride == 1 && layers_.analytic[c].pixel_stride == 1;
+    if (adjacent) {
+        for (int c = 0; c < 3; ++c)
+            compose_ratio_row(&layers_.analytic[c](x_begin, y), denoised[grey_ ? 0 : c],
+                              denoised[grey_ ? 1 : 3 + c], &rgb[c](x_begin, y), x_end - x_begin, accumulate);
+        return;
+    }
+    float values[8];
+    for (int x = x_begin; x < x_end; ++x) {
+        for (int k = 0; k < plane_count(); ++k) values[k] = denoised[k][x - x_begin];
+        float pixel[3] = {rgb[0](x, y), rgb[1](x, y), rgb[2](x, y)};
+        compose(x, y, values, pixel, accumulate);
+        for (int c = 0; c < 3; ++c) rgb[c](x, y) = pixel[c];
+    }
+}
 
 RatioComposition::RatioComposition(const RatioLayers &layers, RatioEstimator estimator, bool grey)
     : layers_(layers), estimator_(estimator), grey_(grey) {

@@ -206,14 +206,10 @@ GatherGuides aaf_guides(const MethodImages &images, const float *any_plane) {
 void compose_planes(const RatioComposition &composition, const std::vector<std::vector<float>> &denoised,
                     const std::array<PlaneView, 3> &rgb, bool accumulate, int width, int height) {
     parallel_for_rows(height, [&](int y) {
-        std::vector<float> values(denoised.size());
-        for (int x = 0; x < width; ++x) {
-            const std::size_t i = std::size_t(y) * std::size_t(width) + std::size_t(x);
-            for (std::size_t k = 0; k < denoised.size(); ++k) values[k] = denoised[k][i];
-            float pixel[3] = {rgb[0](x, y), rgb[1](x, y), rgb[2](x, y)};
-            composition.compose(x, y, values.data(), pixel, accumulate);
-            for (int c = 0; c < 3; ++c) rgb[c](x, y) = pixel[c];
-        }
+        std::vector<const float *> rows;
+        for (const std::vector<float> &plane : denoised)
+            rows.push_back(&plane[std::size_t(y) * std::size_t(width)]);
+        composition.compose_row(y, 0, width, rows.data(), rgb, accumulate);
     });
 }
 

@@ -204,9 +204,9 @@ void row_y(const RatioBilateralSweep &s, int y, int x_begin, int x_end, float *v
                     hn::GetLane(hn::MaxOfLanes(di, c.hi)), sums, weight_sum);
         alignas(64) float out[K][kMaxLanes];
         finish<K>(c, at, sums, weight_sum, out);
-        float *pixel = values + std::size_t(x0 - x_begin) * K;
-        for (int l = 0; l < n; ++l)
-            for (int k = 0; k < K; ++k) *pixel++ = out[k][l];
+        const std::size_t span = std::size_t(x_end - x_begin);
+        for (int k = 0; k < K; ++k)
+            std::copy_n(out[k], n, values + std::size_t(k) * span + std::size_t(x0 - x_begin));
     }
 }
 

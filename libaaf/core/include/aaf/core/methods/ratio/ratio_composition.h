@@ -69,6 +69,11 @@ class RatioComposition {
         for (int c = 0; c < 3; ++c) rgb[c] = accumulate ? rgb[c] + out[c] : out[c];
     }
 
+    /// compose() over pixels [x_begin, x_end) of row `y` into `rgb`, denoised[k]
+    /// the pixels' plane k (x_end - x_begin values each); the same values.
+    void compose_row(int y, int x_begin, int x_end, const float *const *denoised,
+                     const std::array<PlaneView, 3> &rgb, bool accumulate) const;
+
   private:
     RatioLayers layers_;
     RatioEstimator estimator_;

@@ -58,7 +58,7 @@ struct RatioBilateralSweep {
 void ratio_bilateral_row_x(const RatioBilateralSweep &sweep, int y, const float *const *source_rows);
 
 /// The vertical pass over pixels [x_begin, x_end) of row `y`: their `count`
-/// filtered values pixel after pixel to `values` ((x_end - x_begin) x count floats).
+/// filtered values plane after plane to `values` (count x (x_end - x_begin) floats).
 void ratio_bilateral_row_y(const RatioBilateralSweep &sweep, int y, int x_begin, int x_end, float *values);
 
 /// A per-pixel hash (PCG-style integer mix) in [0, 1), so the noise
