@@ -20,8 +20,9 @@ void check_same_size(ConstPlaneView a, ConstPlaneView b, const char *what) {
 }
 
 /// out[x] = 1 where any of in[x - radius .. x + radius] (clipped to
-/// [0, count)) is non-zero, else 0: one pass per offset, so it vectorises.
-void dilate(const unsigned char *in, int count, int radius, unsigned char *out) {
+/// [0, count)) is non-zero, else 0: one pass per offset, so it vectorises
+/// (__restrict: bytes may alias anything, these do not).
+void dilate(const unsigned char *__restrict in, int count, int radius, unsigned char *__restrict out) {
     std::fill_n(out, count, 0);
     for (int offset = -radius; offset <= radius; ++offset)
         for (int x = std::max(0, -offset); x < std::min(count, count - offset); ++x) out[x] |= in[x + offset];
@@ -37,25 +38,26 @@ FramePlane<unsigned char> varying_windows(const float *w, int width, int height,
     FramePlane<unsigned char> flags, rows, out;
     for (FramePlane<unsigned char> *plane : {&flags, &rows, &out}) plane->resize(count);  // written in full
     parallel_for_rows(height, [&](int y) {
-        const float *row = w + std::size_t(y) * std::size_t(width);
+        const int n = width;  // a local: a byte store might alias a captured value, not a local
+        const float *row = w + std::size_t(y) * std::size_t(n);
         const bool has_below = y + 1 < height;
         const float *below = has_below ? row + width : row;  // read, then ignored, on the last row
-        unsigned char *flag = &flags[std::size_t(y) * std::size_t(width)];
+        unsigned char *__restrict flag = &flags[std::size_t(y) * std::size_t(width)];
         // a != b holds where either is NaN: NaN differs from everything.
-        for (int x = 0; x + 1 < width; ++x)
-            flag[x] = (row[x] != row[x + 1]) | (has_below & (row[x] != below[x]));
-        flag[width - 1] = has_below & (row[width - 1] != below[width - 1]);
+        for (int x = 0; x + 1 < n; ++x) flag[x] = (row[x] != row[x + 1]) | (has_below & (row[x] != below[x]));
+        flag[n - 1] = has_below & (row[n - 1] != below[n - 1]);
     });
     parallel_for_rows(height, [&](int y) {
         const std::size_t first = std::size_t(y) * std::size_t(width);
         dilate(&flags[first], width, radius, &rows[first]);
     });
     parallel_for_rows(height, [&](int y) {
-        unsigned char *row = &out[std::size_t(y) * std::size_t(width)];
-        std::fill_n(row, width, 0);
-        for (int ty = std::max(0, y - radius); ty <= std::min(height - 1, y + radius); ++ty) {
-            const unsigned char *from = &rows[std::size_t(ty) * std::size_t(width)];
-            for (int x = 0; x < width; ++x) row[x] |= from[x];
+        const int n = width, first = std::max(0, y - radius), last = std::min(height - 1, y + radius);
+        unsigned char *__restrict row = &out[std::size_t(y) * std::size_t(n)];
+        std::fill_n(row, n, 0);
+        for (int ty = first; ty <= last; ++ty) {
+            const unsigned char *__restrict from = &rows[std::size_t(ty) * std::size_t(n)];
+            for (int x = 0; x < n; ++x) row[x] |= from[x];
         }
     });
     return out;
