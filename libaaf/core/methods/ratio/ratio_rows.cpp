@@ -161,7 +161,14 @@ void row_x(const RatioBilateralSweep &s, int y, const float *const *source_rows)
     const VI last = hn::Set(di, width - 1);
     for (int x0 = 0; x0 < width; x0 += lanes) {
         const int n = std::min(lanes, width - x0);
-        Centres c = load_centres(p, row + std::size_t(x0), load_radius(radius + x0, n));
+        const VI reach_px = load_radius(radius + x0, n);
+        if (hn::AllTrue(di, hn::Eq(reach_px, hn::Zero(di)))) {  // no lane filters: they keep their values
+            for (int k = 0; k < K; ++k)
+                std::memcpy(s.output[k] + row + std::size_t(x0), taps.source[k] + x0,
+                            std::size_t(n) * sizeof(float));
+            continue;
+        }
+        Centres c = load_centres(p, row + std::size_t(x0), reach_px);
         const VI x = hn::Iota(di, x0);
         c.lo = hn::Max(hn::Neg(c.radius), hn::Neg(x));
         c.hi = hn::Min(c.radius, hn::Sub(last, x));
@@ -191,8 +198,14 @@ void row_y(const RatioBilateralSweep &s, int y, int x_begin, int x_end, float *v
     const VI up = hn::Set(di, -y), down = hn::Set(di, p.height - 1 - y);
     for (int x0 = x_begin; x0 < x_end; x0 += lanes) {
         const int n = std::min(lanes, x_end - x0);
-        const std::size_t c0 = row + std::size_t(x0);
-        Centres c = load_centres(p, c0, load_radius(&p.radius_px[c0], n));
+        const std::size_t c0 = row + std::size_t(x0), span = std::size_t(x_end - x_begin);
+        const VI reach_px = load_radius(&p.radius_px[c0], n);
+        if (hn::AllTrue(di, hn::Eq(reach_px, hn::Zero(di)))) {  // no lane filters: they keep their values
+            for (int k = 0; k < K; ++k)
+                std::copy_n(s.source[k] + c0, n, values + std::size_t(k) * span + std::size_t(x0 - x_begin));
+            continue;
+        }
+        Centres c = load_centres(p, c0, reach_px);
         c.lo = hn::Max(hn::Neg(c.radius), up);
         c.hi = hn::Min(c.radius, down);
         c.lo_px = hn::ConvertTo(d, c.lo);
@@ -204,7 +217,6 @@ void row_y(const RatioBilateralSweep &s, int y, int x_begin, int x_end, float *v
                     hn::GetLane(hn::MaxOfLanes(di, c.hi)), sums, weight_sum);
         alignas(64) float out[K][kMaxLanes];
         finish<K>(c, at, sums, weight_sum, out);
-        const std::size_t span = std::size_t(x_end - x_begin);
         for (int k = 0; k < K; ++k)
             std::copy_n(out[k], n, values + std::size_t(k) * span + std::size_t(x0 - x_begin));
     }
