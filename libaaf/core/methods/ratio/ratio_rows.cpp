@@ -146,10 +146,12 @@ void row_x(const RatioBilateralSweep &s, int y, const float *const *source_rows)
     // after, zeros there: every lane's taps load from inside the copy.
     const std::size_t padded = std::size_t(reach + width + lanes);
     thread_local std::vector<float> scratch;
-    scratch.assign(padded * std::size_t(4 + K), 0.0f);
+    scratch.resize(std::max(scratch.size(), padded * std::size_t(4 + K)));
     auto copy_row = [&](int plane, const float *from) {
-        float *to = &scratch[std::size_t(plane) * padded + std::size_t(reach)];
+        float *first = &scratch[std::size_t(plane) * padded], *to = first + reach;
+        std::fill(first, to, 0.0f);
         std::memcpy(to, from, std::size_t(width) * sizeof(float));
+        std::fill_n(to + width, lanes, 0.0f);
         return to;
     };
     Taps taps{copy_row(0, &p.px[row]),
