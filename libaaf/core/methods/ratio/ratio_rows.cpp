@@ -126,6 +126,21 @@ HWY_INLINE void finish(const Centres &c, const Taps &taps, const V (&sums)[K], V
                    out[k]);
 }
 
+/// Sets the lanes' tap range [lo, hi] (offsets from the centres).
+HWY_INLINE void set_range(Centres &c, VI lo, VI hi) {
+    const D d;
+    c.lo = lo;
+    c.hi = hi;
+    c.lo_px = hn::ConvertTo(d, lo);
+    c.hi_px = hn::ConvertTo(d, hi);
+}
+
+/// Whether no lane of `reach_px` filters (each keeps its value).
+HWY_INLINE bool none_filters(VI reach_px) {
+    const DI di;
+    return hn::AllTrue(di, hn::Eq(reach_px, hn::Zero(di)));
+}
+
 /// The reach of lanes [0, n) of `radius`, 0 for the others.
 HWY_INLINE VI load_radius(const std::int32_t *radius, int n) {
     const DI di;
@@ -164,7 +179,7 @@ void row_x(const RatioBilateralSweep &s, int y, const float *const *source_rows)
     for (int x0 = 0; x0 < width; x0 += lanes) {
         const int n = std::min(lanes, width - x0);
         const VI reach_px = load_radius(radius + x0, n);
-        if (hn::AllTrue(di, hn::Eq(reach_px, hn::Zero(di)))) {  // no lane filters: they keep their values
+        if (none_filters(reach_px)) {
             for (int k = 0; k < K; ++k)
                 std::memcpy(s.output[k] + row + std::size_t(x0), taps.source[k] + x0,
                             std::size_t(n) * sizeof(float));
@@ -172,10 +187,7 @@ void row_x(const RatioBilateralSweep &s, int y, const float *const *source_rows)
         }
         Centres c = load_centres(p, row + std::size_t(x0), reach_px);
         const VI x = hn::Iota(di, x0);
-        c.lo = hn::Max(hn::Neg(c.radius), hn::Neg(x));
-        c.hi = hn::Min(c.radius, hn::Sub(last, x));
-        c.lo_px = hn::ConvertTo(d, c.lo);
-        c.hi_px = hn::ConvertTo(d, c.hi);
+        set_range(c, hn::Max(hn::Neg(c.radius), hn::Neg(x)), hn::Min(c.radius, hn::Sub(last, x)));
         Taps at = taps;
         for (const float **plane : {&at.px, &at.py, &at.pz, &at.inv_scale}) *plane += x0;
         for (int k = 0; k < K; ++k) at.source[k] += x0;
@@ -202,16 +214,13 @@ void row_y(const RatioBilateralSweep &s, int y, int x_begin, int x_end, float *v
         const int n = std::min(lanes, x_end - x0);
         const std::size_t c0 = row + std::size_t(x0), span = std::size_t(x_end - x_begin);
         const VI reach_px = load_radius(&p.radius_px[c0], n);
-        if (hn::AllTrue(di, hn::Eq(reach_px, hn::Zero(di)))) {  // no lane filters: they keep their values
+        if (none_filters(reach_px)) {
             for (int k = 0; k < K; ++k)
                 std::copy_n(s.source[k] + c0, n, values + std::size_t(k) * span + std::size_t(x0 - x_begin));
             continue;
         }
         Centres c = load_centres(p, c0, reach_px);
-        c.lo = hn::Max(hn::Neg(c.radius), up);
-        c.hi = hn::Min(c.radius, down);
-        c.lo_px = hn::ConvertTo(d, c.lo);
-        c.hi_px = hn::ConvertTo(d, c.hi);
+        set_range(c, hn::Max(hn::Neg(c.radius), up), hn::Min(c.radius, down));
         Taps at{&p.px[c0], &p.py[c0], &p.pz[c0], &p.inv_scale[c0], {}};
         for (int k = 0; k < K; ++k) at.source[k] = s.source[k] + c0;
         V sums[K], weight_sum;
