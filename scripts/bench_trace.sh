@@ -5,8 +5,9 @@
 # compared too, render_scene on 1 thread against all, and `aaf render` at
 # 640x480, 256 spp end to end against the raw Embree program on its rays,
 # with where its time goes.
-#   scripts/bench_trace.sh --benchmark_filter=EndToEnd            # the end-to-end ratio
-#   AAF_ISA=avx2 scripts/bench_trace.sh --benchmark_filter=EndToEnd  # on AVX2
+#   scripts/bench_trace.sh --benchmark_filter=EndToEnd --benchmark_repetitions=5
+#   AAF_ISA=avx2 scripts/bench_trace.sh --benchmark_filter=EndToEnd --benchmark_repetitions=5  # AVX2
+#   AAF_BEFORE=/path/to/other/aaf ...  # that build's aaf render too, alternately
 set -euo pipefail
 root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 "$root/scripts/build.sh"
