@@ -4,7 +4,7 @@
 # reference, compare, and print a summary. Outputs go to out/.
 set -euo pipefail
 root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
-"$root/scripts/build.sh"
+"$root/scripts/build.sh" --tool   # the `aaf` tool only: the tests and benchmarks build with scripts/test.sh
 aaf="$root/build/cli/aaf"
 out="$root/out"
 mkdir -p "$out"
