@@ -1,5 +1,6 @@
 #include "aaf/io/exr_io.h"
 
+#include <Imath/half.h>
 #include <OpenEXR/ImfChannelList.h>
 #include <OpenEXR/ImfFrameBuffer.h>
 #include <OpenEXR/ImfHeader.h>
@@ -284,16 +285,25 @@ void complete_headers(std::vector<Imf::Header> &headers) {
     }
 }
 
-/// Writes channels `in_part` of `aovs` as the pixels of part `part`, straight
-/// from their planes; OpenEXR converts float to half where the header says
-/// so and compresses on its own threads.
+/// Writes channels `in_part` of `aovs` as the pixels of part `part`: float
+/// channels straight from their planes, half ones from a half copy (OpenEXR
+/// converts pixel types when reading only); OpenEXR compresses on its own threads.
 void write_part(Imf::MultiPartOutputFile &file, int part, const AovSet &aovs,
                 const std::vector<std::size_t> &in_part) {
     const Imf::Header &header = file.header(part);
     Imf::FrameBuffer frame;
-    for (std::size_t c : in_part)
-        frame.insert(aovs.channel_names()[c],
-                     Imf::Slice::Make(Imf::FLOAT, aovs.plane(c).data(), header.dataWindow()));
+    std::vector<std::vector<half>> halves;
+    halves.reserve(in_part.size());  // stable addresses for the slices
+    for (std::size_t c : in_part) {
+        const std::string &name = aovs.channel_names()[c];
+        const AovSet::Plane &plane = aovs.plane(c);
+        if (header.channels().findChannel(name)->type == Imf::HALF) {
+            halves.emplace_back(plane.begin(), plane.end());  // Imath's round to nearest even
+            frame.insert(name, Imf::Slice::Make(Imf::HALF, halves.back().data(), header.dataWindow()));
+        } else {
+            frame.insert(name, Imf::Slice::Make(Imf::FLOAT, plane.data(), header.dataWindow()));
+        }
+    }
     if (header.hasTileDescription()) {
         Imf::TiledOutputPart output(file, part);
         output.setFrameBuffer(frame);
