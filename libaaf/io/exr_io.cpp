@@ -101,6 +101,11 @@ bool check_before_opening(const std::string &path) {
     return true;
 }
 
+bool is_regular_file(const std::string &path) {
+    struct stat info {};
+    return stat(path.c_str(), &info) == 0 && S_ISREG(info.st_mode);
+}
+
 bool is_deep(const Imf::Header &header) {
     return header.hasType() && Imf::isDeepData(header.type());
 }
@@ -460,6 +465,7 @@ std::vector<std::string> add_channels_from_other_parts(const std::string &path, 
 
 std::string read_string_attribute(const std::string &path, const std::string &name) {
     try {
+        if (!is_regular_file(path)) return {};  // nothing to read: no need for the formats module
         if (!check_before_opening(path)) return formats_module().read_other_string_attribute(path, name);
         const Imf::MultiPartInputFile file(path.c_str());
         const auto *value = file.header(0).findTypedAttribute<Imf::StringAttribute>(name);
@@ -471,6 +477,8 @@ std::string read_string_attribute(const std::string &path, const std::string &na
 
 bool is_readable_image(const std::string &path) {
     try {
+        if (!is_regular_file(path))
+            return false;  // e.g. an output not written yet: no need for the formats module
         if (!check_before_opening(path))
             return formats_module().is_readable_other_image(path, memory_budget_bytes());
         use_io_threads();
