@@ -1,6 +1,7 @@
 #include "isg_common.h"
 
 #include <algorithm>
+#include <cmath>
 #include <limits>
 #include <sstream>
 #include <vector>

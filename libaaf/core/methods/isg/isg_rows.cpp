@@ -127,7 +127,7 @@ HWY_INLINE Point broadcast(Vec3 v) {
     return {hn::Set(df, v.x), hn::Set(df, v.y), hn::Set(df, v.z)};
 }
 
-/// clamp_radius() (isg_common.h): r > 0 ? min(r, max) : 0, NaN to 0.
+/// Every search and gather radius: r > 0 ? min(r, max) : 0, NaN to 0.
 HWY_INLINE VF clamp_radius(VF radius_px, float max_radius_px) {
     const DF df;
     return hn::IfThenElseZero(hn::Gt(radius_px, hn::Zero(df)),
@@ -149,8 +149,10 @@ HWY_INLINE VI pixel_index(const PlaneLayout &layout, VI x, VI y) {
     return hn::Add(hn::Mul(y, hn::Set(di, layout.row_stride)), hn::Mul(x, hn::Set(di, layout.pixel_stride)));
 }
 
-/// A tap's pixel (tap_pixel() of isg_common.h) for every lane: its index,
-/// clamped to the image so that the load is safe, and whether it is inside.
+/// Nearest-pixel point sampling: the pixel a tap falls in, (x, y) plus the
+/// tap's offset times the radius rounded, for every lane: its index,
+/// clamped to the image so that the load is safe, and whether it is inside
+/// (a tap outside the image is passed over).
 struct TapPixel {
     VI index;
     MF inside;
