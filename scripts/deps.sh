@@ -9,7 +9,7 @@ set_name="${1:-all}"
 tool=(
   cmake ninja-build g++ pkg-config
   libopenexr-dev libimath-dev
-  libopenimageio-dev libopencv-dev   # OpenImageIO's CMake target names /usr/include/opencv4
+  libopenimageio-dev     # the formats module (PNG/JPEG pictures, other formats) and file sequences
   libopencolorio-dev libcli11-dev libembree-dev libtbb-dev
   libtinyobjloader-dev nlohmann-json3-dev
   libhwy-dev             # Google Highway: the core's SIMD kernels with runtime dispatch (a private dependency)
@@ -18,6 +18,7 @@ tool=(
 rest=(
   clang-format-14        # tests/format/check_format.sh: every C++ file formatted by .clang-format
   openimageio-tools      # oiiotool: the tests' and benchmarks' independent reader and I/O yardstick
+  libopencv-dev          # the tests' OpenImageIO CMake target names /usr/include/opencv4; the benchmarks' yardsticks
   catch2 libbenchmark-dev
   python3-openimageio python3-numpy   # scripts/make_bad_corpus.py (run with /usr/bin/python3)
   python3-dev python3-pybind11         # the Python module aaf (libaaf/python), built for /usr/bin/python3

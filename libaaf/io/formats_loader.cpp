@@ -52,7 +52,7 @@ const FormatsModule *load_module() {
     }
     throw Error(std::string(kModuleFile) +
                 ": cannot load aaf's OpenImageIO/OpenColorIO module (PNG and JPEG pictures, colour views, "
-                "images other than OpenEXR, file sequences): " +
+                "images other than OpenEXR): " +
                 why + "; it belongs beside the aaf executable or in the install's lib folder");
 }
 

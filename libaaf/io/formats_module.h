@@ -12,8 +12,8 @@
 namespace aaf::io {
 
 /// What the aaf_formats module (OpenImageIO and OpenColorIO) does for
-/// aaf_io: images of formats other than OpenEXR, PNG/JPEG pictures, colour
-/// views and file sequences. It is a shared library of its own, loaded on
+/// aaf_io: images of formats other than OpenEXR, PNG/JPEG pictures and colour
+/// views. It is a shared library of its own, loaded on
 /// first use, so that a command that only reads and writes OpenEXR does not
 /// load OpenImageIO, OpenColorIO and their hundreds of dependencies.
 /// The module and the library that loads it come from one build: the table
@@ -29,14 +29,6 @@ struct FormatsModule {
                                    float low, float high, const std::string &source_path);
     float (*write_error_heatmap)(const AovSet &test, const AovSet &reference, const CompareOptions &region,
                                  const std::string &png_path);
-    /// OpenImageIO::Filesystem's parse_pattern, enumerate_file_sequence and
-    /// scan_for_matching_filenames.
-    bool (*parse_pattern)(const std::string &pattern, int padding, std::string &normalized,
-                          std::string &framespec);
-    bool (*enumerate_file_sequence)(const std::string &pattern, const std::vector<int> &numbers,
-                                    std::vector<std::string> &names);
-    bool (*scan_for_matching_filenames)(const std::string &pattern, std::vector<int> &numbers,
-                                        std::vector<std::string> &names);
 };
 
 /// The module's entry point, a C symbol: returns its table.

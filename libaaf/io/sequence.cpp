@@ -10,8 +10,9 @@
 #include <limits>
 #include <regex>
 
+#include <OpenImageIO/filesystem.h>
+
 #include "aaf/core/util/error.h"
-#include "formats_module.h"
 
 namespace aaf::io {
 
@@ -60,8 +61,8 @@ std::pair<std::string, std::string> normalized_pattern(const std::string &patter
     const bool hashes = pattern[field.begin] == '#' || pattern[field.begin] == '@';
     const std::size_t name = file_name_start(pattern);
     std::string normalized, framespec;
-    if (!formats_module().parse_pattern(pattern.substr(name), hashes ? field.padding : 0, normalized,
-                                        framespec) ||
+    if (!OIIO::Filesystem::parse_pattern(pattern.substr(name).c_str(), hashes ? field.padding : 0, normalized,
+                                         framespec) ||
         normalized.empty())
         throw Error(pattern + ": cannot read the frame field of the pattern");
     return {pattern.substr(0, name), normalized};
@@ -180,7 +181,7 @@ bool is_sequence_pattern(const std::string &path) {
 std::string frame_path(const std::string &pattern, int frame) {
     const auto [directory, file] = normalized_pattern(pattern);
     std::vector<std::string> names;
-    if (!formats_module().enumerate_file_sequence(file, {frame}, names) || names.empty())
+    if (!OIIO::Filesystem::enumerate_file_sequence(file, {frame}, names) || names.empty())
         throw Error(pattern + ": cannot make the path of frame " + std::to_string(frame));
     return directory + names.front();
 }
@@ -194,7 +195,7 @@ std::vector<int> frames_on_disk(const std::string &pattern) {
     std::vector<int> numbers;
     std::vector<std::string> names;
     const auto [folder, file] = normalized_pattern(pattern);
-    if (!formats_module().scan_for_matching_filenames(folder + file, numbers, names))
+    if (!OIIO::Filesystem::scan_for_matching_filenames(folder + file, numbers, names))
         throw InputError(directory.string() + ": cannot list the directory");
     // OpenImageIO also matches other paddings (shot.7.exr for shot.####.exr); this rule does not.
     std::vector<int> frames;
