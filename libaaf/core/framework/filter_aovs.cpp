@@ -1,13 +1,17 @@
 #include "aaf/core/framework/filter_aovs.h"
 
 #include <algorithm>
+#include <atomic>
 #include <cmath>
+#include <cstdint>
+#include <cstring>
 #include <sstream>
 
 #include "aaf/core/contract/ratio_layers.h"
 #include "aaf/core/framework/method_registry.h"
 #include "aaf/core/util/error.h"
 #include "aaf/core/util/frame_allocator.h"
+#include "aaf/core/util/parallel.h"
 #include "aaf/core/util/quoted.h"
 
 namespace aaf {
@@ -259,6 +263,27 @@ float largest_magnitude(ConstPlaneView plane) {
     return largest;
 }
 
+/// Whether every value of a plane is finite: rows in parallel, and a test of
+/// the exponent bits that vectorises (largest_magnitude's early exit does not).
+bool all_finite(ConstPlaneView plane) {
+    std::atomic<bool> finite{true};
+    parallel_for_rows(plane.height, [&](int y) {
+        std::uint32_t non_finite = 0;
+        if (plane.pixel_stride == 1) {
+            const float *const row = &plane(0, y);
+            for (int x = 0; x < plane.width; ++x) {
+                std::uint32_t bits;
+                std::memcpy(&bits, row + x, sizeof bits);
+                non_finite |= std::uint32_t((bits & 0x7f800000u) == 0x7f800000u);  // Inf or NaN
+            }
+        } else {
+            for (int x = 0; x < plane.width; ++x) non_finite |= std::uint32_t(!std::isfinite(plane(x, y)));
+        }
+        if (non_finite) finite.store(false, std::memory_order_relaxed);
+    });
+    return finite.load();
+}
+
 /// A finite input gives a finite output: where a method's single-precision
 /// sums of inputs near float's limit (3.4e38) overflowed, this throws
 /// aaf::InputError naming the output and the input channel with the largest
@@ -269,8 +294,7 @@ void check_finite_outputs(const Method &method, const MethodImages &images, cons
     std::string overflowed;
     for (Role role : method.info().roles.outputs)
         for (const std::string &name : found.channels(role))
-            if (overflowed.empty() && out.has_channel(name) &&
-                std::isnan(largest_magnitude(out.channel(name))))
+            if (overflowed.empty() && out.has_channel(name) && !all_finite(out.channel(name)))
                 overflowed = name;
     if (overflowed.empty()) return;
     std::vector<Role> roles = method.info().roles.required;

@@ -3,6 +3,7 @@
 // the images to aaf_filter().
 #include <cmath>
 #include <limits>
+#include <optional>
 #include <vector>
 
 #include "../builtin_methods.h"
@@ -22,8 +23,8 @@ namespace {
 /// Another renderer's pass of the key light, filtered with AAF's widths and
 /// rejection (the guides of its visibility filter): demodulated by the albedo
 /// where the frame has one, so that texture is not blurred, and modulated back.
-void filter_key_light_pass(const MethodImages &images, const AafInputs &in, const LightPlane &light,
-                           const AafParams &params, const std::array<ConstPlaneView, 3> &pass,
+void filter_key_light_pass(const MethodImages &images, const GatherGuides &guides, const AafParams &params,
+                           const std::array<ConstPlaneView, 3> &pass,
                            const std::array<PlaneView, 3> &filtered) {
     const int width = images.width(), height = images.height();
     const std::size_t count = std::size_t(width) * std::size_t(height);
@@ -44,7 +45,7 @@ void filter_key_light_pass(const MethodImages &images, const AafInputs &in, cons
         sources.push_back(plane_view(demodulated[c].data(), width, height));
         outputs.push_back(filtered[c]);
     }
-    gather(aaf_gather_guides(in, light, params), aaf_gather_settings(params), sources, outputs);
+    gather(guides, aaf_gather_settings(params), sources, outputs);
     if (!albedo) return;
     for (std::size_t c = 0; c < 3; ++c) {
         const ConstPlaneView reflectance = images.input(Role::Albedo, c);
@@ -171,11 +172,17 @@ class AafMethod final : public Method {
         out.filtered_visibility = images.output(Role::FilteredVisibility);
         out.beta_m = images.output(roles::FilterWidth);
         const LightPlane light = read_light_attributes(images.attributes());
-        aaf_filter(in, light, params, out);
+        // aaf_filter() in two steps: its guides also filter the key light's
+        // pass where the beauty swaps one in, rather than being built again.
+        std::optional<GatherGuides> guides = aaf_gather_guides(in, light, params, out.beta_m);
+        aaf_filter_visibility(*guides, params, in.visibility, out.filtered_visibility);
         progress.report(0.9);
+        const auto has = [&](Role role) { return images.has(role); };
+        if (shadow_beauty(images.attributes(), has, images.composition(), true) != ShadowBeauty::PassSwapped)
+            guides.reset();  // freed before the beauty's planes are made
         const PassFilter filter_pass = [&](const std::array<ConstPlaneView, 3> &pass,
                                            const std::array<PlaneView, 3> &filtered) {
-            filter_key_light_pass(images, in, light, params, pass, filtered);
+            filter_key_light_pass(images, *guides, params, pass, filtered);
         };
         compose_shadowed_beauty(images, out.filtered_visibility, filter_pass);
     }
