@@ -320,6 +320,17 @@ void check_finite_outputs(const Method &method, const MethodImages &images, cons
                      ", too large to filter in single precision (scale the image down)");
 }
 
+/// Returns the frame's freed scratch planes to the system where they fill
+/// huge pages: those fault in again cheaply (2 MiB at a time, frame_allocator.cpp),
+/// and kept they would add most to the caller's peak memory. Smaller planes
+/// stay with the allocator for the next frame: each would fault in again
+/// 4 KiB at a time, which at 640x480 cost several times AAF's whole filter
+/// (bench_methods_bandwidth), while all of them together hold a few tens of MB.
+void release_frame_memory_of(const AovSet &frame) {
+    constexpr std::size_t kHugePageBytes = std::size_t(2) << 20;
+    if (frame.pixel_count() * sizeof(float) >= kHugePageBytes) release_frame_memory();
+}
+
 AovSet run_method(const Method &method, AovSet &&input, const ChannelMap &found,
                   const ParameterSet &parameters, Composition composition, const ProgressMonitor &monitor,
                   const AovSet *history) {
@@ -370,7 +381,7 @@ AovSet run_method(const Method &method, AovSet &&input, const ChannelMap &found,
         images.set_deferred_output(Role::Beauty, [&out, &input, &found] {
             // The method's freed scratch planes (frame_allocator.h) go back
             // to the system before the beauty's are made, not beside them.
-            release_frame_memory();
+            release_frame_memory_of(out);
             const std::vector<std::string> &beauty = found.channels(Role::Beauty);
             const std::vector<std::string> &noisy = found.channels(Role::NoisyBeauty);
             std::vector<PlaneView> views;
@@ -392,8 +403,8 @@ AovSet run_method(const Method &method, AovSet &&input, const ChannelMap &found,
     images.make_deferred_outputs();  // a method that never asked still gets its channels
     check_finite_outputs(method, images, found, out);
     // Kept for reuse, the freed scratch would add to the caller's next
-    // allocations (the output file's buffers): a frame's filter returns it.
-    release_frame_memory();
+    // allocations (the output file's buffers): a large frame's filter returns it.
+    release_frame_memory_of(out);
     progress.report(1.0);
     return out;
 }
