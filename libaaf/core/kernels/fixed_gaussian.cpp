@@ -4,6 +4,7 @@
 #include <cmath>
 #include <vector>
 
+#include "aaf/core/kernels/fixed_gaussian_rows.h"
 #include "aaf/core/util/error.h"
 #include "aaf/core/util/frame_allocator.h"
 #include "aaf/core/util/parallel.h"
@@ -53,7 +54,7 @@ void fixed_gaussian_filter(ConstPlaneView input, float sigma_px, PlaneView outpu
         for (int ty = first; ty <= last; ++ty) {
             const double weight = weights[std::size_t(std::abs(ty - y))];
             const float *const row = row_of(input, ty, buffer);
-            for (int x = 0; x < width; ++x) sum[std::size_t(x)] += weight * double(row[x]);
+            detail::gaussian_tap_row(sum.data(), row, weight, width);
         }
         const double weight_sum = window_weight(weights, y - first, last - y);
         float *const out = vertical.data() + std::size_t(y) * std::size_t(width);
@@ -67,8 +68,8 @@ void fixed_gaussian_filter(ConstPlaneView input, float sigma_px, PlaneView outpu
         std::vector<double> sum(std::size_t(width), 0.0);
         for (int offset = -radius; offset <= radius; ++offset) {
             const double weight = weights[std::size_t(std::abs(offset))];
-            for (int x = inner_begin; x < inner_end; ++x)
-                sum[std::size_t(x)] += weight * double(row[x + offset]);
+            detail::gaussian_tap_row(sum.data() + inner_begin, row + inner_begin + offset, weight,
+                                     inner_end - inner_begin);
         }
         if (output.pixel_stride == 1) {
             float *const out = &output(0, y);
