@@ -19,10 +19,10 @@
 //   method_over_floor  method_ms / floor_ms: how far from memory-bound
 // For aaf and gaussian, each iteration also runs the method's kernels alone
 // on the same planes, alternately with filter_aovs():
-//   kernels_ms         aaf: aaf_gather_guides() (occluder fill, guides), the
-//                      visibility's gather and the key light pass's (3 channels,
-//                      demodulated outside the timing), the beauty's
-//                      composition; gaussian: the blur of the visibility and
+//   kernels_ms         aaf: aaf_gather_guides() (occluder fill, guides), one
+//                      gather of the visibility and the key light's pass (4
+//                      channels, the pass demodulated outside the timing), the
+//                      beauty's composition; gaussian: the blur of the visibility and
 //                      of the pass's 3 channels, the composition
 //   method_over_kernels  method_ms / kernels_ms: what the framework adds
 // The header names the CPU and the instruction set the kernels run (AAF_ISA).
@@ -206,10 +206,13 @@ std::function<void()> method_kernels(const std::string &method, KernelPlanes &k)
     return [&k, in, light] {
         const aaf::AafParams params;
         const aaf::GatherGuides guides = aaf::aaf_gather_guides(in, light, params, k.view(k.beta));
-        aaf::aaf_filter_visibility(guides, params, in.visibility, k.view(k.filtered));
-        if (k.swaps_pass) {
-            std::vector<aaf::ConstPlaneView> sources;
-            std::vector<aaf::PlaneView> outputs;
+        if (!k.swaps_pass) {
+            aaf::aaf_filter_visibility(guides, params, in.visibility, k.view(k.filtered));
+        } else {
+            // As the method: the visibility and the pass in one four-channel gather.
+            std::copy(k.visibility.begin(), k.visibility.end(), k.filtered.begin());
+            std::vector<aaf::ConstPlaneView> sources{k.view(k.filtered)};
+            std::vector<aaf::PlaneView> outputs{k.view(k.filtered)};
             for (std::size_t c = 0; c < 3; ++c) {
                 sources.push_back(k.view(k.demodulated[c]));
                 outputs.push_back(k.view(k.filtered_pass[c]));
