@@ -49,13 +49,14 @@ void fixed_gaussian_filter(ConstPlaneView input, float sigma_px, PlaneView outpu
     FramePlane<float> vertical(std::size_t(width) * std::size_t(height));
     parallel_for_rows(height, [&](int y) {
         const int first = std::max(0, y - radius), last = std::min(height - 1, y + radius);
-        std::vector<double> sum(std::size_t(width), 0.0);
-        std::vector<float> buffer;
+        std::vector<double> sum(static_cast<std::size_t>(width)), tap_weights;
+        std::vector<const float *> rows;
+        std::vector<std::vector<float>> buffers(std::size_t(last - first + 1));
         for (int ty = first; ty <= last; ++ty) {
-            const double weight = weights[std::size_t(std::abs(ty - y))];
-            const float *const row = row_of(input, ty, buffer);
-            detail::gaussian_tap_row(sum.data(), row, weight, width);
+            tap_weights.push_back(weights[std::size_t(std::abs(ty - y))]);
+            rows.push_back(row_of(input, ty, buffers[std::size_t(ty - first)]));
         }
+        detail::gaussian_taps(rows.data(), tap_weights.data(), int(rows.size()), sum.data(), width);
         const double weight_sum = window_weight(weights, y - first, last - y);
         float *const out = vertical.data() + std::size_t(y) * std::size_t(width);
         for (int x = 0; x < width; ++x) out[x] = float(sum[std::size_t(x)] / weight_sum);
@@ -65,12 +66,14 @@ void fixed_gaussian_filter(ConstPlaneView input, float sigma_px, PlaneView outpu
     const double inner_weight_sum = window_weight(weights, radius, radius);
     parallel_for_rows(height, [&](int y) {
         const float *const row = vertical.data() + std::size_t(y) * std::size_t(width);
-        std::vector<double> sum(std::size_t(width), 0.0);
+        std::vector<double> sum(static_cast<std::size_t>(width)), tap_weights;
+        std::vector<const float *> rows;
         for (int offset = -radius; offset <= radius; ++offset) {
-            const double weight = weights[std::size_t(std::abs(offset))];
-            detail::gaussian_tap_row(sum.data() + inner_begin, row + inner_begin + offset, weight,
-                                     inner_end - inner_begin);
+            tap_weights.push_back(weights[std::size_t(std::abs(offset))]);
+            rows.push_back(row + inner_begin + offset);
         }
+        detail::gaussian_taps(rows.data(), tap_weights.data(), int(rows.size()), sum.data() + inner_begin,
+                              inner_end - inner_begin);
         if (output.pixel_stride == 1) {
             float *const out = &output(0, y);
             for (int x = inner_begin; x < inner_end; ++x)

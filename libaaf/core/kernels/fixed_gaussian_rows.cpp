@@ -1,4 +1,4 @@
-// The fixed Gaussian's tap loop (fixed_gaussian_rows.h) for every
+// The fixed Gaussian's taps over a row (fixed_gaussian_rows.h) for every
 // instruction set Google Highway targets, chosen at run time. Compiled
 // without contraction (CMakeLists.txt): no multiply-add is fused, so the
 // sums are those of the scalar definition on every instruction set.
@@ -17,17 +17,25 @@ namespace aaf::detail {
 namespace HWY_NAMESPACE {
 namespace hn = hwy::HWY_NAMESPACE;
 
-void GaussianTapRow(double *HWY_RESTRICT sum, const float *HWY_RESTRICT row, double weight, int count) {
+void GaussianTaps(const float *const *HWY_RESTRICT rows, const double *HWY_RESTRICT weights, int taps,
+                  double *HWY_RESTRICT sum, int count) {
     const hn::ScalableTag<double> dd;
-    const hn::Rebind<float, decltype(dd)> df;  // as many floats as doubles
-    const auto w = hn::Set(dd, weight);
+    const hn::Rebind<float, decltype(dd)> df;
     const int lanes = int(hn::Lanes(dd));
     int x = 0;
+    // A vector of centres at a time, its sums in a register over all the taps.
     for (; x + lanes <= count; x += lanes) {
-        const auto tap = hn::Mul(w, hn::PromoteTo(dd, hn::LoadU(df, row + x)));
-        hn::StoreU(hn::Add(hn::LoadU(dd, sum + x), tap), dd, sum + x);
+        auto total = hn::Zero(dd);
+        for (int t = 0; t < taps; ++t)
+            total = hn::Add(total,
+                            hn::Mul(hn::Set(dd, weights[t]), hn::PromoteTo(dd, hn::LoadU(df, rows[t] + x))));
+        hn::StoreU(total, dd, sum + x);
     }
-    for (; x < count; ++x) sum[x] += weight * double(row[x]);
+    for (; x < count; ++x) {
+        double total = 0;
+        for (int t = 0; t < taps; ++t) total += weights[t] * double(rows[t][x]);
+        sum[x] = total;
+    }
 }
 
 }  // namespace HWY_NAMESPACE
@@ -39,11 +47,11 @@ HWY_AFTER_NAMESPACE();
 
 namespace aaf::detail {
 
-HWY_EXPORT(GaussianTapRow);
+HWY_EXPORT(GaussianTaps);
 
-void gaussian_tap_row(double *sum, const float *row, double weight, int count) {
-    (void)instruction_set();  // applies $AAF_ISA before the first dispatch
-    HWY_DYNAMIC_DISPATCH(GaussianTapRow)(sum, row, weight, count);
+void gaussian_taps(const float *const *rows, const double *weights, int taps, double *sum, int count) {
+    (void)instruction_set();
+    HWY_DYNAMIC_DISPATCH(GaussianTaps)(rows, weights, taps, sum, count);
 }
 
 }  // namespace aaf::detail
