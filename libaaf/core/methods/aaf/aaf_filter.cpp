@@ -172,16 +172,25 @@ void aaf_filter(const AafInputs &in, const LightPlane &light, const AafParams &p
 
     // beta goes straight to its output, and the visibility is filtered in its
     // output's plane: no frame-sized copy beside the guides (peak memory).
-    const GatherGuides guides = aaf_gather_guides(in, light, params, out.beta_m);
+    aaf_filter_visibility(aaf_gather_guides(in, light, params, out.beta_m), params, in.visibility,
+                          out.filtered_visibility);
+}
 
+void aaf_filter_visibility(const GatherGuides &guides, const AafParams &params, ConstPlaneView visibility,
+                           PlaneView filtered_visibility) {
+    const int width = guides.width, height = guides.height;
+    check_size(visibility, width, height, "visibility");
+    if (!filtered_visibility.valid() || filtered_visibility.width != width ||
+        filtered_visibility.height != height)
+        throw Error("AAF output 'filtered visibility' is missing or has another size");
     // Non-finite visibility (a renderer's NaN) is read as 0, so it cannot spread through the filter.
     parallel_for_rows(height, [&](int y) {
         for (int x = 0; x < width; ++x) {
-            const float v = in.visibility(x, y);
-            out.filtered_visibility(x, y) = std::isfinite(v) ? v : 0.0f;
+            const float v = visibility(x, y);
+            filtered_visibility(x, y) = std::isfinite(v) ? v : 0.0f;
         }
     });
-    gather(guides, aaf_gather_settings(params), {out.filtered_visibility}, {out.filtered_visibility});
+    gather(guides, aaf_gather_settings(params), {filtered_visibility}, {filtered_visibility});
 }
 
 }  // namespace aaf
