@@ -94,10 +94,10 @@ class IsgDofMethod final : public Method {
         sweep.coc_inf_px = coc_inf_px;
         sweep.transition = settings.transition;
         // Per pixel: the mean circle of confusion (ISG Eq. 15) within c_inf,
-        // weighted after Eq. 16: a tap behind the pixel with a larger circle
+        // weighted after ISG Eq. 16: a tap behind the pixel with a larger circle
         // (a blurred background behind an in-focus object) counts with its own
         // radius instead of c_inf, the smoothstep fading the test in with
-        // depth; then the gather (Eq. 4) of the pinhole image, where Eq. 17
+        // depth; then the gather (ISG Eq. 4) of the pinhole image, where ISG Eq. 17
         // keeps a sharper foreground tap from bleeding over a blurred pixel
         // behind it. Depth 0 is the background at infinity, a non-finite
         // depth unknown. The defocused image is also the beauty.

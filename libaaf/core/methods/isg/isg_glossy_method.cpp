@@ -105,7 +105,7 @@ class IsgGlossyMethod final : public Method {
         sweep.eye = eye;
         // Per pixel: the mean reflected distance within theta_max's projection
         // (the parameter search, range of ISG Eq. 10-12), the gather angle of
-        // Eq. 13-14, then the gather (Eq. 4) of the mirror reflection.
+        // ISG Eq. 13-14, then the gather (ISG Eq. 4) of the mirror reflection.
         parallel_for_rows(height, [&](int y) { glossy_row(sweep, y); });
         progress.report(0.95);
     }

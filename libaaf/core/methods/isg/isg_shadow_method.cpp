@@ -100,9 +100,9 @@ class IsgShadowMethod final : public Method {
         sweep.position_hard = position_hard.data();
         // Per pixel: the parameter search (ISG Eq. 4-7), the mean occluder
         // distance of the in-shadow taps within the light's projected size
-        // (Eq. 5); then the gather (Eq. 4) of the hard visibility within the
-        // penumbra's projection (Eq. 8-9), constant spatial weight, range of
-        // Eq. 6-7. A pixel with no occluder within reach keeps its hard value.
+        // (ISG Eq. 5); then the gather (ISG Eq. 4) of the hard visibility within the
+        // penumbra's projection (ISG Eq. 8-9), constant spatial weight, range of
+        // ISG Eq. 6-7. A pixel with no occluder within reach keeps its hard value.
         parallel_for_rows(height, [&](int y) { shadow_row(sweep, y); });
         progress.report(0.9);
         compose_shadowed_beauty(images, sweep.out);  // AAF Eq. 1, or the beauty corrected
