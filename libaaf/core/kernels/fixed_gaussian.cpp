@@ -8,21 +8,11 @@
 #include "aaf/core/util/error.h"
 #include "aaf/core/util/frame_allocator.h"
 #include "aaf/core/util/parallel.h"
+#include "aaf/core/util/plane_rows.h"
 
 namespace aaf {
 
 namespace {
-
-/// Row y of `view` as contiguous floats: the view's own memory where its
-/// pixels are adjacent, else a copy in `buffer`.
-const float *row_of(ConstPlaneView view, int y, std::vector<float> &buffer) {
-    const float *first = &view(0, y);
-    if (view.pixel_stride == 1) return first;
-    buffer.resize(std::size_t(view.width));
-    for (int x = 0; x < view.width; ++x)
-        buffer[std::size_t(x)] = first[std::ptrdiff_t(x) * view.pixel_stride];
-    return buffer.data();
-}
 
 /// The sum of the weights of taps [centre - below, centre + above], taken
 /// in the taps' order, as each pixel's own sum adds them.
@@ -54,7 +44,7 @@ void fixed_gaussian_filter(ConstPlaneView input, float sigma_px, PlaneView outpu
         std::vector<std::vector<float>> buffers(std::size_t(last - first + 1));
         for (int ty = first; ty <= last; ++ty) {
             tap_weights.push_back(weights[std::size_t(std::abs(ty - y))]);
-            rows.push_back(row_of(input, ty, buffers[std::size_t(ty - first)]));
+            rows.push_back(contiguous_row(input, ty, buffers[std::size_t(ty - first)]));
         }
         detail::gaussian_taps(rows.data(), tap_weights.data(), int(rows.size()), sum.data(), width);
         const double weight_sum = window_weight(weights, y - first, last - y);

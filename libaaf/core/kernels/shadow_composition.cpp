@@ -3,6 +3,7 @@
 #include <vector>
 
 #include "aaf/core/util/parallel.h"
+#include "aaf/core/util/plane_rows.h"
 
 namespace aaf {
 
@@ -24,46 +25,35 @@ struct CompositionPlanes {
     std::array<ConstPlaneView, 3> unshadowed, beauty, pass, other_lights;
 };
 
-/// Row y of `view` as contiguous floats: the view's own memory where its
-/// pixels are adjacent, else a copy in `buffer`.
-const float *row_of(ConstPlaneView view, int y, std::vector<float> &buffer) {
-    const float *first = &view(0, y);
-    if (view.pixel_stride == 1) return first;
-    buffer.resize(std::size_t(view.width));
-    for (int x = 0; x < view.width; ++x)
-        buffer[std::size_t(x)] = first[std::ptrdiff_t(x) * view.pixel_stride];
-    return buffer.data();
-}
-
 /// Row y of channel c of the beauty, over contiguous rows (the loops vectorise).
 void compose_channel_row(const CompositionPlanes &p, std::size_t c, int y, int width, const float *fv,
                          const float *nv, float *beauty, std::vector<float> (&buffers)[2]) {
     switch (p.how) {
         case ShadowBeauty::Recomposed: {
-            const float *const r = row_of(p.unshadowed[c], y, buffers[0]);
+            const float *const r = contiguous_row(p.unshadowed[c], y, buffers[0]);
             for (int x = 0; x < width; ++x) beauty[x] = r[x] * fv[x];  // AAF Eq. 1
             if (!p.other_lights[c].valid()) break;
-            const float *const other = row_of(p.other_lights[c], y, buffers[1]);
+            const float *const other = contiguous_row(p.other_lights[c], y, buffers[1]);
             for (int x = 0; x < width; ++x) beauty[x] += other[x];
             break;
         }
         case ShadowBeauty::Corrected: {
             // Only r(x) V(x) is replaced: the rest of the beauty (other
             // lights, anything added after the render) passes through.
-            const float *const r = row_of(p.unshadowed[c], y, buffers[0]);
-            const float *const in = row_of(p.beauty[c], y, buffers[1]);
+            const float *const r = contiguous_row(p.unshadowed[c], y, buffers[0]);
+            const float *const in = contiguous_row(p.beauty[c], y, buffers[1]);
             for (int x = 0; x < width; ++x) beauty[x] = (in[x] - r[x] * nv[x]) + r[x] * fv[x];
             break;
         }
         case ShadowBeauty::PassSwapped: {
             // `beauty` holds the filtered pass: the rest of the beauty around it.
-            const float *const in = row_of(p.beauty[c], y, buffers[0]);
-            const float *const pass = row_of(p.pass[c], y, buffers[1]);
+            const float *const in = contiguous_row(p.beauty[c], y, buffers[0]);
+            const float *const pass = contiguous_row(p.pass[c], y, buffers[1]);
             for (int x = 0; x < width; ++x) beauty[x] += in[x] - pass[x];
             break;
         }
         default: {
-            const float *const in = row_of(p.beauty[c], y, buffers[0]);
+            const float *const in = contiguous_row(p.beauty[c], y, buffers[0]);
             for (int x = 0; x < width; ++x) beauty[x] = in[x];
         }
     }
@@ -75,10 +65,10 @@ void compose_row(const CompositionPlanes &p, int y) {
     const int width = p.out[0].width;
     std::vector<float> buffers[2], visibility[2], out_row;
     const float *const fv = p.how == ShadowBeauty::Recomposed || p.how == ShadowBeauty::Corrected
-                                ? row_of(p.filtered_visibility, y, visibility[0])
+                                ? contiguous_row(p.filtered_visibility, y, visibility[0])
                                 : nullptr;
     const float *const nv =
-        p.how == ShadowBeauty::Corrected ? row_of(p.noisy_visibility, y, visibility[1]) : nullptr;
+        p.how == ShadowBeauty::Corrected ? contiguous_row(p.noisy_visibility, y, visibility[1]) : nullptr;
     for (std::size_t c = 0; c < 3; ++c) {
         const PlaneView &view = p.out[c];
         float *beauty = &view(0, y);
