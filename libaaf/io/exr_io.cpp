@@ -19,6 +19,7 @@
 #include <atomic>
 #include <cmath>
 #include <cstdlib>
+#include <cstring>
 #include <fstream>
 #include <memory>
 #include <mutex>
@@ -236,9 +237,13 @@ Imf::Header first_part_header(const AovSet &aovs, const std::vector<std::size_t>
         if (source.data.width != aovs.width() || source.data.height != aovs.height())
             throw InputError(path + ": internal: the carried header has another size");
         if (source.first_part) {
-            header = *source.first_part;  // attributes of every type, data and display windows, tiling
-            header.channels() = Imf::ChannelList();
-            header.erase("chunkCount");  // recounted for the new compression
+            // Attributes of every type, data and display windows, tiling; not
+            // its channels, nor its chunk count, recounted for the new
+            // compression. Copied one by one: OpenEXR 3.1's Header::erase()
+            // would leak the dropped attribute.
+            for (auto it = source.first_part->begin(); it != source.first_part->end(); ++it)
+                if (std::strcmp(it.name(), "channels") != 0 && std::strcmp(it.name(), "chunkCount") != 0)
+                    header.insert(it.name(), it.attribute());
         } else {
             const PixelWindow d = source.data, s = source.display;
             header.dataWindow() = Imath::Box2i({d.x, d.y}, {d.x + d.width - 1, d.y + d.height - 1});
