@@ -8,11 +8,12 @@
 #include <cstdio>
 #include <filesystem>
 #include <limits>
+#include <mutex>
 #include <regex>
 
-#include <OpenImageIO/filesystem.h>
-
 #include "aaf/core/util/error.h"
+#include "module_loader.h"
+#include "sequence_module.h"
 
 namespace aaf::io {
 
@@ -60,9 +61,8 @@ std::pair<std::string, std::string> normalized_pattern(const std::string &patter
         throw Error(pattern + ": no frame field (#, @ or %0Nd) in the file name of the pattern");
     const bool hashes = pattern[field.begin] == '#' || pattern[field.begin] == '@';
     const std::size_t name = file_name_start(pattern);
-    std::string normalized, framespec;
-    if (!OIIO::Filesystem::parse_pattern(pattern.substr(name).c_str(), hashes ? field.padding : 0, normalized,
-                                         framespec) ||
+    std::string normalized;
+    if (!sequence_module().parse_pattern(pattern.substr(name), hashes ? field.padding : 0, normalized) ||
         normalized.empty())
         throw Error(pattern + ": cannot read the frame field of the pattern");
     return {pattern.substr(0, name), normalized};
@@ -109,6 +109,17 @@ bool spans_disjoint(std::vector<FrameRange::Item> items) {
 }
 
 }  // namespace
+
+const SequenceModule &sequence_module() {
+    static std::mutex mutex;
+    static const SequenceModule *module = nullptr;
+    const std::lock_guard<std::mutex> lock(mutex);
+    if (!module)  // a failure is reported again on the next call
+        module = static_cast<const SequenceModule *>(
+            load_module_table("libaaf_sequences.so", AAF_SEQUENCES_ENTRY_NAME,
+                              "file sequences (OpenImageIO's frame patterns)"));
+    return *module;
+}
 
 FrameRange FrameRange::parse(const std::string &spec) {
     FrameRange range;
@@ -180,10 +191,10 @@ bool is_sequence_pattern(const std::string &path) {
 
 std::string frame_path(const std::string &pattern, int frame) {
     const auto [directory, file] = normalized_pattern(pattern);
-    std::vector<std::string> names;
-    if (!OIIO::Filesystem::enumerate_file_sequence(file, {frame}, names) || names.empty())
+    std::string name;
+    if (!sequence_module().frame_file_name(file, frame, name))
         throw Error(pattern + ": cannot make the path of frame " + std::to_string(frame));
-    return directory + names.front();
+    return directory + name;
 }
 
 std::vector<int> frames_on_disk(const std::string &pattern) {
@@ -195,7 +206,7 @@ std::vector<int> frames_on_disk(const std::string &pattern) {
     std::vector<int> numbers;
     std::vector<std::string> names;
     const auto [folder, file] = normalized_pattern(pattern);
-    if (!OIIO::Filesystem::scan_for_matching_filenames(folder + file, numbers, names))
+    if (!sequence_module().scan_for_matching_filenames(folder + file, numbers, names))
         throw InputError(directory.string() + ": cannot list the directory");
     // OpenImageIO also matches other paddings (shot.7.exr for shot.####.exr); this rule does not.
     std::vector<int> frames;
