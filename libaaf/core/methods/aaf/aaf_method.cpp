@@ -151,6 +151,7 @@ class AafMethod final : public Method {
         for (Role role : shadow_composition_roles())
             if (role != Role::Visibility) info_.roles.optional.push_back(role);
         info_.roles.outputs = {Role::FilteredVisibility, roles::FilterWidth, Role::Beauty};
+        info_.roles.widths = {roles::FilterWidth};
         info_.roles.filtered = {{Role::Visibility, Role::FilteredVisibility}};
         info_.parameters = aaf_parameter_declarations().infos();
         info_.required_attributes = light_attribute_names();

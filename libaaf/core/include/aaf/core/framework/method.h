@@ -25,6 +25,9 @@ struct MethodRoles {
     /// Written, in this order. Role::Beauty here means the method composes a
     /// new beauty; the input beauty is then kept as Role::NoisyBeauty.
     std::vector<Role> outputs;
+    /// Outputs that describe the filter itself (AAF's per-pixel widths)
+    /// rather than estimate the image: a temporal window does not blend them.
+    std::vector<Role> widths;
     /// (input, output) pairs where the output is a normalised filtering of
     /// the input: a constant input gives that constant (a property every
     /// method's test checks).

@@ -1,0 +1,273 @@
+// Blending a filtered frame with its filtered neighbours in time: motion
+// followed frame to frame, disocclusion rejected by geometry, changes of
+// shading rejected against the residual noise.
+#include "aaf/core/framework/temporal_window.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <map>
+#include <string>
+
+#include "aaf/core/util/error.h"
+#include "aaf/core/util/parallel.h"
+
+namespace aaf {
+
+namespace {
+
+constexpr float kNoValue = std::numeric_limits<float>::quiet_NaN();
+
+/// The window's frames by offset; the centre's is 0.
+using FramesByOffset = std::map<int, const TemporalFrameView *>;
+
+void check_view(ConstPlaneView view, int width, int height, bool optional, const std::string &what) {
+    if (optional && !view.valid()) return;
+    if (!view.valid() || view.width != width || view.height != height)
+        throw Error("temporal window: " + what + " is missing or has another size");
+}
+
+void check_frame(const TemporalFrameView &frame, std::size_t value_count, int width, int height) {
+    const std::string which =
+        "frame " + std::string(frame.offset >= 0 ? "+" : "") + std::to_string(frame.offset);
+    if (frame.values.size() != value_count)
+        throw Error("temporal window: " + which + " has another number of layers to blend");
+    for (ConstPlaneView view : frame.values) check_view(view, width, height, false, which + "'s values");
+    for (int c = 0; c < 3; ++c) {
+        check_view(frame.position[c], width, height, false, which + "'s position");
+        check_view(frame.normal[c], width, height, false, which + "'s normal");
+    }
+    for (int c = 0; c < 2; ++c) check_view(frame.motion[c], width, height, false, which + "'s motion");
+    check_view(frame.object_id, width, height, true, which + "'s object id");
+    check_view(frame.pixel_size_m, width, height, true, which + "'s pixel size");
+}
+
+/// Bilinear lookup at raster position (fx, fy), pixel centres at integers;
+/// NaN outside the image.
+float bilinear(ConstPlaneView view, float fx, float fy) {
+    const int x0 = int(std::floor(fx)), y0 = int(std::floor(fy));
+    if (x0 < 0 || y0 < 0 || x0 + 1 >= view.width || y0 + 1 >= view.height) {
+        const int x = int(std::lround(fx)), y = int(std::lround(fy));
+        if (x < 0 || y < 0 || x >= view.width || y >= view.height) return kNoValue;
+        return view(x, y);
+    }
+    const float ax = fx - float(x0), ay = fy - float(y0);
+    return (1 - ay) * ((1 - ax) * view(x0, y0) + ax * view(x0 + 1, y0)) +
+           ay * ((1 - ax) * view(x0, y0 + 1) + ax * view(x0 + 1, y0 + 1));
+}
+
+/// Where the centre's pixel (x, y) lies in the frame at `offset`, following
+/// each frame's motion (this frame minus the previous one) from frame to
+/// frame; false when a frame between is missing or the point leaves the image.
+bool follow_motion(const FramesByOffset &frames, int x, int y, int offset, float &fx, float &fy) {
+    fx = float(x);
+    fy = float(y);
+    const int step = offset < 0 ? -1 : 1;
+    for (int k = step; k != offset + step; k += step) {
+        // Backward: frame k+1's motion at the point takes it to frame k.
+        // Forward: frame k's motion, read where the point will be, takes it back.
+        const auto motion_frame = frames.find(step < 0 ? k + 1 : k);
+        if (motion_frame == frames.end() || !frames.count(k)) return false;
+        const std::array<ConstPlaneView, 2> &motion = motion_frame->second->motion;
+        float mx = bilinear(motion[0], fx, fy), my = bilinear(motion[1], fx, fy);
+        if (!std::isfinite(mx + my)) return false;
+        if (step > 0) {  // one fixed-point step: the motion where the point lands
+            const float tx = bilinear(motion[0], fx + mx, fy + my),
+                        ty = bilinear(motion[1], fx + mx, fy + my);
+            if (std::isfinite(tx + ty)) mx = tx, my = ty;
+        }
+        fx += float(step) * mx;
+        fy += float(step) * my;
+        if (!(fx > -0.5f && fy > -0.5f && fx < float(motion[0].width) - 0.5f &&
+              fy < float(motion[0].height) - 0.5f))
+            return false;
+    }
+    return true;
+}
+
+/// World length one pixel covers at (x, y): the pixel-size layer, or the
+/// distance to the farther of its right (left) and lower (upper) neighbours' positions.
+float footprint_m(const TemporalFrameView &frame, int x, int y) {
+    if (frame.pixel_size_m.valid()) return frame.pixel_size_m(x, y);
+    const int width = frame.position[0].width, height = frame.position[0].height;
+    const int nx = x + 1 < width ? x + 1 : x - 1, ny = y + 1 < height ? y + 1 : y - 1;
+    float widest = 0;
+    for (const auto &[ox, oy] : {std::pair<int, int>{nx, y}, std::pair<int, int>{x, ny}}) {
+        if (ox < 0 || oy < 0) continue;
+        float d2 = 0;
+        for (int c = 0; c < 3; ++c) {
+            const float d = frame.position[c](ox, oy) - frame.position[c](x, y);
+            d2 += d * d;
+        }
+        widest = std::max(widest, std::sqrt(d2));
+    }
+    return widest;
+}
+
+/// What the neighbour holds at the centre pixel's surface point: its
+/// values bilinearly over the taps on the same surface, false when none is.
+bool neighbour_values(const TemporalFrameView &centre, const TemporalFrameView &neighbour, float fx, float fy,
+                      int x, int y, float scale, float min_cos, const TemporalWindowSettings &settings,
+                      float *values) {
+    const float p[3] = {centre.position[0](x, y), centre.position[1](x, y), centre.position[2](x, y)};
+    const float n[3] = {centre.normal[0](x, y), centre.normal[1](x, y), centre.normal[2](x, y)};
+    const float id = centre.object_id.valid() ? centre.object_id(x, y) : 0.0f;
+    const float n_len = std::sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
+    const int width = centre.position[0].width, height = centre.position[0].height;
+    const int x0 = int(std::floor(fx)), y0 = int(std::floor(fy));
+    const float ax = fx - float(x0), ay = fy - float(y0);
+    const std::size_t count = centre.values.size();
+    double weight_sum = 0;
+    std::vector<double> sums(count, 0.0);
+    for (int j = 0; j < 2; ++j)
+        for (int i = 0; i < 2; ++i) {
+            const int tx = x0 + i, ty = y0 + j;
+            const float w = (i ? ax : 1 - ax) * (j ? ay : 1 - ay);
+            if (w <= 0 || tx < 0 || ty < 0 || tx >= width || ty >= height) continue;
+            const float q[3] = {neighbour.position[0](tx, ty), neighbour.position[1](tx, ty),
+                                neighbour.position[2](tx, ty)};
+            const float m[3] = {neighbour.normal[0](tx, ty), neighbour.normal[1](tx, ty),
+                                neighbour.normal[2](tx, ty)};
+            if (!std::isfinite(q[0] + q[1] + q[2] + m[0] + m[1] + m[2])) continue;
+            // Disocclusion: the neighbour's surface must lie on this pixel's tangent plane, ...
+            const float d = (q[0] - p[0]) * n[0] + (q[1] - p[1]) * n[1] + (q[2] - p[2]) * n[2];
+            if (!(std::fabs(d) <= settings.plane_tolerance * scale * n_len)) continue;
+            // ... face the same way ...
+            const float m_len = std::sqrt(m[0] * m[0] + m[1] * m[1] + m[2] * m[2]);
+            if (!(m_len > 0) || (n[0] * m[0] + n[1] * m[1] + n[2] * m[2]) < min_cos * n_len * m_len) continue;
+            // ... and belong to the same object.
+            if (neighbour.object_id.valid() && centre.object_id.valid() && neighbour.object_id(tx, ty) != id)
+                continue;
+            bool finite = true;
+            for (std::size_t c = 0; c < count; ++c)
+                finite = finite && std::isfinite(neighbour.values[c](tx, ty));
+            if (!finite) continue;
+            weight_sum += w;
+            for (std::size_t c = 0; c < count; ++c) sums[c] += double(w) * neighbour.values[c](tx, ty);
+        }
+    if (weight_sum < 1e-3) return false;
+    for (std::size_t c = 0; c < count; ++c) values[c] = float(sums[c] / weight_sum);
+    return true;
+}
+
+/// One neighbour warped onto the centre: its values (NaN where no tap
+/// survived) and the mean absolute difference from the centre's.
+struct Warped {
+    std::vector<std::vector<float>> values;  ///< per blended layer, row-major
+    std::vector<float> difference;           ///< NaN where no tap survived
+};
+
+Warped warp_neighbour(const FramesByOffset &frames, const TemporalFrameView &neighbour,
+                      const TemporalWindowSettings &settings) {
+    const TemporalFrameView &centre = *frames.at(0);
+    const int width = centre.position[0].width, height = centre.position[0].height;
+    const std::size_t pixels = std::size_t(width) * std::size_t(height), count = centre.values.size();
+    Warped warped;
+    warped.values.assign(count, std::vector<float>(pixels, kNoValue));
+    warped.difference.assign(pixels, kNoValue);
+    const float min_cos = std::cos(settings.normal_threshold_deg * 3.14159265f / 180.0f);
+    parallel_for_rows(height, [&](int y) {
+        std::vector<float> values(count);
+        for (int x = 0; x < width; ++x) {
+            const float scale = footprint_m(centre, x, y);
+            float fx = 0, fy = 0;
+            if (!(scale > 0) || !std::isfinite(scale) ||
+                !follow_motion(frames, x, y, neighbour.offset, fx, fy) ||
+                !neighbour_values(centre, neighbour, fx, fy, x, y, scale, min_cos, settings, values.data()))
+                continue;
+            const std::size_t i = std::size_t(y) * std::size_t(width) + std::size_t(x);
+            double difference = 0;
+            for (std::size_t c = 0; c < count; ++c) {
+                warped.values[c][i] = values[c];
+                difference += std::fabs(double(values[c]) - double(centre.values[c](x, y)));
+            }
+            warped.difference[i] = float(difference / double(count));
+        }
+    });
+    return warped;
+}
+
+/// The robust scale of the differences over each tile: 1.4826 x the median
+/// of those that are not 0 (the standard deviation for Gaussian noise; the
+/// noise-free pixels of a tile, fully lit or fully shadowed, would otherwise
+/// make its noisy ones look like changes), 0 for none; one value per tile,
+/// row-major.
+std::vector<float> tile_noise_scales(const std::vector<float> &difference, int width, int height) {
+    const int tiles_x = (width + kTemporalTilePx - 1) / kTemporalTilePx;
+    const int tiles_y = (height + kTemporalTilePx - 1) / kTemporalTilePx;
+    std::vector<float> scales(std::size_t(tiles_x) * std::size_t(tiles_y), 0.0f);
+    parallel_for_rows(tiles_y, [&](int ty) {
+        std::vector<float> tile;
+        for (int tx = 0; tx < tiles_x; ++tx) {
+            tile.clear();
+            for (int y = ty * kTemporalTilePx; y < std::min(height, (ty + 1) * kTemporalTilePx); ++y)
+                for (int x = tx * kTemporalTilePx; x < std::min(width, (tx + 1) * kTemporalTilePx); ++x) {
+                    const float d = difference[std::size_t(y) * std::size_t(width) + std::size_t(x)];
+                    if (d > 0 && std::isfinite(d)) tile.push_back(d);
+                }
+            if (tile.empty()) continue;
+            auto middle = tile.begin() + std::ptrdiff_t(tile.size() / 2);
+            std::nth_element(tile.begin(), middle, tile.end());
+            scales[std::size_t(ty) * std::size_t(tiles_x) + std::size_t(tx)] = 1.4826f * *middle;
+        }
+    });
+    return scales;
+}
+
+/// The shading test's weight of a neighbour's value that differs by `difference` where the noise is `scale`.
+float shading_weight(float difference, float scale, float tolerance) {
+    if (difference == 0) return 1.0f;
+    if (!(scale > 0)) return 0.0f;  // noise-free: any difference is a change
+    const float z = difference / (tolerance * scale);
+    return std::exp(-0.5f * z * z);
+}
+
+}  // namespace
+
+void blend_temporal_window(const TemporalFrameView &centre, const std::vector<TemporalFrameView> &neighbours,
+                           const TemporalWindowSettings &settings, const std::vector<PlaneView> &out) {
+    const int width = centre.position[0].width, height = centre.position[0].height;
+    const std::size_t count = centre.values.size();
+    check_frame(centre, count, width, height);
+    FramesByOffset frames{{0, &centre}};
+    for (const TemporalFrameView &frame : neighbours) {
+        check_frame(frame, count, width, height);
+        if (frame.offset == 0 || !frames.emplace(frame.offset, &frame).second)
+            throw Error("temporal window: two frames at offset " + std::to_string(frame.offset));
+    }
+    if (out.size() != count) throw Error("temporal window: as many outputs as layers to blend are needed");
+    for (PlaneView view : out) check_view(view, width, height, false, "an output");
+    if (!(settings.plane_tolerance > 0) || !(settings.shading_tolerance > 0))
+        throw Error("temporal window: the plane and shading tolerances must be > 0");
+
+    std::vector<Warped> warped;
+    std::vector<std::vector<float>> scales;
+    for (const TemporalFrameView &frame : neighbours) {
+        if (std::abs(frame.offset) > settings.radius_frames || (settings.causal && frame.offset > 0))
+            continue;
+        warped.push_back(warp_neighbour(frames, frame, settings));
+        scales.push_back(tile_noise_scales(warped.back().difference, width, height));
+    }
+    const int tiles_x = (width + kTemporalTilePx - 1) / kTemporalTilePx;
+    parallel_for_rows(height, [&](int y) {
+        std::vector<double> sums(count);
+        for (int x = 0; x < width; ++x) {
+            const std::size_t i = std::size_t(y) * std::size_t(width) + std::size_t(x);
+            const std::size_t tile =
+                std::size_t(y / kTemporalTilePx) * std::size_t(tiles_x) + std::size_t(x / kTemporalTilePx);
+            double weight_sum = 1;
+            for (std::size_t c = 0; c < count; ++c) sums[c] = centre.values[c](x, y);
+            for (std::size_t n = 0; n < warped.size(); ++n) {
+                const float difference = warped[n].difference[i];
+                if (!std::isfinite(difference)) continue;
+                const float w = shading_weight(difference, scales[n][tile], settings.shading_tolerance);
+                if (!(w > 0)) continue;
+                weight_sum += w;
+                for (std::size_t c = 0; c < count; ++c) sums[c] += double(w) * warped[n].values[c][i];
+            }
+            for (std::size_t c = 0; c < count; ++c) out[c](x, y) = float(sums[c] / weight_sum);
+        }
+    });
+}
+
+}  // namespace aaf

@@ -1,0 +1,69 @@
+#pragma once
+
+#include <array>
+#include <vector>
+
+#include "aaf/core/contract/plane_view.h"
+
+namespace aaf {
+
+/// How a filtered frame is blended with its filtered neighbours
+/// (`aaf filter METHOD --temporal-window K`).
+struct TemporalWindowSettings {
+    /// K: the frames t-K..t+K around frame t are read (t-K..t when causal); 0 = none.
+    int radius_frames = 0;
+    /// Only earlier frames: what a frame's output depends on is known when it is made.
+    bool causal = false;
+    /// A neighbour's tap is rejected (disocclusion) when its position lies farther
+    /// than this many of the pixel's footprints from the pixel's tangent plane, ...
+    float plane_tolerance = 2.0f;
+    /// ... when its normal turns by more than this, degrees, or when its object id differs.
+    float normal_threshold_deg = 25.0f;
+    /// A neighbour's value is down-weighted when it differs from the frame's
+    /// own by more than the residual noise: its weight is exp(-e^2 / (2 (tau
+    /// sigma)^2)), e the mean absolute difference over the blended channels,
+    /// sigma the robust scale of that difference over the pixel's tile
+    /// (1.4826 x the median of its non-zero values, kTemporalTilePx square tiles): a shadow or a
+    /// light that moves over still geometry changes the value far beyond the
+    /// noise and does not ghost. tau is this.
+    float shading_tolerance = 3.0f;
+};
+
+/// Side of the square tiles over which the shading test measures the noise.
+inline constexpr int kTemporalTilePx = 16;
+
+/// One frame of the window as the blend reads it; views of one size.
+struct TemporalFrameView {
+    /// The frame's number minus the centre frame's.
+    int offset = 0;
+    /// The per-frame filtered planes to blend, in the same order in every frame.
+    std::vector<ConstPlaneView> values;
+    std::array<ConstPlaneView, 3> position;  ///< world metres
+    std::array<ConstPlaneView, 3> normal;    ///< unit
+    /// Raster position of the pixel's surface point in this frame minus in
+    /// the previous one, pixels, y down (Role::Motion).
+    std::array<ConstPlaneView, 2> motion;
+    /// Optional (an invalid view: not tested): taps on another object are rejected.
+    ConstPlaneView object_id;
+    /// World length one pixel covers; optional (an invalid view: estimated
+    /// from the positions of the pixel's neighbours). Non-positive or
+    /// non-finite: no surface, the pixel keeps its own value.
+    ConstPlaneView pixel_size_m;
+};
+
+/// Blends the centre frame's `values` with its neighbours' into `out` (same
+/// count and size; `out` may alias nothing of the inputs): each neighbour is
+/// looked up where the pixel's surface point was or will be, by following the
+/// motion layers frame to frame (a neighbour past a missing frame is not
+/// used), bilinearly over its 4 nearest pixels, keeping only taps on the same
+/// surface (tangent-plane distance, normal, object id; their bilinear weights
+/// renormalised), weighted by the shading test above; every frame in the
+/// window weighs alike otherwise (a box in time), the centre frame 1. A
+/// static frame whose neighbours hold the same values is unchanged, bit for
+/// bit. Deterministic for any thread count. `neighbours` are sorted by
+/// offset or not, any subset of the window; throws aaf::Error on mismatched
+/// sizes or a missing layer.
+void blend_temporal_window(const TemporalFrameView &centre, const std::vector<TemporalFrameView> &neighbours,
+                           const TemporalWindowSettings &settings, const std::vector<PlaneView> &out);
+
+}  // namespace aaf

@@ -1,0 +1,190 @@
+// A method's per-frame filter with a temporal window over its sequence (temporal_filter.h).
+#include "aaf/io/temporal_filter.h"
+
+#include <algorithm>
+#include <array>
+#include <filesystem>
+#include <limits>
+#include <map>
+#include <utility>
+
+#include "aaf/core/util/error.h"
+#include "aaf/io/sequence.h"
+
+namespace aaf::io {
+
+namespace {
+
+/// The channels the window reads of every frame: the blended ones and the guides.
+struct WindowChannels {
+    std::vector<std::string> blended;
+    std::array<std::string, 3> position, normal;
+    std::array<std::string, 2> motion;
+    std::string object_id, pixel_size;  ///< empty: the frame has none
+};
+
+bool contains(const std::vector<Role> &roles, Role role) {
+    return std::find(roles.begin(), roles.end(), role) != roles.end();
+}
+
+/// A guide role's channels in `output`, required: `count` of them.
+template <std::size_t N>
+std::array<std::string, N> required_guide(Role role, const ChannelMap &resolved, const AovSet &output) {
+    const std::vector<std::string> &names = resolved.channels(role);
+    bool present = names.size() == N;
+    for (const std::string &name : names) present = present && output.has_channel(name);
+    if (!present) {
+        std::string list;
+        for (const std::string &name : names) list += (list.empty() ? "" : ", ") + name;
+        throw InputError(std::string("--temporal-window needs the ") + role.key + " layer (" + list +
+                         "; aaf render --aovs METHOD,position,normal,motion writes it, --map " + role.key +
+                         "=... names another)");
+    }
+    std::array<std::string, N> channels;
+    std::copy(names.begin(), names.end(), channels.begin());
+    return channels;
+}
+
+/// An optional one-channel guide: its name when `output` has it, else "".
+std::string optional_guide(Role role, const ChannelMap &resolved, const AovSet &output) {
+    const std::vector<std::string> &names = resolved.channels(role);
+    return names.size() == 1 && output.has_channel(names.front()) ? names.front() : std::string();
+}
+
+/// What the window reads of the frames `plan` filters: the outputs of the
+/// method that ran (its widths aside), the beauty it composed, the guides.
+WindowChannels window_channels(const FilterPlan &plan, const ChannelMap &resolved, const AovSet &output) {
+    WindowChannels channels;
+    const MethodRoles &roles = plan.method->info().roles;
+    for (Role role : roles.outputs) {
+        if (contains(roles.widths, role)) continue;
+        for (const std::string &name : plan.channels.channels(role))
+            if (output.has_channel(name)) channels.blended.push_back(name);
+    }
+    channels.position = required_guide<3>(Role::Position, resolved, output);
+    channels.normal = required_guide<3>(Role::Normal, resolved, output);
+    channels.motion = required_guide<2>(Role::Motion, resolved, output);
+    channels.object_id = optional_guide(Role::ObjectId, resolved, output);
+    channels.pixel_size = optional_guide(Role::PixelSize, resolved, output);
+    return channels;
+}
+
+std::vector<std::string> all_names(const WindowChannels &channels) {
+    std::vector<std::string> names = channels.blended;
+    names.insert(names.end(), channels.position.begin(), channels.position.end());
+    names.insert(names.end(), channels.normal.begin(), channels.normal.end());
+    names.insert(names.end(), channels.motion.begin(), channels.motion.end());
+    for (const std::string *name : {&channels.object_id, &channels.pixel_size})
+        if (!name->empty()) names.push_back(*name);
+    return names;
+}
+
+/// The window's channels of a frame's output, copied: what is kept of it.
+AovSet kept_channels(const AovSet &output, const WindowChannels &channels, const std::string &source) {
+    AovSet kept(output.width(), output.height());
+    for (const std::string &name : all_names(channels)) {
+        if (!output.has_channel(name))
+            throw InputError(source + ": no channel '" + name +
+                             "' for the temporal window (the other frames of the window have it)");
+        ConstPlaneView from = output.channel(name);
+        PlaneView to = kept.add_channel(name);
+        std::copy(from.data, from.data + output.pixel_count(), to.data);
+    }
+    return kept;
+}
+
+TemporalFrameView frame_view(const AovSet &frame, const WindowChannels &channels, int offset) {
+    TemporalFrameView view;
+    view.offset = offset;
+    for (const std::string &name : channels.blended) view.values.push_back(frame.channel(name));
+    for (int c = 0; c < 3; ++c) {
+        view.position[c] = frame.channel(channels.position[c]);
+        view.normal[c] = frame.channel(channels.normal[c]);
+    }
+    for (int c = 0; c < 2; ++c) view.motion[c] = frame.channel(channels.motion[c]);
+    if (!channels.object_id.empty()) view.object_id = frame.channel(channels.object_id);
+    if (!channels.pixel_size.empty()) view.pixel_size_m = frame.channel(channels.pixel_size);
+    return view;
+}
+
+/// What the wrapped filter keeps between frames.
+struct WindowState {
+    FrameFilter per_frame;
+    std::string pattern;
+    TemporalWindowSettings settings;
+    FilterFileOptions options;
+    std::shared_ptr<const int> frame;
+    std::map<int, AovSet> kept;  ///< frame -> its per-frame output's window channels
+};
+
+/// Blends `output`, frame `*state.frame`'s per-frame output, with its window.
+void blend_window(WindowState &state, const FilterPlan &plan, const ChannelMap &resolved, AovSet &output) {
+    const int frame = *state.frame;
+    const WindowChannels channels = window_channels(plan, resolved, output);
+    const std::vector<int> frames = temporal_window_frames(state.pattern, frame, state.settings);
+    // Frames before the window are not needed again by a sequence in order.
+    state.kept.erase(state.kept.begin(), state.kept.lower_bound(frames.front()));
+    state.kept.erase(state.kept.upper_bound(frames.back()), state.kept.end());
+    state.kept.insert_or_assign(frame, kept_channels(output, channels, frame_path(state.pattern, frame)));
+    for (int other : frames) {
+        if (state.kept.count(other)) continue;
+        const std::string path = frame_path(state.pattern, other);
+        FilterFileReport ignored;  // its own run reports it
+        state.kept.emplace(other,
+                           kept_channels(filter_file_in_memory(path, state.per_frame, state.options, ignored),
+                                         channels, path));
+    }
+    const TemporalFrameView centre = frame_view(output, channels, 0);
+    std::vector<TemporalFrameView> neighbours;
+    for (int other : frames)
+        if (other != frame) neighbours.push_back(frame_view(state.kept.at(other), channels, other - frame));
+    std::vector<PlaneView> out;
+    for (const std::string &name : channels.blended) out.push_back(output.channel(name));
+    blend_temporal_window(centre, neighbours, state.settings, out);
+}
+
+}  // namespace
+
+std::vector<int> temporal_window_frames(const std::string &pattern, int frame,
+                                        const TemporalWindowSettings &settings) {
+    const auto on_disk = [&pattern](long long other) {
+        if (other < std::numeric_limits<int>::min() || other > std::numeric_limits<int>::max()) return false;
+        std::error_code error;
+        return std::filesystem::exists(frame_path(pattern, int(other)), error);
+    };
+    // Frames on disk on each side, up to the first missing one.
+    int before = 0, after = 0;
+    while (before < settings.radius_frames && on_disk(frame - 1LL - before)) ++before;
+    while (!settings.causal && after < settings.radius_frames && on_disk(frame + 1LL + after)) ++after;
+    // Centred: as many frames after as before, so that a steady change (a
+    // light or a shadow moving at constant speed) averages to the frame's own value.
+    if (!settings.causal) before = after = std::min(before, after);
+    std::vector<int> frames;
+    for (int other = frame - before; other <= frame + after; ++other) frames.push_back(other);
+    return frames;
+}
+
+FrameFilter temporal_filter(FrameFilter filter, const std::string &pattern,
+                            const TemporalWindowSettings &settings, const FilterFileOptions &options,
+                            std::shared_ptr<const int> frame) {
+    if (filter.reads_history)
+        throw Error(
+            "--temporal-window: this filter already reads its previous frame's output; use one "
+            "temporal filter");
+    auto state = std::make_shared<WindowState>();
+    state->per_frame = filter;
+    state->pattern = pattern;
+    state->settings = settings;
+    state->options = options;
+    state->options.keep_beauty = false;  // the window blends the filter's own beauty
+    state->frame = std::move(frame);
+    filter.run = [state, run = filter.run](const FilterPlan &plan, AovSet input) {
+        const ChannelMap resolved = state->options.channels.resolved(input);
+        AovSet output = run(plan, std::move(input));
+        blend_window(*state, plan, resolved, output);
+        return output;
+    };
+    return filter;
+}
+
+}  // namespace aaf::io
