@@ -188,10 +188,12 @@ Warped warp_neighbour(const FramesByOffset &frames, const TemporalFrameView &nei
 }
 
 /// The robust scale of the differences over each tile: 1.4826 x the median
-/// of those that are not 0 (the standard deviation for Gaussian noise; the
-/// noise-free pixels of a tile, fully lit or fully shadowed, would otherwise
-/// make its noisy ones look like changes), 0 for none; one value per tile,
-/// row-major.
+/// of those that are not 0 (the standard deviation for Gaussian noise), or 0
+/// when fewer than half of the tile's are not 0: noise touches most pixels
+/// of a tile, a change (an edge that moved) a band. Not counting the zeros
+/// keeps the noisy pixels of a tile that is partly noise-free (fully lit, or
+/// lit by a light sampled without noise) from looking like changes. One
+/// value per tile, row-major.
 std::vector<float> tile_noise_scales(const std::vector<float> &difference, int width, int height) {
     const int tiles_x = (width + kTemporalTilePx - 1) / kTemporalTilePx;
     const int tiles_y = (height + kTemporalTilePx - 1) / kTemporalTilePx;
@@ -200,12 +202,15 @@ std::vector<float> tile_noise_scales(const std::vector<float> &difference, int w
         std::vector<float> tile;
         for (int tx = 0; tx < tiles_x; ++tx) {
             tile.clear();
+            std::size_t valid = 0;
             for (int y = ty * kTemporalTilePx; y < std::min(height, (ty + 1) * kTemporalTilePx); ++y)
                 for (int x = tx * kTemporalTilePx; x < std::min(width, (tx + 1) * kTemporalTilePx); ++x) {
                     const float d = difference[std::size_t(y) * std::size_t(width) + std::size_t(x)];
-                    if (d > 0 && std::isfinite(d)) tile.push_back(d);
+                    if (!std::isfinite(d)) continue;
+                    ++valid;
+                    if (d > 0) tile.push_back(d);
                 }
-            if (tile.empty()) continue;
+            if (tile.empty() || 2 * tile.size() < valid) continue;
             auto middle = tile.begin() + std::ptrdiff_t(tile.size() / 2);
             std::nth_element(tile.begin(), middle, tile.end());
             scales[std::size_t(ty) * std::size_t(tiles_x) + std::size_t(tx)] = 1.4826f * *middle;

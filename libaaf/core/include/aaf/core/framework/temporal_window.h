@@ -23,7 +23,8 @@ struct TemporalWindowSettings {
     /// own by more than the residual noise: its weight is exp(-e^2 / (2 (tau
     /// sigma)^2)), e the mean absolute difference over the blended channels,
     /// sigma the robust scale of that difference over the pixel's tile
-    /// (1.4826 x the median of its non-zero values, kTemporalTilePx square tiles): a shadow or a
+    /// (1.4826 x the median of its non-zero values, kTemporalTilePx square tiles;
+    /// 0, no change allowed, when most of the tile's are 0): a shadow or a
     /// light that moves over still geometry changes the value far beyond the
     /// noise and does not ghost. tau is this.
     float shading_tolerance = 3.0f;
