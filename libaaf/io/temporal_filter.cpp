@@ -80,23 +80,34 @@ std::vector<std::string> all_names(const WindowChannels &channels) {
 }
 
 /// The window's channels of a frame's output, copied: what is kept of it.
+/// The motion follows the contract's convention (another renderer's pass,
+/// synonym_scale()).
 AovSet kept_channels(const AovSet &output, const WindowChannels &channels, const std::string &source) {
     AovSet kept(output.width(), output.height());
+    const std::vector<std::string> motion(channels.motion.begin(), channels.motion.end());
+    const std::vector<float> motion_scale = synonym_scale(Role::Motion, motion);
     for (const std::string &name : all_names(channels)) {
         if (!output.has_channel(name))
             throw InputError(source + ": no channel '" + name +
                              "' for the temporal window (the other frames of the window have it)");
         ConstPlaneView from = output.channel(name);
         PlaneView to = kept.add_channel(name);
-        std::copy(from.data, from.data + output.pixel_count(), to.data);
+        const auto m = std::find(motion.begin(), motion.end(), name);
+        const float scale = m == motion.end() ? 1.0f : motion_scale[std::size_t(m - motion.begin())];
+        std::transform(from.data, from.data + output.pixel_count(), to.data,
+                       [scale](float value) { return scale * value; });
     }
     return kept;
 }
 
-TemporalFrameView frame_view(const AovSet &frame, const WindowChannels &channels, int offset) {
+/// A kept frame as the blend reads it; `values`, when given, holds the
+/// planes to blend instead of the kept copies (the centre's own output).
+TemporalFrameView frame_view(const AovSet &frame, const WindowChannels &channels, int offset,
+                             const AovSet *values = nullptr) {
     TemporalFrameView view;
     view.offset = offset;
-    for (const std::string &name : channels.blended) view.values.push_back(frame.channel(name));
+    for (const std::string &name : channels.blended)
+        view.values.push_back((values ? *values : frame).channel(name));
     for (int c = 0; c < 3; ++c) {
         view.position[c] = frame.channel(channels.position[c]);
         view.normal[c] = frame.channel(channels.normal[c]);
@@ -134,7 +145,7 @@ void blend_window(WindowState &state, const FilterPlan &plan, const ChannelMap &
                            kept_channels(filter_file_in_memory(path, state.per_frame, state.options, ignored),
                                          channels, path));
     }
-    const TemporalFrameView centre = frame_view(output, channels, 0);
+    const TemporalFrameView centre = frame_view(state.kept.at(frame), channels, 0, &output);
     std::vector<TemporalFrameView> neighbours;
     for (int other : frames)
         if (other != frame) neighbours.push_back(frame_view(state.kept.at(other), channels, other - frame));

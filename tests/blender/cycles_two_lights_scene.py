@@ -2,7 +2,7 @@
 light groups (tests/blender/cycles_key_light_test.sh runs it at 8 and 1024 samples):
 
   blender -b --factory-startup --python-exit-code 1 \\
-    --python tests/blender/cycles_two_lights_scene.py -- OUT_DIR AAF [NOISY_SPP REFERENCE_SPP]
+    --python tests/blender/cycles_two_lights_scene.py -- OUT_DIR AAF [NOISY_SPP REFERENCE_SPP [FRAMES]]
 
 Builds by script (no .blend shipped) a floor, a red wall beside it (the
 indirect light: the floor near the wall turns red) and a box casting a soft
@@ -17,7 +17,15 @@ files and, on a line of its own, the light group's. Then it exports the shot
 with the aaf bridge (OUT_DIR/shot.json, shot.light.json: the key light is
 the first area light by name), renders aaf's AOVs of it (`AAF render
 --aovs all`, OUT_DIR/shot.aovs.exr) and completes the noisy render with them
-(scripts/blender/aaf_complete.py, OUT_DIR/noisy.completed.exr)."""
+(scripts/blender/aaf_complete.py, OUT_DIR/noisy.completed.exr).
+
+With FRAMES, a sequence instead: the camera slides sideways over frames
+1-FRAMES, the Vector pass (motion) is on, Cycles draws each frame with its
+own seed, and every file above is per frame (noisy.####.exr,
+reference.####.exr, shot.####.json, shot.aovs.####.exr,
+noisy.completed.####.exr; one shot.light.json, the lights do not move).
+aaf's AOVs are rendered with `--aovs aaf`, without aaf's own motion layer:
+the completed frames' motion is Blender's Vector pass."""
 import json
 import math
 import os
@@ -30,12 +38,13 @@ import mathutils
 import OpenImageIO as oiio
 
 args = sys.argv[sys.argv.index("--") + 1:]
-if len(args) not in (2, 4):
-    print("usage: blender -b --python cycles_two_lights_scene.py -- OUT_DIR AAF [NOISY_SPP REFERENCE_SPP]",
+if len(args) not in (2, 4, 5):
+    print("usage: blender -b --python cycles_two_lights_scene.py -- OUT_DIR AAF [NOISY_SPP REFERENCE_SPP [FRAMES]]",
           file=sys.stderr)
     sys.exit(2)
 out_dir, aaf = os.path.abspath(args[0]), args[1]
-noisy_spp, reference_spp = (int(args[2]), int(args[3])) if len(args) == 4 else (8, 4096)
+noisy_spp, reference_spp = (int(args[2]), int(args[3])) if len(args) >= 4 else (8, 4096)
+frames = int(args[4]) if len(args) == 5 else 0
 scripts = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "scripts", "blender")
 sys.path.insert(0, scripts)
 import aaf_bridge  # noqa: E402
@@ -111,6 +120,40 @@ def render(name, spp):
     print(f"two-lights: {name}: {spp} spp in {time.time() - start:.1f} s")
 
 
+
+
+def render_sequence():
+    """The camera slides 6 cm to the right per frame (about a pixel); every file per frame."""
+    camera = scene.camera
+    start_x = camera.location.x
+    for frame in (1, frames):
+        camera.location.x = start_x + 0.06 * (frame - 1)
+        camera.keyframe_insert("location", frame=frame)
+    for curve in camera.animation_data.action.fcurves:
+        for point in curve.keyframe_points:
+            point.interpolation = "LINEAR"
+    layer.use_pass_vector = True
+    scene.cycles.use_animated_seed = True
+    for frame in range(1, frames + 1):
+        scene.frame_set(frame)
+        render(f"noisy.{frame:04d}.exr", noisy_spp)
+        render(f"reference.{frame:04d}.exr", reference_spp)
+        shot = os.path.join(out_dir, f"shot.{frame:04d}.json")
+        _, warnings = aaf_bridge.export_scene(shot, scene)
+        for warning in warnings:
+            print("two-lights: bridge warning:", warning)
+        aovs = os.path.join(out_dir, f"shot.aovs.{frame:04d}.exr")
+        subprocess.run([aaf, "render", shot, "--width", str(WIDTH), "--height", str(HEIGHT), "--aovs", "aaf",
+                        "--spp", "64", "--progress", "none", "-o", aovs], check=True)
+        subprocess.run(["/usr/bin/python3", os.path.join(scripts, "aaf_complete.py"),
+                        os.path.join(out_dir, f"noisy.{frame:04d}.exr"), aovs,
+                        os.path.join(out_dir, f"noisy.completed.{frame:04d}.exr")], check=True)
+    print(f"two-lights: wrote frames 1-{frames} to {out_dir}")
+
+
+if frames:
+    render_sequence()
+    sys.exit(0)
 render("noisy.exr", noisy_spp)
 render("reference.exr", reference_spp)
 

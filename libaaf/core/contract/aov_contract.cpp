@@ -262,6 +262,9 @@ const std::vector<RoleSynonym> &shared_role_synonyms() {
         {Role::Normal, "pbrt-v4 (shading normal)", {"Ns.X", "Ns.Y", "Ns.Z"}},
         {Role::ObjectId, "Blender", {"*.IndexOB.X"}},
         {Role::Depth, "Blender", {"*.Depth.Z"}},
+        // Cycles writes the previous frame's raster position minus this
+        // frame's, y up: x is the contract's negated, y (down) its own.
+        {Role::Motion, "Blender (Vector pass)", {"*.Vector.X", "*.Vector.Y"}, {-1.0f, 1.0f}},
         {Role::Albedo, "Blender", {"*.DiffCol.R", "*.DiffCol.G", "*.DiffCol.B"}},
         {Role::Albedo, "pbrt-v4", {"Albedo.R", "Albedo.G", "Albedo.B"}},
         {Role::Albedo, "Arnold", {"albedo.R", "albedo.G", "albedo.B"}},
@@ -271,6 +274,24 @@ const std::vector<RoleSynonym> &shared_role_synonyms() {
         {Role::KeyLight, "Arnold (light group 'key')", {"RGBA_key.R", "RGBA_key.G", "RGBA_key.B"}},
     };
     return table;
+}
+
+std::vector<float> synonym_scale(Role role, const std::vector<std::string> &channels) {
+    // A name matches a pattern whole, or after any prefix for a "*." pattern.
+    const auto matches = [](const std::string &name, const std::string &pattern) {
+        if (pattern.rfind("*.", 0) != 0) return name == pattern;
+        const std::string tail = pattern.substr(1);
+        return name.size() > tail.size() && name.compare(name.size() - tail.size(), tail.size(), tail) == 0;
+    };
+    for (const RoleSynonym &synonym : role_synonyms()) {
+        if (synonym.role != role || synonym.scale.empty() || synonym.channels.size() != channels.size())
+            continue;
+        bool all = true;
+        for (std::size_t c = 0; c < channels.size(); ++c)
+            all = all && matches(channels[c], synonym.channels[c]);
+        if (all) return synonym.scale;
+    }
+    return std::vector<float>(channels.size(), 1.0f);
 }
 
 namespace {

@@ -1,5 +1,7 @@
 #include "aaf/core/framework/contract_markdown.h"
 
+#include <cstdio>
+
 #include <algorithm>
 #include <vector>
 
@@ -83,9 +85,19 @@ std::string synonyms_markdown() {
     for (const RoleInfo &info : role_table()) {
         std::string tried;
         for (const RoleSynonym &synonym : role_synonyms())
-            if (synonym.role == info.role)
+            if (synonym.role == info.role) {
                 tried += (tried.empty() ? "" : "; ") + std::string(synonym.renderer) + " " +
                          code_list(synonym.channels);
+                if (!synonym.scale.empty()) {
+                    std::string factors;
+                    for (float f : synonym.scale) {
+                        char text[32];
+                        std::snprintf(text, sizeof text, "%g", double(f));
+                        factors += (factors.empty() ? "" : ", ") + std::string(text);
+                    }
+                    tried += " times (" + factors + ")";
+                }
+            }
         if (!tried.empty()) text += "| `" + std::string(info.role.key) + "` | " + tried + " |\n";
     }
     text +=

@@ -187,3 +187,15 @@ TEST_CASE("A declared light count is checked against the channels present before
     attributes[attr::kRatioLights] = -1;
     CHECK_THROWS_AS(ratio_light_count(attributes, 40), InputError);
 }
+
+TEST_CASE("Blender's Vector pass is read as the contract's motion: x negated, y as it is", "[contract]") {
+    // Cycles writes the previous frame's raster position minus this one's, y up
+    // (tests/blender/cycles_sequence_test.sh checks it on a rendered sequence).
+    CHECK(synonym_scale(Role::Motion, {"ViewLayer.Vector.X", "ViewLayer.Vector.Y"}) ==
+          std::vector<float>{-1, 1});
+    CHECK(synonym_scale(Role::Motion, {"View Layer.Vector.X", "View Layer.Vector.Y"}) ==
+          std::vector<float>{-1, 1});
+    CHECK(synonym_scale(Role::Motion, {"motion.X", "motion.Y"}) == std::vector<float>{1, 1});
+    CHECK(synonym_scale(Role::Position, {"ViewLayer.Position.X", "ViewLayer.Position.Y",
+                                         "ViewLayer.Position.Z"}) == std::vector<float>{1, 1, 1});
+}

@@ -166,6 +166,10 @@ struct RoleSynonym {
     Role role;
     const char *renderer;
     std::vector<std::string> channels;
+    /// What each channel is multiplied by to follow the contract's
+    /// convention (Blender's Vector pass: the previous frame minus this one
+    /// in x); empty: as it is.
+    std::vector<float> scale = {};
 };
 /// The synonym table (documented in libaaf/AOV_CONTRACT.md): the shared
 /// roles' synonyms, then each registered method's (MethodRoles::synonyms).
@@ -174,6 +178,10 @@ struct RoleSynonym {
 /// role's layer). Defined by the method registry, as role_table().
 const std::vector<RoleSynonym> &role_synonyms();
 const std::vector<RoleSynonym> &shared_role_synonyms();
+/// The factors that bring `channels`, the channels a frame's `role` resolved
+/// to (by a synonym, a --map or the contract's names), to the contract's
+/// convention: the scale of the synonym whose names they are, else all 1.
+std::vector<float> synonym_scale(Role role, const std::vector<std::string> &channels);
 
 /// Role -> channel names, the defaults overridden by `--map role=channels`.
 class ChannelMap {
