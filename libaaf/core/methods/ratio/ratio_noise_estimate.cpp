@@ -29,19 +29,20 @@ void dilate(const unsigned char *__restrict in, int count, int radius, unsigned 
 }
 
 /// 1 where the (2 radius + 1)^2 window around the pixel holds two different
-/// values of `w` (packed, width x height), else 0: a window with two values
+/// values of `w` (width x height, rows `row_floats` apart), else 0: a window with two values
 /// holds two neighbours that differ, so it is enough to flag each pixel that
 /// differs from its right or lower neighbour and dilate the flags by
 /// `radius` (a square, separably).
-FramePlane<unsigned char> varying_windows(const float *w, int width, int height, int radius) {
+FramePlane<unsigned char> varying_windows(const float *w, std::size_t row_floats, int width, int height,
+                                          int radius) {
     const std::size_t count = std::size_t(width) * std::size_t(height);
     FramePlane<unsigned char> flags, rows, out;
     for (FramePlane<unsigned char> *plane : {&flags, &rows, &out}) plane->resize(count);  // written in full
     parallel_for_rows(height, [&](int y) {
         const int n = width;  // a local: a byte store might alias a captured value, not a local
-        const float *row = w + std::size_t(y) * std::size_t(n);
+        const float *row = w + std::size_t(y) * row_floats;
         const bool has_below = y + 1 < height;
-        const float *below = has_below ? row + width : row;  // read, then ignored, on the last row
+        const float *below = has_below ? row + row_floats : row;  // read, then ignored, on the last row
         unsigned char *__restrict flag = &flags[std::size_t(y) * std::size_t(width)];
         // a != b holds where either is NaN: NaN differs from everything.
         for (int x = 0; x + 1 < n; ++x) flag[x] = (row[x] != row[x + 1]) | (has_below & (row[x] != below[x]));
@@ -81,21 +82,27 @@ void weighted_shadow(ConstPlaneView s_n, ConstPlaneView u_n, PlaneView w) {
 void ratio_noise_estimate(ConstPlaneView w, int line_radius_px, std::uint32_t seed, PlaneView e) {
     check_same_size(w, e, "E");
     if (line_radius_px < 1) throw Error("ratio noise estimate: the line radius must be >= 1 pixel");
-    const int width = w.width, height = w.height;
-    // The lines read W_N packed (a strided view is copied once).
-    std::vector<float> copy;
-    if (w.pixel_stride != 1 || w.row_stride != width) {
-        copy.resize(std::size_t(width) * std::size_t(height));
-        parallel_for_rows(height, [&](int y) {
-            for (int x = 0; x < width; ++x)
-                copy[std::size_t(y) * std::size_t(width) + std::size_t(x)] = w(x, y);
-        });
-    }
-    const float *packed = copy.empty() ? w.data : copy.data();
+    const int width = w.width, height = w.height, radius = line_radius_px;
+    // W_N with its edges repeated past the image, non-finite read as 1: every
+    // tap is a plain load (taps beyond the edge repeat the edge).
+    const int padded_width = width + 2 * radius + detail::kRatioNoiseRunPx;
+    FramePlane<float> padded;
+    padded.resize(std::size_t(padded_width) * std::size_t(height + 2 * radius));  // written in full
+    parallel_for_rows(height + 2 * radius, [&](int row) {
+        const int y = std::clamp(row - radius, 0, height - 1);
+        float *to = &padded[std::size_t(row) * std::size_t(padded_width)];
+        for (int i = 0; i < padded_width; ++i) {
+            const float v = w(std::clamp(i - radius, 0, width - 1), y);
+            to[i] = std::isfinite(v) ? v : 1.0f;
+        }
+    });
+    const float *interior = &padded[std::size_t(radius) * std::size_t(padded_width) + std::size_t(radius)];
     // Every line's taps of an inactive pixel lie in a constant window: E is 0 exactly, without the work.
-    const FramePlane<unsigned char> active = varying_windows(packed, width, height, line_radius_px);
+    const FramePlane<unsigned char> active =
+        varying_windows(interior, std::size_t(padded_width), width, height, radius);
     detail::RatioNoiseSweep sweep;
-    sweep.w = packed;
+    sweep.padded = padded.data();
+    sweep.padded_row_floats = std::size_t(padded_width);
     sweep.width = width;
     sweep.height = height;
     sweep.line_radius_px = line_radius_px;

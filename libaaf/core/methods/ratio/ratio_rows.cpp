@@ -367,69 +367,62 @@ void RatioBoxRow(const float *const *rows, int row_count, int width, float *out)
     for (; x < width; ++x) scalar(x);
 }
 
-/// The raw E of the row's active pixels, in lanes (ratio estimator Eq. 29):
-/// along 4 lines 45 degrees apart, turned by the pixel's hashed angle, the
-/// mean absolute second difference of W_N over nearest-pixel taps clamped
-/// to the image (non-finite read as 1).
+/// The raw E of the row's active pixels (ratio estimator Eq. 29): along 4
+/// lines 45 degrees apart, turned by one hashed angle per run of
+/// kRatioNoiseRunPx pixels, the mean absolute second difference of W_N over
+/// nearest-pixel taps (the padded copy repeats the edges and reads
+/// non-finite values as 1). A run's pixels tap at the same offsets, so each
+/// tap is one vector load; lanes never span two runs.
 void RatioNoiseRow(const RatioNoiseSweep &s, int y, float *raw) {
-    const D d;
-    const DI di;
-    const int lanes = int(hn::Lanes(d)), radius = s.line_radius_px;
-    const float per_difference = 1.0f / float(2 * radius + 1 - 2);
+    const hn::CappedTag<float, kRatioNoiseRunPx> d;
+    const int lanes = int(hn::Lanes(d)), radius = s.line_radius_px, taps = 2 * radius + 1;
+    const float per_difference = 1.0f / float(taps - 2);
     constexpr float kQuarterPi = 0.78539816f, kHalfSqrt2 = 0.70710678f;
-    const V half = hn::Set(d, 0.5f), two = hn::Set(d, 2.0f), one = hn::Set(d, 1.0f),
-            h = hn::Set(d, kHalfSqrt2);
-    const VI last_x = hn::Set(di, s.width - 1), last_y = hn::Set(di, s.height - 1), zero_i = hn::Zero(di);
-    const VI row_y = hn::Set(di, y), width = hn::Set(di, s.width);
-    // The active pixels packed into the lanes (a row's are often scattered);
-    // a last partial vector repeats the last pixel.
+    const auto two = hn::Set(d, 2.0f);
     const unsigned char *active = s.active + std::size_t(y) * std::size_t(s.width);
-    thread_local std::vector<std::int32_t> columns;
-    columns.clear();
-    for (int x = 0; x < s.width; ++x)
-        if (active[x]) columns.push_back(x);
+    // The row's centre pixel (x = 0) in the padded copy.
+    const float *centre = s.padded + std::size_t(y + radius) * s.padded_row_floats + std::size_t(radius);
+    thread_local std::vector<std::ptrdiff_t> offsets;  // per line, per tap: from a pixel to its tap
+    offsets.resize(std::size_t(4 * taps));
     std::fill_n(raw, s.width, 0.0f);
-    if (columns.empty()) return;
-    const std::size_t active_count = columns.size();
-    columns.resize(active_count + std::size_t(lanes), columns.back());
-    alignas(64) float cosines[kMaxLanes], sines[kMaxLanes], out[kMaxLanes];
-    for (std::size_t i = 0; i < active_count; i += std::size_t(lanes)) {
-        for (int l = 0; l < lanes; ++l) {
-            // std::cos and std::sin, as the scalar definition (one angle per pixel).
-            const float turn = ratio_pixel_random(columns[i + std::size_t(l)], y, s.seed) * kQuarterPi;
-            cosines[l] = std::cos(turn);
-            sines[l] = std::sin(turn);
-        }
-        const V c = hn::Load(d, cosines), sn = hn::Load(d, sines);
-        const V directions[4][2] = {{c, sn},
-                                    {hn::Mul(h, hn::Sub(c, sn)), hn::Mul(h, hn::Add(c, sn))},
-                                    {hn::Neg(sn), c},
-                                    {hn::Mul(hn::Neg(h), hn::Add(c, sn)), hn::Mul(h, hn::Sub(c, sn))}};
-        const VI x = hn::LoadU(di, &columns[i]);
-        V sum = hn::Zero(d);
-        for (const auto &direction : directions) {
-            auto tap = [&](int t) {
-                const V t_px = hn::Set(d, float(t));
-                const VI dx = hn::ConvertTo(di, hn::Floor(hn::Add(hn::Mul(t_px, direction[0]), half)));
-                const VI dy = hn::ConvertTo(di, hn::Floor(hn::Add(hn::Mul(t_px, direction[1]), half)));
-                const VI sx = hn::Min(hn::Max(hn::Add(x, dx), zero_i), last_x);
-                const VI sy = hn::Min(hn::Max(hn::Add(row_y, dy), zero_i), last_y);
-                const V v = hn::GatherIndex(d, s.w, hn::Add(hn::Mul(sy, width), sx));
-                return hn::IfThenElse(hn::IsFinite(v), v, one);
-            };
-            // ratio estimator Eq. 29: the integral of |d^2 W_N / dt^2| along the line.
-            V before = tap(-radius), at = tap(1 - radius), variation = hn::Zero(d);
-            for (int t = 2 - radius; t <= radius; ++t) {
-                const V after = tap(t);
-                variation = hn::Add(variation, hn::Abs(hn::Add(hn::Sub(before, hn::Mul(two, at)), after)));
-                before = at;
-                at = after;
+    for (int x0 = 0; x0 < s.width; x0 += kRatioNoiseRunPx) {
+        const int run = std::min(kRatioNoiseRunPx, s.width - x0);
+        if (std::find(active + x0, active + x0 + run, 1) == active + x0 + run) continue;
+        const float turn = ratio_pixel_random(x0 / kRatioNoiseRunPx, y, s.seed) * kQuarterPi;
+        const float c = std::cos(turn), sn = std::sin(turn);
+        const float directions[4][2] = {{c, sn},
+                                        {kHalfSqrt2 * (c - sn), kHalfSqrt2 * (c + sn)},
+                                        {-sn, c},
+                                        {-kHalfSqrt2 * (c + sn), kHalfSqrt2 * (c - sn)}};
+        for (int line = 0; line < 4; ++line)
+            for (int t = -radius; t <= radius; ++t) {
+                const auto dx = std::ptrdiff_t(std::floor(float(t) * directions[line][0] + 0.5f));
+                const auto dy = std::ptrdiff_t(std::floor(float(t) * directions[line][1] + 0.5f));
+                offsets[std::size_t(line * taps + t + radius)] =
+                    dy * std::ptrdiff_t(s.padded_row_floats) + dx;
             }
-            sum = hn::Add(sum, hn::Mul(variation, hn::Set(d, per_difference)));
+        for (int l0 = 0; l0 < run; l0 += lanes) {
+            const float *at_pixel = centre + x0 + l0;  // lanes past the row's end read its padding
+            auto sum = hn::Zero(d);
+            for (int line = 0; line < 4; ++line) {
+                const std::ptrdiff_t *offset = &offsets[std::size_t(line * taps)];
+                // ratio estimator Eq. 29: the integral of |d^2 W_N / dt^2| along the line.
+                auto before = hn::LoadU(d, at_pixel + offset[0]), at = hn::LoadU(d, at_pixel + offset[1]);
+                auto variation = hn::Zero(d);
+                for (int i = 2; i < taps; ++i) {
+                    const auto after = hn::LoadU(d, at_pixel + offset[i]);
+                    variation =
+                        hn::Add(variation, hn::Abs(hn::Add(hn::Sub(before, hn::Mul(two, at)), after)));
+                    before = at;
+                    at = after;
+                }
+                sum = hn::Add(sum, hn::Mul(variation, hn::Set(d, per_difference)));
+            }
+            alignas(64) float out[kRatioNoiseRunPx];
+            hn::Store(hn::Mul(hn::Set(d, 0.25f), sum), d, out);  // the mean over n = 4 lines
+            for (int l = 0; l < std::min(lanes, run - l0); ++l)
+                if (active[x0 + l0 + l]) raw[x0 + l0 + l] = out[l];
         }
-        hn::Store(hn::Mul(hn::Set(d, 0.25f), sum), d, out);  // the mean over n = 4 lines
-        const std::size_t n = std::min(std::size_t(lanes), active_count - i);
-        for (std::size_t l = 0; l < n; ++l) raw[columns[i + l]] = out[l];
     }
 }
 
