@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <vector>
 
 #include "aaf/core/methods/ratio/ratio_rows.h"
 #include "aaf/core/util/error.h"
@@ -15,15 +16,50 @@ namespace {
 
 using detail::RatioBilateralPlanes;
 
-/// Row `y` of `view` packed: the view's own row when its pixels are
-/// adjacent, else a copy in `buffer` (width floats).
-const float *packed_row(ConstPlaneView view, int y, float *buffer) {
-    if (view.pixel_stride == 1) return &view(0, y);
-    for (int x = 0; x < view.width; ++x) buffer[x] = view(x, y);
+/// Pixels [x_begin, x_end) of row `y` of `view` packed: the view's own
+/// when its pixels are adjacent, else a copy in `buffer` (x_end - x_begin floats).
+const float *packed_span(ConstPlaneView view, int y, int x_begin, int x_end, float *buffer) {
+    if (view.pixel_stride == 1) return &view(x_begin, y);
+    for (int x = x_begin; x < x_end; ++x) buffer[x - x_begin] = view(x, y);
     return buffer;
 }
 
-/// Per-pixel tangent planes and Gaussians in packed form; inv_scale 0 marks "not a surface".
+/// The guides of pixels [x_begin, x_end) of row `y`, packed (strided views
+/// copied into a per-thread buffer).
+detail::RatioGuideRow guide_span(const RatioBilateralGuides &guides, ConstPlaneView sigma_px,
+                                 const RatioBilateralSettings &settings, int y, int x_begin, int x_end) {
+    const std::size_t span = std::size_t(x_end - x_begin);
+    thread_local std::vector<float> buffer;  // strided views' spans, packed
+    buffer.resize(std::max(buffer.size(), span * 8));
+    auto packed = [&](ConstPlaneView view, int slot) {
+        return packed_span(view, y, x_begin, x_end, &buffer[std::size_t(slot) * span]);
+    };
+    detail::RatioGuideRow in;
+    for (int c = 0; c < 3; ++c) {
+        in.position[c] = packed(guides.position[std::size_t(c)], c);
+        in.normal[c] = packed(guides.normal[std::size_t(c)], 3 + c);
+    }
+    in.scale_m = packed(guides.scale_m, 6);
+    in.sigma_px = packed(sigma_px, 7);
+    in.plane_sigma = settings.plane_sigma;
+    in.cutoff_sigmas = settings.cutoff_sigmas;
+    return in;
+}
+
+/// The centre data of pixels [x_begin, x_end) of row `y`, in a per-thread
+/// buffer valid until the thread's next call.
+detail::RatioCentreSpan centres_of(const RatioBilateralGuides &guides, ConstPlaneView sigma_px,
+                                   const RatioBilateralSettings &settings, int y, int x_begin, int x_end) {
+    const std::size_t stride = std::size_t(x_end - x_begin) + detail::kRatioPlaneSlack;
+    thread_local std::vector<float> storage;
+    if (storage.size() < stride * 5) storage.assign(stride * 5, 0.0f);  // the slack stays 0
+    float *at = storage.data();
+    const detail::RatioCentreSpan span{at, at + stride, at + 2 * stride, at + 3 * stride, at + 4 * stride};
+    detail::ratio_centres(guide_span(guides, sigma_px, settings, y, x_begin, x_end), x_end - x_begin, span);
+    return span;
+}
+
+/// The per-pixel tap planes in packed form; inv_scale 0 marks "not a surface".
 RatioBilateralPlanes planes_from(const RatioBilateralGuides &guides, ConstPlaneView sigma_px,
                                  const RatioBilateralSettings &settings) {
     RatioBilateralPlanes planes;
@@ -35,26 +71,10 @@ RatioBilateralPlanes planes_from(const RatioBilateralGuides &guides, ConstPlaneV
         plane.resize(count + detail::kRatioPlaneSlack);  // every pixel is written below
         std::fill(plane.begin() + std::ptrdiff_t(count), plane.end(), 0);
     };
-    for (FramePlane<float> *plane : {&planes.px, &planes.py, &planes.pz, &planes.nx, &planes.ny, &planes.nz,
-                                     &planes.plane_m, &planes.inv_scale, &planes.minus_half_inv_sigma_sq})
-        size(*plane);
+    for (FramePlane<float> *plane : {&planes.px, &planes.py, &planes.pz, &planes.inv_scale}) size(*plane);
     size(planes.radius_px);
     parallel_for_rows(planes.height, [&](int y) {
-        thread_local std::vector<float> buffer;  // strided views' rows, packed
-        buffer.resize(std::max(buffer.size(), std::size_t(width) * 8));
-        auto row = [&](ConstPlaneView view, int slot) {
-            return packed_row(view, y, &buffer[std::size_t(slot) * std::size_t(width)]);
-        };
-        detail::RatioGuideRow in;
-        for (int c = 0; c < 3; ++c) {
-            in.position[c] = row(guides.position[std::size_t(c)], c);
-            in.normal[c] = row(guides.normal[std::size_t(c)], 3 + c);
-        }
-        in.scale_m = row(guides.scale_m, 6);
-        in.sigma_px = row(sigma_px, 7);
-        in.plane_sigma = settings.plane_sigma;
-        in.cutoff_sigmas = settings.cutoff_sigmas;
-        detail::ratio_planes_row(in, y, planes);
+        detail::ratio_planes_row(guide_span(guides, sigma_px, settings, y, 0, width), y, planes);
     });
     return planes;
 }
@@ -109,8 +129,9 @@ void two_passes(const RatioBilateralGuides &guides, ConstPlaneView sigma_px,
         buffer.resize(std::max(buffer.size(), std::size_t(width) * std::size_t(k_count)));
         const float *rows[detail::kRatioMaxPlanes];
         for (int k = 0; k < k_count; ++k)
-            rows[k] = packed_row(sources[std::size_t(k)], y, &buffer[std::size_t(k) * std::size_t(width)]);
-        detail::ratio_bilateral_row_x(along_x, y, rows);
+            rows[k] = packed_span(sources[std::size_t(k)], y, 0, width,
+                                  &buffer[std::size_t(k) * std::size_t(width)]);
+        detail::ratio_bilateral_row_x(along_x, y, rows, centres_of(guides, sigma_px, settings, y, 0, width));
     });
     const int strips = (width + kStripPixels - 1) / kStripPixels;
     parallel_for_tiles(height, kTileRows, strips, 1, [&](const TileRange &tile) {
@@ -118,7 +139,8 @@ void two_passes(const RatioBilateralGuides &guides, ConstPlaneView sigma_px,
         for (int strip = tile.col_begin; strip != tile.col_end; ++strip) {
             const int x_begin = strip * kStripPixels, x_end = std::min(width, x_begin + kStripPixels);
             for (int y = tile.row_begin; y != tile.row_end; ++y) {
-                detail::ratio_bilateral_row_y(along_y, y, x_begin, x_end, values);
+                detail::ratio_bilateral_row_y(along_y, y, x_begin, x_end, values,
+                                              centres_of(guides, sigma_px, settings, y, x_begin, x_end));
                 const float *planes_out[detail::kRatioMaxPlanes];
                 for (int k = 0; k < k_count; ++k)
                     planes_out[k] = &values[std::size_t(k) * std::size_t(x_end - x_begin)];

@@ -19,14 +19,20 @@ inline constexpr std::size_t kRatioPlaneSlack = 16;
 struct RatioBilateralPlanes {
     int width = 0, height = 0;
     FramePlane<float> px, py, pz;  ///< the position, metres
-    FramePlane<float> nx, ny, nz;  ///< the unit normal
-    FramePlane<float> plane_m;     ///< n . p: the tangent plane's offset, metres
     /// 1 / (plane_sigma scale_m); 0 marks no surface: never a tap, never filtered.
     FramePlane<float> inv_scale;
-    FramePlane<float> minus_half_inv_sigma_sq;  ///< -1 / (2 sigma^2), sigma in pixels
     /// ceil(cutoff x sigma) (at most the image's larger side): how far the
     /// taps reach; 0 keeps the pixel's value.
     FramePlane<std::int32_t> radius_px;
+};
+
+/// What a pass needs of its centre pixels only, for a span of a row
+/// (ratio_centres computes it per span: a frame of it would be written
+/// once and read twice); each array kRatioPlaneSlack floats longer than the span.
+struct RatioCentreSpan {
+    float *nx, *ny, *nz;             ///< the unit normal
+    float *plane_m;                  ///< n . p: the tangent plane's offset, metres
+    float *minus_half_inv_sigma_sq;  ///< -1 / (2 sigma^2), sigma in pixels; 0 where not filtered
 };
 
 /// One row of the guides and widths RatioBilateralPlanes is made from, packed.
@@ -38,11 +44,14 @@ struct RatioGuideRow {
 };
 
 /// Writes row `y` of every plane of `planes` (sized already) from `in`: the
-/// unit normal, n . p, 1 / (plane_sigma scale_m) and the Gaussian where the
-/// pixel is a surface (positive finite scale, finite position, non-zero
-/// finite normal), zeros elsewhere; the reach 0 where sigma is not positive
-/// and finite.
+/// position and 1 / (plane_sigma scale_m) where the pixel is a surface
+/// (positive finite scale, finite position, non-zero finite normal), zeros
+/// elsewhere; the reach 0 where sigma is not positive and finite.
 void ratio_planes_row(const RatioGuideRow &in, int y, RatioBilateralPlanes &planes);
+
+/// The unit normal, n . p and the Gaussian of the `count` pixels `in`
+/// points at (zeros where ratio_planes_row marks no surface or no filtering).
+void ratio_centres(const RatioGuideRow &in, int count, const RatioCentreSpan &out);
 
 /// One pass of the bilateral over `count` planes with the same weights.
 struct RatioBilateralSweep {
@@ -55,11 +64,14 @@ struct RatioBilateralSweep {
 
 /// The horizontal pass over row `y`: output[k](x, y) = the weighted mean of
 /// source_rows[k][x'] over the row's taps x' of pixel x, for every x.
-void ratio_bilateral_row_x(const RatioBilateralSweep &sweep, int y, const float *const *source_rows);
+void ratio_bilateral_row_x(const RatioBilateralSweep &sweep, int y, const float *const *source_rows,
+                           const RatioCentreSpan &centres);
 
 /// The vertical pass over pixels [x_begin, x_end) of row `y`: their `count`
-/// filtered values plane after plane to `values` (count x (x_end - x_begin) floats).
-void ratio_bilateral_row_y(const RatioBilateralSweep &sweep, int y, int x_begin, int x_end, float *values);
+/// filtered values plane after plane to `values` (count x (x_end - x_begin) floats);
+/// `centres` holds those pixels' centre data.
+void ratio_bilateral_row_y(const RatioBilateralSweep &sweep, int y, int x_begin, int x_end, float *values,
+                           const RatioCentreSpan &centres);
 
 /// A hash (PCG-style integer mix) in [0, 1) of (x, y, seed), so the noise
 /// estimate's turn depends only on the place and the seed, never on the
