@@ -46,19 +46,6 @@ detail::RatioGuideRow guide_span(const RatioBilateralGuides &guides, ConstPlaneV
     return in;
 }
 
-/// The centre data of pixels [x_begin, x_end) of row `y`, in a per-thread
-/// buffer valid until the thread's next call.
-detail::RatioCentreSpan centres_of(const RatioBilateralGuides &guides, ConstPlaneView sigma_px,
-                                   const RatioBilateralSettings &settings, int y, int x_begin, int x_end) {
-    const std::size_t stride = std::size_t(x_end - x_begin) + detail::kRatioPlaneSlack;
-    thread_local std::vector<float> storage;
-    if (storage.size() < stride * 5) storage.assign(stride * 5, 0.0f);  // the slack stays 0
-    float *at = storage.data();
-    const detail::RatioCentreSpan span{at, at + stride, at + 2 * stride, at + 3 * stride, at + 4 * stride};
-    detail::ratio_centres(guide_span(guides, sigma_px, settings, y, x_begin, x_end), x_end - x_begin, span);
-    return span;
-}
-
 /// The per-pixel tap planes in packed form; inv_scale 0 marks "not a surface".
 RatioBilateralPlanes planes_from(const RatioBilateralGuides &guides, ConstPlaneView sigma_px,
                                  const RatioBilateralSettings &settings) {
@@ -131,7 +118,7 @@ void two_passes(const RatioBilateralGuides &guides, ConstPlaneView sigma_px,
         for (int k = 0; k < k_count; ++k)
             rows[k] = packed_span(sources[std::size_t(k)], y, 0, width,
                                   &buffer[std::size_t(k) * std::size_t(width)]);
-        detail::ratio_bilateral_row_x(along_x, y, rows, centres_of(guides, sigma_px, settings, y, 0, width));
+        detail::ratio_bilateral_row_x(along_x, y, rows, guide_span(guides, sigma_px, settings, y, 0, width));
     });
     const int strips = (width + kStripPixels - 1) / kStripPixels;
     parallel_for_tiles(height, kTileRows, strips, 1, [&](const TileRange &tile) {
@@ -140,7 +127,7 @@ void two_passes(const RatioBilateralGuides &guides, ConstPlaneView sigma_px,
             const int x_begin = strip * kStripPixels, x_end = std::min(width, x_begin + kStripPixels);
             for (int y = tile.row_begin; y != tile.row_end; ++y) {
                 detail::ratio_bilateral_row_y(along_y, y, x_begin, x_end, values,
-                                              centres_of(guides, sigma_px, settings, y, x_begin, x_end));
+                                              guide_span(guides, sigma_px, settings, y, x_begin, x_end));
                 const float *planes_out[detail::kRatioMaxPlanes];
                 for (int k = 0; k < k_count; ++k)
                     planes_out[k] = &values[std::size_t(k) * std::size_t(x_end - x_begin)];

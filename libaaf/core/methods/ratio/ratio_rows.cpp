@@ -54,6 +54,64 @@ HWY_INLINE V fast_exp_nonpositive(D d, V x) {
     return hn::Mul(p, scale);
 }
 
+/// Lanes [0, n) of `from`, zeros after (a row's last, partial vector).
+HWY_INLINE V load_part(const float *from, int n) {
+    const D d;
+    if (n == int(hn::Lanes(d))) return hn::LoadU(d, from);
+    alignas(64) float lane[kMaxLanes] = {};
+    std::copy_n(from, n, lane);
+    return hn::Load(d, lane);
+}
+
+/// Stores lanes [0, n) of `v`, nothing after (the next row may be another thread's).
+template <class DV, class VV, typename T>
+HWY_INLINE void store_part(DV dv, VV v, T *to, int n) {
+    if (n == int(hn::Lanes(dv))) return hn::StoreU(v, dv, to);
+    alignas(64) T lane[kMaxLanes];
+    hn::Store(v, dv, lane);
+    std::copy_n(lane, n, to);
+}
+
+/// One vector of the guides' per-pixel values (ratio_planes_row's and the passes' centres).
+struct GuideLanes {
+    V px, py, pz, nx, ny, nz, plane_m, inv_scale, minus_half_inv_sigma_sq;
+    VI radius;
+};
+
+/// The guides of pixels [x0, x0 + n) of `in`, lane by lane: square roots and
+/// quotients are correctly rounded on every instruction set, the sums kept in order.
+HWY_INLINE GuideLanes guide_lanes(const RatioGuideRow &in, int x0, int n, float reach_cap_px) {
+    const D d;
+    const DI di;
+    const V zero = hn::Zero(d), one = hn::Set(d, 1.0f), plane_sigma = hn::Set(d, in.plane_sigma);
+    const V cutoff = hn::Set(d, in.cutoff_sigmas), reach_cap = hn::Set(d, reach_cap_px);
+    const V p0 = load_part(in.position[0] + x0, n), p1 = load_part(in.position[1] + x0, n),
+            p2 = load_part(in.position[2] + x0, n);
+    const V n0 = load_part(in.normal[0] + x0, n), n1 = load_part(in.normal[1] + x0, n),
+            n2 = load_part(in.normal[2] + x0, n);
+    const V scale = load_part(in.scale_m + x0, n), sigma = load_part(in.sigma_px + x0, n);
+    const V length = hn::Sqrt(hn::Add(hn::Add(hn::Mul(n0, n0), hn::Mul(n1, n1)), hn::Mul(n2, n2)));
+    const auto surface = hn::And(hn::And(hn::Gt(scale, zero), hn::IsFinite(scale)),
+                                 hn::And(hn::IsFinite(hn::Add(hn::Add(p0, p1), p2)),
+                                         hn::And(hn::Gt(length, zero), hn::IsFinite(length))));
+    const V nx = hn::Div(n0, length), ny = hn::Div(n1, length), nz = hn::Div(n2, length);
+    const V plane_m = hn::Add(hn::Add(hn::Mul(nx, p0), hn::Mul(ny, p1)), hn::Mul(nz, p2));
+    const V inv_scale = hn::IfThenElseZero(surface, hn::Div(one, hn::Mul(plane_sigma, scale)));
+    // A tap reaching past the image adds nothing: the reach is capped there.
+    const auto filtered = hn::And(hn::And(hn::Gt(sigma, zero), hn::IsFinite(sigma)), hn::Ne(inv_scale, zero));
+    const VI radius = hn::ConvertTo(di, hn::Min(hn::Ceil(hn::Mul(cutoff, sigma)), reach_cap));
+    return {hn::IfThenElseZero(surface, p0),
+            hn::IfThenElseZero(surface, p1),
+            hn::IfThenElseZero(surface, p2),
+            hn::IfThenElseZero(surface, nx),
+            hn::IfThenElseZero(surface, ny),
+            hn::IfThenElseZero(surface, nz),
+            hn::IfThenElseZero(surface, plane_m),
+            inv_scale,
+            hn::IfThenElseZero(filtered, hn::Div(hn::Set(d, -0.5f), hn::Mul(sigma, sigma))),
+            hn::IfThenElseZero(hn::RebindMask(di, filtered), radius)};
+}
+
 /// The centre pixels of the lanes: their tangent planes, Gaussians and tap ranges.
 struct Centres {
     V nx, ny, nz, plane_m, inv_scale, minus_half_inv_sigma_sq;
@@ -62,20 +120,12 @@ struct Centres {
     V lo_px, hi_px;  ///< the same as floats (exact), to compare with
 };
 
-HWY_INLINE Centres load_centres(const RatioBilateralPlanes &p, std::size_t c, const RatioCentreSpan &span,
-                                std::size_t i, VI radius) {
-    const D d;
-    return {hn::LoadU(d, &span.nx[i]),
-            hn::LoadU(d, &span.ny[i]),
-            hn::LoadU(d, &span.nz[i]),
-            hn::LoadU(d, &span.plane_m[i]),
-            hn::LoadU(d, &p.inv_scale[c]),
-            hn::LoadU(d, &span.minus_half_inv_sigma_sq[i]),
-            radius,
-            hn::Zero(DI()),
-            hn::Zero(DI()),
-            hn::Zero(D()),
-            hn::Zero(D())};
+/// The centres' data from their guides (lanes [0, n) of `in` from `i` on),
+/// computed only for the vectors that filter.
+HWY_INLINE Centres load_centres(const RatioGuideRow &in, int i, int n, VI radius) {
+    const GuideLanes g = guide_lanes(in, i, n, 0.0f);  // the reach comes from the planes
+    return {g.nx,   g.ny,           g.nz,           g.plane_m,     g.inv_scale,  g.minus_half_inv_sigma_sq,
+            radius, hn::Zero(DI()), hn::Zero(DI()), hn::Zero(D()), hn::Zero(D())};
 }
 
 /// Where the taps' guides and values start (offset 0 at the lanes' centres).
@@ -150,7 +200,7 @@ HWY_INLINE VI load_radius(const std::int32_t *radius, int n) {
 
 template <int K>
 void row_x(const RatioBilateralSweep &s, int y, const float *const *source_rows,
-           const RatioCentreSpan &centres) {
+           const RatioGuideRow &centres) {
     const D d;
     const DI di;
     const int lanes = int(hn::Lanes(d));
@@ -187,7 +237,7 @@ void row_x(const RatioBilateralSweep &s, int y, const float *const *source_rows,
                             std::size_t(n) * sizeof(float));
             continue;
         }
-        Centres c = load_centres(p, row + std::size_t(x0), centres, std::size_t(x0), reach_px);
+        Centres c = load_centres(centres, x0, n, reach_px);
         const VI x = hn::Iota(di, x0);
         set_range(c, hn::Max(hn::Neg(c.radius), hn::Neg(x)), hn::Min(c.radius, hn::Sub(last, x)));
         Taps at = taps;
@@ -205,7 +255,7 @@ void row_x(const RatioBilateralSweep &s, int y, const float *const *source_rows,
 
 template <int K>
 void row_y(const RatioBilateralSweep &s, int y, int x_begin, int x_end, float *values,
-           const RatioCentreSpan &centres) {
+           const RatioGuideRow &centres) {
     const D d;
     const DI di;
     const int lanes = int(hn::Lanes(d));
@@ -222,7 +272,7 @@ void row_y(const RatioBilateralSweep &s, int y, int x_begin, int x_end, float *v
                 std::copy_n(s.source[k] + c0, n, values + std::size_t(k) * span + std::size_t(x0 - x_begin));
             continue;
         }
-        Centres c = load_centres(p, c0, centres, std::size_t(x0 - x_begin), reach_px);
+        Centres c = load_centres(centres, x0 - x_begin, n, reach_px);
         set_range(c, hn::Max(hn::Neg(c.radius), up), hn::Min(c.radius, down));
         Taps at{&p.px[c0], &p.py[c0], &p.pz[c0], &p.inv_scale[c0], {}};
         for (int k = 0; k < K; ++k) at.source[k] = s.source[k] + c0;
@@ -262,84 +312,26 @@ void with_count(int count, Args &&...args) {
 template <int K>
 struct RowX {
     static void run(const RatioBilateralSweep &s, int y, const float *const *source_rows,
-                    const RatioCentreSpan &centres) {
+                    const RatioGuideRow &centres) {
         row_x<K>(s, y, source_rows, centres);
     }
 };
 template <int K>
 struct RowY {
     static void run(const RatioBilateralSweep &s, int y, int x_begin, int x_end, float *values,
-                    const RatioCentreSpan &centres) {
+                    const RatioGuideRow &centres) {
         row_y<K>(s, y, x_begin, x_end, values, centres);
     }
 };
 
 void RatioBilateralRowX(const RatioBilateralSweep &s, int y, const float *const *source_rows,
-                        const RatioCentreSpan &centres) {
+                        const RatioGuideRow &centres) {
     with_count<RowX>(s.count, s, y, source_rows, centres);
 }
 
 void RatioBilateralRowY(const RatioBilateralSweep &s, int y, int x_begin, int x_end, float *values,
-                        const RatioCentreSpan &centres) {
+                        const RatioGuideRow &centres) {
     with_count<RowY>(s.count, s, y, x_begin, x_end, values, centres);
-}
-
-/// Lanes [0, n) of `from`, zeros after (a row's last, partial vector).
-HWY_INLINE V load_part(const float *from, int n) {
-    const D d;
-    if (n == int(hn::Lanes(d))) return hn::LoadU(d, from);
-    alignas(64) float lane[kMaxLanes] = {};
-    std::copy_n(from, n, lane);
-    return hn::Load(d, lane);
-}
-
-/// Stores lanes [0, n) of `v`, nothing after (the next row may be another thread's).
-template <class DV, class VV, typename T>
-HWY_INLINE void store_part(DV dv, VV v, T *to, int n) {
-    if (n == int(hn::Lanes(dv))) return hn::StoreU(v, dv, to);
-    alignas(64) T lane[kMaxLanes];
-    hn::Store(v, dv, lane);
-    std::copy_n(lane, n, to);
-}
-
-/// One vector of ratio_planes_row's and ratio_centres' values.
-struct GuideLanes {
-    V px, py, pz, nx, ny, nz, plane_m, inv_scale, minus_half_inv_sigma_sq;
-    VI radius;
-};
-
-/// The guides of pixels [x0, x0 + n) of `in`, lane by lane: square roots and
-/// quotients are correctly rounded on every instruction set, the sums kept in order.
-HWY_INLINE GuideLanes guide_lanes(const RatioGuideRow &in, int x0, int n, float reach_cap_px) {
-    const D d;
-    const DI di;
-    const V zero = hn::Zero(d), one = hn::Set(d, 1.0f), plane_sigma = hn::Set(d, in.plane_sigma);
-    const V cutoff = hn::Set(d, in.cutoff_sigmas), reach_cap = hn::Set(d, reach_cap_px);
-    const V p0 = load_part(in.position[0] + x0, n), p1 = load_part(in.position[1] + x0, n),
-            p2 = load_part(in.position[2] + x0, n);
-    const V n0 = load_part(in.normal[0] + x0, n), n1 = load_part(in.normal[1] + x0, n),
-            n2 = load_part(in.normal[2] + x0, n);
-    const V scale = load_part(in.scale_m + x0, n), sigma = load_part(in.sigma_px + x0, n);
-    const V length = hn::Sqrt(hn::Add(hn::Add(hn::Mul(n0, n0), hn::Mul(n1, n1)), hn::Mul(n2, n2)));
-    const auto surface = hn::And(hn::And(hn::Gt(scale, zero), hn::IsFinite(scale)),
-                                 hn::And(hn::IsFinite(hn::Add(hn::Add(p0, p1), p2)),
-                                         hn::And(hn::Gt(length, zero), hn::IsFinite(length))));
-    const V nx = hn::Div(n0, length), ny = hn::Div(n1, length), nz = hn::Div(n2, length);
-    const V plane_m = hn::Add(hn::Add(hn::Mul(nx, p0), hn::Mul(ny, p1)), hn::Mul(nz, p2));
-    const V inv_scale = hn::IfThenElseZero(surface, hn::Div(one, hn::Mul(plane_sigma, scale)));
-    // A tap reaching past the image adds nothing: the reach is capped there.
-    const auto filtered = hn::And(hn::And(hn::Gt(sigma, zero), hn::IsFinite(sigma)), hn::Ne(inv_scale, zero));
-    const VI radius = hn::ConvertTo(di, hn::Min(hn::Ceil(hn::Mul(cutoff, sigma)), reach_cap));
-    return {hn::IfThenElseZero(surface, p0),
-            hn::IfThenElseZero(surface, p1),
-            hn::IfThenElseZero(surface, p2),
-            hn::IfThenElseZero(surface, nx),
-            hn::IfThenElseZero(surface, ny),
-            hn::IfThenElseZero(surface, nz),
-            hn::IfThenElseZero(surface, plane_m),
-            inv_scale,
-            hn::IfThenElseZero(filtered, hn::Div(hn::Set(d, -0.5f), hn::Mul(sigma, sigma))),
-            hn::IfThenElseZero(hn::RebindMask(di, filtered), radius)};
 }
 
 /// ratio_bilateral.cpp's per-pixel tap planes.
@@ -357,21 +349,6 @@ void RatioPlanesRow(const RatioGuideRow &in, int y, RatioBilateralPlanes &p) {
         store_part(d, g.pz, &p.pz[c], n);
         store_part(d, g.inv_scale, &p.inv_scale[c], n);
         store_part(di, g.radius, &p.radius_px[c], n);
-    }
-}
-
-/// The centre data of `count` pixels (the reach is not needed: no cap).
-void RatioCentres(const RatioGuideRow &in, int count, const RatioCentreSpan &out) {
-    const D d;
-    const int lanes = int(hn::Lanes(d));
-    for (int x0 = 0; x0 < count; x0 += lanes) {
-        const int n = std::min(lanes, count - x0);
-        const GuideLanes g = guide_lanes(in, x0, n, 0.0f);
-        store_part(d, g.nx, out.nx + x0, n);
-        store_part(d, g.ny, out.ny + x0, n);
-        store_part(d, g.nz, out.nz + x0, n);
-        store_part(d, g.plane_m, out.plane_m + x0, n);
-        store_part(d, g.minus_half_inv_sigma_sq, out.minus_half_inv_sigma_sq + x0, n);
     }
 }
 
@@ -477,17 +454,16 @@ HWY_EXPORT(RatioBilateralRowX);
 HWY_EXPORT(RatioBilateralRowY);
 HWY_EXPORT(RatioNoiseRow);
 HWY_EXPORT(RatioPlanesRow);
-HWY_EXPORT(RatioCentres);
 HWY_EXPORT(RatioBoxRow);
 
 void ratio_bilateral_row_x(const RatioBilateralSweep &sweep, int y, const float *const *source_rows,
-                           const RatioCentreSpan &centres) {
+                           const RatioGuideRow &centres) {
     (void)instruction_set();  // applies $AAF_ISA before the first dispatch
     HWY_DYNAMIC_DISPATCH(RatioBilateralRowX)(sweep, y, source_rows, centres);
 }
 
 void ratio_bilateral_row_y(const RatioBilateralSweep &sweep, int y, int x_begin, int x_end, float *values,
-                           const RatioCentreSpan &centres) {
+                           const RatioGuideRow &centres) {
     (void)instruction_set();
     HWY_DYNAMIC_DISPATCH(RatioBilateralRowY)(sweep, y, x_begin, x_end, values, centres);
 }
@@ -500,11 +476,6 @@ void ratio_noise_row(const RatioNoiseSweep &sweep, int y, float *raw) {
 void ratio_planes_row(const RatioGuideRow &in, int y, RatioBilateralPlanes &planes) {
     (void)instruction_set();
     HWY_DYNAMIC_DISPATCH(RatioPlanesRow)(in, y, planes);
-}
-
-void ratio_centres(const RatioGuideRow &in, int count, const RatioCentreSpan &out) {
-    (void)instruction_set();
-    HWY_DYNAMIC_DISPATCH(RatioCentres)(in, count, out);
 }
 
 void ratio_box_row(const float *const *rows, int row_count, int width, float *out) {

@@ -26,15 +26,6 @@ struct RatioBilateralPlanes {
     FramePlane<std::int32_t> radius_px;
 };
 
-/// What a pass needs of its centre pixels only, for a span of a row
-/// (ratio_centres computes it per span: a frame of it would be written
-/// once and read twice); each array kRatioPlaneSlack floats longer than the span.
-struct RatioCentreSpan {
-    float *nx, *ny, *nz;             ///< the unit normal
-    float *plane_m;                  ///< n . p: the tangent plane's offset, metres
-    float *minus_half_inv_sigma_sq;  ///< -1 / (2 sigma^2), sigma in pixels; 0 where not filtered
-};
-
 /// One row of the guides and widths RatioBilateralPlanes is made from, packed.
 struct RatioGuideRow {
     const float *position[3], *normal[3];
@@ -49,10 +40,6 @@ struct RatioGuideRow {
 /// elsewhere; the reach 0 where sigma is not positive and finite.
 void ratio_planes_row(const RatioGuideRow &in, int y, RatioBilateralPlanes &planes);
 
-/// The unit normal, n . p and the Gaussian of the `count` pixels `in`
-/// points at (zeros where ratio_planes_row marks no surface or no filtering).
-void ratio_centres(const RatioGuideRow &in, int count, const RatioCentreSpan &out);
-
 /// One pass of the bilateral over `count` planes with the same weights.
 struct RatioBilateralSweep {
     const RatioBilateralPlanes *planes = nullptr;
@@ -63,15 +50,17 @@ struct RatioBilateralSweep {
 };
 
 /// The horizontal pass over row `y`: output[k](x, y) = the weighted mean of
-/// source_rows[k][x'] over the row's taps x' of pixel x, for every x.
+/// source_rows[k][x'] over the row's taps x' of pixel x, for every x;
+/// `centres` points at the row's guides (the filtered pixels' tangent planes
+/// and Gaussians are computed from them, not kept as frame planes).
 void ratio_bilateral_row_x(const RatioBilateralSweep &sweep, int y, const float *const *source_rows,
-                           const RatioCentreSpan &centres);
+                           const RatioGuideRow &centres);
 
 /// The vertical pass over pixels [x_begin, x_end) of row `y`: their `count`
 /// filtered values plane after plane to `values` (count x (x_end - x_begin) floats);
-/// `centres` holds those pixels' centre data.
+/// `centres` points at those pixels' guides.
 void ratio_bilateral_row_y(const RatioBilateralSweep &sweep, int y, int x_begin, int x_end, float *values,
-                           const RatioCentreSpan &centres);
+                           const RatioGuideRow &centres);
 
 /// A hash (PCG-style integer mix) in [0, 1) of (x, y, seed), so the noise
 /// estimate's turn depends only on the place and the seed, never on the
