@@ -382,6 +382,22 @@ void RatioBoxRow(const float *const *rows, int row_count, int width, float *out)
     for (; x < width; ++x) scalar(x);
 }
 
+/// The offsets in the padded copy from a pixel to the nearest pixels of its
+/// line's taps t = -radius .. radius along `direction` (x, y), in lanes of
+/// t: floor(t direction + 1/2) rounded apart, as one float at a time would.
+HWY_INLINE void line_offsets(const float (&direction)[2], int radius, std::int32_t row_floats,
+                             std::int32_t *offsets) {
+    const D d;
+    const DI di;
+    const V half = hn::Set(d, 0.5f), along_x = hn::Set(d, direction[0]), along_y = hn::Set(d, direction[1]);
+    for (int t0 = -radius; t0 <= radius; t0 += int(hn::Lanes(d))) {
+        const V t = hn::ConvertTo(d, hn::Iota(di, t0));
+        const VI dx = hn::ConvertTo(di, hn::Floor(hn::Add(hn::Mul(t, along_x), half)));
+        const VI dy = hn::ConvertTo(di, hn::Floor(hn::Add(hn::Mul(t, along_y), half)));
+        hn::StoreU(hn::Add(hn::Mul(dy, hn::Set(di, row_floats)), dx), di, offsets + (t0 + radius));
+    }
+}
+
 /// The raw E of the row's active pixels (ratio estimator Eq. 29): along 4
 /// lines 45 degrees apart, turned by one hashed angle per run of
 /// kRatioNoiseRunPx pixels, the mean absolute second difference of W_N over
@@ -397,8 +413,9 @@ void RatioNoiseRow(const RatioNoiseSweep &s, int y, float *raw) {
     const unsigned char *active = s.active + std::size_t(y) * std::size_t(s.width);
     // The row's centre pixel (x = 0) in the padded copy.
     const float *centre = s.padded + std::size_t(y + radius) * s.padded_row_floats + std::size_t(radius);
-    thread_local std::vector<std::ptrdiff_t> offsets;  // per line, per tap: from a pixel to its tap
-    offsets.resize(std::size_t(4 * taps));
+    const std::int32_t row_floats = std::int32_t(s.padded_row_floats);
+    thread_local std::vector<std::int32_t> offsets;     // per line, per tap: from a pixel to its tap
+    offsets.resize(std::size_t(4 * taps + kMaxLanes));  // a vector past the last
     std::fill_n(raw, s.width, 0.0f);
     for (int x0 = 0; x0 < s.width; x0 += kRatioNoiseRunPx) {
         const int run = std::min(kRatioNoiseRunPx, s.width - x0);
@@ -410,17 +427,12 @@ void RatioNoiseRow(const RatioNoiseSweep &s, int y, float *raw) {
                                         {-sn, c},
                                         {-kHalfSqrt2 * (c + sn), kHalfSqrt2 * (c - sn)}};
         for (int line = 0; line < 4; ++line)
-            for (int t = -radius; t <= radius; ++t) {
-                const auto dx = std::ptrdiff_t(std::floor(float(t) * directions[line][0] + 0.5f));
-                const auto dy = std::ptrdiff_t(std::floor(float(t) * directions[line][1] + 0.5f));
-                offsets[std::size_t(line * taps + t + radius)] =
-                    dy * std::ptrdiff_t(s.padded_row_floats) + dx;
-            }
+            line_offsets(directions[line], radius, row_floats, &offsets[std::size_t(line * taps)]);
         for (int l0 = 0; l0 < run; l0 += lanes) {
             const float *at_pixel = centre + x0 + l0;  // lanes past the row's end read its padding
             auto sum = hn::Zero(d);
             for (int line = 0; line < 4; ++line) {
-                const std::ptrdiff_t *offset = &offsets[std::size_t(line * taps)];
+                const std::int32_t *offset = &offsets[std::size_t(line * taps)];
                 // ratio estimator Eq. 29: the integral of |d^2 W_N / dt^2| along the line.
                 auto before = hn::LoadU(d, at_pixel + offset[0]), at = hn::LoadU(d, at_pixel + offset[1]);
                 auto variation = hn::Zero(d);
