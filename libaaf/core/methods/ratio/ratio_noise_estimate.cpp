@@ -28,40 +28,41 @@ void dilate(const unsigned char *__restrict in, int count, int radius, unsigned 
         for (int x = std::max(0, -offset); x < std::min(count, count - offset); ++x) out[x] |= in[x + offset];
 }
 
-/// 1 where the (2 radius + 1)^2 window around the pixel holds two different
-/// values of `w` (width x height, rows `row_floats` apart), else 0: a window with two values
-/// holds two neighbours that differ, so it is enough to flag each pixel that
-/// differs from its right or lower neighbour and dilate the flags by
-/// `radius` (a square, separably).
-FramePlane<unsigned char> varying_windows(const float *w, std::size_t row_floats, int width, int height,
-                                          int radius) {
-    const std::size_t count = std::size_t(width) * std::size_t(height);
-    FramePlane<unsigned char> flags, rows, out;
-    for (FramePlane<unsigned char> *plane : {&flags, &rows, &out}) plane->resize(count);  // written in full
+/// Per row, 1 where pixels [x - radius, x + radius] of the row hold a pixel
+/// of `w` (width x height, rows `row_floats` apart) that differs from its
+/// right or lower neighbour, else 0. A (2 radius + 1)^2 window with two
+/// values holds two neighbours that differ, so OR-ing 2 radius + 1 of these
+/// rows (active_row) tells whether the window varies.
+FramePlane<unsigned char> varying_along_rows(const float *w, std::size_t row_floats, int width, int height,
+                                             int radius) {
+    FramePlane<unsigned char> out;
+    out.resize(std::size_t(width) * std::size_t(height));  // written in full
     parallel_for_rows(height, [&](int y) {
         const int n = width;  // a local: a byte store might alias a captured value, not a local
         const float *row = w + std::size_t(y) * row_floats;
         const bool has_below = y + 1 < height;
         const float *below = has_below ? row + row_floats : row;  // read, then ignored, on the last row
-        unsigned char *__restrict flag = &flags[std::size_t(y) * std::size_t(width)];
+        thread_local std::vector<unsigned char> flags;
+        flags.resize(std::size_t(n));
+        unsigned char *__restrict flag = flags.data();
         // a != b holds where either is NaN: NaN differs from everything.
         for (int x = 0; x + 1 < n; ++x) flag[x] = (row[x] != row[x + 1]) | (has_below & (row[x] != below[x]));
         flag[n - 1] = has_below & (row[n - 1] != below[n - 1]);
-    });
-    parallel_for_rows(height, [&](int y) {
-        const std::size_t first = std::size_t(y) * std::size_t(width);
-        dilate(&flags[first], width, radius, &rows[first]);
-    });
-    parallel_for_rows(height, [&](int y) {
-        const int n = width, first = std::max(0, y - radius), last = std::min(height - 1, y + radius);
-        unsigned char *__restrict row = &out[std::size_t(y) * std::size_t(n)];
-        std::fill_n(row, n, 0);
-        for (int ty = first; ty <= last; ++ty) {
-            const unsigned char *__restrict from = &rows[std::size_t(ty) * std::size_t(n)];
-            for (int x = 0; x < n; ++x) row[x] |= from[x];
-        }
+        dilate(flag, n, radius, &out[std::size_t(y) * std::size_t(width)]);
     });
     return out;
+}
+
+/// Row `y` of the pixels whose (2 radius + 1)^2 window varies: the OR of
+/// rows y - radius .. y + radius (clipped) of varying_along_rows' plane.
+void active_row(const FramePlane<unsigned char> &along_rows, int width, int height, int radius, int y,
+                unsigned char *__restrict row) {
+    const int n = width, first = std::max(0, y - radius), last = std::min(height - 1, y + radius);
+    std::fill_n(row, n, 0);
+    for (int ty = first; ty <= last; ++ty) {
+        const unsigned char *__restrict from = &along_rows[std::size_t(ty) * std::size_t(n)];
+        for (int x = 0; x < n; ++x) row[x] |= from[x];
+    }
 }
 
 }  // namespace
@@ -98,8 +99,8 @@ void ratio_noise_estimate(ConstPlaneView w, int line_radius_px, std::uint32_t se
     });
     const float *interior = &padded[std::size_t(radius) * std::size_t(padded_width) + std::size_t(radius)];
     // Every line's taps of an inactive pixel lie in a constant window: E is 0 exactly, without the work.
-    const FramePlane<unsigned char> active =
-        varying_windows(interior, std::size_t(padded_width), width, height, radius);
+    const FramePlane<unsigned char> along_rows =
+        varying_along_rows(interior, std::size_t(padded_width), width, height, radius);
     detail::RatioNoiseSweep sweep;
     sweep.padded = padded.data();
     sweep.padded_row_floats = std::size_t(padded_width);
@@ -107,11 +108,14 @@ void ratio_noise_estimate(ConstPlaneView w, int line_radius_px, std::uint32_t se
     sweep.height = height;
     sweep.line_radius_px = line_radius_px;
     sweep.seed = seed;
-    sweep.active = active.data();
     FramePlane<float> raw;
     raw.resize(std::size_t(width) * std::size_t(height));  // written in full
-    parallel_for_rows(
-        height, [&](int y) { detail::ratio_noise_row(sweep, y, &raw[std::size_t(y) * std::size_t(width)]); });
+    parallel_for_rows(height, [&](int y) {
+        thread_local std::vector<unsigned char> active;
+        active.resize(std::size_t(width));
+        active_row(along_rows, width, height, radius, y, active.data());
+        detail::ratio_noise_row(sweep, y, active.data(), &raw[std::size_t(y) * std::size_t(width)]);
+    });
     // Sec. 4.2: E is noisy itself (random lines), so a 3x3 box filter over it.
     parallel_for_rows(height, [&](int y) {
         const float *rows[3];

@@ -404,13 +404,12 @@ HWY_INLINE void line_offsets(const float (&direction)[2], int radius, std::int32
 /// nearest-pixel taps (the padded copy repeats the edges and reads
 /// non-finite values as 1). A run's pixels tap at the same offsets, so each
 /// tap is one vector load; lanes never span two runs.
-void RatioNoiseRow(const RatioNoiseSweep &s, int y, float *raw) {
+void RatioNoiseRow(const RatioNoiseSweep &s, int y, const unsigned char *active, float *raw) {
     const hn::CappedTag<float, kRatioNoiseRunPx> d;
     const int lanes = int(hn::Lanes(d)), radius = s.line_radius_px, taps = 2 * radius + 1;
     const float per_difference = 1.0f / float(taps - 2);
     constexpr float kQuarterPi = 0.78539816f, kHalfSqrt2 = 0.70710678f;
     const auto two = hn::Set(d, 2.0f);
-    const unsigned char *active = s.active + std::size_t(y) * std::size_t(s.width);
     // The row's centre pixel (x = 0) in the padded copy.
     const float *centre = s.padded + std::size_t(y + radius) * s.padded_row_floats + std::size_t(radius);
     const std::int32_t row_floats = std::int32_t(s.padded_row_floats);
@@ -480,9 +479,9 @@ void ratio_bilateral_row_y(const RatioBilateralSweep &sweep, int y, int x_begin,
     HWY_DYNAMIC_DISPATCH(RatioBilateralRowY)(sweep, y, x_begin, x_end, values, centres);
 }
 
-void ratio_noise_row(const RatioNoiseSweep &sweep, int y, float *raw) {
+void ratio_noise_row(const RatioNoiseSweep &sweep, int y, const unsigned char *active, float *raw) {
     (void)instruction_set();
-    HWY_DYNAMIC_DISPATCH(RatioNoiseRow)(sweep, y, raw);
+    HWY_DYNAMIC_DISPATCH(RatioNoiseRow)(sweep, y, active, raw);
 }
 
 void ratio_planes_row(const RatioGuideRow &in, int y, RatioBilateralPlanes &planes) {

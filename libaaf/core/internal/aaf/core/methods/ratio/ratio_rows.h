@@ -91,12 +91,11 @@ struct RatioNoiseSweep {
     int width = 0, height = 0;
     int line_radius_px = 1;
     std::uint32_t seed = 0;
-    const unsigned char *active = nullptr;  ///< 0 where every line's taps are equal: E = 0
 };
 
 /// Row `y` of E before its box filter (ratio estimator Eq. 29, the mean over 4 lines) to `raw` (width
-/// floats).
-void ratio_noise_row(const RatioNoiseSweep &sweep, int y, float *raw);
+/// floats); `active` (width bytes) is 0 where every line's taps are equal: E = 0 there.
+void ratio_noise_row(const RatioNoiseSweep &sweep, int y, const unsigned char *active, float *raw);
 
 /// One row of a 3x3 box filter clipped to the image: out[x] = the mean of
 /// rows[r][x - 1 .. x + 1] (clipped to [0, width)) over the `row_count`
