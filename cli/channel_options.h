@@ -71,7 +71,8 @@ inline void add_write_options(CLI::App &cmd, io::WriteOptions &write, const std:
     cmd.add_option(
            "--compression", write.compression,
            "EXR compression of " + applies_to +
-               ": zip:1 (ZIP at deflate level 1, fast, for intermediates), zip (level 6, smaller), zip:N "
+               ": zip:1 (ZIP at deflate level 1, fast, for intermediates), zip (level 4, OpenEXR's default, "
+               "smaller), zip:N "
                "or zips:N (level N, 1-9), zips, piz, rle, none, or the lossy dwaa/dwab (colour layers "
                "only: the data layers then go to a ZIP part named 'data')")
         ->check(CLI::Validator(

@@ -17,6 +17,7 @@
 #include "aaf/io/compare_files.h"
 #include "aaf/io/exr_io.h"
 #include "aaf/io/heatmap.h"
+#include "aaf/io/sequence.h"
 #include "channel_options.h"
 #include "commands.h"
 #include "compare_pairs.h"
@@ -80,10 +81,12 @@ void write_csv(const std::string &path, const Metrics &chosen, const std::vector
         csv << "label,test,reference";
         for (const CompareMetric *m : chosen) csv << ',' << m->key;
         csv << ",pixels,nonfinite_pixels,spp,psnr_peak\n";
-        for (const ComparePairResult &r : results) {
+        for (std::size_t i = 0; i < results.size(); ++i) {
+            const ComparePairResult &r = results[i];
             csv << csv_field(r.pair.label) << ',' << csv_field(r.pair.test) << ','
                 << csv_field(r.pair.reference);
-            for (const CompareMetric *m : chosen) csv << ',' << format(r.metrics.*(m->value));
+            for (const CompareMetric *m : chosen)
+                csv << ',' << (io::defined_for_pair(*m, i) ? format(r.metrics.*(m->value)) : "");
             csv << ',' << r.metrics.pixels << ',' << r.metrics.nonfinite_pixels << ','
                 << (std::isfinite(r.spp) ? format(r.spp) : "") << ',' << format(peak) << '\n';
         }
@@ -92,10 +95,12 @@ void write_csv(const std::string &path, const Metrics &chosen, const std::vector
     io::commit_temporary(temporary, path);
 }
 
-nlohmann::json metrics_json(const Metrics &chosen, const ComparePairResult &r) {
+/// A pair's metrics; one undefined for it (the first frame's temporal error) is null.
+nlohmann::json metrics_json(const Metrics &chosen, const ComparePairResult &r, std::size_t index) {
     nlohmann::json object;
     object["spp"] = number(r.spp);
-    for (const CompareMetric *m : chosen) object[m->key] = number(r.metrics.*(m->value));
+    for (const CompareMetric *m : chosen)
+        object[m->key] = io::defined_for_pair(*m, index) ? number(r.metrics.*(m->value)) : nlohmann::json();
     object["pixels"] = r.metrics.pixels;
     object["nonfinite_pixels"] = r.metrics.nonfinite_pixels;
     return object;
@@ -107,14 +112,15 @@ void print_json(const Metrics &chosen, const std::vector<ComparePairResult> &res
                 const std::vector<std::string> &unmatched) {
     nlohmann::json out;
     if (!batch) {
-        out = metrics_json(chosen, results[0]);
+        out = metrics_json(chosen, results[0], 0);
         out["test"] = results[0].pair.test;
         out["reference"] = results[0].pair.reference;
         out["channels"] = results[0].channels;
     } else {
         out["unmatched"] = unmatched;
-        for (const ComparePairResult &r : results) {
-            nlohmann::json pair = metrics_json(chosen, r);
+        for (std::size_t i = 0; i < results.size(); ++i) {
+            const ComparePairResult &r = results[i];
+            nlohmann::json pair = metrics_json(chosen, r, i);
             pair["label"] = r.pair.label;
             pair["test"] = r.pair.test;
             pair["reference"] = r.pair.reference;
@@ -154,9 +160,11 @@ void print_table(const Metrics &chosen, const std::vector<ComparePairResult> &re
     std::printf("%-24s", "pair");
     for (const CompareMetric *m : chosen) std::printf(" %12s", m->label);
     std::printf(" %10s\n", "NaN/Inf");
-    for (const ComparePairResult &r : results) {
+    for (std::size_t i = 0; i < results.size(); ++i) {
+        const ComparePairResult &r = results[i];
         std::printf("%-24s", r.pair.label.c_str());
-        for (const CompareMetric *m : chosen) std::printf(" %12s", format(r.metrics.*(m->value)).c_str());
+        for (const CompareMetric *m : chosen)
+            std::printf(" %12s", io::defined_for_pair(*m, i) ? format(r.metrics.*(m->value)).c_str() : "-");
         std::printf(" %10zu\n", r.metrics.nonfinite_pixels);
     }
     std::vector<io::MetricSummary> summaries;
@@ -212,6 +220,7 @@ struct Options {
     std::vector<std::string> fail_above, fail_below;
     const CLI::Option *frames_option = nullptr;    ///< tells `--frames ''` from no --frames
     const CLI::Option *channels_option = nullptr;  ///< tells --channels R,G,B from none
+    const CLI::Option *metric_option = nullptr;    ///< tells --metric rmse,mse,psnr from none
     double peak = 1.0;
     float ppd = 67.0206f;
     bool json = false;
@@ -263,8 +272,11 @@ std::vector<std::string> channels_by_role(const std::string &test) {
 
 /// Measures, prints the results (text, JSON, CSV) and applies the gates.
 void run_compare(const Options &o) {
+    std::vector<std::string> keys = o.metric_keys;
+    // A sequence's flicker beside its per-frame error, unless metrics were chosen.
+    if (o.metric_option->count() == 0 && io::is_sequence_pattern(o.test)) keys.push_back("temporal_rmse");
     Metrics chosen;
-    for (const std::string &key : o.metric_keys) chosen.push_back(&metric_named(key));
+    for (const std::string &key : keys) chosen.push_back(&metric_named(key));
     std::vector<io::Gate> gates;
     for (const std::string &spec : o.fail_above) gates.push_back(parse_gate(spec, true));
     for (const std::string &spec : o.fail_below) gates.push_back(parse_gate(spec, false));
@@ -277,6 +289,11 @@ void run_compare(const Options &o) {
     const io::ImagePairs pairs =
         compare_pairs(o.test, o.reference, given(o.frames_option, o.frames), &unmatched);
     report_unmatched(unmatched, o.fail_unmatched);
+    for (const CompareMetric *m : compare.metrics)
+        if (m->needs == CompareMetric::Needs::Temporal && !io::is_sequence_pattern(o.test))
+            throw UsageError(
+                std::string(m->key) +
+                ": the temporal error is a sequence's (shot.####.exr), between consecutive frames");
     // A sequence or folder is a batch even when it matches one pair: its output keeps the batch shape.
     const bool batch = is_batch_input(o.test);
     if (!o.heatmap.empty() && pairs.size() != 1)
@@ -323,10 +340,14 @@ void add_compare_command(CLI::App &app) {
     cmd->add_option("reference", options->reference, "Reference image, pattern or folder")->required();
     options->frames_option = cmd->add_option(
         "--frames", options->frames, "Frame range of the sequences: 1-100, 1-100x2, 1-100:2, 1,5,7-9");
-    cmd->add_option("--metric", options->metric_keys,
-                    "Metrics: rmse, mse, mae, relmse, psnr, ssim, flip (mean), flip_median (weighted median)")
-        ->delimiter(',')
-        ->capture_default_str();
+    options->metric_option =
+        cmd->add_option(
+               "--metric", options->metric_keys,
+               "Metrics: rmse, mse, mae, relmse, psnr, ssim, flip (mean), flip_median (weighted median), "
+               "temporal_rmse (a sequence's flicker: RMSE of the frame-to-frame change of test - "
+               "reference; added to the default for sequences)")
+            ->delimiter(',')
+            ->capture_default_str();
     options->channels_option =
         cmd->add_option(
                "--channels", options->channels,

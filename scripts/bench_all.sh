@@ -8,13 +8,20 @@
 #   bench_maaf_filter MAAF against AAF and OpenCV GaussianBlur (MAAF's mean
 #                     central width) on the same render (640x480)
 #   bench_ratio_filter the ratio estimator's denoise against OpenCV GaussianBlur
-#                     (same mean width) at 640x480, 1920x1080 and 3840x2160
+#                     (same mean width) and bilateralFilter (same spatial sigma)
+#                     at 640x480, 1920x1080 and 3840x2160
 #   bench_methods_bandwidth every registered method against the machine's copy
 #                     bandwidth: the bytes it must move (one run: maaf6 alone
 #                     takes a minute at 640x480)
-#   bench_trace       the tracer against raw Embree loops on the same rays
-#   bench_io.sh       aaf filter end to end against an oiiotool copy, peak memory,
-#                     the adaptive frame
+#   bench_trace       the tracer against raw Embree loops on the same rays, and
+#                     aaf render (640x480, 256 spp, the whole process) against a
+#                     raw Embree program over its rays, with where its time goes
+#   bench_io.sh       aaf filter end to end against the OpenEXR-only read and
+#                     write of the same frame (exr_copy_floor) with the same
+#                     threads, aaf --version and aaf info, an oiiotool copy,
+#                     peak memory, the adaptive frame
+# 1-thread rows set oneTBB and OpenCV to one thread alike (the per-core
+# figures); the others give both every thread.
 # Every figure is a median; every ratio is of timings taken alternately in
 # the same run. On a shared machine absolute times move with the load; the
 # ratios are the figures. REPS (default 3) sets the repetitions.
@@ -43,6 +50,7 @@ run() {
     run "$bench/bench_methods_bandwidth"
     run "$bench/bench_trace" --benchmark_filter='BM_Throughput|BM_Packets' --benchmark_repetitions="$reps" \
         --benchmark_report_aggregates_only=true
+    run "$bench/bench_trace" --benchmark_filter='BM_EndToEnd' --benchmark_repetitions="$reps"
     echo
     echo "\$ REPS=$reps scripts/bench_io.sh"
     echo

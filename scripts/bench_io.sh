@@ -20,6 +20,15 @@
 # x the bytes of its channels as stored, and the peak is given over them both
 # including and excluding the baseline. Prints a Markdown table of medians
 # (REPS, default 5).
+#
+# First, the OpenEXR floor: for each size, alternately in the same loop,
+#   floor         exr_copy_floor in.exr out.exr N (scripts/bench: OpenEXR alone
+#                 reads every channel of every part as float and writes them
+#                 back as zip:1 on N threads, Imf::setGlobalThreadCount)
+#   aaf_filter    aaf filter aaf in.exr -o out.exr --threads N
+# for N = 2 and 1, with the medians and their ratio; then `aaf --version`
+# (median of 20 runs: the start-up alone) and `aaf info in.exr`. With
+# FLOOR_ONLY=1 only this part runs.
 # Usage: scripts/bench_io.sh [WIDTHxHEIGHT ...]
 set -euo pipefail
 root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
@@ -39,6 +48,46 @@ echo
 peak_rss_kb() {
     /usr/bin/time -v "$@" 2>&1 >/dev/null | awk -F: '/Maximum resident set size/ {gsub(/ /, "", $2); print $2}'
 }
+
+floor="${EXR_COPY_FLOOR:-$root/build/scripts/bench/exr_copy_floor}"
+render_input() {  # render_input WIDTHxHEIGHT: the grids frame of that size, rendered once
+    local w="${1%x*}" h="${1#*x}" in="$dir/grids_$1.exr"
+    [ -f "$in" ] || "$aaf" render grids --width "$w" --height "$h" --aovs aaf,isg,depth -o "$in" --progress none >/dev/null
+    echo "$in"
+}
+elapsed_ms() {  # elapsed_ms COMMAND...: wall time of one run, ms
+    local t
+    t=$(now)
+    "$@" >/dev/null
+    echo "($(now) - $t) * 1000" | bc -l
+}
+echo "| size | threads | OpenEXR floor ms | aaf filter aaf ms | aaf / floor |"
+echo "| --- | --- | --- | --- | --- |"
+for size in "${sizes[@]}"; do
+    in=$(render_input "$size")
+    for n in 2 1; do
+        floor_ms=()
+        aaf_ms=()
+        for ((r = 0; r < reps; ++r)); do
+            floor_ms+=("$(elapsed_ms "$floor" "$in" "$dir/floor.exr" "$n")")
+            aaf_ms+=("$(elapsed_ms "$aaf" filter aaf "$in" -o "$dir/out.exr" --threads "$n")")
+        done
+        f=$(printf '%s\n' "${floor_ms[@]}" | median)
+        a=$(printf '%s\n' "${aaf_ms[@]}" | median)
+        awk -v s="$size" -v n="$n" -v f="$f" -v a="$a" 'BEGIN { printf "| %s | %d | %.0f | %.0f | %.2f |\n", s, n, f, a, a / f }'
+    done
+done
+version_ms=()
+info_ms=()
+in=$(render_input "${sizes[0]}")
+for ((r = 0; r < 20; ++r)); do
+    version_ms+=("$(elapsed_ms "$aaf" --version)")
+    info_ms+=("$(elapsed_ms "$aaf" info "$in")")
+done
+echo
+echo "aaf --version: median of 20 runs $(printf '%s\n' "${version_ms[@]}" | median | xargs printf '%.1f') ms; aaf info ${sizes[0]} frame: median of 20 runs $(printf '%s\n' "${info_ms[@]}" | median | xargs printf '%.1f') ms"
+echo
+[ "${FLOOR_ONLY:-0}" = 1 ] && exit 0
 
 echo "| size | oiiotool copy ms | oiiotool zip:1 copy ms | aaf filter aaf ms | aaf / oiiotool | aaf / oiiotool zip:1 | gaussian ms | isg-shadow ms | ms per Mpixel (aaf) | peak RSS MiB | aaf --version RSS MiB | oiiotool copy RSS MiB | AOV bytes MiB | RSS / AOV bytes | (RSS - baseline) / AOV bytes |"
 echo "| --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- |"

@@ -1,14 +1,25 @@
 #!/usr/bin/env bash
 # Installs the Debian packages the project needs; skips apt when all are present.
+#   scripts/deps.sh        everything: the tool, the tests, the benchmarks, the
+#                          Python module, the studies' plots and the farm tests
+#   scripts/deps.sh tool   only what building the `aaf` tool needs (scripts/demo.sh)
 set -euo pipefail
-packages=(
+set_name="${1:-all}"
+# The `aaf` tool: the libraries it links and the compilers that build it.
+tool=(
   cmake ninja-build g++ pkg-config
+  libopenexr-dev libimath-dev
+  libopenimageio-dev     # the formats module (PNG/JPEG pictures, other formats) and file sequences
+  libopencolorio-dev libcli11-dev libembree-dev libtbb-dev
+  libtinyobjloader-dev nlohmann-json3-dev
+  libhwy-dev             # Google Highway: the core's SIMD kernels with runtime dispatch (a private dependency)
+)
+# What the tests, benchmarks, studies and bindings add.
+rest=(
   clang-format-14        # tests/format/check_format.sh: every C++ file formatted by .clang-format
-  libopenimageio-dev openimageio-tools libopenexr-dev libimath-dev
-  libopencv-dev          # OpenImageIO's CMake target names /usr/include/opencv4; bench_aaf_filter's GaussianBlur yardstick
-  libopencolorio-dev libcli11-dev catch2 libembree-dev libtbb-dev
-  libtinyobjloader-dev nlohmann-json3-dev libbenchmark-dev
-  libhwy-dev             # Google Highway: the core's SIMD gather with runtime dispatch (a private dependency)
+  openimageio-tools      # oiiotool: the tests' and benchmarks' independent reader and I/O yardstick
+  libopencv-dev          # the tests' OpenImageIO CMake target names /usr/include/opencv4; the benchmarks' yardsticks
+  catch2 libbenchmark-dev
   python3-openimageio python3-numpy   # scripts/make_bad_corpus.py (run with /usr/bin/python3)
   python3-dev python3-pybind11         # the Python module aaf (libaaf/python), built for /usr/bin/python3
   python3-matplotlib                   # the studies' plots (scripts/plot_*.py, ratio_study.py)
@@ -16,6 +27,11 @@ packages=(
   slurm-wlm munge                      # the farm tests' one-node Slurm cluster (tests/farm/slurm_cluster.sh)
   slurmdbd mariadb-server              # its accounting (slurmdbd on a private MariaDB), read with sacct
 )
+case "$set_name" in
+  tool) packages=("${tool[@]}") ;;
+  all) packages=("${tool[@]}" "${rest[@]}") ;;
+  *) echo "deps.sh: unknown set '$set_name' (expected tool or all)" >&2; exit 2 ;;
+esac
 missing=()
 for p in "${packages[@]}"; do
   dpkg -s "$p" >/dev/null 2>&1 || missing+=("$p")

@@ -189,7 +189,7 @@ PreparedPair prepare_pair(const ImagePair &pair, const AovSet &test, const AovSe
 
 /// Reads, measures and (with a heatmap) draws one pair, adding to the timings.
 ComparePairResult compare_pair(const ImagePair &pair, const CompareFilesOptions &options,
-                               CompareFilesResult &totals) {
+                               CompareFilesResult &totals, ErrorImage *error) {
     const auto read_start = Clock::now();
     const AovSet test = read_aovs(pair.test), reference = read_aovs(pair.reference);
     totals.read_seconds += seconds_since(read_start);
@@ -197,8 +197,8 @@ ComparePairResult compare_pair(const ImagePair &pair, const CompareFilesOptions 
     const PreparedPair prepared = prepare_pair(pair, test, reference, options);
     const AovSet &measured = prepared.renamed ? prepared.renamed_reference : reference;
     return with_context(pair.test + " vs " + pair.reference, [&] {
-        ComparePairResult result{pair, prepared.labels, compare_images(test, measured, prepared.compare),
-                                 mean_spp_of(test)};
+        ComparePairResult result{pair, prepared.labels,
+                                 compare_images(test, measured, prepared.compare, error), mean_spp_of(test)};
         totals.measure_seconds += seconds_since(measure_start);
         if (!options.heatmap.empty())
             totals.heatmap_scale = write_error_heatmap(test, measured, prepared.compare, options.heatmap);
@@ -229,6 +229,7 @@ const std::vector<CompareMetric> &compare_metrics() {
         {"ssim", "SSIM", true, &ErrorMetrics::ssim, Needs::Ssim},
         {"flip", "FLIP", false, &ErrorMetrics::flip_mean, Needs::Flip},
         {"flip_median", "FLIP-wmedian", false, &ErrorMetrics::flip_weighted_median, Needs::Flip},
+        {"temporal_rmse", "temporal", false, &ErrorMetrics::temporal_rmse, Needs::Temporal},
     };
     return table;
 }
@@ -260,21 +261,35 @@ void ImagePairs::for_each(const Visit &visit) const {
 CompareFilesResult compare_files(const ImagePairs &pairs, const CompareFilesOptions &options) {
     const std::vector<std::string> outputs = checked_outputs(pairs, options);
     CompareFilesResult result;
+    const bool temporal = needs(options, CompareMetric::Needs::Temporal);
+    ErrorImage previous, current;  // the last pair's error and this one's
     // Outputs are written after every pair is read: checking each pair just
     // before reading it refuses an overwrite before anything is written.
     pairs.for_each([&](const ImagePair &pair) {
         check_pair_not_output(pair, outputs);
-        result.pairs.push_back(compare_pair(pair, options, result));
+        ComparePairResult measured = compare_pair(pair, options, result, temporal ? &current : nullptr);
+        if (temporal && !result.pairs.empty())
+            measured.metrics.temporal_rmse =
+                with_context(pair.test + " after " + result.pairs.back().pair.test,
+                             [&] { return temporal_rmse(previous, current); });
+        std::swap(previous, current);
+        result.pairs.push_back(std::move(measured));
         if (options.on_pair) options.on_pair(result.pairs.size() - 1, result.pairs.back());
     });
     return result;
 }
 
+bool defined_for_pair(const CompareMetric &metric, std::size_t pair_index) {
+    return metric.needs != CompareMetric::Needs::Temporal || pair_index > 0;
+}
+
 MetricSummary summarise(const std::vector<ComparePairResult> &results, const CompareMetric &metric) {
-    if (results.empty()) throw Error(std::string("no pairs to summarise ") + metric.key + " over");
+    const std::size_t first = defined_for_pair(metric, 0) ? 0 : 1;
+    if (results.size() <= first) throw Error(std::string("no pairs to summarise ") + metric.key + " over");
     MetricSummary summary;
+    summary.worst_index = first;
     std::vector<double> values;
-    for (std::size_t i = 0; i < results.size(); ++i) {
+    for (std::size_t i = first; i < results.size(); ++i) {
         const double v = results[i].metrics.*(metric.value);
         const double w = results[summary.worst_index].metrics.*(metric.value);
         if (metric.higher_is_better ? v < w : v > w) summary.worst_index = i;
@@ -293,6 +308,7 @@ std::vector<GateFailure> failed_gates(const std::vector<ComparePairResult> &resu
     std::vector<GateFailure> failures;
     for (std::size_t i = 0; i < results.size(); ++i)
         for (const Gate &gate : gates) {
+            if (!defined_for_pair(*gate.metric, i)) continue;
             const double value = results[i].metrics.*(gate.metric->value);
             if (gate.above ? !(value <= gate.limit) : !(value >= gate.limit))
                 failures.push_back({i, gate, value});

@@ -163,6 +163,7 @@ AovSet read_and_filter(const std::string &input_path, const FrameFilter &filter,
 
 AovSet filter_file_in_memory(const std::string &input_path, const FrameFilter &filter,
                              const FilterFileOptions &options, FilterFileReport &report) {
+    set_io_threads(options.threads);
     ImageLayout layout;
     return read_and_filter(input_path, filter, options, report, layout);
 }
@@ -171,6 +172,7 @@ FilterFileReport filter_file(const std::string &input_path, const std::string &o
                              const FrameFilter &filter, const FilterFileOptions &options) {
     check_not_same_file(input_path, output_path);
     FilterFileReport report;
+    set_io_threads(options.threads);  // OpenEXR's (de)compression runs on as many threads as the filter
     // The input's header (every attribute, the windows) and its other parts
     // go through to the output unchanged.
     ImageLayout layout;

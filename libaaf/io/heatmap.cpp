@@ -12,6 +12,7 @@
 #include "aaf/core/util/error.h"
 #include "aaf/io/exr_io.h"
 #include "false_colour.h"
+#include "formats_module.h"
 #include "image_writer.h"
 
 namespace aaf::io {
@@ -127,9 +128,7 @@ std::vector<float> heatmap_pixels(const ConstPlaneView &error, const ComparedPix
 
 }  // namespace
 
-std::string heatmap_exr_path(const std::string &png_path) {
-    return std::filesystem::path(png_path).replace_extension(".exr").string();
-}
+namespace formats {
 
 float write_error_heatmap(const AovSet &test, const AovSet &reference, const CompareOptions &region,
                           const std::string &png_path) {
@@ -165,5 +164,7 @@ float write_error_heatmap(const AovSet &test, const AovSet &reference, const Com
     write_aovs(errors, heatmap_exr_path(png_path));
     return scale;
 }
+
+}  // namespace formats
 
 }  // namespace aaf::io

@@ -15,6 +15,7 @@
 #include "aaf/core/util/quoted.h"
 #include "default_ocio_config.h"
 #include "false_colour.h"
+#include "formats_module.h"
 
 namespace OCIO = OCIO_NAMESPACE;
 
@@ -84,6 +85,8 @@ void check_has_channel(const AovSet &aovs, const std::string &name, const std::s
 }
 
 }  // namespace
+
+namespace formats {
 
 void write_false_colour_png(const AovSet &aovs, const std::string &channel, const std::string &path,
                             float low, float high, const std::string &source_path) {
@@ -166,5 +169,7 @@ std::string write_preview_png(const AovSet &aovs, const std::vector<std::string>
     write_png(rgb, shown.width, shown.height, path);
     return config_name;
 }
+
+}  // namespace formats
 
 }  // namespace aaf::io

@@ -81,6 +81,10 @@ io::CompareFilesOptions compare_options(const py::object &channels_arg, const py
     for (const std::string &key : string_list_arg(metrics, "metrics")) {
         const io::CompareMetric *metric = io::find_compare_metric(key);
         if (!metric) throw Error("metrics: unknown metric '" + key + "'");
+        if (metric->needs == io::CompareMetric::Needs::Temporal)
+            throw Error("metrics: '" + key +
+                        "' is a sequence's, between consecutive frames (aaf compare "
+                        "shot.####.exr ref.####.exr); compare() measures one pair");
         options.metrics.push_back(metric);
     }
     // As the CLI's --peak: a finite number above zero (a PSNR against 0 or NaN means nothing).

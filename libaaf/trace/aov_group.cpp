@@ -5,9 +5,14 @@
 
 #include "aaf/core/framework/method_registry.h"
 #include "aaf/core/util/error.h"
+#include "aaf/core/util/parallel.h"
 #include "aov_groups/aov_groups.h"
 
 namespace aaf::trace {
+
+void RenderState::for_each_row(int height, const std::function<void(int)> &row) {
+    parallel_for_rows(height, row);
+}
 
 namespace {
 

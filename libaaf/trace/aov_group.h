@@ -1,6 +1,7 @@
 #pragma once
 
 #include <cstddef>
+#include <functional>
 #include <memory>
 #include <string>
 #include <utility>
@@ -32,15 +33,24 @@ struct RenderState {
     int spp = 0;
     std::uint64_t seed = 0;
 
-    /// Calls `body(x, y, primary, stats)` for every pixel, row by row.
+    /// Calls `body(x, y, primary, stats)` for every pixel, rows in parallel
+    /// (on the current oneTBB arena): a body may write only pixel (x, y)'s
+    /// outputs, so the result does not depend on the thread count. Assembling
+    /// a frame's AOVs touches tens of MiB for the first time; one thread at a
+    /// time made it a serial stage of every render.
     template <typename Body>
     void for_each_pixel(const Body &body) const {
-        for (int y = 0; y < height; ++y)
+        for_each_row(height, [&](int y) {
             for (int x = 0; x < width; ++x) {
                 const std::size_t i = std::size_t(y) * width + x;
                 body(x, y, primaries[i], stats[i]);
             }
+        });
     }
+
+  private:
+    /// Calls `row(y)` for every y in [0, height), rows in parallel.
+    static void for_each_row(int height, const std::function<void(int)> &row);
 };
 
 /// One AOV group (aov_group_registry.h, `aaf render --aovs`) as an

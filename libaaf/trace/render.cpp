@@ -293,6 +293,28 @@ int trace_rounds(Tracing &tracing, const RenderSettings &settings, int spp_done,
     return spp_done;
 }
 
+/// The AOV set of a render that has taken `done` samples per pixel: the
+/// beauty and `groups`' channels, and the header. `given` are the settings
+/// as the caller gave them (`settings` with the effective seed). The maaf6
+/// group's timings move from the header to `measured`: equal renders are
+/// equal bytes.
+AovSet assemble_aovs(const RenderState &state, const Accumulators &accumulators, const AovGroups &groups,
+                     const RenderSettings &settings, const RenderSettings &given, int done,
+                     RenderTimings &measured) {
+    AovSet aovs(settings.width, settings.height);
+    write_aovs(state, accumulators, groups, aovs);
+    write_attributes(state.scene, settings, done, aovs);
+    if (given.seed_per_frame) aovs.attributes[attr::kBaseSeed] = int(given.seed);
+    for (auto [name, seconds] : {std::pair{attr::kMaaf6SamplingS, &measured.maaf6_sampling_s},
+                                 std::pair{attr::kMaaf6PrefilterS, &measured.maaf6_prefilter_s}}) {
+        auto it = aovs.attributes.find(name);
+        if (it == aovs.attributes.end()) continue;
+        if (const float *value = std::get_if<float>(&it->second)) *seconds = double(*value);
+        aovs.attributes.erase(it);
+    }
+    return aovs;
+}
+
 /// `given` drawing with its effective seed (seed_per_frame done).
 RenderSettings with_effective_seed(const RenderSettings &given) {
     RenderSettings settings = given;
@@ -354,6 +376,8 @@ void validate_render_settings(const RenderSettings &settings) {
 
 AovSet render_scene(const std::string &scene_name, const RenderSettings &given, RenderTimings *timings) {
     validate_render_settings(given);
+    RenderTimings measured;
+    auto start = Clock::now();
     const RenderSettings settings = with_effective_seed(given);
     SceneDescription scene = load_scene_file(resolve_scene(scene_name), settings.width, settings.height);
     scene.set_frame(settings.frame);
@@ -365,7 +389,10 @@ AovSet render_scene(const std::string &scene_name, const RenderSettings &given, 
     // The adaptive plan reads the AAF groups, whether written or not.
     const Accumulators accumulators = make_aov_accumulators(
         settings.adaptive ? groups | aov_groups_for_method("aaf") : groups, settings.group_parameters);
+    measured.scene_s = seconds_since(start);
+    start = Clock::now();
     Tracing tracing(scene, settings, accumulators);
+    measured.setup_s = seconds_since(start);
     const RenderState state = tracing.state(previous_camera);
     int spp_done = settings.resume
                        ? restore_progress(*settings.resume, scene, settings, accumulators, tracing.stats())
@@ -375,21 +402,8 @@ AovSet render_scene(const std::string &scene_name, const RenderSettings &given, 
     // AAF takes d1 and d2 from (AAF Sec. 6); later rounds and the adaptive
     // second pass need visibility only, which any hit answers.
     const bool stats_distances = groups.contains("shadow") || settings.adaptive;
-    RenderTimings measured;
     auto render_so_far = [&](int done) {
-        AovSet aovs(settings.width, settings.height);
-        write_aovs(state, accumulators, groups, aovs);
-        write_attributes(scene, settings, done, aovs);
-        if (given.seed_per_frame) aovs.attributes[attr::kBaseSeed] = int(given.seed);
-        // Timings go to the caller, not into the header: equal renders are equal bytes.
-        for (auto [name, seconds] : {std::pair{attr::kMaaf6SamplingS, &measured.maaf6_sampling_s},
-                                     std::pair{attr::kMaaf6PrefilterS, &measured.maaf6_prefilter_s}}) {
-            auto it = aovs.attributes.find(name);
-            if (it == aovs.attributes.end()) continue;
-            if (const float *value = std::get_if<float>(&it->second)) *seconds = double(*value);
-            aovs.attributes.erase(it);
-        }
-        return aovs;
+        return assemble_aovs(state, accumulators, groups, settings, given, done, measured);
     };
 
     // oneTBB caps its workers at the hardware's threads (and warns) unless the
@@ -400,8 +414,9 @@ AovSet render_scene(const std::string &scene_name, const RenderSettings &given, 
         allow_threads.emplace(tbb::global_control::max_allowed_parallelism, std::size_t(settings.threads));
     tbb::task_arena arena(settings.threads == 0 ? tbb::task_arena::automatic : settings.threads);
     arena.execute([&] {
-        auto start = Clock::now();
+        start = Clock::now();
         tracing.trace_primaries();
+        measured.primaries_s = seconds_since(start);
         spp_done = trace_rounds(tracing, settings, spp_done, first_pass, stats_distances, render_so_far);
         measured.first_pass_s = seconds_since(start);
         if (settings.adaptive) {
@@ -419,7 +434,9 @@ AovSet render_scene(const std::string &scene_name, const RenderSettings &given, 
 
     // In the arena too: a group that traces while it writes (isg) keeps to `threads`.
     AovSet result;
+    start = Clock::now();
     arena.execute([&] { result = render_so_far(spp_done); });
+    measured.aovs_s = seconds_since(start);
     if (timings) *timings = measured;
     return result;
 }

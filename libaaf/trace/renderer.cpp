@@ -199,6 +199,27 @@ void Renderer::trace_visibility_batch(const PrimaryHit &primary, Vec3 origin, st
     if (filled > 0) flush();
 }
 
+void Renderer::trace_distance_batch(const PrimaryHit &primary, Vec3 origin, float d1, std::uint32_t count,
+                                    const float *y_u_m, const float *y_v_m, bool *visible,
+                                    ShadowStats &stats) const {
+    const LightPlane &light = scene_.key_light();
+    // A light point behind the tangent plane is occluded by the receiver
+    // itself, d2 = d1, unless such samples are skipped (as trace_key_light).
+    const float self_occluder_m = settings_.skip_self_occluded ? 0.0f : d1;
+    for (std::uint32_t k = 0; k < count; ++k) {
+        const Vec3 target = light.point_at(y_u_m[k], y_v_m[k]);
+        float d2_m = self_occluder_m;
+        visible[k] = false;
+        if (dot(primary.normal, target - primary.position) > 0) {
+            const Vec3 direction = target - origin;
+            const Hit hit = rays_.closest_hit(origin, direction, 0.0f, kShadowRayReach);
+            visible[k] = !hit.found;
+            d2_m = hit.found ? light.plane_distance_m(origin + direction * hit.distance) : 0.0f;
+        }
+        if (d2_m > 0) stats.add_occluder(d2_m);  // as ShadowStats::add
+    }
+}
+
 Vec3 Renderer::separate_radiance(const PrimaryHit &primary, Vec3 focus, PixelRng &lens_rng,
                                  LightSample &sample) const {
     const Camera &camera = scene_.camera;
@@ -248,8 +269,12 @@ void Renderer::trace_shadows(const PrimaryHit &primary, int x, int y, std::uint6
     // Visibility only, every weight 1 and nothing else traced or listened
     // to: a sample adds 1 to the weight sums (ShadowStats::add) and nothing
     // else, so the batch is counted without building its LightSamples.
-    const bool visibility_counts =
-        primary.found && !occluder_distances && !settings_.cosine_falloff && !separate && listeners.empty();
+    const bool unit_weights = primary.found && !settings_.cosine_falloff && !separate && listeners.empty();
+    const bool visibility_counts = unit_weights && !occluder_distances;
+    // The same with occluder distances (the shadow group's first round): a
+    // sample adds 1 to the weight sums and its distance to d2min/d2max, whose
+    // minimum and maximum do not depend on the order they are taken in.
+    const bool distance_counts = unit_weights && occluder_distances;
     // The light points of a batch of samples first (random numbers, strata,
     // the warp: one tight loop each), then their rays; the same numbers in
     // the same order as one sample at a time.
@@ -270,7 +295,10 @@ void Renderer::trace_shadows(const PrimaryHit &primary, int x, int y, std::uint6
         const bool batch_traced = primary.found && !occluder_distances;
         if (batch_traced)
             trace_visibility_batch(primary, origin, batch, y_u_m.data(), y_v_m.data(), visible.data());
-        if (visibility_counts) {
+        if (distance_counts)
+            trace_distance_batch(primary, origin, d1, batch, y_u_m.data(), y_v_m.data(), visible.data(),
+                                 stats);
+        if (visibility_counts || distance_counts) {
             stats.add_unit_weights(visible.data(), batch);
             continue;
         }

@@ -193,6 +193,14 @@ class Renderer {
     /// hit's tangent plane (no ray, as in trace_key_light).
     void trace_visibility_batch(const PrimaryHit &primary, Vec3 origin, std::uint32_t count,
                                 const float *y_u_m, const float *y_v_m, bool *visible) const;
+    /// The key light's closest-hit shadow rays of `count` light points
+    /// (y_u_m[k], y_v_m[k]) from the primary hit's offset `origin` (plane
+    /// distance `d1`), each as trace_key_light traces it with occluder
+    /// distances: visible[k], and each occluded sample's d2 added to `stats`'
+    /// d2min/d2max (the weight sums are the caller's).
+    void trace_distance_batch(const PrimaryHit &primary, Vec3 origin, float d1, std::uint32_t count,
+                              const float *y_u_m, const float *y_v_m, bool *visible,
+                              ShadowStats &stats) const;
     /// The radiance `sample` traces apart from r(x) V(x): the other lights'
     /// shading at the primary hit, or with a thin lens that of every light
     /// seen through a lens ray aimed at `focus` (filling the sample's lens

@@ -20,7 +20,11 @@
 // The OpenCV blur has one width for the whole image, no per-pixel width and
 // no rejection: it is a lower bound on what any filter of that width costs.
 // Rows run with the machine's default threads and with one, the same count
-// for oneTBB and OpenCV (counters tbb_threads, opencv_threads).
+// for oneTBB and OpenCV (counters tbb_threads, opencv_threads): aaf_over_opencv
+// is all threads against all on the first rows, one against one on the
+// threads:1 rows. The header names the CPU, AAF's instruction set and OpenCV's
+// widest (opencv_widest); for AVX2 against AVX2 on an AVX-512 machine run
+//   AAF_ISA=avx2 OPENCV_CPU_DISABLE=AVX512_SKX ./build/scripts/bench/bench_aaf_filter
 //
 // BM_AafPhases times aaf_filter's steps one after the other in each
 // iteration, on the same render as BM_AafVsBaselines: fill_ms (AAF Sec. 6's
@@ -38,6 +42,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <fstream>
 #include <limits>
 #include <map>
 #include <string>
@@ -49,8 +54,10 @@
 
 #include "aaf/core/kernels/fixed_gaussian.h"
 #include "aaf/core/kernels/gather.h"
+#include "aaf/core/kernels/gather_rows.h"
 #include "aaf/core/methods/aaf/aaf_filter.h"
 #include "aaf/core/methods/aaf/occluder_fill.h"
+#include "aaf/core/util/instruction_set.h"
 #include "aaf/core/util/thread_count.h"
 #include "aaf/trace/render.h"
 
@@ -393,4 +400,33 @@ BENCHMARK(BM_AafGuides)
     ->Args({640, 480, 1})
     ->Unit(benchmark::kMillisecond)
     ->UseRealTime();
-BENCHMARK_MAIN();
+
+namespace {
+
+/// The CPU's name, from /proc/cpuinfo where there is one.
+std::string cpu_name() {
+    std::ifstream cpuinfo("/proc/cpuinfo");
+    for (std::string line; std::getline(cpuinfo, line);)
+        if (line.rfind("model name", 0) == 0) return line.substr(line.find(':') + 2);
+    return "unknown CPU";
+}
+
+}  // namespace
+
+// The header names the CPU, the instruction set of AAF's kernels (AAF_ISA)
+// and the widest OpenCV dispatches to, after OPENCV_CPU_DISABLE (e.g.
+// OPENCV_CPU_DISABLE=AVX512_SKX holds OpenCV to AVX2 as AAF_ISA=avx2 holds AAF).
+int main(int argc, char **argv) {
+    benchmark::AddCustomContext("cpu", cpu_name());
+    benchmark::AddCustomContext("aaf_isa", aaf::instruction_set_name(aaf::instruction_set()));
+    benchmark::AddCustomContext("aaf_gather_target", aaf::detail::gather_row_target());
+    const char *opencv_widest = cv::checkHardwareSupport(CV_CPU_AVX512_SKX) ? "AVX512_SKX"
+                                : cv::checkHardwareSupport(CV_CPU_AVX2)     ? "AVX2"
+                                                                            : "below AVX2";
+    benchmark::AddCustomContext("opencv_widest", opencv_widest);
+    benchmark::Initialize(&argc, argv);
+    if (benchmark::ReportUnrecognizedArguments(argc, argv)) return 1;
+    benchmark::RunSpecifiedBenchmarks();
+    benchmark::Shutdown();
+    return 0;
+}

@@ -1,5 +1,5 @@
 // Where `aaf compare` spends its time on one 1920x1080 RGB EXR pair: reading
-// both files (OpenImageIO) against the metrics pass with the default metrics
+// both files (OpenEXR) against the metrics pass with the default metrics
 // (RMSE, MSE, PSNR: one pass over the pixels), with SSIM added (five Gaussian
 // blurs) and with HDR-FLIP added. The pair is read from $AAF_BENCH_TEST and
 // $AAF_BENCH_REF; ./scripts/bench_compare.sh makes it with oiiotool and runs this.

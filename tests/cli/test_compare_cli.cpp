@@ -289,3 +289,55 @@ TEST_CASE("compare: the heatmap PNG carries its scale in its metadata", "[cli][c
     CHECK_THAT(std::get<std::string>(png.attributes.at("ImageDescription")),
                Catch::Contains("colour bar 0 to 0.063"));
 }
+
+TEST_CASE(
+    "compare: a sequence's temporal error is the RMSE of the frame-to-frame change of its error, 0 for a "
+    "still error, undefined for the first frame; a single pair refuses it",
+    "[cli][compare]") {
+    const fs::path dir = scratch_dir("compare_temporal");
+    // Flickering: frame f's error is 0.1 f, so it changes by 0.1 a frame.
+    // Still: every frame is 0.2 off, an error that never changes.
+    for (int f = 1; f <= 3; ++f) {
+        const std::string frame = std::to_string(1000 + f).substr(1);
+        write_flat(dir / ("flicker." + frame + ".exr"), 0.5f + 0.1f * f);
+        write_flat(dir / ("still." + frame + ".exr"), 0.7f);
+        write_flat(dir / ("ref." + frame + ".exr"), 0.5f);
+    }
+    const std::string flicker = (dir / "flicker.###.exr").string(), still = (dir / "still.###.exr").string(),
+                      ref = (dir / "ref.###.exr").string();
+
+    // A sequence gets it beside the default metrics: null for the first frame.
+    const auto json_run = run_aaf("compare " + flicker + " " + ref + " --json");
+    REQUIRE(json_run.exit_code == 0);
+    const nlohmann::json json = nlohmann::json::parse(json_run.output);
+    REQUIRE(json["pairs"].size() == 3);
+    CHECK(json["pairs"][0]["temporal_rmse"].is_null());
+    CHECK(json["pairs"][1]["temporal_rmse"].get<double>() == Approx(0.1).epsilon(1e-5));
+    CHECK(json["pairs"][2]["temporal_rmse"].get<double>() == Approx(0.1).epsilon(1e-5));
+    CHECK(json["summary"]["temporal_rmse"]["mean"].get<double>() == Approx(0.1).epsilon(1e-5));
+    CHECK(json["summary"]["temporal_rmse"]["worst_label"] != "1");
+    CHECK(json["pairs"][2]["rmse"].get<double>() == Approx(0.3).epsilon(1e-5));
+
+    const std::string csv = (dir / "still.csv").string();
+    const auto still_run =
+        run_aaf("compare " + still + " " + ref + " --metric rmse,temporal_rmse --csv " + csv);
+    REQUIRE(still_run.exit_code == 0);
+    CHECK_THAT(still_run.output, Catch::Contains("temporal"));
+    std::ifstream in(csv);
+    std::string header, first, second;
+    std::getline(in, header);
+    std::getline(in, first);
+    std::getline(in, second);
+    CHECK(header == "label,test,reference,rmse,temporal_rmse,pixels,nonfinite_pixels,spp,psnr_peak");
+    CHECK_THAT(first, Catch::Contains(",,16,"));  // no temporal error for frame 1
+    CHECK_THAT(second, Catch::Contains(",0,16,"));
+
+    // A gate on it skips the first frame and catches the flicker.
+    CHECK(run_aaf("compare " + still + " " + ref + " --fail-above temporal_rmse=0.01").exit_code == 0);
+    CHECK(run_aaf("compare " + flicker + " " + ref + " --fail-above temporal_rmse=0.05").exit_code == 4);
+
+    const auto single = run_aaf("compare " + (dir / "still.001.exr").string() + " " +
+                                (dir / "ref.001.exr").string() + " --metric temporal_rmse");
+    CHECK(single.exit_code == 2);
+    CHECK_THAT(single.output, Catch::Contains("temporal_rmse"));
+}

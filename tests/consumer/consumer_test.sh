@@ -33,7 +33,7 @@ done
 programs=$(cd "$prefix/bin" && ls)
 [ "$programs" = "aaf" ] || fail "bin/ should hold only aaf, holds: $programs"
 libraries=$(find "$(dirname "$aaf_dir")/.." -maxdepth 1 -type f -printf '%f\n' | sort | tr '\n' ' ')
-[ "$libraries" = "libaaf_core.a libaaf_io.a libaaf_trace.a " ] || fail "unexpected libraries: $libraries"
+[ "$libraries" = "libaaf_core.a libaaf_formats.so libaaf_io.a libaaf_trace.a " ] || fail "unexpected libraries: $libraries"
 scene="$prefix/share/aaf/scenes/grids.json"
 [ -f "$scene" ] || fail "the scenes are not installed ($scene)"
 

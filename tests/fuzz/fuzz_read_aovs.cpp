@@ -10,11 +10,11 @@
 #include "aaf/io/exr_io.h"
 #include "fuzz_temp_file.h"
 
-// One thread in OpenImageIO and OpenEXR: a pool per tiny file costs more
-// than the file, and libFuzzer runs one input at a time anyway.
+// One thread in OpenImageIO (other formats) and OpenEXR: a pool per tiny
+// file costs more than the file, and libFuzzer runs one input at a time anyway.
 extern "C" int LLVMFuzzerInitialize(int *, char ***) {
     OIIO::attribute("threads", 1);
-    OIIO::attribute("exr_threads", 0);
+    aaf::io::set_io_threads(1);
     return 0;
 }
 

@@ -1,13 +1,17 @@
 #include "aaf/core/framework/filter_aovs.h"
 
 #include <algorithm>
+#include <atomic>
 #include <cmath>
+#include <cstdint>
+#include <cstring>
 #include <sstream>
 
 #include "aaf/core/contract/ratio_layers.h"
 #include "aaf/core/framework/method_registry.h"
 #include "aaf/core/util/error.h"
 #include "aaf/core/util/frame_allocator.h"
+#include "aaf/core/util/parallel.h"
 #include "aaf/core/util/quoted.h"
 
 namespace aaf {
@@ -259,6 +263,27 @@ float largest_magnitude(ConstPlaneView plane) {
     return largest;
 }
 
+/// Whether every value of a plane is finite: rows in parallel, and a test of
+/// the exponent bits that vectorises (largest_magnitude's early exit does not).
+bool all_finite(ConstPlaneView plane) {
+    std::atomic<bool> finite{true};
+    parallel_for_rows(plane.height, [&](int y) {
+        std::uint32_t non_finite = 0;
+        if (plane.pixel_stride == 1) {
+            const float *const row = &plane(0, y);
+            for (int x = 0; x < plane.width; ++x) {
+                std::uint32_t bits;
+                std::memcpy(&bits, row + x, sizeof bits);
+                non_finite |= std::uint32_t((bits & 0x7f800000u) == 0x7f800000u);  // Inf or NaN
+            }
+        } else {
+            for (int x = 0; x < plane.width; ++x) non_finite |= std::uint32_t(!std::isfinite(plane(x, y)));
+        }
+        if (non_finite) finite.store(false, std::memory_order_relaxed);
+    });
+    return finite.load();
+}
+
 /// A finite input gives a finite output: where a method's single-precision
 /// sums of inputs near float's limit (3.4e38) overflowed, this throws
 /// aaf::InputError naming the output and the input channel with the largest
@@ -269,8 +294,7 @@ void check_finite_outputs(const Method &method, const MethodImages &images, cons
     std::string overflowed;
     for (Role role : method.info().roles.outputs)
         for (const std::string &name : found.channels(role))
-            if (overflowed.empty() && out.has_channel(name) &&
-                std::isnan(largest_magnitude(out.channel(name))))
+            if (overflowed.empty() && out.has_channel(name) && !all_finite(out.channel(name)))
                 overflowed = name;
     if (overflowed.empty()) return;
     std::vector<Role> roles = method.info().roles.required;
@@ -294,6 +318,17 @@ void check_finite_outputs(const Method &method, const MethodImages &images, cons
     throw InputError("output " + quoted(overflowed) + " overflowed to a non-finite value: input channel " +
                      quoted(largest_name) + " holds values up to " + value.str() +
                      ", too large to filter in single precision (scale the image down)");
+}
+
+/// Returns the frame's freed scratch planes to the system where they fill
+/// huge pages: those fault in again cheaply (2 MiB at a time, frame_allocator.cpp),
+/// and kept they would add most to the caller's peak memory. Smaller planes
+/// stay with the allocator for the next frame: each would fault in again
+/// 4 KiB at a time, which at 640x480 cost several times AAF's whole filter
+/// (bench_methods_bandwidth), while all of them together hold a few tens of MB.
+void release_frame_memory_of(const AovSet &frame) {
+    constexpr std::size_t kHugePageBytes = std::size_t(2) << 20;
+    if (frame.pixel_count() * sizeof(float) >= kHugePageBytes) release_frame_memory();
 }
 
 AovSet run_method(const Method &method, AovSet &&input, const ChannelMap &found,
@@ -346,7 +381,7 @@ AovSet run_method(const Method &method, AovSet &&input, const ChannelMap &found,
         images.set_deferred_output(Role::Beauty, [&out, &input, &found] {
             // The method's freed scratch planes (frame_allocator.h) go back
             // to the system before the beauty's are made, not beside them.
-            release_frame_memory();
+            release_frame_memory_of(out);
             const std::vector<std::string> &beauty = found.channels(Role::Beauty);
             const std::vector<std::string> &noisy = found.channels(Role::NoisyBeauty);
             std::vector<PlaneView> views;
@@ -368,8 +403,8 @@ AovSet run_method(const Method &method, AovSet &&input, const ChannelMap &found,
     images.make_deferred_outputs();  // a method that never asked still gets its channels
     check_finite_outputs(method, images, found, out);
     // Kept for reuse, the freed scratch would add to the caller's next
-    // allocations (the output file's buffers): a frame's filter returns it.
-    release_frame_memory();
+    // allocations (the output file's buffers): a large frame's filter returns it.
+    release_frame_memory_of(out);
     progress.report(1.0);
     return out;
 }

@@ -95,7 +95,7 @@ PixelRect compared_rect(const AovSet &test, const AovSet &reference, const Compa
 /// `selected` (SSIM and FLIP pool the same ones) and counts the others.
 void add_pixel_errors(const std::vector<ConstPlaneView> &a, const std::vector<ConstPlaneView> &b,
                       const PixelRect &rect, int width, const CompareOptions &options,
-                      std::vector<unsigned char> &selected, ErrorMetrics &m) {
+                      std::vector<unsigned char> &selected, ErrorMetrics &m, ErrorImage *error) {
     double sum_sq = 0, sum_abs = 0, sum_rel = 0;
     for (int y = rect.y; y < rect.y + rect.height; ++y)
         for (int x = rect.x; x < rect.x + rect.width; ++x) {
@@ -111,6 +111,7 @@ void add_pixel_errors(const std::vector<ConstPlaneView> &a, const std::vector<Co
             ++m.pixels;
             for (std::size_t c = 0; c < a.size(); ++c) {
                 const double ref = b[c](x, y), diff = double(a[c](x, y)) - ref;
+                if (error) error->error[(std::size_t(y) * width + x) * a.size() + c] = float(diff);
                 sum_sq += diff * diff;
                 sum_abs += std::abs(diff);
                 sum_rel += diff * diff / (ref * ref + options.relmse_epsilon);
@@ -162,7 +163,8 @@ bool rect_within(const PixelRect &rect, int width, int height) {
            Wide(rect.x) + rect.width <= width && Wide(rect.y) + rect.height <= height;
 }
 
-ErrorMetrics compare_images(const AovSet &test, const AovSet &reference, const CompareOptions &options) {
+ErrorMetrics compare_images(const AovSet &test, const AovSet &reference, const CompareOptions &options,
+                            ErrorImage *error) {
     const PixelRect rect = compared_rect(test, reference, options);
     std::vector<ConstPlaneView> a, b;
     for (const std::string &name : options.channels) {
@@ -172,8 +174,11 @@ ErrorMetrics compare_images(const AovSet &test, const AovSet &reference, const C
     const int width = test.width(), height = test.height();
     std::vector<unsigned char> selected(test.pixel_count(), 0);  // finite and inside crop and mask
     ErrorMetrics m;
-    add_pixel_errors(a, b, rect, width, options, selected, m);
+    if (error)
+        *error = ErrorImage{width, height, a.size(), std::vector<float>(test.pixel_count() * a.size()), {}};
+    add_pixel_errors(a, b, rect, width, options, selected, m, error);
     const double nan = std::numeric_limits<double>::quiet_NaN();
+    m.temporal_rmse = nan;
     m.ssim = nan;
     if (options.compute_ssim && m.pixels > 0) {
         const std::vector<float> map = ssim_map(luminance(test, options.channels),
@@ -190,7 +195,30 @@ ErrorMetrics compare_images(const AovSet &test, const AovSet &reference, const C
         m.flip_mean = pooled.mean;
         m.flip_weighted_median = pooled.weighted_median;
     }
+    if (error) error->selected = std::move(selected);
     return m;
+}
+
+double temporal_rmse(const ErrorImage &previous, const ErrorImage &current) {
+    if (previous.width != current.width || previous.height != current.height ||
+        previous.channels != current.channels)
+        throw InputError("frame sizes differ: " + std::to_string(previous.width) + "x" +
+                         std::to_string(previous.height) + " with " + std::to_string(previous.channels) +
+                         " channels, then " + std::to_string(current.width) + "x" +
+                         std::to_string(current.height) + " with " + std::to_string(current.channels));
+    double sum_sq = 0;
+    std::size_t pixels = 0;
+    for (std::size_t i = 0; i < current.selected.size(); ++i) {
+        if (!previous.selected[i] || !current.selected[i]) continue;
+        ++pixels;
+        for (std::size_t c = 0; c < current.channels; ++c) {
+            const double change = double(current.error[i * current.channels + c]) -
+                                  double(previous.error[i * current.channels + c]);
+            sum_sq += change * change;
+        }
+    }
+    if (pixels == 0) return std::numeric_limits<double>::quiet_NaN();
+    return std::sqrt(sum_sq / (double(pixels) * double(current.channels)));
 }
 
 ErrorMetrics compare_channels(const AovSet &test, const AovSet &reference,

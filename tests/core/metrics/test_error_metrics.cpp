@@ -88,3 +88,32 @@ TEST_CASE("Crop and mask select the compared pixels", "[metrics]") {
     CHECK_THROWS_WITH(compare_channels(test, reference, {"Z"}), Catch::Contains("'Z'"));
     CHECK_THROWS_WITH(compare_channels(test, constant_rgb(4, 8, 0), {"R"}), Catch::Contains("sizes differ"));
 }
+
+TEST_CASE("temporal_rmse: the RMSE of the change of the error between frames, over pixels compared in both",
+          "[metrics]") {
+    auto frame_error = [](float test_value, float reference_value, float nan_at_0) {
+        AovSet test(3, 1), reference(3, 1);
+        for (const char *c : {"R", "G", "B"}) {
+            test.add_channel(c, test_value);
+            reference.add_channel(c, reference_value);
+        }
+        test.channel("G")(0, 0) = nan_at_0;
+        ErrorImage error;
+        const ErrorMetrics m = compare_images(test, reference, {}, &error);
+        CHECK(std::isnan(m.temporal_rmse));  // needs the previous frame
+        return error;
+    };
+    const ErrorImage still = frame_error(0.7f, 0.5f, 0.7f), still_again = frame_error(0.9f, 0.7f, 0.9f);
+    CHECK(temporal_rmse(still, still_again) == Approx(0.0).margin(1e-6));
+    const ErrorImage up = frame_error(0.8f, 0.5f, 0.8f);
+    CHECK(temporal_rmse(still, up) == Approx(0.1).epsilon(1e-5));
+    // A pixel not compared in one frame (a NaN) is left out of both.
+    const ErrorImage up_but_nan = frame_error(0.8f, 0.5f, std::nanf(""));
+    CHECK(up_but_nan.selected[0] == 0);
+    CHECK(temporal_rmse(still, up_but_nan) == Approx(0.1).epsilon(1e-5));
+    AovSet small(2, 1);
+    for (const char *c : {"R", "G", "B"}) small.add_channel(c, 0.5f);
+    ErrorImage small_error;
+    compare_images(small, small, {}, &small_error);
+    CHECK_THROWS_AS(temporal_rmse(still, small_error), InputError);
+}

@@ -12,6 +12,7 @@
 #include "aaf/core/methods/aaf/occluder_fill.h"
 #include "aaf/core/util/error.h"
 #include "aaf/core/util/parallel.h"
+#include "aaf/core/util/plane_rows.h"
 
 namespace aaf {
 
@@ -40,17 +41,6 @@ void check_inputs(const AafInputs &in, const LightPlane &light, const AafParams 
     check_size(in.object_id, width, height, "object_id");
     check_size(in.pixel_size, width, height, "pixel_size");
     if (params.mu_from_spp || (!params.fixed_mu && in.spp.valid())) check_size(in.spp, width, height, "spp");
-}
-
-/// Row y of `view` as contiguous floats: the view's own memory where its
-/// pixels are adjacent, else a copy in `buffer`.
-const float *row_of(ConstPlaneView view, int y, std::vector<float> &buffer) {
-    const float *first = view.data + std::ptrdiff_t(y) * view.row_stride;
-    if (view.pixel_stride == 1) return first;
-    buffer.resize(std::size_t(view.width));
-    for (int x = 0; x < view.width; ++x)
-        buffer[std::size_t(x)] = first[std::ptrdiff_t(x) * view.pixel_stride];
-    return buffer.data();
 }
 
 /// What every pixel's guide row shares: the light's frame and variances, the
@@ -115,13 +105,13 @@ GatherGuides aaf_gather_guides(const AafInputs &in, const LightPlane &light, con
         std::vector<float> buffers[11];
         detail::AafGuideRowInputs row_in;
         for (int a = 0; a < 3; ++a) {
-            row_in.position[a] = row_of(in.position[std::size_t(a)], y, buffers[a]);
-            row_in.normal[a] = row_of(in.normal[std::size_t(a)], y, buffers[3 + a]);
+            row_in.position[a] = contiguous_row(in.position[std::size_t(a)], y, buffers[a]);
+            row_in.normal[a] = contiguous_row(in.normal[std::size_t(a)], y, buffers[3 + a]);
         }
-        row_in.object_id = row_of(in.object_id, y, buffers[6]);
-        row_in.d1_m = row_of(in.d1, y, buffers[7]);
-        row_in.pixel_size_m = row_of(in.pixel_size, y, buffers[8]);
-        if (constants.per_pixel_mu) row_in.spp = row_of(in.spp, y, buffers[9]);
+        row_in.object_id = contiguous_row(in.object_id, y, buffers[6]);
+        row_in.d1_m = contiguous_row(in.d1, y, buffers[7]);
+        row_in.pixel_size_m = contiguous_row(in.pixel_size, y, buffers[8]);
+        if (constants.per_pixel_mu) row_in.spp = contiguous_row(in.spp, y, buffers[9]);
         const std::size_t row = guides.index(0, y);
         row_in.d2_min_m = occluders.d2_min_m.data() + row;
         row_in.d2_max_m = occluders.d2_max_m.data() + row;
@@ -172,16 +162,25 @@ void aaf_filter(const AafInputs &in, const LightPlane &light, const AafParams &p
 
     // beta goes straight to its output, and the visibility is filtered in its
     // output's plane: no frame-sized copy beside the guides (peak memory).
-    const GatherGuides guides = aaf_gather_guides(in, light, params, out.beta_m);
+    aaf_filter_visibility(aaf_gather_guides(in, light, params, out.beta_m), params, in.visibility,
+                          out.filtered_visibility);
+}
 
+void aaf_filter_visibility(const GatherGuides &guides, const AafParams &params, ConstPlaneView visibility,
+                           PlaneView filtered_visibility) {
+    const int width = guides.width, height = guides.height;
+    check_size(visibility, width, height, "visibility");
+    if (!filtered_visibility.valid() || filtered_visibility.width != width ||
+        filtered_visibility.height != height)
+        throw Error("AAF output 'filtered visibility' is missing or has another size");
     // Non-finite visibility (a renderer's NaN) is read as 0, so it cannot spread through the filter.
     parallel_for_rows(height, [&](int y) {
         for (int x = 0; x < width; ++x) {
-            const float v = in.visibility(x, y);
-            out.filtered_visibility(x, y) = std::isfinite(v) ? v : 0.0f;
+            const float v = visibility(x, y);
+            filtered_visibility(x, y) = std::isfinite(v) ? v : 0.0f;
         }
     });
-    gather(guides, aaf_gather_settings(params), {out.filtered_visibility}, {out.filtered_visibility});
+    gather(guides, aaf_gather_settings(params), {filtered_visibility}, {filtered_visibility});
 }
 
 }  // namespace aaf

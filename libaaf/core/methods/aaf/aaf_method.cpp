@@ -13,6 +13,8 @@
 #include "aaf/core/methods/aaf/aaf_filter.h"
 #include "aaf/core/methods/aaf/aaf_roles.h"
 #include "aaf/core/util/error.h"
+#include "aaf/core/util/frame_allocator.h"
+#include "aaf/core/util/parallel.h"
 #include "aaf_method_inputs.h"
 
 namespace aaf {
@@ -20,40 +22,53 @@ namespace aaf {
 namespace {
 
 /// Another renderer's pass of the key light, filtered with AAF's widths and
-/// rejection (the guides of its visibility filter): demodulated by the albedo
-/// where the frame has one, so that texture is not blurred, and modulated back.
-void filter_key_light_pass(const MethodImages &images, const AafInputs &in, const LightPlane &light,
-                           const AafParams &params, const std::array<ConstPlaneView, 3> &pass,
-                           const std::array<PlaneView, 3> &filtered) {
+/// rejection together with the visibility (into `filtered_visibility`), in
+/// one gather: each tap's weight is computed once for the four channels, and
+/// as each channel's sums are its own, the bits are those of two gathers.
+/// The pass is demodulated by the albedo where the frame has one, so that
+/// texture is not blurred, and modulated back. A non-finite value is read as
+/// 0, so it cannot spread (it stays in its own pixel's beauty).
+void filter_visibility_and_pass(const MethodImages &images, const GatherGuides &guides,
+                                const AafParams &params, ConstPlaneView visibility,
+                                PlaneView filtered_visibility, const std::array<ConstPlaneView, 3> &pass,
+                                const std::array<PlaneView, 3> &filtered) {
     const int width = images.width(), height = images.height();
     const std::size_t count = std::size_t(width) * std::size_t(height);
     const bool albedo = images.has(Role::Albedo);
-    std::vector<std::vector<float>> demodulated(3, std::vector<float>(count));
-    std::vector<ConstPlaneView> sources;
-    std::vector<PlaneView> outputs;
-    for (std::size_t c = 0; c < 3; ++c) {
-        const ConstPlaneView reflectance = albedo ? images.input(Role::Albedo, c) : ConstPlaneView{};
-        for (int y = 0; y < height; ++y)
+    std::array<ConstPlaneView, 3> reflectance;
+    if (albedo)
+        for (std::size_t c = 0; c < 3; ++c) reflectance[c] = images.input(Role::Albedo, c);
+    std::array<FramePlane<float>, 3> demodulated;
+    for (FramePlane<float> &plane : demodulated) plane.resize(count);
+    parallel_for_rows(height, [&](int y) {
+        for (int x = 0; x < width; ++x) {
+            const float v = visibility(x, y);
+            filtered_visibility(x, y) = std::isfinite(v) ? v : 0.0f;
+        }
+        for (std::size_t c = 0; c < 3; ++c) {
+            float *const row = demodulated[c].data() + std::size_t(y) * std::size_t(width);
             for (int x = 0; x < width; ++x) {
-                const float a = albedo ? reflectance(x, y) : 1.0f;
+                const float a = albedo ? reflectance[c](x, y) : 1.0f;
                 const float value = a > 0 ? pass[c](x, y) / a : pass[c](x, y);
-                // A non-finite value is read as 0, so it cannot spread (it stays in its own pixel's beauty).
-                demodulated[c][std::size_t(y) * std::size_t(width) + std::size_t(x)] =
-                    std::isfinite(value) ? value : 0.0f;
+                row[x] = std::isfinite(value) ? value : 0.0f;
             }
-        sources.push_back(plane_view(demodulated[c].data(), width, height));
+        }
+    });
+    std::vector<ConstPlaneView> sources{filtered_visibility};
+    std::vector<PlaneView> outputs{filtered_visibility};
+    for (std::size_t c = 0; c < 3; ++c) {
+        sources.push_back(plane_view<const float>(demodulated[c].data(), width, height));
         outputs.push_back(filtered[c]);
     }
-    gather(aaf_gather_guides(in, light, params), aaf_gather_settings(params), sources, outputs);
+    gather(guides, aaf_gather_settings(params), sources, outputs);
     if (!albedo) return;
-    for (std::size_t c = 0; c < 3; ++c) {
-        const ConstPlaneView reflectance = images.input(Role::Albedo, c);
-        for (int y = 0; y < height; ++y)
+    parallel_for_rows(height, [&](int y) {
+        for (std::size_t c = 0; c < 3; ++c)
             for (int x = 0; x < width; ++x) {
-                const float a = reflectance(x, y);
+                const float a = reflectance[c](x, y);
                 if (a > 0) filtered[c](x, y) *= a;
             }
-    }
+    });
 }
 
 constexpr double kInf = std::numeric_limits<double>::infinity();
@@ -171,12 +186,26 @@ class AafMethod final : public Method {
         out.filtered_visibility = images.output(Role::FilteredVisibility);
         out.beta_m = images.output(roles::FilterWidth);
         const LightPlane light = read_light_attributes(images.attributes());
-        aaf_filter(in, light, params, out);
+        const auto has = [&](Role role) { return images.has(role); };
+        const bool swaps_pass =
+            shadow_beauty(images.attributes(), has, images.composition(), true) == ShadowBeauty::PassSwapped;
+        {
+            // aaf_filter() in two steps: where the beauty swaps in a pass of
+            // the key light, the guides filter it with the visibility.
+            const GatherGuides guides = aaf_gather_guides(in, light, params, out.beta_m);
+            if (swaps_pass)
+                filter_visibility_and_pass(images, guides, params, in.visibility, out.filtered_visibility,
+                                           {images.input(Role::KeyLight, 0), images.input(Role::KeyLight, 1),
+                                            images.input(Role::KeyLight, 2)},
+                                           {images.output(Role::Beauty, 0), images.output(Role::Beauty, 1),
+                                            images.output(Role::Beauty, 2)});
+            else
+                aaf_filter_visibility(guides, params, in.visibility, out.filtered_visibility);
+        }  // the guides are freed before the beauty's planes are made
         progress.report(0.9);
-        const PassFilter filter_pass = [&](const std::array<ConstPlaneView, 3> &pass,
-                                           const std::array<PlaneView, 3> &filtered) {
-            filter_key_light_pass(images, in, light, params, pass, filtered);
-        };
+        // The pass is already filtered, in the beauty's planes.
+        const PassFilter filter_pass = [](const std::array<ConstPlaneView, 3> &,
+                                          const std::array<PlaneView, 3> &) {};
         compose_shadowed_beauty(images, out.filtered_visibility, filter_pass);
     }
 

@@ -9,6 +9,8 @@
 #include "aaf/core/framework/parameter_defaults.h"
 #include "aaf/core/kernels/fixed_gaussian.h"
 #include "aaf/core/kernels/shadow_composition.h"
+#include "aaf/core/util/frame_allocator.h"
+#include "aaf/core/util/parallel.h"
 
 namespace aaf {
 
@@ -24,6 +26,18 @@ const ParameterDeclarations<GaussianSettings> &gaussian_parameters() {
                       .real("sigma", &GaussianSettings::sigma_px, "pixels",
                             "Standard deviation of the Gaussian, cut at 3 sigma; 0 copies", 0, 256));
     return declarations;
+}
+
+/// Copies `in` into the packed plane `out`, a non-finite value as 0 so that it cannot spread through the
+/// blur.
+void finite_copy(ConstPlaneView in, float *out) {
+    parallel_for_rows(in.height, [&](int y) {
+        float *const row = out + std::size_t(y) * std::size_t(in.width);
+        for (int x = 0; x < in.width; ++x) {
+            const float v = in(x, y);
+            row[x] = std::isfinite(v) ? v : 0.0f;
+        }
+    });
 }
 
 class GaussianMethod final : public Method {
@@ -48,24 +62,17 @@ class GaussianMethod final : public Method {
         const GaussianSettings settings = gaussian_parameters().read(parameters);
         const int width = images.width(), height = images.height();
         // Non-finite visibility is read as 0, so it cannot spread through the blur.
-        std::vector<float> visibility(std::size_t(width) * std::size_t(height));
-        const ConstPlaneView in = images.input(Role::Visibility);
-        for (int y = 0; y < height; ++y)
-            for (int x = 0; x < width; ++x)
-                visibility[std::size_t(y) * std::size_t(width) + std::size_t(x)] =
-                    std::isfinite(in(x, y)) ? in(x, y) : 0.0f;
+        FramePlane<float> visibility(std::size_t(width) * std::size_t(height));
+        finite_copy(images.input(Role::Visibility), visibility.data());
         const PlaneView filtered = images.output(Role::FilteredVisibility);
         fixed_gaussian_filter(plane_view(visibility.data(), width, height), settings.sigma_px, filtered);
         progress.report(0.9);
         // Another renderer's pass of the key light gets the same screen-space blur.
         const PassFilter filter_pass = [&](const std::array<ConstPlaneView, 3> &pass,
                                            const std::array<PlaneView, 3> &out) {
-            std::vector<float> finite(visibility.size());
+            FramePlane<float> finite(visibility.size());
             for (std::size_t c = 0; c < 3; ++c) {
-                for (int y = 0; y < height; ++y)
-                    for (int x = 0; x < width; ++x)
-                        finite[std::size_t(y) * std::size_t(width) + std::size_t(x)] =
-                            std::isfinite(pass[c](x, y)) ? pass[c](x, y) : 0.0f;
+                finite_copy(pass[c], finite.data());
                 fixed_gaussian_filter(plane_view(finite.data(), width, height), settings.sigma_px, out[c]);
             }
         };

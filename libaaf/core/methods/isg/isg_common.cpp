@@ -1,12 +1,15 @@
 #include "isg_common.h"
 
 #include <algorithm>
+#include <cmath>
 #include <limits>
 #include <sstream>
+#include <vector>
 
 #include "aaf/core/contract/aov_contract.h"
 #include "aaf/core/methods/isg/isg_roles.h"
 #include "aaf/core/util/error.h"
+#include "aaf/core/util/parallel.h"
 #include "aaf/core/util/quoted.h"
 
 namespace aaf::isg {
@@ -77,15 +80,30 @@ bool all_finite(Vec3 v) {
 float scene_size_m(const Vec3Planes &position, int width, int height, float scene_size) {
     if (scene_size > 0) return scene_size;
     constexpr float kInf = std::numeric_limits<float>::infinity();
-    Vec3 lo{kInf, kInf, kInf}, hi{-kInf, -kInf, -kInf};
-    for (int y = 0; y < height; ++y)
-        for (int x = 0; x < width; ++x) {
-            const Vec3 p = position(x, y);
-            if (!all_finite(p)) continue;
+    struct Box {
+        Vec3 lo{kInf, kInf, kInf}, hi{-kInf, -kInf, -kInf};
+        void add(Vec3 p) {
             lo = {std::min(lo.x, p.x), std::min(lo.y, p.y), std::min(lo.z, p.z)};
             hi = {std::max(hi.x, p.x), std::max(hi.y, p.y), std::max(hi.z, p.z)};
         }
-    const float diagonal = hi.x >= lo.x ? length(hi - lo) : 0.0f;
+    };
+    // One box per row in parallel, then their union: min and max do not
+    // depend on the order (a zero's sign aside, which the diagonal squares away).
+    std::vector<Box> rows(std::size_t(std::max(height, 0)));
+    parallel_for_rows(height, [&](int y) {
+        Box &row = rows[std::size_t(y)];
+        for (int x = 0; x < width; ++x) {
+            const Vec3 p = position(x, y);
+            if (all_finite(p)) row.add(p);
+        }
+    });
+    Box box;
+    for (const Box &row : rows) {
+        if (!(row.hi.x >= row.lo.x)) continue;  // no finite position in the row
+        box.add(row.lo);
+        box.add(row.hi);
+    }
+    const float diagonal = box.hi.x >= box.lo.x ? length(box.hi - box.lo) : 0.0f;
     return diagonal > 0 && std::isfinite(diagonal) ? diagonal : 1.0f;
 }
 

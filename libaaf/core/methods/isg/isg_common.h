@@ -1,11 +1,9 @@
 #pragma once
 
 // What the three ISG methods share beyond the formulas of aaf/core/methods/isg/isg_formulas.h:
-// their common parameters, header attributes, the scene size of ISG Sec. 5
-// and nearest-pixel point sampling.
-#include <cmath>
+// their common parameters, header attributes and the scene size of ISG Sec. 5
+// (their per-pixel loops: isg_rows.h).
 #include <map>
-#include <optional>
 #include <string>
 #include <utility>
 #include <vector>
@@ -83,44 +81,5 @@ bool all_finite(Vec3 v);
 /// when positive, else the diagonal of the bounding box of the finite
 /// positions (1 when there are none or they coincide).
 float scene_size_m(const Vec3Planes &position, int width, int height, float scene_size_m);
-
-/// Nearest-pixel point sampling of a kernel of radius `radius_px` centred on
-/// pixel (x, y): the pixel tap `tap` falls in, false when outside the image.
-inline bool tap_pixel(int x, int y, Tap tap, float radius_px, int width, int height, int &sx, int &sy) {
-    sx = x + int(std::lround(tap.x * radius_px));
-    sy = y + int(std::lround(tap.y * radius_px));
-    return sx >= 0 && sy >= 0 && sx < width && sy < height;
-}
-
-/// `radius_px` clamped to [0, max_radius_px]; NaN gives 0 (no filtering).
-inline float clamp_radius(float radius_px, float max_radius_px) {
-    return radius_px > 0 ? std::min(radius_px, max_radius_px) : 0.0f;
-}
-
-/// The gather of ISG Eq. 4 around pixel (x, y): the mean of `colour` over
-/// the pixels the taps fall in (tap_pixel() at `radius_px`), each weighted by
-/// `weight(sx, sy, tap)`, which returns the tap's weight or nothing to pass
-/// the tap over; so is a tap whose colour is not finite. Sums run in double,
-/// in the taps' order. Writes the mean and returns true when the weights
-/// sum to more than 0; else leaves `mean` as it is.
-template <typename Weight>
-bool gather_colour(const Vec3Planes &colour, const std::vector<Tap> &taps, int x, int y, float radius_px,
-                   int width, int height, const Weight &weight, Vec3 &mean) {
-    double weight_sum = 0, sum[3] = {0, 0, 0};
-    for (const Tap &tap : taps) {
-        int sx, sy;
-        if (!tap_pixel(x, y, tap, radius_px, width, height, sx, sy)) continue;
-        const Vec3 c = colour(sx, sy);
-        const std::optional<float> w = weight(sx, sy, tap);
-        if (!w || !all_finite(c)) continue;
-        weight_sum += *w;
-        sum[0] += double(*w) * c.x;
-        sum[1] += double(*w) * c.y;
-        sum[2] += double(*w) * c.z;
-    }
-    if (!(weight_sum > 0)) return false;
-    mean = {float(sum[0] / weight_sum), float(sum[1] / weight_sum), float(sum[2] / weight_sum)};
-    return true;
-}
 
 }  // namespace aaf::isg

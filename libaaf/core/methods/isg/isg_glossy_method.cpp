@@ -3,8 +3,6 @@
 // a cross-bilateral gather of the mirror reflection over the glossy cone.
 #include <algorithm>
 #include <cmath>
-#include <limits>
-#include <optional>
 #include <vector>
 
 #include "../builtin_methods.h"
@@ -13,6 +11,7 @@
 #include "aaf/core/methods/isg/isg_roles.h"
 #include "aaf/core/util/parallel.h"
 #include "isg_common.h"
+#include "isg_rows.h"
 
 namespace aaf {
 
@@ -69,68 +68,45 @@ class IsgGlossyMethod final : public Method {
         // ISG Sec. 3.2 projects angles by the field of view: pixels per radian.
         const float fov_y_rad = 2 * std::atan(0.5f * float(height) / focal_px);
         const float px_per_rad = float(height) / fov_y_rad;
-        const float a = settings.a, b = settings.b;
-        const bool gaussian = settings.gaussian_weight;
         const std::vector<Tap> search = tap_set(common.search_samples, TapShape::Disk, common.pattern);
         const std::vector<Tap> gather = tap_set(common.gather_samples, TapShape::Disk, common.pattern);
 
-        const Vec3Planes reflection = vec3_input(images, roles::Reflection);
-        const ConstPlaneView reflected_m = images.input(roles::ReflectionDistance);
-        const ConstPlaneView theta_max = images.input(roles::ThetaMax);
         const Vec3Planes position = vec3_input(images, Role::Position);
+        const Vec3Planes reflection = vec3_input(images, roles::Reflection);
         const Vec3Planes normal = vec3_input(images, Role::Normal);
-        const PlaneView out[3] = {images.output(roles::GlossyReflection, 0),
-                                  images.output(roles::GlossyReflection, 1),
-                                  images.output(roles::GlossyReflection, 2)};
-        const float inv_scene_size = 1.0f / scene_size_m(position, width, height, common.scene_size_m);
-        const float inv_sigma = 1.0f / common.sigma;
-        auto range = [&](int sx, int sy, Vec3 p0, Vec3 n0) {
-            const float l = length(position(sx, sy) - p0) * inv_scene_size;  // ISG Eq. 11
-            const float n = 1 - dot(normal(sx, sy), n0);                     // ISG Eq. 12
-            return std::exp(-(a * l * l + b * n * n) * inv_sigma);           // ISG Eq. 10
-        };
-
-        parallel_for_rows(height, [&](int y) {
-            for (int x = 0; x < width; ++x) {
-                for (int c = 0; c < 3; ++c) out[c](x, y) = reflection.c[c](x, y);
-                const float theta = theta_max(x, y);
-                const Vec3 p0 = position(x, y), n0 = normal(x, y);
-                if (!(theta > 0) || !std::isfinite(theta) || !all_finite(p0) || !all_finite(n0)) continue;
-                // Parameter search: the mean reflected distance within theta_max's projection.
-                const float search_px = clamp_radius(theta * px_per_rad, common.max_radius_px);
-                double weight_sum = 0, distance_sum = 0;
-                for (const Tap &tap : search) {
-                    int sx, sy;
-                    if (!tap_pixel(x, y, tap, search_px, width, height, sx, sy)) continue;
-                    const float e_m = reflected_m(sx, sy);
-                    if (!(e_m > 0) || !std::isfinite(e_m))
-                        continue;  // a ray that left the scene has no distance
-                    const float w = range(sx, sy, p0, n0);
-                    if (!std::isfinite(w)) continue;
-                    weight_sum += w;
-                    distance_sum += double(w) * e_m;
-                }
-                const float reflected_distance_m = weight_sum > 0 ? float(distance_sum / weight_sum)
-                                                                  : std::numeric_limits<float>::infinity();
-                const Vec3 to_eye = eye - p0;
-                const float eye_distance_m = length(to_eye);
-                const float alpha =
-                    glossy_gather_angle(theta, eye_distance_m, reflected_distance_m);  // ISG Eq. 13
-                const float cos_incident = std::fabs(dot(n0, to_eye)) / eye_distance_m;
-                const float gather_px =
-                    clamp_radius(alpha * px_per_rad * cos_incident, common.max_radius_px);  // ISG Eq. 14
-                auto tap_weight = [&](int sx, int sy, const Tap &tap) -> std::optional<float> {
-                    // Gaussian: standard deviation half the radius, exp(-r^2 / (2 (R/2)^2)).
-                    const float spatial = gaussian ? std::exp(-2 * (tap.x * tap.x + tap.y * tap.y)) : 1.0f;
-                    const float w = spatial * range(sx, sy, p0, n0);
-                    if (!std::isfinite(w)) return std::nullopt;
-                    return w;
-                };
-                Vec3 mean;
-                if (gather_colour(reflection, gather, x, y, gather_px, width, height, tap_weight, mean))
-                    for (int c = 0; c < 3; ++c) out[c](x, y) = mean[c];
-            }
-        });
+        const SweepPlanes planes({reflection.c[0], reflection.c[1], reflection.c[2], position.c[0],
+                                  position.c[1], position.c[2], normal.c[0], normal.c[1], normal.c[2],
+                                  images.input(roles::ReflectionDistance), images.input(roles::ThetaMax)});
+        const TapArrays search_taps(search), gather_taps(gather);
+        // The gather's spatial weight per tap; Gaussian: standard deviation
+        // half the radius, exp(-r^2 / (2 (R/2)^2)).
+        std::vector<float> spatial;
+        for (const Tap &tap : gather)
+            spatial.push_back(settings.gaussian_weight ? std::exp(-2 * (tap.x * tap.x + tap.y * tap.y))
+                                                       : 1.0f);
+        GlossySweep sweep;
+        sweep.layout = planes.layout();
+        for (int c = 0; c < 3; ++c) {
+            sweep.reflection[c] = planes[std::size_t(c)];
+            sweep.position[c] = planes[std::size_t(3 + c)];
+            sweep.normal[c] = planes[std::size_t(6 + c)];
+            sweep.out[c] = images.output(roles::GlossyReflection, std::size_t(c));
+        }
+        sweep.reflected_m = planes[9];
+        sweep.theta_max = planes[10];
+        sweep.search = &search_taps;
+        sweep.gather = &gather_taps;
+        sweep.gather_spatial = spatial.data();
+        sweep.range = {1.0f / scene_size_m(position, width, height, common.scene_size_m), 1.0f / common.sigma,
+                       common.max_radius_px};
+        sweep.a = settings.a;
+        sweep.b = settings.b;
+        sweep.px_per_rad = px_per_rad;
+        sweep.eye = eye;
+        // Per pixel: the mean reflected distance within theta_max's projection
+        // (the parameter search, range of ISG Eq. 10-12), the gather angle of
+        // ISG Eq. 13-14, then the gather (ISG Eq. 4) of the mirror reflection.
+        parallel_for_rows(height, [&](int y) { glossy_row(sweep, y); });
         progress.report(0.95);
     }
 

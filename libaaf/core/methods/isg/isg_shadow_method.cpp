@@ -2,7 +2,6 @@
 // over the image-space hard shadow's occluder distances sets, per pixel, the
 // radius of a cross-bilateral gather of the hard visibility.
 #include <algorithm>
-#include <cmath>
 #include <vector>
 
 #include "../builtin_methods.h"
@@ -12,6 +11,7 @@
 #include "aaf/core/methods/isg/isg_roles.h"
 #include "aaf/core/util/parallel.h"
 #include "isg_common.h"
+#include "isg_rows.h"
 
 namespace aaf {
 
@@ -74,63 +74,38 @@ class IsgShadowMethod final : public Method {
         const std::vector<Tap> gather =
             tap_set(common.gather_samples, shape, common.pattern, light.width_m, light.height_m);
 
-        const ConstPlaneView hard = images.input(roles::HardVisibility);
-        const ConstPlaneView occluder_m = images.input(roles::OccluderDistance);
-        const ConstPlaneView depth_m = images.input(Role::Depth);
         const Vec3Planes position = vec3_input(images, Role::Position);
-        const PlaneView out = images.output(Role::FilteredVisibility);
+        const SweepPlanes planes({images.input(roles::HardVisibility), images.input(roles::OccluderDistance),
+                                  images.input(Role::Depth), position.c[0], position.c[1], position.c[2]});
+        const TapArrays search_taps(search), gather_taps(gather);
+        ShadowSweep sweep;
+        sweep.layout = planes.layout();
+        sweep.hard = planes[0];
+        sweep.occluder_m = planes[1];
+        sweep.depth_m = planes[2];
+        for (int c = 0; c < 3; ++c) sweep.position[c] = planes[std::size_t(3 + c)];
+        sweep.search = &search_taps;
+        sweep.gather = &gather_taps;
         // ISG Sec. 5: sigma is relative to the scene's size, so l is measured in scene sizes.
-        const float inv_scene_size = 1.0f / scene_size_m(position, width, height, common.scene_size_m);
-        const float inv_sigma = 1.0f / common.sigma;
-        auto range = [&](Vec3 p, Vec3 p0) {
-            const float l = length(p - p0) * inv_scene_size;  // ISG Eq. 7
-            return std::exp(-l * l * inv_sigma);              // ISG Eq. 6 without the in-shadow factor
-        };
-
-        parallel_for_rows(height, [&](int y) {
-            for (int x = 0; x < width; ++x) {
-                out(x, y) = hard(x, y);
-                const float z_eye = depth_m(x, y);
-                const Vec3 p0 = position(x, y);
-                if (!(z_eye > 0) || !std::isfinite(z_eye) || !all_finite(p0)) continue;
-                // Parameter search (ISG Eq. 4-7): the mean occluder distance of the
-                // in-shadow taps within the light's projected size.
-                const float search_px = clamp_radius(screen_radius_px(light_size_m, z_eye, focal_px),
-                                                     common.max_radius_px);  // ISG Eq. 5
-                double weight_sum = 0, distance_sum = 0;
-                for (const Tap &tap : search) {
-                    int sx, sy;
-                    if (!tap_pixel(x, y, tap, search_px, width, height, sx, sy)) continue;
-                    const float d = occluder_m(sx, sy);
-                    if (!(hard(sx, sy) < 0.5f) || !(d >= 0) || !std::isfinite(d))
-                        continue;  // inShadow of ISG Eq. 6
-                    const float w = range(position(sx, sy), p0);
-                    if (!std::isfinite(w)) continue;
-                    weight_sum += w;
-                    distance_sum += double(w) * d;
-                }
-                if (!(weight_sum > 0)) continue;  // no occluder within reach: the hard value stands
-                const float d_m = float(distance_sum / weight_sum);
-                const float light_distance_m = length(light.center - p0);
-                const float penumbra_m = penumbra_radius_m(light_size_m, d_m, light_distance_m);  // ISG Eq. 8
-                const float gather_px = clamp_radius(screen_radius_px(penumbra_m, z_eye, focal_px),
-                                                     common.max_radius_px);  // ISG Eq. 9
-                // Gather (ISG Eq. 4): the hard visibility, constant spatial weight, range of ISG Eq. 6-7.
-                double gather_weight = 0, visibility_sum = 0;
-                for (const Tap &tap : gather) {
-                    int sx, sy;
-                    if (!tap_pixel(x, y, tap, gather_px, width, height, sx, sy)) continue;
-                    const float v = hard(sx, sy);
-                    const float w = range(position(sx, sy), p0);
-                    if (!std::isfinite(v) || !std::isfinite(w)) continue;
-                    gather_weight += w;
-                    visibility_sum += double(w) * v;
-                }
-                if (gather_weight > 0) out(x, y) = float(visibility_sum / gather_weight);
-            }
-        });
+        sweep.range = {1.0f / scene_size_m(position, width, height, common.scene_size_m), 1.0f / common.sigma,
+                       common.max_radius_px};
+        sweep.light_size_m = light_size_m;
+        sweep.focal_px = focal_px;
+        sweep.light_center = light.center;
+        sweep.out = images.output(Role::FilteredVisibility);
+        const PlaneLayout &layout = sweep.layout;
+        std::vector<float> position_hard(std::size_t(4) * std::size_t(layout.height) *
+                                         std::size_t(layout.row_stride));
+        parallel_for_rows(height, [&](int y) { pack_shadow_row(sweep, position_hard.data(), y); });
+        sweep.position_hard = position_hard.data();
+        // Per pixel: the parameter search (ISG Eq. 4-7), the mean occluder
+        // distance of the in-shadow taps within the light's projected size
+        // (ISG Eq. 5); then the gather (ISG Eq. 4) of the hard visibility within the
+        // penumbra's projection (ISG Eq. 8-9), constant spatial weight, range of
+        // ISG Eq. 6-7. A pixel with no occluder within reach keeps its hard value.
+        parallel_for_rows(height, [&](int y) { shadow_row(sweep, y); });
         progress.report(0.9);
-        compose_shadowed_beauty(images, out);  // AAF Eq. 1, or the beauty corrected
+        compose_shadowed_beauty(images, sweep.out);  // AAF Eq. 1, or the beauty corrected
     }
 
     std::string composition_note(const std::map<std::string, AttributeValue> &attributes,

@@ -1,11 +1,17 @@
 // ISG (Robison and Shirley 2009): the shared formulas against hand-computed
 // values, the sample sets' promises, and the soft-shadow filter's penumbra
-// against ISG Eq. 8 on a synthetic receiver.
+// against ISG Eq. 8 on a synthetic receiver, and the vectorised loops'
+// bits for any thread count and instruction set.
 #include <algorithm>
 #include <catch2/catch.hpp>
 #include <cmath>
+#include <cstdint>
+#include <cstring>
+#include <map>
 #include <string>
 #include <vector>
+
+#include <hwy/targets.h>
 
 #include "aaf/core/contract/aov_contract.h"
 #include "aaf/core/framework/filter_aovs.h"
@@ -13,6 +19,7 @@
 #include "aaf/core/methods/isg/isg_formulas.h"
 #include "aaf/core/methods/isg/isg_roles.h"
 #include "aaf/core/util/error.h"
+#include "aaf/core/util/thread_count.h"
 
 using namespace aaf;
 using namespace aaf::isg;
@@ -255,5 +262,61 @@ TEST_CASE("isg-dof: in focus stays sharp, and a surface blurs by its circle of c
         CHECK(measured > previous);
         CHECK(measured == Approx(kTenToNinetyPerRadius * coc_px).epsilon(0.2));
         previous = measured;
+    }
+}
+
+namespace {
+
+/// Whether Highway `target` fuses multiply-adds (x86: AVX2 and up): the
+/// exponential of the range weights rounds once per multiply-add there.
+bool fuses(std::int64_t target) {
+    return (target & (HWY_AVX2 | HWY_AVX3 | HWY_AVX3_DL)) != 0;
+}
+
+/// Every output channel of `filtered` has the bits of `reference`'s.
+void check_same_bits(const AovSet &filtered, const AovSet &reference) {
+    REQUIRE(filtered.channel_names() == reference.channel_names());
+    for (const std::string &name : reference.channel_names()) {
+        const ConstPlaneView a = filtered.channel(name), b = reference.channel(name);
+        int differing = 0;
+        for (int y = 0; y < a.height; ++y)
+            for (int x = 0; x < a.width; ++x)
+                differing += std::memcmp(&a(x, y), &b(x, y), sizeof(float)) != 0;
+        INFO("channel " << name);
+        CHECK(differing == 0);
+    }
+}
+
+}  // namespace
+
+TEST_CASE("ISG methods: the same bits for any thread count and for every instruction set of one family",
+          "[isg]") {
+    struct Case {
+        const char *method;
+        AovSet input;
+    };
+    const Case cases[] = {{"isg-shadow", shadow_edge(0.5f)},
+                          {"isg-glossy", reflection_edge(3.0f)},
+                          {"isg-dof", pinhole_edge(2.0f)}};
+    for (const Case &c : cases) {
+        const Method &method = find_method(c.method);
+        const ParameterSet parameters = method.default_parameters();
+        std::map<bool, AovSet> reference;  // per family: fused multiply-adds or not
+        // The rows are vectorised with runtime dispatch: every instruction set of the build.
+        for (const std::int64_t target : hwy::SupportedAndGeneratedTargets())
+            for (const int threads : {1, 2, 3}) {
+                hwy::SetSupportedTargetsForTest(target);
+                AovSet out;
+                run_with_threads(threads,
+                                 [&] { out = filter_aovs(method, c.input, ChannelMap{}, parameters); });
+                INFO(c.method << ", target " << hwy::TargetName(target) << ", " << threads << " threads");
+                // isg-dof has no exponential: one set of bits for every instruction set.
+                const bool family = std::string(c.method) != "isg-dof" && fuses(target);
+                if (!reference.count(family))
+                    reference.emplace(family, std::move(out));
+                else
+                    check_same_bits(out, reference.at(family));
+            }
+        hwy::SetSupportedTargetsForTest(0);
     }
 }

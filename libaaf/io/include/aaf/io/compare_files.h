@@ -46,8 +46,9 @@ struct CompareMetric {
     bool higher_is_better;
     double ErrorMetrics::*value;
     /// What computing it costs beyond the plain sums (ErrorMetrics holds NaN
-    /// for SSIM and FLIP unless asked for).
-    enum class Needs { Sums, Ssim, Flip } needs;
+    /// for SSIM and FLIP unless asked for); Temporal: the previous pair's
+    /// error image, so it is undefined for the first pair of a batch.
+    enum class Needs { Sums, Ssim, Flip, Temporal } needs;
 };
 
 /// Every metric, in the order help texts list them.
@@ -121,7 +122,9 @@ struct CompareFilesResult {
 };
 
 /// Reads and compares each pair in turn (compare_images() of
-/// error_metrics.h) and writes the heatmap, if asked for. Throws
+/// error_metrics.h) and writes the heatmap, if asked for. With a Temporal
+/// metric asked for, each pair after the first also gets its temporal error
+/// against the pair before it (the previous frame of a sequence). Throws
 /// aaf::InputError "<file>: <problem>" for an unreadable image, a layer with
 /// no channels, a mask of another size or an output that would overwrite an
 /// input (checked for each pair before it is read, so before anything is
@@ -136,8 +139,11 @@ struct MetricSummary {
     double worst = 0;             ///< the largest value, or the smallest where higher is better
     std::size_t worst_index = 0;  ///< the pair it belongs to (the first such pair)
 };
-/// The mean, median and worst of `metric` over `results`. Throws aaf::Error
-/// when `results` is empty.
+/// Whether `metric` has a value for the pair at `pair_index` of a batch: a
+/// temporal metric has none for the first.
+bool defined_for_pair(const CompareMetric &metric, std::size_t pair_index);
+/// The mean, median and worst of `metric` over the `results` it is defined
+/// for. Throws aaf::Error when there are none.
 MetricSummary summarise(const std::vector<ComparePairResult> &results, const CompareMetric &metric);
 
 /// A pass/fail threshold on a metric.
@@ -151,7 +157,8 @@ struct GateFailure {
     Gate gate;
     double value;
 };
-/// Every (pair, gate) that fails, pairs in order and each pair's gates in order.
+/// Every (pair, gate) that fails, pairs in order and each pair's gates in
+/// order; a gate on a metric not defined for a pair is not checked there.
 std::vector<GateFailure> failed_gates(const std::vector<ComparePairResult> &results,
                                       const std::vector<Gate> &gates);
 

@@ -31,7 +31,7 @@ class ImageLayout {
     /// "jpeg", "tiff"...; empty before a read.
     std::string format_name() const;
 
-    struct Impl;  ///< OpenImageIO details, private to aaf_io
+    struct Impl;  ///< OpenEXR details, private to aaf_io
     const Impl &impl() const { return *impl_; }
     Impl &impl() { return *impl_; }
 
@@ -39,8 +39,8 @@ class ImageLayout {
     std::unique_ptr<Impl> impl_;
 };
 
-/// Reads every channel of the first part of an image file (OpenEXR and any
-/// other format OpenImageIO reads) as float (half channels are marked
+/// Reads every channel of the first part of an image file (OpenEXR, read by
+/// OpenEXR straight into the planes; any other format OpenImageIO reads) as float (half channels are marked
 /// Precision::Half, so writing them back keeps them half), with its header
 /// attributes: the "aaf:" attributes and every other int, float, string or
 /// 3-vector attribute. When `layout` is given it receives everything else
@@ -96,6 +96,11 @@ std::uint64_t memory_budget_bytes();
 /// 0 returns to the default above.
 void set_memory_budget_bytes(std::uint64_t bytes);
 
+/// OpenEXR's worker threads for reading and writing (decompression and
+/// compression of its chunks): `threads`, or all hardware threads for 0 (the
+/// default). A command sets it from its --threads; results never depend on it.
+void set_io_threads(int threads);
+
 /// Lossless EXR compressions, and the lossy DWA ones (colour layers only).
 bool is_known_compression(const std::string &name);
 bool is_lossy_compression(const std::string &name);
@@ -104,7 +109,7 @@ struct WriteOptions {
     /// Header and other parts to carry over from a source file (read_aovs).
     const ImageLayout *layout = nullptr;
     /// zip, zips, piz, rle, none, zip:N or zips:N (deflate level N in 1-9;
-    /// plain zip is level 6), or the lossy dwaa/dwab. A lossy compression
+    /// plain zip is level 4, as OpenImageIO wrote it), or the lossy dwaa/dwab. A lossy compression
     /// applies to the colour channels only (colour_channels() of
     /// aov_contract.h): the data channels then go to a part of their own
     /// named kDataPartName, ZIP-compressed, after any carried parts. The

@@ -103,6 +103,9 @@ std::uint64_t effective_seed(const RenderSettings &settings);
 
 /// Wall-clock seconds of a render's stages (AAF Table 1's columns).
 struct RenderTimings {
+    double scene_s = 0;        ///< reading the scene file and building its meshes
+    double setup_s = 0;        ///< Embree's BVH and the AOV groups' per-pixel state
+    double primaries_s = 0;    ///< the primary (camera) rays, part of first_pass_s
     double first_pass_s = 0;   ///< primary rays and the first (or only) shadow pass
     double plan_s = 0;         ///< the sampling plan between the passes (adaptive only)
     double second_pass_s = 0;  ///< the remaining shadow samples (adaptive only)
@@ -110,6 +113,8 @@ struct RenderTimings {
     /// Sec. 6.2). Timings are reported here, never in the image's header,
     /// so that equal renders stay equal bytes.
     double maaf6_sampling_s = 0, maaf6_prefilter_s = 0;
+    /// Assembling the AOV set (every group's channels and the header) after the last pass.
+    double aovs_s = 0;
 };
 
 /// Names of the scenes found in the scene directories (built-in: the

@@ -47,10 +47,26 @@ struct ErrorMetrics {
     /// three channels, or the single channel), 11x11 Gaussian window of
     /// sigma 1.5 px, K1 = 0.01, K2 = 0.03, dynamic range L = 1; NaN unless asked.
     double ssim = 0;
-    double flip_mean = 0;              ///< FLIP pooled by the mean; NaN unless asked
-    double flip_weighted_median = 0;   ///< FLIP's weighted median; NaN unless asked
+    double flip_mean = 0;             ///< FLIP pooled by the mean; NaN unless asked
+    double flip_weighted_median = 0;  ///< FLIP's weighted median; NaN unless asked
+    /// Temporal error of a sequence: the RMSE, over the pixels compared in
+    /// both frames and the channels, of the frame-to-frame change of the
+    /// error, (test_t - ref_t) - (test_t-1 - ref_t-1). A still, exact
+    /// sequence and one whose error is the same every frame score 0; residual
+    /// noise that changes every frame (flicker) scores about sqrt(2) times
+    /// its RMSE. NaN for a single image and a sequence's first frame.
+    double temporal_rmse = 0;
     std::size_t pixels = 0;            ///< pixels compared (finite in both images)
     std::size_t nonfinite_pixels = 0;  ///< selected pixels skipped for a NaN/Inf in either image
+};
+
+/// The signed error test - reference of the compared channels at the
+/// compared pixels, kept to measure the next frame's temporal error.
+struct ErrorImage {
+    int width = 0, height = 0;
+    std::size_t channels = 0;
+    std::vector<float> error;             ///< pixel-major, `channels` values per pixel
+    std::vector<unsigned char> selected;  ///< 1 where the pixel was compared
 };
 
 /// Compares the selected channels of `test` against the same channels of
@@ -59,7 +75,15 @@ struct ErrorMetrics {
 /// Throws aaf::InputError on a size mismatch, a missing channel (naming it and
 /// the image), a crop that is empty or outside the image or a mask of another
 /// size.
-ErrorMetrics compare_images(const AovSet &test, const AovSet &reference, const CompareOptions &options = {});
+/// With `error` non-null, also stores the signed error image there
+/// (temporal_rmse is left NaN: it needs the previous frame).
+ErrorMetrics compare_images(const AovSet &test, const AovSet &reference, const CompareOptions &options = {},
+                            ErrorImage *error = nullptr);
+
+/// ErrorMetrics::temporal_rmse of a frame from its error image and the
+/// previous frame's. NaN when no pixel was compared in both. Throws
+/// aaf::InputError when the frames differ in size or channel count.
+double temporal_rmse(const ErrorImage &previous, const ErrorImage &current);
 
 /// compare_images over `channels`, whole image.
 ErrorMetrics compare_channels(const AovSet &test, const AovSet &reference,

@@ -53,6 +53,12 @@ GatherGuides aaf_gather_guides(const AafInputs &inputs, const LightPlane &light,
                                PlaneView beta_m = {});
 /// The gather settings AafParams selects (normal threshold, separable or 2D).
 GatherSettings aaf_gather_settings(const AafParams &params);
+/// aaf_filter()'s last step on guides aaf_gather_guides() made from the same
+/// inputs and parameters: the gather of `visibility` (a non-finite value
+/// read as 0) into `filtered_visibility`, which may be `visibility` itself.
+/// Lets one set of guides serve further planes (a pass of the key light).
+void aaf_filter_visibility(const GatherGuides &guides, const AafParams &params, ConstPlaneView visibility,
+                           PlaneView filtered_visibility);
 
 /// The "aaf" method's parameters, each declared once bound to its AafParams
 /// member: the filter's options, `aaf info`, the Python module, and the
