@@ -65,17 +65,34 @@ void active_row(const FramePlane<unsigned char> &along_rows, int width, int heig
     }
 }
 
+/// W_N of `count` adjacent pixels (ratio estimator Eq. 23); W_N = 1 where
+/// U_N is ~0 (Sec. 4.2), non-finite S_N and U_N read as 0.
+void weighted_shadow_row(const float *__restrict s_n, const float *__restrict u_n, int count,
+                         float *__restrict w) {
+    for (int x = 0; x < count; ++x) {
+        const float s = std::isfinite(s_n[x]) ? s_n[x] : 0.0f;
+        const float u = std::isfinite(u_n[x]) ? u_n[x] : 0.0f;
+        w[x] = u > 0 ? std::clamp(s / u, 0.0f, 1.0f) : 1.0f;
+    }
+}
+
+/// W_N's value at a tap: non-finite values read as 1.
+float finite_or_one(float v) {
+    return std::isfinite(v) ? v : 1.0f;
+}
+
 }  // namespace
 
 void weighted_shadow(ConstPlaneView s_n, ConstPlaneView u_n, PlaneView w) {
     check_same_size(s_n, u_n, "U_N");
     check_same_size(s_n, w, "W_N");
+    const bool adjacent = s_n.pixel_stride == 1 && u_n.pixel_stride == 1 && w.pixel_stride == 1;
     parallel_for_rows(w.height, [&](int y) {
+        if (adjacent)  // pointers to rows, so that the loop vectorises (the same values)
+            return weighted_shadow_row(&s_n(0, y), &u_n(0, y), w.width, &w(0, y));
         for (int x = 0; x < w.width; ++x) {
-            const float s = std::isfinite(s_n(x, y)) ? s_n(x, y) : 0.0f;
-            const float u = std::isfinite(u_n(x, y)) ? u_n(x, y) : 0.0f;
-            // ratio estimator Eq. 23; W_N = 1 where both are ~0 (Sec. 4.2).
-            w(x, y) = u > 0 ? std::clamp(s / u, 0.0f, 1.0f) : 1.0f;
+            const float s = s_n(x, y), u = u_n(x, y);
+            weighted_shadow_row(&s, &u, 1, &w(x, y));
         }
     });
 }
@@ -91,11 +108,15 @@ void ratio_noise_estimate(ConstPlaneView w, int line_radius_px, std::uint32_t se
     padded.resize(std::size_t(padded_width) * std::size_t(height + 2 * radius));  // written in full
     parallel_for_rows(height + 2 * radius, [&](int row) {
         const int y = std::clamp(row - radius, 0, height - 1);
-        float *to = &padded[std::size_t(row) * std::size_t(padded_width)];
-        for (int i = 0; i < padded_width; ++i) {
-            const float v = w(std::clamp(i - radius, 0, width - 1), y);
-            to[i] = std::isfinite(v) ? v : 1.0f;
+        float *__restrict to = &padded[std::size_t(row) * std::size_t(padded_width)];
+        std::fill_n(to, radius, finite_or_one(w(0, y)));
+        if (w.pixel_stride == 1) {  // a pointer to the row, so that the copy vectorises
+            const float *__restrict from = &w(0, y);
+            for (int x = 0; x < width; ++x) to[radius + x] = finite_or_one(from[x]);
+        } else {
+            for (int x = 0; x < width; ++x) to[radius + x] = finite_or_one(w(x, y));
         }
+        std::fill(to + radius + width, to + padded_width, finite_or_one(w(width - 1, y)));
     });
     const float *interior = &padded[std::size_t(radius) * std::size_t(padded_width) + std::size_t(radius)];
     // Every line's taps of an inactive pixel lie in a constant window: E is 0 exactly, without the work.

@@ -32,15 +32,18 @@ constexpr int kMaxLanes = int(HWY_LANES(float));
 static_assert(kMaxLanes <= int(kRatioPlaneSlack), "the slack covers a vector");
 
 /// fast_exp_nonpositive (fast_exp.h) lane by lane, operation for operation
-/// (its Taylor polynomial, truncating conversion and separate roundings), so
-/// every lane gives that function's bits.
+/// (its Taylor polynomial and separate roundings), so every lane gives that
+/// function's bits. Its truncating int conversion is Trunc here (the same
+/// integer, never out of range: k lies in [-126, 0]), and 2^k's exponent
+/// bits come from k + 2^23 + 127, whose low mantissa bits hold k + 127: no
+/// int conversions, whose out-of-range fix-ups cost more than the rest.
 HWY_INLINE V fast_exp_nonpositive(D d, V x) {
     const DI di;
     // Max(NaN, -87) is -87 as the scalar comparison; Min(-0, 0) may keep -0
-    // where the scalar gives 0: both round to k = 0 and the same polynomial.
+    // where the scalar gives 0: both round to k = 0 and the same polynomial
+    // (as does Trunc's -0 where the conversion gives +0: r and p are the same).
     const V clamped = hn::Min(hn::Max(x, hn::Set(d, -87.0f)), hn::Zero(d));
-    const V k = hn::ConvertTo(
-        d, hn::ConvertTo(di, hn::Sub(hn::Mul(clamped, hn::Set(d, 1.44269504088896341f)), hn::Set(d, 0.5f))));
+    const V k = hn::Trunc(hn::Sub(hn::Mul(clamped, hn::Set(d, 1.44269504088896341f)), hn::Set(d, 0.5f)));
     const V r = hn::Sub(hn::Sub(clamped, hn::Mul(k, hn::Set(d, 0.693145751953125f))),
                         hn::Mul(k, hn::Set(d, 1.428606765330187045e-06f)));
     V p = hn::Set(d, 1.0f / 720.0f);
@@ -50,8 +53,9 @@ HWY_INLINE V fast_exp_nonpositive(D d, V x) {
     p = hn::Add(hn::Mul(p, r), hn::Set(d, 0.5f));
     p = hn::Add(hn::Mul(p, r), hn::Set(d, 1.0f));
     p = hn::Add(hn::Mul(p, r), hn::Set(d, 1.0f));
-    const V scale = hn::BitCast(d, hn::ShiftLeft<23>(hn::Add(hn::ConvertTo(di, k), hn::Set(di, 127))));
-    return hn::Mul(p, scale);
+    // k + 2^23 + 127 is exact, its bits 0x4b000000 + k + 127; shifting by 23 drops the 0x4b.
+    const VI biased = hn::BitCast(di, hn::Add(k, hn::Set(d, 8388735.0f)));
+    return hn::Mul(p, hn::BitCast(d, hn::ShiftLeft<23>(biased)));
 }
 
 /// Lanes [0, n) of `from`, zeros after (a row's last, partial vector).
@@ -134,6 +138,11 @@ struct Taps {
     const float *source[kRatioMaxPlanes];
 };
 
+/// Taps whose weights add_taps computes before it sums them: their
+/// exponentials are independent, so they overlap in the core instead of
+/// waiting on one another's latency chains (the same operations per lane).
+constexpr int kTapsPerBatch = 8;
+
 /// Adds the taps at offsets [o_begin, o_end] `stride` floats apart, each lane
 /// only those in its [lo, hi], in order (ratio_bilateral.cpp's scalar loops:
 /// the weight exp(-o^2 / (2 sigma^2) - q^2 / 2) of a tap q plane sigmas from
@@ -147,34 +156,44 @@ HWY_INLINE void add_taps(const Centres &c, const Taps &taps, std::ptrdiff_t stri
     for (int k = 0; k < K; ++k) sums[k] = hn::Zero(d);
     weight_sum = hn::Zero(d);
     const V half = hn::Set(d, 0.5f), zero = hn::Zero(d), one = hn::Set(d, 1.0f);
-    for (int o = o_begin; o <= o_end; ++o) {
-        const std::ptrdiff_t t = std::ptrdiff_t(o) * stride;
-        const V o_px = hn::Set(d, float(o));
-        const V plane_m = hn::Add(
-            hn::Add(hn::Mul(c.nx, hn::LoadU(d, taps.px + t)), hn::Mul(c.ny, hn::LoadU(d, taps.py + t))),
-            hn::Mul(c.nz, hn::LoadU(d, taps.pz + t)));
-        const V q = hn::Mul(hn::Sub(plane_m, c.plane_m), c.inv_scale);
-        const V exponent =
-            hn::Sub(hn::Mul(hn::Mul(c.minus_half_inv_sigma_sq, o_px), o_px), hn::Mul(hn::Mul(half, q), q));
-        const auto counts = hn::And(hn::And(hn::Ge(o_px, c.lo_px), hn::Le(o_px, c.hi_px)),
-                                    hn::Ne(hn::LoadU(d, taps.inv_scale + t), zero));
-        // The centre always counts (o = 0 lies in every lane's range).
-        const V w = o == 0 ? one : hn::IfThenElseZero(counts, fast_exp_nonpositive(d, exponent));
-        weight_sum = hn::Add(weight_sum, w);
-        for (int k = 0; k < K; ++k) sums[k] = hn::Add(sums[k], hn::Mul(w, hn::LoadU(d, taps.source[k] + t)));
+    for (int o0 = o_begin; o0 <= o_end; o0 += kTapsPerBatch) {
+        const int batch = std::min(kTapsPerBatch, o_end - o0 + 1);
+        V weights[kTapsPerBatch];
+        for (int j = 0; j < batch; ++j) {
+            const int o = o0 + j;
+            const std::ptrdiff_t t = std::ptrdiff_t(o) * stride;
+            const V o_px = hn::Set(d, float(o));
+            const V plane_m = hn::Add(
+                hn::Add(hn::Mul(c.nx, hn::LoadU(d, taps.px + t)), hn::Mul(c.ny, hn::LoadU(d, taps.py + t))),
+                hn::Mul(c.nz, hn::LoadU(d, taps.pz + t)));
+            const V q = hn::Mul(hn::Sub(plane_m, c.plane_m), c.inv_scale);
+            const V exponent = hn::Sub(hn::Mul(hn::Mul(c.minus_half_inv_sigma_sq, o_px), o_px),
+                                       hn::Mul(hn::Mul(half, q), q));
+            const auto counts = hn::And(hn::And(hn::Ge(o_px, c.lo_px), hn::Le(o_px, c.hi_px)),
+                                        hn::Ne(hn::LoadU(d, taps.inv_scale + t), zero));
+            // The centre always counts (o = 0 lies in every lane's range).
+            weights[j] = o == 0 ? one : hn::IfThenElseZero(counts, fast_exp_nonpositive(d, exponent));
+        }
+        for (int j = 0; j < batch; ++j) {
+            const std::ptrdiff_t t = std::ptrdiff_t(o0 + j) * stride;
+            weight_sum = hn::Add(weight_sum, weights[j]);
+            for (int k = 0; k < K; ++k)
+                sums[k] = hn::Add(sums[k], hn::Mul(weights[j], hn::LoadU(d, taps.source[k] + t)));
+        }
     }
 }
 
 /// The lanes' filtered values: the sums over the weight, or the centre's own
-/// value where the radius is 0 (bit for bit, -0 included).
+/// value where the radius is 0 (bit for bit, -0 included); lanes [0, n) to
+/// to[k], plane after plane.
 template <int K>
 HWY_INLINE void finish(const Centres &c, const Taps &taps, const V (&sums)[K], V weight_sum,
-                       float (&out)[K][kMaxLanes]) {
+                       float *const (&to)[K], int n) {
     const D d;
     const auto keep = hn::RebindMask(d, hn::Eq(c.radius, hn::Zero(DI())));
     for (int k = 0; k < K; ++k)
-        hn::StoreU(hn::IfThenElse(keep, hn::LoadU(d, taps.source[k]), hn::Div(sums[k], weight_sum)), d,
-                   out[k]);
+        store_part(d, hn::IfThenElse(keep, hn::LoadU(d, taps.source[k]), hn::Div(sums[k], weight_sum)), to[k],
+                   n);
 }
 
 /// Sets the lanes' tap range [lo, hi] (offsets from the centres).
@@ -186,16 +205,24 @@ HWY_INLINE void set_range(Centres &c, VI lo, VI hi) {
     c.hi_px = hn::ConvertTo(d, hi);
 }
 
-/// Whether no lane of `reach_px` filters (each keeps its value).
-HWY_INLINE bool none_filters(VI reach_px) {
-    const DI di;
-    return hn::AllTrue(di, hn::Eq(reach_px, hn::Zero(di)));
-}
-
 /// The reach of lanes [0, n) of `radius`, 0 for the others.
 HWY_INLINE VI load_radius(const std::int32_t *radius, int n) {
     const DI di;
     return hn::IfThenElseZero(hn::FirstN(di, std::size_t(n)), hn::LoadU(di, radius));
+}
+
+/// Where the vectors from `x0` on (pixels x0 .. x_end - 1 of `radius`)
+/// stop being ones no pixel of which filters: x0 itself, or the end of such
+/// a span (at most x_end), which the passes copy at once.
+HWY_INLINE int end_of_copied_span(const std::int32_t *radius, int x0, int x_end) {
+    const DI di;
+    const int lanes = int(hn::Lanes(di));
+    while (x0 < x_end) {
+        const int n = std::min(lanes, x_end - x0);
+        if (!hn::AllTrue(di, hn::Eq(load_radius(radius + x0, n), hn::Zero(di)))) return x0;
+        x0 += n;
+    }
+    return x_end;
 }
 
 template <int K>
@@ -229,15 +256,16 @@ void row_x(const RatioBilateralSweep &s, int y, const float *const *source_rows,
     for (int k = 0; k < K; ++k) taps.source[k] = copy_row(4 + k, source_rows[k]);
     const VI last = hn::Set(di, width - 1);
     for (int x0 = 0; x0 < width; x0 += lanes) {
-        const int n = std::min(lanes, width - x0);
-        const VI reach_px = load_radius(radius + x0, n);
-        if (none_filters(reach_px)) {
+        const int copied_end = end_of_copied_span(radius, x0, width);
+        if (copied_end != x0) {  // pixels that keep their values
             for (int k = 0; k < K; ++k)
-                std::memcpy(s.output[k] + row + std::size_t(x0), taps.source[k] + x0,
-                            std::size_t(n) * sizeof(float));
-            continue;
+                std::memcpy(s.output[k] + row + std::size_t(x0), source_rows[k] + x0,
+                            std::size_t(copied_end - x0) * sizeof(float));
+            x0 = copied_end;
+            if (x0 == width) break;
         }
-        Centres c = load_centres(centres, x0, n, reach_px);
+        const int n = std::min(lanes, width - x0);
+        Centres c = load_centres(centres, x0, n, load_radius(radius + x0, n));
         const VI x = hn::Iota(di, x0);
         set_range(c, hn::Max(hn::Neg(c.radius), hn::Neg(x)), hn::Min(c.radius, hn::Sub(last, x)));
         Taps at = taps;
@@ -246,10 +274,9 @@ void row_x(const RatioBilateralSweep &s, int y, const float *const *source_rows,
         V sums[K], weight_sum;
         add_taps<K>(c, at, 1, hn::GetLane(hn::MinOfLanes(di, c.lo)), hn::GetLane(hn::MaxOfLanes(di, c.hi)),
                     sums, weight_sum);
-        alignas(64) float out[K][kMaxLanes];
-        finish<K>(c, at, sums, weight_sum, out);
-        for (int k = 0; k < K; ++k)
-            std::memcpy(s.output[k] + row + std::size_t(x0), out[k], std::size_t(n) * sizeof(float));
+        float *to[K];
+        for (int k = 0; k < K; ++k) to[k] = s.output[k] + row + std::size_t(x0);
+        finish<K>(c, at, sums, weight_sum, to, n);
     }
 }
 
@@ -261,28 +288,30 @@ void row_y(const RatioBilateralSweep &s, int y, int x_begin, int x_end, float *v
     const int lanes = int(hn::Lanes(d));
     const RatioBilateralPlanes &p = *s.planes;
     const std::ptrdiff_t width = p.width;
-    const std::size_t row = std::size_t(y) * std::size_t(width);
+    const std::size_t row = std::size_t(y) * std::size_t(width), span = std::size_t(x_end - x_begin);
+    const std::int32_t *radius = &p.radius_px[row];
     const VI up = hn::Set(di, -y), down = hn::Set(di, p.height - 1 - y);
     for (int x0 = x_begin; x0 < x_end; x0 += lanes) {
-        const int n = std::min(lanes, x_end - x0);
-        const std::size_t c0 = row + std::size_t(x0), span = std::size_t(x_end - x_begin);
-        const VI reach_px = load_radius(&p.radius_px[c0], n);
-        if (none_filters(reach_px)) {
+        const int copied_end = end_of_copied_span(radius, x0, x_end);
+        if (copied_end != x0) {  // pixels that keep their values
             for (int k = 0; k < K; ++k)
-                std::copy_n(s.source[k] + c0, n, values + std::size_t(k) * span + std::size_t(x0 - x_begin));
-            continue;
+                std::memcpy(values + std::size_t(k) * span + std::size_t(x0 - x_begin),
+                            s.source[k] + row + x0, std::size_t(copied_end - x0) * sizeof(float));
+            x0 = copied_end;
+            if (x0 == x_end) break;
         }
-        Centres c = load_centres(centres, x0 - x_begin, n, reach_px);
+        const int n = std::min(lanes, x_end - x0);
+        const std::size_t c0 = row + std::size_t(x0);
+        Centres c = load_centres(centres, x0 - x_begin, n, load_radius(radius + x0, n));
         set_range(c, hn::Max(hn::Neg(c.radius), up), hn::Min(c.radius, down));
         Taps at{&p.px[c0], &p.py[c0], &p.pz[c0], &p.inv_scale[c0], {}};
         for (int k = 0; k < K; ++k) at.source[k] = s.source[k] + c0;
         V sums[K], weight_sum;
         add_taps<K>(c, at, width, hn::GetLane(hn::MinOfLanes(di, c.lo)),
                     hn::GetLane(hn::MaxOfLanes(di, c.hi)), sums, weight_sum);
-        alignas(64) float out[K][kMaxLanes];
-        finish<K>(c, at, sums, weight_sum, out);
-        for (int k = 0; k < K; ++k)
-            std::copy_n(out[k], n, values + std::size_t(k) * span + std::size_t(x0 - x_begin));
+        float *to[K];
+        for (int k = 0; k < K; ++k) to[k] = values + std::size_t(k) * span + std::size_t(x0 - x_begin);
+        finish<K>(c, at, sums, weight_sum, to, n);
     }
 }
 
@@ -398,6 +427,17 @@ HWY_INLINE void line_offsets(const float (&direction)[2], int radius, std::int32
     }
 }
 
+/// Whether any of `count` bytes is non-zero (a whole run as one word).
+HWY_INLINE bool any_active(const unsigned char *active, int count) {
+    static_assert(kRatioNoiseRunPx == sizeof(std::uint64_t), "a run's flags are one word");
+    if (count == kRatioNoiseRunPx) {
+        std::uint64_t word;
+        std::memcpy(&word, active, sizeof word);
+        return word != 0;
+    }
+    return std::find_if(active, active + count, [](unsigned char a) { return a != 0; }) != active + count;
+}
+
 /// The raw E of the row's active pixels (ratio estimator Eq. 29): along 4
 /// lines 45 degrees apart, turned by one hashed angle per run of
 /// kRatioNoiseRunPx pixels, the mean absolute second difference of W_N over
@@ -418,7 +458,7 @@ void RatioNoiseRow(const RatioNoiseSweep &s, int y, const unsigned char *active,
     std::fill_n(raw, s.width, 0.0f);
     for (int x0 = 0; x0 < s.width; x0 += kRatioNoiseRunPx) {
         const int run = std::min(kRatioNoiseRunPx, s.width - x0);
-        if (std::find(active + x0, active + x0 + run, 1) == active + x0 + run) continue;
+        if (!any_active(active + x0, run)) continue;
         const float turn = ratio_pixel_random(x0 / kRatioNoiseRunPx, y, s.seed) * kQuarterPi;
         const float c = std::cos(turn), sn = std::sin(turn);
         const float directions[4][2] = {{c, sn},
