@@ -236,24 +236,32 @@ void row_x(const RatioBilateralSweep &s, int y, const float *const *source_rows,
     const std::size_t row = std::size_t(y) * std::size_t(width);
     const std::int32_t *radius = &p.radius_px[row];
     const int reach = std::max(0, *std::max_element(radius, radius + width));
-    // The row's guides and values with `reach` floats before and a vector
-    // after, zeros there: every lane's taps load from inside the copy.
-    const std::size_t padded = std::size_t(reach + width + lanes);
+    // A lane's taps lie in the row (lo >= -x, hi <= width - 1 - x), but a
+    // vector's loads run up to a vector past its last lane's: the vectors
+    // from `tail_x0` on, whose loads may pass the row's end, load from a copy
+    // of the row's tail with zeros after it; the others from the row itself.
+    const int first_tail_x0 = std::max(0, width - reach - lanes + 1);
+    const int tail_x0 = (first_tail_x0 + lanes - 1) / lanes * lanes;
+    const int tail_begin = std::max(0, tail_x0 - reach);
+    const std::size_t tail_floats = std::size_t(width - tail_begin + lanes);
     thread_local std::vector<float> scratch;
-    scratch.resize(std::max(scratch.size(), padded * std::size_t(4 + K)));
-    auto copy_row = [&](int plane, const float *from) {
-        float *first = &scratch[std::size_t(plane) * padded], *to = first + reach;
-        std::fill(first, to, 0.0f);
-        std::memcpy(to, from, std::size_t(width) * sizeof(float));
-        std::fill_n(to + width, lanes, 0.0f);
-        return to;
+    scratch.resize(std::max(scratch.size(), tail_floats * std::size_t(4 + K)));
+    auto tail_of = [&](int plane, const float *row_values) {
+        float *to = &scratch[std::size_t(plane) * tail_floats];
+        std::memcpy(to, row_values + tail_begin, std::size_t(width - tail_begin) * sizeof(float));
+        std::fill_n(to + (width - tail_begin), lanes, 0.0f);
+        return to - tail_begin;  // indexed by x, as the row
     };
-    Taps taps{copy_row(0, &p.px[row]),
-              copy_row(1, &p.py[row]),
-              copy_row(2, &p.pz[row]),
-              copy_row(3, &p.inv_scale[row]),
-              {}};
-    for (int k = 0; k < K; ++k) taps.source[k] = copy_row(4 + k, source_rows[k]);
+    const Taps in_row{&p.px[row], &p.py[row], &p.pz[row], &p.inv_scale[row], {}};
+    Taps tail{nullptr, nullptr, nullptr, nullptr, {}};
+    if (tail_x0 < width) {
+        tail = Taps{tail_of(0, in_row.px),
+                    tail_of(1, in_row.py),
+                    tail_of(2, in_row.pz),
+                    tail_of(3, in_row.inv_scale),
+                    {}};
+        for (int k = 0; k < K; ++k) tail.source[k] = tail_of(4 + k, source_rows[k]);
+    }
     const VI last = hn::Set(di, width - 1);
     for (int x0 = 0; x0 < width; x0 += lanes) {
         const int copied_end = end_of_copied_span(radius, x0, width);
@@ -268,7 +276,9 @@ void row_x(const RatioBilateralSweep &s, int y, const float *const *source_rows,
         Centres c = load_centres(centres, x0, n, load_radius(radius + x0, n));
         const VI x = hn::Iota(di, x0);
         set_range(c, hn::Max(hn::Neg(c.radius), hn::Neg(x)), hn::Min(c.radius, hn::Sub(last, x)));
-        Taps at = taps;
+        Taps at = in_row;
+        for (int k = 0; k < K; ++k) at.source[k] = source_rows[k];
+        if (x0 >= tail_x0) at = tail;
         for (const float **plane : {&at.px, &at.py, &at.pz, &at.inv_scale}) *plane += x0;
         for (int k = 0; k < K; ++k) at.source[k] += x0;
         V sums[K], weight_sum;
@@ -446,6 +456,8 @@ HWY_INLINE bool any_active(const unsigned char *active, int count) {
 /// tap is one vector load; lanes never span two runs.
 void RatioNoiseRow(const RatioNoiseSweep &s, int y, const unsigned char *active, float *raw) {
     const hn::CappedTag<float, kRatioNoiseRunPx> d;
+    const hn::Rebind<std::int32_t, decltype(d)> d32;
+    const hn::Rebind<std::uint8_t, decltype(d)> d8;
     const int lanes = int(hn::Lanes(d)), radius = s.line_radius_px, taps = 2 * radius + 1;
     const float per_difference = 1.0f / float(taps - 2);
     constexpr float kQuarterPi = 0.78539816f, kHalfSqrt2 = 0.70710678f;
@@ -484,9 +496,16 @@ void RatioNoiseRow(const RatioNoiseSweep &s, int y, const unsigned char *active,
                 }
                 sum = hn::Add(sum, hn::Mul(variation, hn::Set(d, per_difference)));
             }
+            const auto mean = hn::Mul(hn::Set(d, 0.25f), sum);  // the mean over n = 4 lines
+            if (l0 + lanes <= run) {                            // inactive lanes keep the row's +0
+                const auto flags = hn::PromoteTo(d32, hn::LoadU(d8, active + x0 + l0));
+                hn::StoreU(hn::IfThenElseZero(hn::RebindMask(d, hn::Ne(flags, hn::Zero(d32))), mean), d,
+                           raw + x0 + l0);
+                continue;
+            }
             alignas(64) float out[kRatioNoiseRunPx];
-            hn::Store(hn::Mul(hn::Set(d, 0.25f), sum), d, out);  // the mean over n = 4 lines
-            for (int l = 0; l < std::min(lanes, run - l0); ++l)
+            hn::Store(mean, d, out);
+            for (int l = 0; l < run - l0; ++l)
                 if (active[x0 + l0 + l]) raw[x0 + l0 + l] = out[l];
         }
     }
