@@ -4,6 +4,7 @@
 
 #include <cmath>
 
+#include "aaf/core/methods/ratio/ratio_rows.h"
 #include "aaf/core/util/error.h"
 #include "aaf/core/util/parallel.h"
 
@@ -31,20 +32,6 @@ std::vector<FramePlane<float>> planes_of(const std::vector<ConstPlaneView> &view
     return planes;
 }
 
-/// ratio_weight and U x W over a row of adjacent pixels, written without
-/// branches so that it vectorises (the same values); `rgb` does not overlap
-/// the inputs (the denoised values are the filter's own buffer).
-template <bool Accumulate>
-void compose_ratio_row(const float *__restrict u, const float *__restrict s_den,
-                       const float *__restrict u_den, float *__restrict rgb, int count) {
-    for (int x = 0; x < count; ++x) {
-        const float quotient = s_den[x] / u_den[x];
-        const float clamped = quotient < 0 ? 0.0f : (quotient > 1 ? 1.0f : quotient);
-        const float out = u[x] * (u_den[x] > 0 ? clamped : 1.0f);  // ratio estimator Eq. 25, times U
-        rgb[x] = Accumulate ? rgb[x] + out : out;
-    }
-}
-
 }  // namespace
 
 void RatioComposition::compose_row(int y, int x_begin, int x_end, const float *const *denoised,
@@ -53,10 +40,9 @@ void RatioComposition::compose_row(int y, int x_begin, int x_end, const float *c
     for (int c = 0; c < 3; ++c) adjacent &= rgb[c].pixel_stride == 1 && layers_.analytic[c].pixel_stride == 1;
     if (adjacent) {
         for (int c = 0; c < 3; ++c)
-            (accumulate ? compose_ratio_row<true>
-                        : compose_ratio_row<false>)(&layers_.analytic[c](x_begin, y), denoised[grey_ ? 0 : c],
-                                                    denoised[grey_ ? 1 : 3 + c], &rgb[c](x_begin, y),
-                                                    x_end - x_begin);
+            detail::ratio_compose_row(&layers_.analytic[c](x_begin, y), denoised[grey_ ? 0 : c],
+                                      denoised[grey_ ? 1 : 3 + c], x_end - x_begin, accumulate,
+                                      &rgb[c](x_begin, y));
         return;
     }
     float values[8];

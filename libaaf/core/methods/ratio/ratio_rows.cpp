@@ -391,6 +391,25 @@ void RatioPlanesRow(const RatioGuideRow &in, int y, RatioBilateralPlanes &p) {
     }
 }
 
+/// ratio_compose_row in lanes: quotients, comparisons and products are
+/// correctly rounded everywhere, so every lane gives the scalar's bits
+/// (a NaN quotient passes both clamps, as there).
+void RatioComposeRow(const float *u, const float *s_den, const float *u_den, int count, bool accumulate,
+                     float *rgb) {
+    const D d;
+    const int lanes = int(hn::Lanes(d));
+    const V zero = hn::Zero(d), one = hn::Set(d, 1.0f);
+    for (int x = 0; x < count; x += lanes) {
+        const int n = std::min(lanes, count - x);
+        const V u_n = load_part(u_den + x, n), quotient = hn::Div(load_part(s_den + x, n), u_n);
+        const V clamped = hn::IfThenElse(hn::Lt(quotient, zero), zero,
+                                         hn::IfThenElse(hn::Gt(quotient, one), one, quotient));
+        V out = hn::Mul(load_part(u + x, n), hn::IfThenElse(hn::Gt(u_n, zero), clamped, one));
+        if (accumulate) out = hn::Add(load_part(rgb + x, n), out);
+        store_part(d, out, rgb + x, n);
+    }
+}
+
 /// The 3x3 box's interior columns in lanes (each sum in the scalar order),
 /// its first and last column and short rows one by one.
 void RatioBoxRow(const float *const *rows, int row_count, int width, float *out) {
@@ -525,6 +544,7 @@ HWY_EXPORT(RatioBilateralRowY);
 HWY_EXPORT(RatioNoiseRow);
 HWY_EXPORT(RatioPlanesRow);
 HWY_EXPORT(RatioBoxRow);
+HWY_EXPORT(RatioComposeRow);
 
 void ratio_bilateral_row_x(const RatioBilateralSweep &sweep, int y, const float *const *source_rows,
                            const RatioGuideRow &centres) {
@@ -546,6 +566,12 @@ void ratio_noise_row(const RatioNoiseSweep &sweep, int y, const unsigned char *a
 void ratio_planes_row(const RatioGuideRow &in, int y, RatioBilateralPlanes &planes) {
     (void)instruction_set();
     HWY_DYNAMIC_DISPATCH(RatioPlanesRow)(in, y, planes);
+}
+
+void ratio_compose_row(const float *u, const float *s_den, const float *u_den, int count, bool accumulate,
+                       float *rgb) {
+    (void)instruction_set();
+    HWY_DYNAMIC_DISPATCH(RatioComposeRow)(u, s_den, u_den, count, accumulate, rgb);
 }
 
 void ratio_box_row(const float *const *rows, int row_count, int width, float *out) {

@@ -62,6 +62,13 @@ void ratio_bilateral_row_x(const RatioBilateralSweep &sweep, int y, const float 
 void ratio_bilateral_row_y(const RatioBilateralSweep &sweep, int y, int x_begin, int x_end, float *values,
                            const RatioGuideRow &centres);
 
+/// RatioComposition::compose() of the ratio estimator over `count` adjacent
+/// pixels: rgb[x] (+)= u[x] W, W = clamp(s_den[x] / u_den[x], 0, 1) where
+/// u_den[x] > 0, else 1 (ratio estimator Eq. 25, times U); `rgb` overlaps
+/// none of the inputs.
+void ratio_compose_row(const float *u, const float *s_den, const float *u_den, int count, bool accumulate,
+                       float *rgb);
+
 /// A hash (PCG-style integer mix) in [0, 1) of (x, y, seed), so the noise
 /// estimate's turn depends only on the place and the seed, never on the
 /// thread count.
