@@ -477,6 +477,7 @@ void RatioNoiseRow(const RatioNoiseSweep &s, int y, const unsigned char *active,
     const hn::CappedTag<float, kRatioNoiseRunPx> d;
     const hn::Rebind<std::int32_t, decltype(d)> d32;
     const hn::Rebind<std::uint8_t, decltype(d)> d8;
+    using VN = hn::Vec<decltype(d)>;
     const int lanes = int(hn::Lanes(d)), radius = s.line_radius_px, taps = 2 * radius + 1;
     const float per_difference = 1.0f / float(taps - 2);
     constexpr float kQuarterPi = 0.78539816f, kHalfSqrt2 = 0.70710678f;
@@ -500,21 +501,27 @@ void RatioNoiseRow(const RatioNoiseSweep &s, int y, const unsigned char *active,
             line_offsets(directions[line], radius, row_floats, &offsets[std::size_t(line * taps)]);
         for (int l0 = 0; l0 < run; l0 += lanes) {
             const float *at_pixel = centre + x0 + l0;  // lanes past the row's end read its padding
-            auto sum = hn::Zero(d);
+            // ratio estimator Eq. 29: the integral of |d^2 W_N / dt^2| along each
+            // line, the 4 lines side by side (independent sums that overlap in the core).
+            const std::int32_t *offset = offsets.data();  // line l's tap i at offset[l taps + i]
+            VN before[4], at[4], variation[4];
             for (int line = 0; line < 4; ++line) {
-                const std::int32_t *offset = &offsets[std::size_t(line * taps)];
-                // ratio estimator Eq. 29: the integral of |d^2 W_N / dt^2| along the line.
-                auto before = hn::LoadU(d, at_pixel + offset[0]), at = hn::LoadU(d, at_pixel + offset[1]);
-                auto variation = hn::Zero(d);
-                for (int i = 2; i < taps; ++i) {
-                    const auto after = hn::LoadU(d, at_pixel + offset[i]);
-                    variation =
-                        hn::Add(variation, hn::Abs(hn::Add(hn::Sub(before, hn::Mul(two, at)), after)));
-                    before = at;
-                    at = after;
-                }
-                sum = hn::Add(sum, hn::Mul(variation, hn::Set(d, per_difference)));
+                before[line] = hn::LoadU(d, at_pixel + offset[line * taps]);
+                at[line] = hn::LoadU(d, at_pixel + offset[line * taps + 1]);
+                variation[line] = hn::Zero(d);
             }
+            for (int i = 2; i < taps; ++i)
+                for (int line = 0; line < 4; ++line) {
+                    const VN after = hn::LoadU(d, at_pixel + offset[line * taps + i]);
+                    variation[line] =
+                        hn::Add(variation[line],
+                                hn::Abs(hn::Add(hn::Sub(before[line], hn::Mul(two, at[line])), after)));
+                    before[line] = at[line];
+                    at[line] = after;
+                }
+            auto sum = hn::Zero(d);
+            for (int line = 0; line < 4; ++line)
+                sum = hn::Add(sum, hn::Mul(variation[line], hn::Set(d, per_difference)));
             const auto mean = hn::Mul(hn::Set(d, 0.25f), sum);  // the mean over n = 4 lines
             if (l0 + lanes <= run) {                            // inactive lanes keep the row's +0
                 const auto flags = hn::PromoteTo(d32, hn::LoadU(d8, active + x0 + l0));
