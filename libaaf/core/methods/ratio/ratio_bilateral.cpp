@@ -46,9 +46,9 @@ detail::RatioGuideRow guide_span(const RatioBilateralGuides &guides, ConstPlaneV
     return in;
 }
 
-/// The per-pixel tap planes in packed form; inv_scale 0 marks "not a surface".
-RatioBilateralPlanes planes_from(const RatioBilateralGuides &guides, ConstPlaneView sigma_px,
-                                 const RatioBilateralSettings &settings) {
+/// The per-pixel tap planes, sized; inv_scale 0 will mark "not a surface".
+/// The horizontal pass writes each row just before it filters the row.
+RatioBilateralPlanes sized_planes(const RatioBilateralGuides &guides) {
     RatioBilateralPlanes planes;
     const int width = guides.scale_m.width;
     planes.width = width;
@@ -60,9 +60,6 @@ RatioBilateralPlanes planes_from(const RatioBilateralGuides &guides, ConstPlaneV
     };
     for (FramePlane<float> *plane : {&planes.px, &planes.py, &planes.pz, &planes.inv_scale}) size(*plane);
     size(planes.radius_px);
-    parallel_for_rows(planes.height, [&](int y) {
-        detail::ratio_planes_row(guide_span(guides, sigma_px, settings, y, 0, width), y, planes);
-    });
     return planes;
 }
 
@@ -95,7 +92,7 @@ void two_passes(const RatioBilateralGuides &guides, ConstPlaneView sigma_px,
                 const RatioBilateralSettings &settings, const std::vector<ConstPlaneView> &sources,
                 const Sink &sink) {
     check_inputs(guides, sigma_px, settings, sources);
-    const RatioBilateralPlanes planes = planes_from(guides, sigma_px, settings);
+    RatioBilateralPlanes planes = sized_planes(guides);
     const int width = planes.width, height = planes.height, k_count = int(sources.size());
     const std::size_t count = std::size_t(width) * std::size_t(height);
     // One allocation per plane (frame-sized blocks are reused, much larger ones may not be).
@@ -118,7 +115,10 @@ void two_passes(const RatioBilateralGuides &guides, ConstPlaneView sigma_px,
         for (int k = 0; k < k_count; ++k)
             rows[k] = packed_span(sources[std::size_t(k)], y, 0, width,
                                   &buffer[std::size_t(k) * std::size_t(width)]);
-        detail::ratio_bilateral_row_x(along_x, y, rows, guide_span(guides, sigma_px, settings, y, 0, width));
+        // The row's tap planes (the vertical pass reads them all), then its horizontal pass.
+        const detail::RatioGuideRow row_guides = guide_span(guides, sigma_px, settings, y, 0, width);
+        detail::ratio_planes_row(row_guides, y, planes);
+        detail::ratio_bilateral_row_x(along_x, y, rows, row_guides);
     });
     const int strips = (width + kStripPixels - 1) / kStripPixels;
     parallel_for_tiles(height, kTileRows, strips, 1, [&](const TileRange &tile) {

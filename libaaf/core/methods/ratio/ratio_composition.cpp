@@ -4,6 +4,7 @@
 
 #include <cmath>
 
+#include "aaf/core/methods/ratio/ratio_rows.h"
 #include "aaf/core/util/error.h"
 #include "aaf/core/util/parallel.h"
 
@@ -15,26 +16,20 @@ float finite_or_zero(float v) {
     return std::isfinite(v) ? v : 0.0f;
 }
 
-FramePlane<float> plane_of(ConstPlaneView view) {
-    FramePlane<float> plane;
-    plane.resize(std::size_t(view.width) * std::size_t(view.height));  // written in full below
-    parallel_for_rows(view.height, [&](int y) {
-        for (int x = 0; x < view.width; ++x)
-            plane[std::size_t(y) * std::size_t(view.width) + std::size_t(x)] = finite_or_zero(view(x, y));
+/// Packed copies of `views` (one size), non-finite values read as 0, in one
+/// pass over the rows (one parallel region, not one per plane).
+std::vector<FramePlane<float>> planes_of(const std::vector<ConstPlaneView> &views) {
+    std::vector<FramePlane<float>> planes(views.size());
+    const int width = views.front().width, height = views.front().height;
+    for (FramePlane<float> &plane : planes)
+        plane.resize(std::size_t(width) * std::size_t(height));  // written in full below
+    parallel_for_rows(height, [&](int y) {
+        for (std::size_t k = 0; k < views.size(); ++k) {
+            float *row = &planes[k][std::size_t(y) * std::size_t(width)];
+            for (int x = 0; x < width; ++x) row[x] = finite_or_zero(views[k](x, y));
+        }
     });
-    return plane;
-}
-
-/// ratio_weight and U x W over a row of adjacent pixels, written without
-/// branches so that it vectorises (the same values).
-void compose_ratio_row(const float *u, const float *s_den, const float *u_den, float *rgb, int count,
-                       bool accumulate) {
-    for (int x = 0; x < count; ++x) {
-        const float quotient = s_den[x] / u_den[x];
-        const float clamped = quotient < 0 ? 0.0f : (quotient > 1 ? 1.0f : quotient);
-        const float out = u[x] * (u_den[x] > 0 ? clamped : 1.0f);  // ratio estimator Eq. 25, times U
-        rgb[x] = accumulate ? rgb[x] + out : out;
-    }
+    return planes;
 }
 
 }  // namespace
@@ -45,8 +40,9 @@ void RatioComposition::compose_row(int y, int x_begin, int x_end, const float *c
     for (int c = 0; c < 3; ++c) adjacent &= rgb[c].pixel_stride == 1 && layers_.analytic[c].pixel_stride == 1;
     if (adjacent) {
         for (int c = 0; c < 3; ++c)
-            compose_ratio_row(&layers_.analytic[c](x_begin, y), denoised[grey_ ? 0 : c],
-                              denoised[grey_ ? 1 : 3 + c], &rgb[c](x_begin, y), x_end - x_begin, accumulate);
+            detail::ratio_compose_row(&layers_.analytic[c](x_begin, y), denoised[grey_ ? 0 : c],
+                                      denoised[grey_ ? 1 : 3 + c], x_end - x_begin, accumulate,
+                                      &rgb[c](x_begin, y));
         return;
     }
     float values[8];
@@ -88,18 +84,12 @@ std::vector<FramePlane<float>> RatioComposition::sources() const {
     std::vector<FramePlane<float>> planes;
     switch (estimator_) {
         case RatioEstimator::Ratio:
-            if (grey_) {
-                planes.push_back(plane_of(layers_.shadowed_y));
-                planes.push_back(plane_of(layers_.unshadowed_y));
-            } else {
-                for (int c = 0; c < 3; ++c) planes.push_back(plane_of(layers_.shadowed[c]));
-                for (int c = 0; c < 3; ++c) planes.push_back(plane_of(layers_.unshadowed[c]));
-            }
-            break;
+            if (grey_) return planes_of({layers_.shadowed_y, layers_.unshadowed_y});
+            return planes_of({layers_.shadowed[0], layers_.shadowed[1], layers_.shadowed[2],
+                              layers_.unshadowed[0], layers_.unshadowed[1], layers_.unshadowed[2]});
         case RatioEstimator::Stochastic:
-            for (int c = 0; c < 3; ++c)
-                planes.push_back(plane_of(layers_.shadowed[c]));  // ratio estimator Eq. 10
-            break;
+            // ratio estimator Eq. 10
+            return planes_of({layers_.shadowed[0], layers_.shadowed[1], layers_.shadowed[2]});
         case RatioEstimator::ControlVariate:
             for (int c = 0; c < 3; ++c) {
                 const ConstPlaneView u = layers_.analytic[c], u_n = layers_.unshadowed[c],

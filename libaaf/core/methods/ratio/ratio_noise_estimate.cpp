@@ -28,39 +28,57 @@ void dilate(const unsigned char *__restrict in, int count, int radius, unsigned 
         for (int x = std::max(0, -offset); x < std::min(count, count - offset); ++x) out[x] |= in[x + offset];
 }
 
-/// 1 where the (2 radius + 1)^2 window around the pixel holds two different
-/// values of `w` (packed, width x height), else 0: a window with two values
-/// holds two neighbours that differ, so it is enough to flag each pixel that
-/// differs from its right or lower neighbour and dilate the flags by
-/// `radius` (a square, separably).
-FramePlane<unsigned char> varying_windows(const float *w, int width, int height, int radius) {
-    const std::size_t count = std::size_t(width) * std::size_t(height);
-    FramePlane<unsigned char> flags, rows, out;
-    for (FramePlane<unsigned char> *plane : {&flags, &rows, &out}) plane->resize(count);  // written in full
+/// Per row, 1 where pixels [x - radius, x + radius] of the row hold a pixel
+/// of `w` (width x height, rows `row_floats` apart) that differs from its
+/// right or lower neighbour, else 0. A (2 radius + 1)^2 window with two
+/// values holds two neighbours that differ, so OR-ing 2 radius + 1 of these
+/// rows (active_row) tells whether the window varies.
+FramePlane<unsigned char> varying_along_rows(const float *w, std::size_t row_floats, int width, int height,
+                                             int radius) {
+    FramePlane<unsigned char> out;
+    out.resize(std::size_t(width) * std::size_t(height));  // written in full
     parallel_for_rows(height, [&](int y) {
         const int n = width;  // a local: a byte store might alias a captured value, not a local
-        const float *row = w + std::size_t(y) * std::size_t(n);
+        const float *row = w + std::size_t(y) * row_floats;
         const bool has_below = y + 1 < height;
-        const float *below = has_below ? row + width : row;  // read, then ignored, on the last row
-        unsigned char *__restrict flag = &flags[std::size_t(y) * std::size_t(width)];
+        const float *below = has_below ? row + row_floats : row;  // read, then ignored, on the last row
+        thread_local std::vector<unsigned char> flags;
+        flags.resize(std::size_t(n));
+        unsigned char *__restrict flag = flags.data();
         // a != b holds where either is NaN: NaN differs from everything.
         for (int x = 0; x + 1 < n; ++x) flag[x] = (row[x] != row[x + 1]) | (has_below & (row[x] != below[x]));
         flag[n - 1] = has_below & (row[n - 1] != below[n - 1]);
-    });
-    parallel_for_rows(height, [&](int y) {
-        const std::size_t first = std::size_t(y) * std::size_t(width);
-        dilate(&flags[first], width, radius, &rows[first]);
-    });
-    parallel_for_rows(height, [&](int y) {
-        const int n = width, first = std::max(0, y - radius), last = std::min(height - 1, y + radius);
-        unsigned char *__restrict row = &out[std::size_t(y) * std::size_t(n)];
-        std::fill_n(row, n, 0);
-        for (int ty = first; ty <= last; ++ty) {
-            const unsigned char *__restrict from = &rows[std::size_t(ty) * std::size_t(n)];
-            for (int x = 0; x < n; ++x) row[x] |= from[x];
-        }
+        dilate(flag, n, radius, &out[std::size_t(y) * std::size_t(width)]);
     });
     return out;
+}
+
+/// Row `y` of the pixels whose (2 radius + 1)^2 window varies: the OR of
+/// rows y - radius .. y + radius (clipped) of varying_along_rows' plane.
+void active_row(const FramePlane<unsigned char> &along_rows, int width, int height, int radius, int y,
+                unsigned char *__restrict row) {
+    const int n = width, first = std::max(0, y - radius), last = std::min(height - 1, y + radius);
+    std::fill_n(row, n, 0);
+    for (int ty = first; ty <= last; ++ty) {
+        const unsigned char *__restrict from = &along_rows[std::size_t(ty) * std::size_t(n)];
+        for (int x = 0; x < n; ++x) row[x] |= from[x];
+    }
+}
+
+/// W_N of `count` adjacent pixels (ratio estimator Eq. 23); W_N = 1 where
+/// U_N is ~0 (Sec. 4.2), non-finite S_N and U_N read as 0.
+void weighted_shadow_row(const float *__restrict s_n, const float *__restrict u_n, int count,
+                         float *__restrict w) {
+    for (int x = 0; x < count; ++x) {
+        const float s = std::isfinite(s_n[x]) ? s_n[x] : 0.0f;
+        const float u = std::isfinite(u_n[x]) ? u_n[x] : 0.0f;
+        w[x] = u > 0 ? std::clamp(s / u, 0.0f, 1.0f) : 1.0f;
+    }
+}
+
+/// W_N's value at a tap: non-finite values read as 1.
+float finite_or_one(float v) {
+    return std::isfinite(v) ? v : 1.0f;
 }
 
 }  // namespace
@@ -68,12 +86,13 @@ FramePlane<unsigned char> varying_windows(const float *w, int width, int height,
 void weighted_shadow(ConstPlaneView s_n, ConstPlaneView u_n, PlaneView w) {
     check_same_size(s_n, u_n, "U_N");
     check_same_size(s_n, w, "W_N");
+    const bool adjacent = s_n.pixel_stride == 1 && u_n.pixel_stride == 1 && w.pixel_stride == 1;
     parallel_for_rows(w.height, [&](int y) {
+        if (adjacent)  // pointers to rows, so that the loop vectorises (the same values)
+            return weighted_shadow_row(&s_n(0, y), &u_n(0, y), w.width, &w(0, y));
         for (int x = 0; x < w.width; ++x) {
-            const float s = std::isfinite(s_n(x, y)) ? s_n(x, y) : 0.0f;
-            const float u = std::isfinite(u_n(x, y)) ? u_n(x, y) : 0.0f;
-            // ratio estimator Eq. 23; W_N = 1 where both are ~0 (Sec. 4.2).
-            w(x, y) = u > 0 ? std::clamp(s / u, 0.0f, 1.0f) : 1.0f;
+            const float s = s_n(x, y), u = u_n(x, y);
+            weighted_shadow_row(&s, &u, 1, &w(x, y));
         }
     });
 }
@@ -81,30 +100,43 @@ void weighted_shadow(ConstPlaneView s_n, ConstPlaneView u_n, PlaneView w) {
 void ratio_noise_estimate(ConstPlaneView w, int line_radius_px, std::uint32_t seed, PlaneView e) {
     check_same_size(w, e, "E");
     if (line_radius_px < 1) throw Error("ratio noise estimate: the line radius must be >= 1 pixel");
-    const int width = w.width, height = w.height;
-    // The lines read W_N packed (a strided view is copied once).
-    std::vector<float> copy;
-    if (w.pixel_stride != 1 || w.row_stride != width) {
-        copy.resize(std::size_t(width) * std::size_t(height));
-        parallel_for_rows(height, [&](int y) {
-            for (int x = 0; x < width; ++x)
-                copy[std::size_t(y) * std::size_t(width) + std::size_t(x)] = w(x, y);
-        });
-    }
-    const float *packed = copy.empty() ? w.data : copy.data();
+    const int width = w.width, height = w.height, radius = line_radius_px;
+    // W_N with its edges repeated past the image, non-finite read as 1: every
+    // tap is a plain load (taps beyond the edge repeat the edge).
+    const int padded_width = width + 2 * radius + detail::kRatioNoiseRunPx;
+    FramePlane<float> padded;
+    padded.resize(std::size_t(padded_width) * std::size_t(height + 2 * radius));  // written in full
+    parallel_for_rows(height + 2 * radius, [&](int row) {
+        const int y = std::clamp(row - radius, 0, height - 1);
+        float *__restrict to = &padded[std::size_t(row) * std::size_t(padded_width)];
+        std::fill_n(to, radius, finite_or_one(w(0, y)));
+        if (w.pixel_stride == 1) {  // a pointer to the row, so that the copy vectorises
+            const float *__restrict from = &w(0, y);
+            for (int x = 0; x < width; ++x) to[radius + x] = finite_or_one(from[x]);
+        } else {
+            for (int x = 0; x < width; ++x) to[radius + x] = finite_or_one(w(x, y));
+        }
+        std::fill(to + radius + width, to + padded_width, finite_or_one(w(width - 1, y)));
+    });
+    const float *interior = &padded[std::size_t(radius) * std::size_t(padded_width) + std::size_t(radius)];
     // Every line's taps of an inactive pixel lie in a constant window: E is 0 exactly, without the work.
-    const FramePlane<unsigned char> active = varying_windows(packed, width, height, line_radius_px);
+    const FramePlane<unsigned char> along_rows =
+        varying_along_rows(interior, std::size_t(padded_width), width, height, radius);
     detail::RatioNoiseSweep sweep;
-    sweep.w = packed;
+    sweep.padded = padded.data();
+    sweep.padded_row_floats = std::size_t(padded_width);
     sweep.width = width;
     sweep.height = height;
     sweep.line_radius_px = line_radius_px;
     sweep.seed = seed;
-    sweep.active = active.data();
     FramePlane<float> raw;
     raw.resize(std::size_t(width) * std::size_t(height));  // written in full
-    parallel_for_rows(
-        height, [&](int y) { detail::ratio_noise_row(sweep, y, &raw[std::size_t(y) * std::size_t(width)]); });
+    parallel_for_rows(height, [&](int y) {
+        thread_local std::vector<unsigned char> active;
+        active.resize(std::size_t(width));
+        active_row(along_rows, width, height, radius, y, active.data());
+        detail::ratio_noise_row(sweep, y, active.data(), &raw[std::size_t(y) * std::size_t(width)]);
+    });
     // Sec. 4.2: E is noisy itself (random lines), so a 3x3 box filter over it.
     parallel_for_rows(height, [&](int y) {
         const float *rows[3];

@@ -32,15 +32,18 @@ constexpr int kMaxLanes = int(HWY_LANES(float));
 static_assert(kMaxLanes <= int(kRatioPlaneSlack), "the slack covers a vector");
 
 /// fast_exp_nonpositive (fast_exp.h) lane by lane, operation for operation
-/// (its Taylor polynomial, truncating conversion and separate roundings), so
-/// every lane gives that function's bits.
+/// (its Taylor polynomial and separate roundings), so every lane gives that
+/// function's bits. Its truncating int conversion is Trunc here (the same
+/// integer, never out of range: k lies in [-126, 0]), and 2^k's exponent
+/// bits come from k + 2^23 + 127, whose low mantissa bits hold k + 127: no
+/// int conversions, whose out-of-range fix-ups cost more than the rest.
 HWY_INLINE V fast_exp_nonpositive(D d, V x) {
     const DI di;
     // Max(NaN, -87) is -87 as the scalar comparison; Min(-0, 0) may keep -0
-    // where the scalar gives 0: both round to k = 0 and the same polynomial.
+    // where the scalar gives 0: both round to k = 0 and the same polynomial
+    // (as does Trunc's -0 where the conversion gives +0: r and p are the same).
     const V clamped = hn::Min(hn::Max(x, hn::Set(d, -87.0f)), hn::Zero(d));
-    const V k = hn::ConvertTo(
-        d, hn::ConvertTo(di, hn::Sub(hn::Mul(clamped, hn::Set(d, 1.44269504088896341f)), hn::Set(d, 0.5f))));
+    const V k = hn::Trunc(hn::Sub(hn::Mul(clamped, hn::Set(d, 1.44269504088896341f)), hn::Set(d, 0.5f)));
     const V r = hn::Sub(hn::Sub(clamped, hn::Mul(k, hn::Set(d, 0.693145751953125f))),
                         hn::Mul(k, hn::Set(d, 1.428606765330187045e-06f)));
     V p = hn::Set(d, 1.0f / 720.0f);
@@ -50,8 +53,9 @@ HWY_INLINE V fast_exp_nonpositive(D d, V x) {
     p = hn::Add(hn::Mul(p, r), hn::Set(d, 0.5f));
     p = hn::Add(hn::Mul(p, r), hn::Set(d, 1.0f));
     p = hn::Add(hn::Mul(p, r), hn::Set(d, 1.0f));
-    const V scale = hn::BitCast(d, hn::ShiftLeft<23>(hn::Add(hn::ConvertTo(di, k), hn::Set(di, 127))));
-    return hn::Mul(p, scale);
+    // k + 2^23 + 127 is exact, its bits 0x4b000000 + k + 127; shifting by 23 drops the 0x4b.
+    const VI biased = hn::BitCast(di, hn::Add(k, hn::Set(d, 8388735.0f)));
+    return hn::Mul(p, hn::BitCast(d, hn::ShiftLeft<23>(biased)));
 }
 
 /// Lanes [0, n) of `from`, zeros after (a row's last, partial vector).
@@ -134,6 +138,11 @@ struct Taps {
     const float *source[kRatioMaxPlanes];
 };
 
+/// Taps whose weights add_taps computes before it sums them: their
+/// exponentials are independent, so they overlap in the core instead of
+/// waiting on one another's latency chains (the same operations per lane).
+constexpr int kTapsPerBatch = 8;
+
 /// Adds the taps at offsets [o_begin, o_end] `stride` floats apart, each lane
 /// only those in its [lo, hi], in order (ratio_bilateral.cpp's scalar loops:
 /// the weight exp(-o^2 / (2 sigma^2) - q^2 / 2) of a tap q plane sigmas from
@@ -147,34 +156,44 @@ HWY_INLINE void add_taps(const Centres &c, const Taps &taps, std::ptrdiff_t stri
     for (int k = 0; k < K; ++k) sums[k] = hn::Zero(d);
     weight_sum = hn::Zero(d);
     const V half = hn::Set(d, 0.5f), zero = hn::Zero(d), one = hn::Set(d, 1.0f);
-    for (int o = o_begin; o <= o_end; ++o) {
-        const std::ptrdiff_t t = std::ptrdiff_t(o) * stride;
-        const V o_px = hn::Set(d, float(o));
-        const V plane_m = hn::Add(
-            hn::Add(hn::Mul(c.nx, hn::LoadU(d, taps.px + t)), hn::Mul(c.ny, hn::LoadU(d, taps.py + t))),
-            hn::Mul(c.nz, hn::LoadU(d, taps.pz + t)));
-        const V q = hn::Mul(hn::Sub(plane_m, c.plane_m), c.inv_scale);
-        const V exponent =
-            hn::Sub(hn::Mul(hn::Mul(c.minus_half_inv_sigma_sq, o_px), o_px), hn::Mul(hn::Mul(half, q), q));
-        const auto counts = hn::And(hn::And(hn::Ge(o_px, c.lo_px), hn::Le(o_px, c.hi_px)),
-                                    hn::Ne(hn::LoadU(d, taps.inv_scale + t), zero));
-        // The centre always counts (o = 0 lies in every lane's range).
-        const V w = o == 0 ? one : hn::IfThenElseZero(counts, fast_exp_nonpositive(d, exponent));
-        weight_sum = hn::Add(weight_sum, w);
-        for (int k = 0; k < K; ++k) sums[k] = hn::Add(sums[k], hn::Mul(w, hn::LoadU(d, taps.source[k] + t)));
+    for (int o0 = o_begin; o0 <= o_end; o0 += kTapsPerBatch) {
+        const int batch = std::min(kTapsPerBatch, o_end - o0 + 1);
+        V weights[kTapsPerBatch];
+        for (int j = 0; j < batch; ++j) {
+            const int o = o0 + j;
+            const std::ptrdiff_t t = std::ptrdiff_t(o) * stride;
+            const V o_px = hn::Set(d, float(o));
+            const V plane_m = hn::Add(
+                hn::Add(hn::Mul(c.nx, hn::LoadU(d, taps.px + t)), hn::Mul(c.ny, hn::LoadU(d, taps.py + t))),
+                hn::Mul(c.nz, hn::LoadU(d, taps.pz + t)));
+            const V q = hn::Mul(hn::Sub(plane_m, c.plane_m), c.inv_scale);
+            const V exponent = hn::Sub(hn::Mul(hn::Mul(c.minus_half_inv_sigma_sq, o_px), o_px),
+                                       hn::Mul(hn::Mul(half, q), q));
+            const auto counts = hn::And(hn::And(hn::Ge(o_px, c.lo_px), hn::Le(o_px, c.hi_px)),
+                                        hn::Ne(hn::LoadU(d, taps.inv_scale + t), zero));
+            // The centre always counts (o = 0 lies in every lane's range).
+            weights[j] = o == 0 ? one : hn::IfThenElseZero(counts, fast_exp_nonpositive(d, exponent));
+        }
+        for (int j = 0; j < batch; ++j) {
+            const std::ptrdiff_t t = std::ptrdiff_t(o0 + j) * stride;
+            weight_sum = hn::Add(weight_sum, weights[j]);
+            for (int k = 0; k < K; ++k)
+                sums[k] = hn::Add(sums[k], hn::Mul(weights[j], hn::LoadU(d, taps.source[k] + t)));
+        }
     }
 }
 
 /// The lanes' filtered values: the sums over the weight, or the centre's own
-/// value where the radius is 0 (bit for bit, -0 included).
+/// value where the radius is 0 (bit for bit, -0 included); lanes [0, n) to
+/// to[k], plane after plane.
 template <int K>
 HWY_INLINE void finish(const Centres &c, const Taps &taps, const V (&sums)[K], V weight_sum,
-                       float (&out)[K][kMaxLanes]) {
+                       float *const (&to)[K], int n) {
     const D d;
     const auto keep = hn::RebindMask(d, hn::Eq(c.radius, hn::Zero(DI())));
     for (int k = 0; k < K; ++k)
-        hn::StoreU(hn::IfThenElse(keep, hn::LoadU(d, taps.source[k]), hn::Div(sums[k], weight_sum)), d,
-                   out[k]);
+        store_part(d, hn::IfThenElse(keep, hn::LoadU(d, taps.source[k]), hn::Div(sums[k], weight_sum)), to[k],
+                   n);
 }
 
 /// Sets the lanes' tap range [lo, hi] (offsets from the centres).
@@ -186,16 +205,24 @@ HWY_INLINE void set_range(Centres &c, VI lo, VI hi) {
     c.hi_px = hn::ConvertTo(d, hi);
 }
 
-/// Whether no lane of `reach_px` filters (each keeps its value).
-HWY_INLINE bool none_filters(VI reach_px) {
-    const DI di;
-    return hn::AllTrue(di, hn::Eq(reach_px, hn::Zero(di)));
-}
-
 /// The reach of lanes [0, n) of `radius`, 0 for the others.
 HWY_INLINE VI load_radius(const std::int32_t *radius, int n) {
     const DI di;
     return hn::IfThenElseZero(hn::FirstN(di, std::size_t(n)), hn::LoadU(di, radius));
+}
+
+/// Where the vectors from `x0` on (pixels x0 .. x_end - 1 of `radius`)
+/// stop being ones no pixel of which filters: x0 itself, or the end of such
+/// a span (at most x_end), which the passes copy at once.
+HWY_INLINE int end_of_copied_span(const std::int32_t *radius, int x0, int x_end) {
+    const DI di;
+    const int lanes = int(hn::Lanes(di));
+    while (x0 < x_end) {
+        const int n = std::min(lanes, x_end - x0);
+        if (!hn::AllTrue(di, hn::Eq(load_radius(radius + x0, n), hn::Zero(di)))) return x0;
+        x0 += n;
+    }
+    return x_end;
 }
 
 template <int K>
@@ -209,47 +236,57 @@ void row_x(const RatioBilateralSweep &s, int y, const float *const *source_rows,
     const std::size_t row = std::size_t(y) * std::size_t(width);
     const std::int32_t *radius = &p.radius_px[row];
     const int reach = std::max(0, *std::max_element(radius, radius + width));
-    // The row's guides and values with `reach` floats before and a vector
-    // after, zeros there: every lane's taps load from inside the copy.
-    const std::size_t padded = std::size_t(reach + width + lanes);
+    // A lane's taps lie in the row (lo >= -x, hi <= width - 1 - x), but a
+    // vector's loads run up to a vector past its last lane's: the vectors
+    // from `tail_x0` on, whose loads may pass the row's end, load from a copy
+    // of the row's tail with zeros after it; the others from the row itself.
+    const int first_tail_x0 = std::max(0, width - reach - lanes + 1);
+    const int tail_x0 = (first_tail_x0 + lanes - 1) / lanes * lanes;
+    const int tail_begin = std::max(0, tail_x0 - reach);
+    const std::size_t tail_floats = std::size_t(width - tail_begin + lanes);
     thread_local std::vector<float> scratch;
-    scratch.resize(std::max(scratch.size(), padded * std::size_t(4 + K)));
-    auto copy_row = [&](int plane, const float *from) {
-        float *first = &scratch[std::size_t(plane) * padded], *to = first + reach;
-        std::fill(first, to, 0.0f);
-        std::memcpy(to, from, std::size_t(width) * sizeof(float));
-        std::fill_n(to + width, lanes, 0.0f);
-        return to;
+    scratch.resize(std::max(scratch.size(), tail_floats * std::size_t(4 + K)));
+    auto tail_of = [&](int plane, const float *row_values) {
+        float *to = &scratch[std::size_t(plane) * tail_floats];
+        std::memcpy(to, row_values + tail_begin, std::size_t(width - tail_begin) * sizeof(float));
+        std::fill_n(to + (width - tail_begin), lanes, 0.0f);
+        return to - tail_begin;  // indexed by x, as the row
     };
-    Taps taps{copy_row(0, &p.px[row]),
-              copy_row(1, &p.py[row]),
-              copy_row(2, &p.pz[row]),
-              copy_row(3, &p.inv_scale[row]),
-              {}};
-    for (int k = 0; k < K; ++k) taps.source[k] = copy_row(4 + k, source_rows[k]);
+    const Taps in_row{&p.px[row], &p.py[row], &p.pz[row], &p.inv_scale[row], {}};
+    Taps tail{nullptr, nullptr, nullptr, nullptr, {}};
+    if (tail_x0 < width) {
+        tail = Taps{tail_of(0, in_row.px),
+                    tail_of(1, in_row.py),
+                    tail_of(2, in_row.pz),
+                    tail_of(3, in_row.inv_scale),
+                    {}};
+        for (int k = 0; k < K; ++k) tail.source[k] = tail_of(4 + k, source_rows[k]);
+    }
     const VI last = hn::Set(di, width - 1);
     for (int x0 = 0; x0 < width; x0 += lanes) {
-        const int n = std::min(lanes, width - x0);
-        const VI reach_px = load_radius(radius + x0, n);
-        if (none_filters(reach_px)) {
+        const int copied_end = end_of_copied_span(radius, x0, width);
+        if (copied_end != x0) {  // pixels that keep their values
             for (int k = 0; k < K; ++k)
-                std::memcpy(s.output[k] + row + std::size_t(x0), taps.source[k] + x0,
-                            std::size_t(n) * sizeof(float));
-            continue;
+                std::memcpy(s.output[k] + row + std::size_t(x0), source_rows[k] + x0,
+                            std::size_t(copied_end - x0) * sizeof(float));
+            x0 = copied_end;
+            if (x0 == width) break;
         }
-        Centres c = load_centres(centres, x0, n, reach_px);
+        const int n = std::min(lanes, width - x0);
+        Centres c = load_centres(centres, x0, n, load_radius(radius + x0, n));
         const VI x = hn::Iota(di, x0);
         set_range(c, hn::Max(hn::Neg(c.radius), hn::Neg(x)), hn::Min(c.radius, hn::Sub(last, x)));
-        Taps at = taps;
+        Taps at = in_row;
+        for (int k = 0; k < K; ++k) at.source[k] = source_rows[k];
+        if (x0 >= tail_x0) at = tail;
         for (const float **plane : {&at.px, &at.py, &at.pz, &at.inv_scale}) *plane += x0;
         for (int k = 0; k < K; ++k) at.source[k] += x0;
         V sums[K], weight_sum;
         add_taps<K>(c, at, 1, hn::GetLane(hn::MinOfLanes(di, c.lo)), hn::GetLane(hn::MaxOfLanes(di, c.hi)),
                     sums, weight_sum);
-        alignas(64) float out[K][kMaxLanes];
-        finish<K>(c, at, sums, weight_sum, out);
-        for (int k = 0; k < K; ++k)
-            std::memcpy(s.output[k] + row + std::size_t(x0), out[k], std::size_t(n) * sizeof(float));
+        float *to[K];
+        for (int k = 0; k < K; ++k) to[k] = s.output[k] + row + std::size_t(x0);
+        finish<K>(c, at, sums, weight_sum, to, n);
     }
 }
 
@@ -261,28 +298,30 @@ void row_y(const RatioBilateralSweep &s, int y, int x_begin, int x_end, float *v
     const int lanes = int(hn::Lanes(d));
     const RatioBilateralPlanes &p = *s.planes;
     const std::ptrdiff_t width = p.width;
-    const std::size_t row = std::size_t(y) * std::size_t(width);
+    const std::size_t row = std::size_t(y) * std::size_t(width), span = std::size_t(x_end - x_begin);
+    const std::int32_t *radius = &p.radius_px[row];
     const VI up = hn::Set(di, -y), down = hn::Set(di, p.height - 1 - y);
     for (int x0 = x_begin; x0 < x_end; x0 += lanes) {
-        const int n = std::min(lanes, x_end - x0);
-        const std::size_t c0 = row + std::size_t(x0), span = std::size_t(x_end - x_begin);
-        const VI reach_px = load_radius(&p.radius_px[c0], n);
-        if (none_filters(reach_px)) {
+        const int copied_end = end_of_copied_span(radius, x0, x_end);
+        if (copied_end != x0) {  // pixels that keep their values
             for (int k = 0; k < K; ++k)
-                std::copy_n(s.source[k] + c0, n, values + std::size_t(k) * span + std::size_t(x0 - x_begin));
-            continue;
+                std::memcpy(values + std::size_t(k) * span + std::size_t(x0 - x_begin),
+                            s.source[k] + row + x0, std::size_t(copied_end - x0) * sizeof(float));
+            x0 = copied_end;
+            if (x0 == x_end) break;
         }
-        Centres c = load_centres(centres, x0 - x_begin, n, reach_px);
+        const int n = std::min(lanes, x_end - x0);
+        const std::size_t c0 = row + std::size_t(x0);
+        Centres c = load_centres(centres, x0 - x_begin, n, load_radius(radius + x0, n));
         set_range(c, hn::Max(hn::Neg(c.radius), up), hn::Min(c.radius, down));
         Taps at{&p.px[c0], &p.py[c0], &p.pz[c0], &p.inv_scale[c0], {}};
         for (int k = 0; k < K; ++k) at.source[k] = s.source[k] + c0;
         V sums[K], weight_sum;
         add_taps<K>(c, at, width, hn::GetLane(hn::MinOfLanes(di, c.lo)),
                     hn::GetLane(hn::MaxOfLanes(di, c.hi)), sums, weight_sum);
-        alignas(64) float out[K][kMaxLanes];
-        finish<K>(c, at, sums, weight_sum, out);
-        for (int k = 0; k < K; ++k)
-            std::copy_n(out[k], n, values + std::size_t(k) * span + std::size_t(x0 - x_begin));
+        float *to[K];
+        for (int k = 0; k < K; ++k) to[k] = values + std::size_t(k) * span + std::size_t(x0 - x_begin);
+        finish<K>(c, at, sums, weight_sum, to, n);
     }
 }
 
@@ -352,6 +391,25 @@ void RatioPlanesRow(const RatioGuideRow &in, int y, RatioBilateralPlanes &p) {
     }
 }
 
+/// ratio_compose_row in lanes: quotients, comparisons and products are
+/// correctly rounded everywhere, so every lane gives the scalar's bits
+/// (a NaN quotient passes both clamps, as there).
+void RatioComposeRow(const float *u, const float *s_den, const float *u_den, int count, bool accumulate,
+                     float *rgb) {
+    const D d;
+    const int lanes = int(hn::Lanes(d));
+    const V zero = hn::Zero(d), one = hn::Set(d, 1.0f);
+    for (int x = 0; x < count; x += lanes) {
+        const int n = std::min(lanes, count - x);
+        const V u_n = load_part(u_den + x, n), quotient = hn::Div(load_part(s_den + x, n), u_n);
+        const V clamped = hn::IfThenElse(hn::Lt(quotient, zero), zero,
+                                         hn::IfThenElse(hn::Gt(quotient, one), one, quotient));
+        V out = hn::Mul(load_part(u + x, n), hn::IfThenElse(hn::Gt(u_n, zero), clamped, one));
+        if (accumulate) out = hn::Add(load_part(rgb + x, n), out);
+        store_part(d, out, rgb + x, n);
+    }
+}
+
 /// The 3x3 box's interior columns in lanes (each sum in the scalar order),
 /// its first and last column and short rows one by one.
 void RatioBoxRow(const float *const *rows, int row_count, int width, float *out) {
@@ -382,69 +440,100 @@ void RatioBoxRow(const float *const *rows, int row_count, int width, float *out)
     for (; x < width; ++x) scalar(x);
 }
 
-/// The raw E of the row's active pixels, in lanes (ratio estimator Eq. 29):
-/// along 4 lines 45 degrees apart, turned by the pixel's hashed angle, the
-/// mean absolute second difference of W_N over nearest-pixel taps clamped
-/// to the image (non-finite read as 1).
-void RatioNoiseRow(const RatioNoiseSweep &s, int y, float *raw) {
+/// The offsets in the padded copy from a pixel to the nearest pixels of its
+/// line's taps t = -radius .. radius along `direction` (x, y), in lanes of
+/// t: floor(t direction + 1/2) rounded apart, as one float at a time would.
+HWY_INLINE void line_offsets(const float (&direction)[2], int radius, std::int32_t row_floats,
+                             std::int32_t *offsets) {
     const D d;
     const DI di;
-    const int lanes = int(hn::Lanes(d)), radius = s.line_radius_px;
-    const float per_difference = 1.0f / float(2 * radius + 1 - 2);
+    const V half = hn::Set(d, 0.5f), along_x = hn::Set(d, direction[0]), along_y = hn::Set(d, direction[1]);
+    for (int t0 = -radius; t0 <= radius; t0 += int(hn::Lanes(d))) {
+        const V t = hn::ConvertTo(d, hn::Iota(di, t0));
+        const VI dx = hn::ConvertTo(di, hn::Floor(hn::Add(hn::Mul(t, along_x), half)));
+        const VI dy = hn::ConvertTo(di, hn::Floor(hn::Add(hn::Mul(t, along_y), half)));
+        hn::StoreU(hn::Add(hn::Mul(dy, hn::Set(di, row_floats)), dx), di, offsets + (t0 + radius));
+    }
+}
+
+/// Whether any of `count` bytes is non-zero (a whole run as one word).
+HWY_INLINE bool any_active(const unsigned char *active, int count) {
+    static_assert(kRatioNoiseRunPx == sizeof(std::uint64_t), "a run's flags are one word");
+    if (count == kRatioNoiseRunPx) {
+        std::uint64_t word;
+        std::memcpy(&word, active, sizeof word);
+        return word != 0;
+    }
+    return std::find_if(active, active + count, [](unsigned char a) { return a != 0; }) != active + count;
+}
+
+/// The raw E of the row's active pixels (ratio estimator Eq. 29): along 4
+/// lines 45 degrees apart, turned by one hashed angle per run of
+/// kRatioNoiseRunPx pixels, the mean absolute second difference of W_N over
+/// nearest-pixel taps (the padded copy repeats the edges and reads
+/// non-finite values as 1). A run's pixels tap at the same offsets, so each
+/// tap is one vector load; lanes never span two runs.
+void RatioNoiseRow(const RatioNoiseSweep &s, int y, const unsigned char *active, float *raw) {
+    const hn::CappedTag<float, kRatioNoiseRunPx> d;
+    const hn::Rebind<std::int32_t, decltype(d)> d32;
+    const hn::Rebind<std::uint8_t, decltype(d)> d8;
+    using VN = hn::Vec<decltype(d)>;
+    const int lanes = int(hn::Lanes(d)), radius = s.line_radius_px, taps = 2 * radius + 1;
+    const float per_difference = 1.0f / float(taps - 2);
     constexpr float kQuarterPi = 0.78539816f, kHalfSqrt2 = 0.70710678f;
-    const V half = hn::Set(d, 0.5f), two = hn::Set(d, 2.0f), one = hn::Set(d, 1.0f),
-            h = hn::Set(d, kHalfSqrt2);
-    const VI last_x = hn::Set(di, s.width - 1), last_y = hn::Set(di, s.height - 1), zero_i = hn::Zero(di);
-    const VI row_y = hn::Set(di, y), width = hn::Set(di, s.width);
-    // The active pixels packed into the lanes (a row's are often scattered);
-    // a last partial vector repeats the last pixel.
-    const unsigned char *active = s.active + std::size_t(y) * std::size_t(s.width);
-    thread_local std::vector<std::int32_t> columns;
-    columns.clear();
-    for (int x = 0; x < s.width; ++x)
-        if (active[x]) columns.push_back(x);
+    const auto two = hn::Set(d, 2.0f);
+    // The row's centre pixel (x = 0) in the padded copy.
+    const float *centre = s.padded + std::size_t(y + radius) * s.padded_row_floats + std::size_t(radius);
+    const std::int32_t row_floats = std::int32_t(s.padded_row_floats);
+    thread_local std::vector<std::int32_t> offsets;     // per line, per tap: from a pixel to its tap
+    offsets.resize(std::size_t(4 * taps + kMaxLanes));  // a vector past the last
     std::fill_n(raw, s.width, 0.0f);
-    if (columns.empty()) return;
-    const std::size_t active_count = columns.size();
-    columns.resize(active_count + std::size_t(lanes), columns.back());
-    alignas(64) float cosines[kMaxLanes], sines[kMaxLanes], out[kMaxLanes];
-    for (std::size_t i = 0; i < active_count; i += std::size_t(lanes)) {
-        for (int l = 0; l < lanes; ++l) {
-            // std::cos and std::sin, as the scalar definition (one angle per pixel).
-            const float turn = ratio_pixel_random(columns[i + std::size_t(l)], y, s.seed) * kQuarterPi;
-            cosines[l] = std::cos(turn);
-            sines[l] = std::sin(turn);
-        }
-        const V c = hn::Load(d, cosines), sn = hn::Load(d, sines);
-        const V directions[4][2] = {{c, sn},
-                                    {hn::Mul(h, hn::Sub(c, sn)), hn::Mul(h, hn::Add(c, sn))},
-                                    {hn::Neg(sn), c},
-                                    {hn::Mul(hn::Neg(h), hn::Add(c, sn)), hn::Mul(h, hn::Sub(c, sn))}};
-        const VI x = hn::LoadU(di, &columns[i]);
-        V sum = hn::Zero(d);
-        for (const auto &direction : directions) {
-            auto tap = [&](int t) {
-                const V t_px = hn::Set(d, float(t));
-                const VI dx = hn::ConvertTo(di, hn::Floor(hn::Add(hn::Mul(t_px, direction[0]), half)));
-                const VI dy = hn::ConvertTo(di, hn::Floor(hn::Add(hn::Mul(t_px, direction[1]), half)));
-                const VI sx = hn::Min(hn::Max(hn::Add(x, dx), zero_i), last_x);
-                const VI sy = hn::Min(hn::Max(hn::Add(row_y, dy), zero_i), last_y);
-                const V v = hn::GatherIndex(d, s.w, hn::Add(hn::Mul(sy, width), sx));
-                return hn::IfThenElse(hn::IsFinite(v), v, one);
-            };
-            // ratio estimator Eq. 29: the integral of |d^2 W_N / dt^2| along the line.
-            V before = tap(-radius), at = tap(1 - radius), variation = hn::Zero(d);
-            for (int t = 2 - radius; t <= radius; ++t) {
-                const V after = tap(t);
-                variation = hn::Add(variation, hn::Abs(hn::Add(hn::Sub(before, hn::Mul(two, at)), after)));
-                before = at;
-                at = after;
+    for (int x0 = 0; x0 < s.width; x0 += kRatioNoiseRunPx) {
+        const int run = std::min(kRatioNoiseRunPx, s.width - x0);
+        if (!any_active(active + x0, run)) continue;
+        const float turn = ratio_pixel_random(x0 / kRatioNoiseRunPx, y, s.seed) * kQuarterPi;
+        const float c = std::cos(turn), sn = std::sin(turn);
+        const float directions[4][2] = {{c, sn},
+                                        {kHalfSqrt2 * (c - sn), kHalfSqrt2 * (c + sn)},
+                                        {-sn, c},
+                                        {-kHalfSqrt2 * (c + sn), kHalfSqrt2 * (c - sn)}};
+        for (int line = 0; line < 4; ++line)
+            line_offsets(directions[line], radius, row_floats, &offsets[std::size_t(line * taps)]);
+        for (int l0 = 0; l0 < run; l0 += lanes) {
+            const float *at_pixel = centre + x0 + l0;  // lanes past the row's end read its padding
+            // ratio estimator Eq. 29: the integral of |d^2 W_N / dt^2| along each
+            // line, the 4 lines side by side (independent sums that overlap in the core).
+            const std::int32_t *offset = offsets.data();  // line l's tap i at offset[l taps + i]
+            VN before[4], at[4], variation[4];
+            for (int line = 0; line < 4; ++line) {
+                before[line] = hn::LoadU(d, at_pixel + offset[line * taps]);
+                at[line] = hn::LoadU(d, at_pixel + offset[line * taps + 1]);
+                variation[line] = hn::Zero(d);
             }
-            sum = hn::Add(sum, hn::Mul(variation, hn::Set(d, per_difference)));
+            for (int i = 2; i < taps; ++i)
+                for (int line = 0; line < 4; ++line) {
+                    const VN after = hn::LoadU(d, at_pixel + offset[line * taps + i]);
+                    variation[line] =
+                        hn::Add(variation[line],
+                                hn::Abs(hn::Add(hn::Sub(before[line], hn::Mul(two, at[line])), after)));
+                    before[line] = at[line];
+                    at[line] = after;
+                }
+            auto sum = hn::Zero(d);
+            for (int line = 0; line < 4; ++line)
+                sum = hn::Add(sum, hn::Mul(variation[line], hn::Set(d, per_difference)));
+            const auto mean = hn::Mul(hn::Set(d, 0.25f), sum);  // the mean over n = 4 lines
+            if (l0 + lanes <= run) {                            // inactive lanes keep the row's +0
+                const auto flags = hn::PromoteTo(d32, hn::LoadU(d8, active + x0 + l0));
+                hn::StoreU(hn::IfThenElseZero(hn::RebindMask(d, hn::Ne(flags, hn::Zero(d32))), mean), d,
+                           raw + x0 + l0);
+                continue;
+            }
+            alignas(64) float out[kRatioNoiseRunPx];
+            hn::Store(mean, d, out);
+            for (int l = 0; l < run - l0; ++l)
+                if (active[x0 + l0 + l]) raw[x0 + l0 + l] = out[l];
         }
-        hn::Store(hn::Mul(hn::Set(d, 0.25f), sum), d, out);  // the mean over n = 4 lines
-        const std::size_t n = std::min(std::size_t(lanes), active_count - i);
-        for (std::size_t l = 0; l < n; ++l) raw[columns[i + l]] = out[l];
     }
 }
 
@@ -462,6 +551,7 @@ HWY_EXPORT(RatioBilateralRowY);
 HWY_EXPORT(RatioNoiseRow);
 HWY_EXPORT(RatioPlanesRow);
 HWY_EXPORT(RatioBoxRow);
+HWY_EXPORT(RatioComposeRow);
 
 void ratio_bilateral_row_x(const RatioBilateralSweep &sweep, int y, const float *const *source_rows,
                            const RatioGuideRow &centres) {
@@ -475,14 +565,20 @@ void ratio_bilateral_row_y(const RatioBilateralSweep &sweep, int y, int x_begin,
     HWY_DYNAMIC_DISPATCH(RatioBilateralRowY)(sweep, y, x_begin, x_end, values, centres);
 }
 
-void ratio_noise_row(const RatioNoiseSweep &sweep, int y, float *raw) {
+void ratio_noise_row(const RatioNoiseSweep &sweep, int y, const unsigned char *active, float *raw) {
     (void)instruction_set();
-    HWY_DYNAMIC_DISPATCH(RatioNoiseRow)(sweep, y, raw);
+    HWY_DYNAMIC_DISPATCH(RatioNoiseRow)(sweep, y, active, raw);
 }
 
 void ratio_planes_row(const RatioGuideRow &in, int y, RatioBilateralPlanes &planes) {
     (void)instruction_set();
     HWY_DYNAMIC_DISPATCH(RatioPlanesRow)(in, y, planes);
+}
+
+void ratio_compose_row(const float *u, const float *s_den, const float *u_den, int count, bool accumulate,
+                       float *rgb) {
+    (void)instruction_set();
+    HWY_DYNAMIC_DISPATCH(RatioComposeRow)(u, s_den, u_den, count, accumulate, rgb);
 }
 
 void ratio_box_row(const float *const *rows, int row_count, int width, float *out) {

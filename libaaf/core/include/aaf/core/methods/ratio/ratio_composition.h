@@ -71,6 +71,7 @@ class RatioComposition {
 
     /// compose() over pixels [x_begin, x_end) of row `y` into `rgb`, denoised[k]
     /// the pixels' plane k (x_end - x_begin values each); the same values.
+    /// `rgb` overlaps neither the layers nor `denoised`.
     void compose_row(int y, int x_begin, int x_end, const float *const *denoised,
                      const std::array<PlaneView, 3> &rgb, bool accumulate) const;
 

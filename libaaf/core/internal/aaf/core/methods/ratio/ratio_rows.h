@@ -62,8 +62,15 @@ void ratio_bilateral_row_x(const RatioBilateralSweep &sweep, int y, const float 
 void ratio_bilateral_row_y(const RatioBilateralSweep &sweep, int y, int x_begin, int x_end, float *values,
                            const RatioGuideRow &centres);
 
-/// A per-pixel hash (PCG-style integer mix) in [0, 1), so the noise
-/// estimate's turn depends only on the pixel and the seed, never on the
+/// RatioComposition::compose() of the ratio estimator over `count` adjacent
+/// pixels: rgb[x] (+)= u[x] W, W = clamp(s_den[x] / u_den[x], 0, 1) where
+/// u_den[x] > 0, else 1 (ratio estimator Eq. 25, times U); `rgb` overlaps
+/// none of the inputs.
+void ratio_compose_row(const float *u, const float *s_den, const float *u_den, int count, bool accumulate,
+                       float *rgb);
+
+/// A hash (PCG-style integer mix) in [0, 1) of (x, y, seed), so the noise
+/// estimate's turn depends only on the place and the seed, never on the
 /// thread count.
 inline float ratio_pixel_random(int x, int y, std::uint32_t seed) {
     std::uint32_t h = std::uint32_t(x) * 0x8da6b343u ^ std::uint32_t(y) * 0xd8163841u ^ seed * 0xcb1ab31fu;
@@ -75,18 +82,27 @@ inline float ratio_pixel_random(int x, int y, std::uint32_t seed) {
     return float(h >> 8) * (1.0f / 16777216.0f);
 }
 
+/// Pixels of a row that share one turn of the noise estimate's lines (x /
+/// kRatioNoiseRunPx is hashed): their taps lie at the same offsets, so they
+/// are read with one vector load per tap instead of a gather. A constant,
+/// not the vector width: every instruction set turns the same lines.
+inline constexpr int kRatioNoiseRunPx = 8;
+
 /// The noise estimate's lines over W_N (ratio_noise_estimate.cpp).
 struct RatioNoiseSweep {
-    const float *w = nullptr;  ///< W_N, row-major
+    /// W_N with non-finite values read as 1, its rows and columns
+    /// repeated past the edges: `line_radius_px` rows above and below,
+    /// `line_radius_px` columns left, line_radius_px + kRatioNoiseRunPx right.
+    const float *padded = nullptr;
+    std::size_t padded_row_floats = 0;  ///< floats from one padded row to the next
     int width = 0, height = 0;
     int line_radius_px = 1;
     std::uint32_t seed = 0;
-    const unsigned char *active = nullptr;  ///< 0 where every line's taps are equal: E = 0
 };
 
 /// Row `y` of E before its box filter (ratio estimator Eq. 29, the mean over 4 lines) to `raw` (width
-/// floats).
-void ratio_noise_row(const RatioNoiseSweep &sweep, int y, float *raw);
+/// floats); `active` (width bytes) is 0 where every line's taps are equal: E = 0 there.
+void ratio_noise_row(const RatioNoiseSweep &sweep, int y, const unsigned char *active, float *raw);
 
 /// One row of a 3x3 box filter clipped to the image: out[x] = the mean of
 /// rows[r][x - 1 .. x + 1] (clipped to [0, width)) over the `row_count`
