@@ -93,11 +93,8 @@ class IsgShadowMethod final : public Method {
         sweep.focal_px = focal_px;
         sweep.light_center = light.center;
         sweep.out = images.output(Role::FilteredVisibility);
-        const PlaneLayout &layout = sweep.layout;
-        std::vector<float> position_hard(std::size_t(4) * std::size_t(layout.height) *
-                                         std::size_t(layout.row_stride));
-        parallel_for_rows(height, [&](int y) { pack_shadow_row(sweep, position_hard.data(), y); });
-        sweep.position_hard = position_hard.data();
+        ShadowScratch scratch;
+        prepare_shadow_sweep(sweep, scratch);
         // Per pixel: the parameter search (ISG Eq. 4-7), the mean occluder
         // distance of the in-shadow taps within the light's projected size
         // (ISG Eq. 5); then the gather (ISG Eq. 4) of the hard visibility within the
