@@ -134,13 +134,13 @@ HWY_INLINE VF clamp_radius(VF radius_px, float max_radius_px) {
                               hn::Min(radius_px, hn::Set(df, max_radius_px)));
 }
 
-/// std::lround(t): the nearest integer, halves away from zero (|t| < 2^23).
+/// std::lround(t): the nearest integer, halves away from zero (|t| < 2^23):
+/// t plus the float just below 1/2, signed as t, truncated (for every such
+/// float, checked exhaustively: the sum rounds up to the next integer
+/// exactly when t's fraction is at least 1/2).
 HWY_INLINE VI round_half_away(VF t) {
     const DF df;
-    const VF whole = hn::Trunc(t);
-    const MF half_up = hn::Ge(hn::Abs(hn::Sub(t, whole)), hn::Set(df, 0.5f));  // t - whole is exact
-    return hn::ConvertTo(DI(),
-                         hn::Add(whole, hn::IfThenElseZero(half_up, hn::CopySign(hn::Set(df, 1.0f), t))));
+    return hn::ConvertTo(DI(), hn::Add(t, hn::CopySign(hn::Set(df, 0.49999997f), t)));
 }
 
 /// Index of pixel (x, y) in every plane of `layout`.
@@ -257,6 +257,18 @@ struct WeightedSums {
                 value[k][h] = hn::Add(value[k][h], hn::Mul(wd, promote_half(v_in[k], h)));
         }
     }
+    /// add() of finite `values`: the lanes not in `m` add weight 0 and
+    /// 0 x value = +-0, which leaves every sum's bits as they are (a sum
+    /// that starts at +0 and adds is never -0).
+    void add_finite(MF m, VF w, const VF (&values)[kValues]) {
+        const VF w_in = hn::IfThenElseZero(m, w);
+        for (int h = 0; h < kHalves; ++h) {
+            const VD wd = promote_half(w_in, h);
+            weight[h] = hn::Add(weight[h], wd);
+            for (int k = 0; k < kValues; ++k)
+                value[k][h] = hn::Add(value[k][h], hn::Mul(wd, promote_half(values[k], h)));
+        }
+    }
     /// The lanes whose weights sum to more than 0 (a positive sum of floats
     /// stays positive in float).
     MF positive() const { return hn::Gt(demote_halves(weight), hn::Zero(DF())); }
@@ -323,7 +335,7 @@ HWY_INLINE MF shadow_search(const ShadowSweep &s, const ShadowBlock &b, MF valid
         m = hn::And(m, hn::Ge(d, hn::Zero(df)));
         if (hn::AllFalse(df, m)) continue;
         const VF w = shadow_range(s, p, p0, m);
-        sums.add(m, w, {d});
+        sums.add_finite(m, w, {d});
     }
     occluder_m = sums.mean(0);
     return hn::And(valid, sums.positive());
@@ -344,9 +356,8 @@ HWY_INLINE VF shadow_gather(const ShadowSweep &s, const ShadowBlock &b, MF found
         Point p;
         VF v;
         load_quadruples(df, packed, index, p, v);
-        m = hn::And(m, hn::IsFinite(v));
-        const VF w = shadow_range(s, p, p0, m);
-        sums.add(m, w, {v});
+        const VF w = shadow_range(s, p, p0, m);  // NaN where V is not finite (PackShadowRow())
+        sums.add_finite(m, w, {v});
     }
     return hn::IfThenElse(hn::And(found, sums.positive()), sums.mean(0), hard0);
 }
@@ -436,8 +447,10 @@ HWY_INLINE VF shadow_pixels(const ShadowSweep &s, const ShadowBlock &b, MF valid
                                       : shadow_gather<false>(s, b, found, p0, gather_px, hard0);
 }
 
-/// Packs row `y`: (P, V) and (P, d) per pixel, d = -1 where the search
-/// passes the pixel over (not in shadow, or no distance >= 0 and finite).
+/// Packs row `y`: (P, V) and (P, d) per pixel. d = -1 where the search
+/// passes the pixel over (not in shadow, or no distance >= 0 and finite);
+/// where V is not finite, the gather's P.x is NaN (so is the tap's weight,
+/// which passes it over) and V 0, so that every packed value is finite.
 void PackShadowRow(const ShadowSweep &s, ShadowScratch &scratch, int y) {
     const DF df;
     const std::ptrdiff_t row = std::ptrdiff_t(y) * s.layout.width;
@@ -448,16 +461,21 @@ void PackShadowRow(const ShadowSweep &s, ShadowScratch &scratch, int y) {
         const VF hard = load_centre(s.hard, lanes), d = load_centre(s.occluder_m, lanes);
         const MF searched = hn::And(hn::Lt(hard, hn::Set(df, 0.5f)),  // inShadow of ISG Eq. 6
                                     hn::And(hn::Ge(d, hn::Zero(df)), hn::IsFinite(d)));
-        HWY_ALIGN float x[kMaxLanes], y_m[kMaxLanes], z[kMaxLanes], v[kMaxLanes], occluder[kMaxLanes];
-        hn::Store(load_centre(s.position[0], lanes), df, x);
+        const MF finite = hn::IsFinite(hard);
+        const VF x_m = load_centre(s.position[0], lanes);
+        HWY_ALIGN float x[kMaxLanes], x_gather[kMaxLanes], y_m[kMaxLanes], z[kMaxLanes], v[kMaxLanes],
+            occluder[kMaxLanes];
+        hn::Store(x_m, df, x);
+        hn::Store(hn::IfThenElse(finite, x_m, hn::Set(df, NAN)), df, x_gather);
         hn::Store(load_centre(s.position[1], lanes), df, y_m);
         hn::Store(load_centre(s.position[2], lanes), df, z);
-        hn::Store(hard, df, v);
+        hn::Store(hn::IfThenElseZero(finite, hard), df, v);
         hn::Store(hn::IfThenElse(searched, d, hn::Set(df, -1.0f)), df, occluder);
         for (int i = 0; i < lanes.count; ++i) {
             float *q = position_hard + 4 * std::ptrdiff_t(x0 + i);
             float *o = position_occluder + 4 * std::ptrdiff_t(x0 + i);
-            q[0] = o[0] = x[i];
+            q[0] = x_gather[i];
+            o[0] = x[i];
             q[1] = o[1] = y_m[i];
             q[2] = o[2] = z[i];
             q[3] = v[i];
