@@ -315,6 +315,60 @@ HWY_INLINE VI shadow_tap(const ShadowBlock &b, VF radius_px, float tap_x, float 
     }
 }
 
+/// One tap of a vector of pixels, read: the lanes it counts for, its
+/// packed point and value.
+struct ShadowTap {
+    MF m;
+    Point p;
+    VF value;
+};
+
+/// Tap `t` of `taps` scaled by `radius_px` for the lanes in `m`, read from
+/// `packed` (the index is clamped, so the read is safe for every lane); for
+/// the search (kSearch) only where the packed distance is >= 0: in shadow,
+/// ISG Eq. 6's inShadow, with a valid distance.
+template <bool kInterior, bool kSearch>
+HWY_INLINE ShadowTap read_shadow_tap(const ShadowBlock &b, const float *packed, const TapArrays &taps, int t,
+                                     VF radius_px, MF m) {
+    const DF df;
+    ShadowTap tap;
+    const VI index = shadow_tap<kInterior>(b, radius_px, taps.x[t], taps.y[t], m);
+    load_quadruples(df, packed, index, tap.p, tap.value);
+    tap.m = kSearch ? hn::And(m, hn::Ge(tap.value, hn::Zero(df))) : m;
+    return tap;
+}
+
+/// ISG Eq. 4's sums over `taps` for the lanes in `m`, range weights of ISG
+/// Eq. 6-7. Taps go two at a time, so that one's weight (a square root and
+/// an exponential, long in latency) overlaps the other's; they are added in
+/// order. A pair with no lane to count is passed over; a tap with none in
+/// a pair adds zeros, which leave the sums' bits as they are (add_finite()).
+template <bool kInterior, bool kSearch>
+HWY_INLINE WeightedSums<1> shadow_sums(const ShadowSweep &s, const ShadowBlock &b, const float *packed,
+                                       const TapArrays &taps, VF radius_px, MF m, const Point &p0) {
+    const DF df;
+    WeightedSums<1> sums;
+    const int count = taps.count();
+    int t = 0;
+    for (; t + 1 < count; t += 2) {
+        ShadowTap first = read_shadow_tap<kInterior, kSearch>(b, packed, taps, t, radius_px, m);
+        ShadowTap second = read_shadow_tap<kInterior, kSearch>(b, packed, taps, t + 1, radius_px, m);
+        if (hn::AllFalse(df, hn::Or(first.m, second.m))) continue;
+        const VF w_first = shadow_range(s, first.p, p0, first.m);
+        const VF w_second = shadow_range(s, second.p, p0, second.m);
+        sums.add_finite(first.m, w_first, {first.value});
+        sums.add_finite(second.m, w_second, {second.value});
+    }
+    if (t < count) {
+        ShadowTap last = read_shadow_tap<kInterior, kSearch>(b, packed, taps, t, radius_px, m);
+        if (!hn::AllFalse(df, last.m)) {
+            const VF w = shadow_range(s, last.p, p0, last.m);
+            sums.add_finite(last.m, w, {last.value});
+        }
+    }
+    return sums;
+}
+
 /// ISG Eq. 4-7: the mean occluder distance of the in-shadow taps within
 /// `radius_px` (shadow_search_radius()); false lanes found none. The packed
 /// occluder distance is negative where a tap is not in shadow (ISG Eq. 6's
@@ -322,43 +376,20 @@ HWY_INLINE VI shadow_tap(const ShadowBlock &b, VF radius_px, float tap_x, float 
 template <bool kInterior>
 HWY_INLINE MF shadow_search(const ShadowSweep &s, const ShadowBlock &b, MF valid, const Point &p0,
                             VF radius_px, VF &occluder_m) {
-    const DF df;
-    WeightedSums<1> sums;
-    const float *packed = s.scratch->position_occluder.data();
-    for (int t = 0; t < s.search->count(); ++t) {
-        MF m = valid;
-        const VI index = shadow_tap<kInterior>(b, radius_px, s.search->x[t], s.search->y[t], m);
-        if (!kInterior && hn::AllFalse(df, m)) continue;
-        Point p;
-        VF d;
-        load_quadruples(df, packed, index, p, d);
-        m = hn::And(m, hn::Ge(d, hn::Zero(df)));
-        if (hn::AllFalse(df, m)) continue;
-        const VF w = shadow_range(s, p, p0, m);
-        sums.add_finite(m, w, {d});
-    }
+    const WeightedSums<1> sums = shadow_sums<kInterior, true>(s, b, s.scratch->position_occluder.data(),
+                                                              *s.search, radius_px, valid, p0);
     occluder_m = sums.mean(0);
     return hn::And(valid, sums.positive());
 }
 
 /// The gather of ISG Eq. 4: the hard visibility within `radius_px`
-/// (shadow_gather_radius()), for the lanes in `found`; else `hard0`.
+/// (shadow_gather_radius()), for the lanes in `found`; else `hard0`. A tap
+/// whose V is not finite has a NaN weight, which passes it over (PackShadowRow()).
 template <bool kInterior>
 HWY_INLINE VF shadow_gather(const ShadowSweep &s, const ShadowBlock &b, MF found, const Point &p0,
                             VF radius_px, VF hard0) {
-    const DF df;
-    WeightedSums<1> sums;
-    const float *packed = s.scratch->position_hard.data();
-    for (int t = 0; t < s.gather->count(); ++t) {
-        MF m = found;
-        const VI index = shadow_tap<kInterior>(b, radius_px, s.gather->x[t], s.gather->y[t], m);
-        if (!kInterior && hn::AllFalse(df, m)) continue;
-        Point p;
-        VF v;
-        load_quadruples(df, packed, index, p, v);
-        const VF w = shadow_range(s, p, p0, m);  // NaN where V is not finite (PackShadowRow())
-        sums.add_finite(m, w, {v});
-    }
+    const WeightedSums<1> sums =
+        shadow_sums<kInterior, false>(s, b, s.scratch->position_hard.data(), *s.gather, radius_px, found, p0);
     return hn::IfThenElse(hn::And(found, sums.positive()), sums.mean(0), hard0);
 }
 
