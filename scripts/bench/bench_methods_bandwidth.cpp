@@ -8,7 +8,9 @@
 // is made outside the timing), default parameters. Its beauty is maaf6's,
 // with a pass of the key light, so aaf and gaussian filter that pass too and
 // swap it into the beauty.
-// One row per method (BM_MethodVsCopyBandwidth/<method>), medians over the iterations:
+// Two rows per method (BM_MethodVsCopyBandwidth/<method>/threads:N): all the
+// machine's threads (N = 0) and one (N = 1), the copy and the method alike.
+// Medians over the iterations:
 //   copy_GB_s          a parallel copy of a 512 MiB buffer (read + write bytes per second)
 //   method_ms          filter_aovs() of the method, end to end in memory
 //   method_cpu_ms      the same call's CPU time over all threads (page faults
@@ -17,13 +19,16 @@
 //                      the render (per-light layers included) plus its outputs
 //   floor_ms           those bytes at copy_GB_s
 //   method_over_floor  method_ms / floor_ms: how far from memory-bound
-// For aaf and gaussian, each iteration also runs the method's kernels alone
-// on the same planes, alternately with filter_aovs():
+// For aaf, gaussian and isg-shadow, each iteration also runs the method's
+// kernels alone on the same planes, alternately with filter_aovs():
 //   kernels_ms         aaf: aaf_gather_guides() (occluder fill, guides), one
 //                      gather of the visibility and the key light's pass (4
 //                      channels, the pass demodulated outside the timing), the
 //                      beauty's composition; gaussian: the blur of the visibility and
-//                      of the pass's 3 channels, the composition
+//                      of the pass's 3 channels, the composition; isg-shadow:
+//                      isg_shadow_visibility() (its search and gather; this
+//                      render's beauty is not r(x) V(x), which isg-shadow
+//                      keeps as rendered, so there is no composition)
 //   method_over_kernels  method_ms / kernels_ms: what the framework adds
 // The header names the CPU and the instruction set the kernels run (AAF_ISA).
 // Run: ./build/scripts/bench/bench_methods_bandwidth
@@ -50,7 +55,9 @@
 #include "aaf/core/kernels/gather_rows.h"
 #include "aaf/core/methods/aaf/aaf_filter.h"
 #include "aaf/core/util/instruction_set.h"
+#include "aaf/core/util/thread_count.h"
 #include "aaf/trace/render.h"
+#include "methods/isg/isg_shadow.h"
 
 namespace {
 
@@ -178,9 +185,29 @@ struct KernelPlanes {
     }
 };
 
-/// The kernels of `method` on `k`'s planes, or none for a method without them here.
-std::function<void()> method_kernels(const std::string &method, KernelPlanes &k) {
+/// isg-shadow's filter on `k`'s planes with the method's `parameters`.
+std::function<void()> isg_shadow_kernels(KernelPlanes &k, const aaf::ParameterSet &parameters) {
     const aaf::AovSet &a = *k.aovs;
+    const aaf::ChannelMap found = aaf::ChannelMap{}.resolved(a);
+    const auto plane = [&](aaf::Role role, std::size_t c) { return a.channel(found.channels(role)[c]); };
+    aaf::isg::ShadowInputs in;
+    in.hard = plane(aaf::roles::HardVisibility, 0);
+    in.occluder_m = plane(aaf::roles::OccluderDistance, 0);
+    in.depth_m = plane(aaf::Role::Depth, 0);
+    for (std::size_t c = 0; c < 3; ++c) in.position.c[c] = plane(aaf::Role::Position, c);
+    const aaf::LightPlane light = aaf::read_light_attributes(a);
+    const float focal_px = aaf::isg::focal_px_attribute(a.attributes, a.height());
+    const aaf::isg::IsgShadowSettings settings = aaf::isg::isg_shadow_settings(parameters);
+    return [&k, in, light, focal_px, settings] {
+        aaf::isg::isg_shadow_visibility(in, settings, light, focal_px, k.view(k.filtered));
+    };
+}
+
+/// The kernels of `method` on `k`'s planes, or none for a method without them here.
+std::function<void()> method_kernels(const aaf::Method &m, KernelPlanes &k) {
+    const std::string &method = m.info().name;
+    const aaf::AovSet &a = *k.aovs;
+    if (method == "isg-shadow") return isg_shadow_kernels(k, m.default_parameters());
     if (method == "gaussian")
         return [&k] {
             const float sigma_px = 2;  // the method's default
@@ -223,7 +250,7 @@ std::function<void()> method_kernels(const std::string &method, KernelPlanes &k)
     };
 }
 
-void BM_MethodVsCopyBandwidth(benchmark::State &state, const aaf::Method *method) {
+void method_vs_copy_bandwidth(benchmark::State &state, const aaf::Method *method) {
     const aaf::AovSet &aovs = render();
     const aaf::MissingInputs missing = aaf::missing_inputs(*method, aovs, aaf::ChannelMap{});
     if (!missing.roles.empty() || !missing.attributes.empty()) {
@@ -233,7 +260,7 @@ void BM_MethodVsCopyBandwidth(benchmark::State &state, const aaf::Method *method
     const aaf::ParameterSet parameters = method->default_parameters();
     const double bandwidth = copy_bytes_per_s();
     KernelPlanes planes(aovs);
-    const std::function<void()> kernels = method_kernels(method->info().name, planes);
+    const std::function<void()> kernels = method_kernels(*method, planes);
     if (kernels) kernels();  // warm-up, untimed
     std::vector<double> method_ms, method_cpu_ms, kernels_ms;
     for (auto _ : state) {
@@ -268,6 +295,11 @@ void BM_MethodVsCopyBandwidth(benchmark::State &state, const aaf::Method *method
     state.counters["method_over_kernels"] = ms / median_of(kernels_ms);
 }
 
+/// method_vs_copy_bandwidth() on the threads of the row's argument (0 = all).
+void BM_MethodVsCopyBandwidth(benchmark::State &state, const aaf::Method *method) {
+    aaf::run_with_threads(int(state.range(0)), [&] { method_vs_copy_bandwidth(state, method); });
+}
+
 /// The CPU's name, from /proc/cpuinfo where there is one.
 std::string cpu_name() {
     std::ifstream cpuinfo("/proc/cpuinfo");
@@ -285,6 +317,9 @@ int main(int argc, char **argv) {
     for (const aaf::Method *method : aaf::methods())
         benchmark::RegisterBenchmark(("BM_MethodVsCopyBandwidth/" + method->info().name).c_str(),
                                      BM_MethodVsCopyBandwidth, method)
+            ->ArgName("threads")
+            ->Arg(0)
+            ->Arg(1)
             ->Unit(benchmark::kMillisecond)
             ->UseRealTime()
             ->MinTime(1.0);

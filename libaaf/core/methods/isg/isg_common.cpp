@@ -73,10 +73,6 @@ Vec3Planes vec3_input(const MethodImages &images, Role role) {
     return {{images.input(role, 0), images.input(role, 1), images.input(role, 2)}};
 }
 
-bool all_finite(Vec3 v) {
-    return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z);
-}
-
 float scene_size_m(const Vec3Planes &position, int width, int height, float scene_size) {
     if (scene_size > 0) return scene_size;
     constexpr float kInf = std::numeric_limits<float>::infinity();

@@ -3,6 +3,7 @@
 // What the three ISG methods share beyond the formulas of aaf/core/methods/isg/isg_formulas.h:
 // their common parameters, header attributes and the scene size of ISG Sec. 5
 // (their per-pixel loops: isg_rows.h).
+#include <cmath>
 #include <map>
 #include <string>
 #include <utility>
@@ -75,7 +76,10 @@ struct Vec3Planes {
 };
 Vec3Planes vec3_input(const MethodImages &images, Role role);
 
-bool all_finite(Vec3 v);
+/// Inline: scene_size_m() calls it for every pixel.
+inline bool all_finite(Vec3 v) {
+    return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z);
+}
 
 /// The scene size ISG Sec. 5 scales its range constants by: `scene_size_m`
 /// when positive, else the diagonal of the bounding box of the finite

@@ -41,6 +41,7 @@ class SweepPlanes {
 /// A tap pattern (tap_set()) as two arrays of offsets in units of the radius.
 struct TapArrays {
     std::vector<float> x, y;
+    float max_abs_x = 0, max_abs_y = 0;  ///< the largest |x| and |y|: how far a tap reaches
     explicit TapArrays(const std::vector<Tap> &taps);
     int count() const { return int(x.size()); }
 };
@@ -50,14 +51,38 @@ struct RangeConstants {
     float inv_scene_size = 1, inv_sigma = 1, max_radius_px = 64;
 };
 
+/// Which tiles of kTilePx x kTilePx pixels of the hard visibility hold a
+/// pixel in shadow (< 0.5, ISG Eq. 6's inShadow), a pixel other than exactly
+/// 1 and a pixel other than exactly +0, as summed-area tables over the tiles
+/// ((columns + 1) x (rows + 1), a zero row and column first). A search that
+/// reaches no pixel in shadow finds no occluder, and a gather of one value
+/// (1 or +0) returns that value whatever its weights, so shadow_row() passes
+/// the pixels whose taps stay in such windows over: the same bits, less work.
+struct ShadowTiles {
+    static constexpr int kTilePx = 4;
+    int columns = 0, rows = 0;
+    std::vector<int> in_shadow, not_lit, not_dark;
+};
+
+/// What prepare_shadow_sweep() derives from a sweep's planes, dense (row
+/// after row, 4 floats per pixel): a tap reads one 16-byte quadruple, not
+/// four planes.
+struct ShadowScratch {
+    std::vector<float> position_hard;  ///< (P.x, P.y, P.z, hard V): the gather's
+    std::vector<float>
+        position_occluder;  ///< (P.x, P.y, P.z, d), d = -1 where the search passes a pixel over
+    ShadowTiles tiles;
+};
+
 /// isg-shadow (ISG Sec. 3.1, Eq. 4-9) over one row: inputs in `layout`, the
 /// filtered visibility written to `out`.
 struct ShadowSweep {
     PlaneLayout layout;
     const float *hard = nullptr, *occluder_m = nullptr, *depth_m = nullptr, *position[3] = {};
-    /// (P.x, P.y, P.z, hard) of each pixel at 4 x its index (pack_shadow_row()):
-    /// a tap reads one cache line, not four.
-    const float *position_hard = nullptr;
+    const ShadowScratch *scratch = nullptr;  ///< set by prepare_shadow_sweep()
+    /// Pass over the blocks ShadowTiles shows need no search or no gather
+    /// (false: every pixel computed in full, the same bits, slower).
+    bool pass_over_uniform = true;
     const TapArrays *search = nullptr, *gather = nullptr;
     RangeConstants range;
     float light_size_m = 1, focal_px = 1;
@@ -65,8 +90,10 @@ struct ShadowSweep {
     PlaneView out;
 };
 void shadow_row(const ShadowSweep &sweep, int y);
-/// Writes row `y` of `sweep.position_hard` (4 floats per index of the layout).
-void pack_shadow_row(const ShadowSweep &sweep, float *position_hard, int y);
+/// Fills `scratch` from `sweep`'s planes in one parallel pass over the rows
+/// and points `sweep` at it; throws aaf::Error for an image too large for
+/// int indices.
+void prepare_shadow_sweep(ShadowSweep &sweep, ShadowScratch &scratch);
 
 /// isg-glossy (ISG Sec. 3.2, Eq. 4, 10-14) over one row.
 struct GlossySweep {

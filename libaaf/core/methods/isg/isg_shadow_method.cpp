@@ -12,17 +12,13 @@
 #include "aaf/core/util/parallel.h"
 #include "isg_common.h"
 #include "isg_rows.h"
+#include "isg_shadow.h"
 
 namespace aaf {
 
 namespace {
 
 using namespace isg;
-
-struct IsgShadowSettings : CommonSettings {
-    TapShape light_shape = TapShape::Rectangle;  ///< the taps', the virtual light's (ISG Sec. 3.1)
-    float light_scale = 1;                       ///< L of ISG Eq. 5 and 8 over the light's half-extent
-};
 
 const ParameterDeclarations<IsgShadowSettings> &isg_shadow_parameters() {
     using P = IsgShadowSettings;
@@ -62,50 +58,15 @@ class IsgShadowMethod final : public Method {
     const MethodInfo &info() const override { return info_; }
 
     void run(const MethodImages &images, const ParameterSet &parameters, Progress &progress) const override {
-        const int width = images.width(), height = images.height();
         const IsgShadowSettings settings = isg_shadow_parameters().read(parameters);
-        const CommonSettings &common = settings;
         const LightPlane light = read_light_attributes(images.attributes());
-        const float focal_px = focal_px_attribute(images.attributes(), height);
-        const float light_size_m = settings.light_scale * 0.5f * std::max(light.width_m, light.height_m);
-        const TapShape shape = settings.light_shape;
-        const std::vector<Tap> search =
-            tap_set(common.search_samples, shape, common.pattern, light.width_m, light.height_m);
-        const std::vector<Tap> gather =
-            tap_set(common.gather_samples, shape, common.pattern, light.width_m, light.height_m);
-
-        const Vec3Planes position = vec3_input(images, Role::Position);
-        const SweepPlanes planes({images.input(roles::HardVisibility), images.input(roles::OccluderDistance),
-                                  images.input(Role::Depth), position.c[0], position.c[1], position.c[2]});
-        const TapArrays search_taps(search), gather_taps(gather);
-        ShadowSweep sweep;
-        sweep.layout = planes.layout();
-        sweep.hard = planes[0];
-        sweep.occluder_m = planes[1];
-        sweep.depth_m = planes[2];
-        for (int c = 0; c < 3; ++c) sweep.position[c] = planes[std::size_t(3 + c)];
-        sweep.search = &search_taps;
-        sweep.gather = &gather_taps;
-        // ISG Sec. 5: sigma is relative to the scene's size, so l is measured in scene sizes.
-        sweep.range = {1.0f / scene_size_m(position, width, height, common.scene_size_m), 1.0f / common.sigma,
-                       common.max_radius_px};
-        sweep.light_size_m = light_size_m;
-        sweep.focal_px = focal_px;
-        sweep.light_center = light.center;
-        sweep.out = images.output(Role::FilteredVisibility);
-        const PlaneLayout &layout = sweep.layout;
-        std::vector<float> position_hard(std::size_t(4) * std::size_t(layout.height) *
-                                         std::size_t(layout.row_stride));
-        parallel_for_rows(height, [&](int y) { pack_shadow_row(sweep, position_hard.data(), y); });
-        sweep.position_hard = position_hard.data();
-        // Per pixel: the parameter search (ISG Eq. 4-7), the mean occluder
-        // distance of the in-shadow taps within the light's projected size
-        // (ISG Eq. 5); then the gather (ISG Eq. 4) of the hard visibility within the
-        // penumbra's projection (ISG Eq. 8-9), constant spatial weight, range of
-        // ISG Eq. 6-7. A pixel with no occluder within reach keeps its hard value.
-        parallel_for_rows(height, [&](int y) { shadow_row(sweep, y); });
+        const float focal_px = focal_px_attribute(images.attributes(), images.height());
+        const ShadowInputs in = {images.input(roles::HardVisibility), images.input(roles::OccluderDistance),
+                                 images.input(Role::Depth), vec3_input(images, Role::Position)};
+        const PlaneView out = images.output(Role::FilteredVisibility);
+        isg_shadow_visibility(in, settings, light, focal_px, out);
         progress.report(0.9);
-        compose_shadowed_beauty(images, sweep.out);  // AAF Eq. 1, or the beauty corrected
+        compose_shadowed_beauty(images, out);  // AAF Eq. 1, or the beauty corrected
     }
 
     std::string composition_note(const std::map<std::string, AttributeValue> &attributes,
@@ -119,6 +80,42 @@ class IsgShadowMethod final : public Method {
 };
 
 }  // namespace
+
+isg::IsgShadowSettings isg::isg_shadow_settings(const ParameterSet &parameters) {
+    return isg_shadow_parameters().read(parameters);
+}
+
+void isg::isg_shadow_visibility(const ShadowInputs &in, const IsgShadowSettings &settings,
+                                const LightPlane &light, float focal_px, PlaneView out) {
+    const int width = in.hard.width, height = in.hard.height;
+    const float light_size_m = settings.light_scale * 0.5f * std::max(light.width_m, light.height_m);
+    const TapShape shape = settings.light_shape;
+    const TapArrays search_taps(
+        tap_set(settings.search_samples, shape, settings.pattern, light.width_m, light.height_m));
+    const TapArrays gather_taps(
+        tap_set(settings.gather_samples, shape, settings.pattern, light.width_m, light.height_m));
+    const SweepPlanes planes(
+        {in.hard, in.occluder_m, in.depth_m, in.position.c[0], in.position.c[1], in.position.c[2]});
+    ShadowSweep sweep;
+    sweep.layout = planes.layout();
+    sweep.hard = planes[0];
+    sweep.occluder_m = planes[1];
+    sweep.depth_m = planes[2];
+    for (int c = 0; c < 3; ++c) sweep.position[c] = planes[std::size_t(3 + c)];
+    sweep.search = &search_taps;
+    sweep.gather = &gather_taps;
+    // ISG Sec. 5: sigma is relative to the scene's size, so l is measured in scene sizes.
+    sweep.range = {1.0f / scene_size_m(in.position, width, height, settings.scene_size_m),
+                   1.0f / settings.sigma, settings.max_radius_px};
+    sweep.light_size_m = light_size_m;
+    sweep.focal_px = focal_px;
+    sweep.light_center = light.center;
+    sweep.out = out;
+    sweep.pass_over_uniform = settings.pass_over_uniform;
+    ShadowScratch scratch;
+    prepare_shadow_sweep(sweep, scratch);
+    parallel_for_rows(height, [&](int y) { shadow_row(sweep, y); });
+}
 
 std::unique_ptr<Method> make_isg_shadow_method() {
     return std::make_unique<IsgShadowMethod>();

@@ -7,6 +7,7 @@
 #include <cmath>
 #include <cstdint>
 #include <cstring>
+#include <limits>
 #include <map>
 #include <string>
 #include <vector>
@@ -20,6 +21,7 @@
 #include "aaf/core/methods/isg/isg_roles.h"
 #include "aaf/core/util/error.h"
 #include "aaf/core/util/thread_count.h"
+#include "methods/isg/isg_shadow.h"
 
 using namespace aaf;
 using namespace aaf::isg;
@@ -319,4 +321,88 @@ TEST_CASE("ISG methods: the same bits for any thread count and for every instruc
             }
         hwy::SetSupportedTargetsForTest(0);
     }
+}
+
+namespace {
+
+/// Hard visibility with every case isg-shadow's shortcuts must see through:
+/// wide lit and dark areas, a shadow edge, a dark disc, salt and pepper,
+/// values other than 0 and 1 (-0, 0.5, NaN, infinity), occluder distances
+/// out of range, a pixel without depth and one without position.
+AovSet varied_shadows() {
+    AovSet aovs = shadow_edge(0.5f);
+    PlaneView v = aovs.channel(role_info(roles::HardVisibility).channels[0]);
+    PlaneView d = aovs.channel(role_info(roles::OccluderDistance).channels[0]);
+    PlaneView z = aovs.channel(role_info(Role::Depth).channels[0]);
+    for (int y = 0; y < kHeight; ++y)
+        for (int x = 0; x < kWidth; ++x) {
+            const float dx = float(x - 190), dy = float(y - 4);
+            if (dx * dx + dy * dy < 12) {
+                v(x, y) = 0;
+                d(x, y) = 0.3f;
+            }
+            if (x >= 150 && x < 170 && (x * 7 + y * 3) % 5 == 0) {
+                v(x, y) = 0;
+                d(x, y) = 0.8f;
+            }
+            z(x, y) = kDepth_m * (1.0f + 0.002f * float(x % 13));
+        }
+    v(20, 2) = -0.0f;
+    v(60, 5) = 0.5f;
+    v(130, 1) = std::numeric_limits<float>::quiet_NaN();
+    v(140, 6) = std::numeric_limits<float>::infinity();
+    v(210, 3) = 0.25f;
+    d(40, 4) = std::numeric_limits<float>::infinity();
+    d(100, 7) = -1.0f;
+    z(90, 0) = 0;
+    aovs.channel(role_info(Role::Position).channels[0])(180, 8) = std::numeric_limits<float>::quiet_NaN();
+    return aovs;
+}
+
+}  // namespace
+
+TEST_CASE("isg-shadow: passing over the blocks whose result is known gives the bits of computing them",
+          "[isg]") {
+    const AovSet aovs = varied_shadows();
+    ShadowInputs in;
+    in.hard = aovs.channel(role_info(roles::HardVisibility).channels[0]);
+    in.occluder_m = aovs.channel(role_info(roles::OccluderDistance).channels[0]);
+    in.depth_m = aovs.channel(role_info(Role::Depth).channels[0]);
+    for (std::size_t c = 0; c < 3; ++c)
+        in.position.c[c] = aovs.channel(role_info(Role::Position).channels[c]);
+    const LightPlane light = read_light_attributes(aovs);
+    const float focal_px = kDepth_m / kPixel_m;
+    std::vector<float> full(aovs.pixel_count()), passed(aovs.pixel_count());
+    std::size_t compared = 0, changed = 0;
+    for (const std::int64_t target : hwy::SupportedAndGeneratedTargets())
+        for (TapShape shape : {TapShape::Rectangle, TapShape::Disk})
+            for (TapPattern pattern : {TapPattern::Grid, TapPattern::Stratified})
+                for (int samples : {9, 49, 121})
+                    for (float max_radius_px : {3.0f, 64.0f}) {
+                        hwy::SetSupportedTargetsForTest(target);
+                        IsgShadowSettings settings;
+                        settings.light_shape = shape;
+                        settings.pattern = pattern;
+                        settings.search_samples = samples;
+                        settings.gather_samples = 130 - samples;
+                        settings.max_radius_px = max_radius_px;
+                        settings.sigma = 1.0f;
+                        settings.pass_over_uniform = false;
+                        isg_shadow_visibility(in, settings, light, focal_px,
+                                              plane_view(full.data(), kWidth, kHeight));
+                        settings.pass_over_uniform = true;
+                        isg_shadow_visibility(in, settings, light, focal_px,
+                                              plane_view(passed.data(), kWidth, kHeight));
+                        INFO(hwy::TargetName(target)
+                             << ", " << samples << " search taps, max radius " << max_radius_px);
+                        REQUIRE(std::memcmp(full.data(), passed.data(), full.size() * sizeof(float)) == 0);
+                        for (std::size_t i = 0; i < full.size(); ++i) {
+                            compared += 1;
+                            const float hard = in.hard.data[i];
+                            changed += std::memcmp(&full[i], &hard, sizeof hard) != 0;
+                        }
+                    }
+    hwy::SetSupportedTargetsForTest(0);
+    // The input is one the filter changes, not only passes through.
+    CHECK(changed > compared / 20);
 }
