@@ -2,8 +2,9 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
-#include "aaf/core/kernels/fast_exp.h"
+#include "aaf/core/methods/maaf/maaf_separable_rows.h"
 #include "aaf/core/util/error.h"
 #include "aaf/core/util/parallel.h"
 
@@ -55,212 +56,117 @@ std::vector<Term> terms_for(int sum_pairs, int pairs) {
     return terms;
 }
 
-/// The terms' component indices as flat arrays for the tap loops; `padded`
-/// rounds the count up to a multiple of 8 (zero weights) so the sums vectorise.
-struct TermTable {
-    std::size_t count = 0, padded = 0;
-    std::vector<int> pu, pv;
-    std::vector<float> sign_v;
-    explicit TermTable(const std::vector<Term> &terms)
-        : count(terms.size()), padded((terms.size() + 7) / 8 * 8) {
-        for (const Term &t : terms) {
-            pu.push_back(t.pu);
-            pv.push_back(t.pv);
-            sign_v.push_back(t.sign_v);
-        }
-    }
+/// The frame's planes for the row kernels (maaf_separable_rows.h), owned:
+/// guides, kernels and complex sources, rows padded to kMaafRowPadding.
+struct PlanarFrame {
+    std::vector<int> term_pu, term_pv;
+    std::vector<float> term_sign_v;
+    std::vector<float> coord_u, coord_v, normal_x, normal_y, normal_z, object_id;
+    std::vector<float> inv_two_sigma_sq, omega, radius_px, widest_px, sources;
+    int widest = 0;  ///< the largest reach in the frame, pixels
+    detail::MaafSeparableFrame view;
 };
 
-/// Per-tap x-side factors of one centre's kernels: the Gaussians and phase
-/// factors of every component along both axes, then each term's complex weight.
-struct TapWeights {
-    float gauss_u[kMaafMaxPairs], gauss_v[kMaafMaxPairs];
-    float cos_u[kMaafMaxPairs], sin_u[kMaafMaxPairs], cos_v[kMaafMaxPairs], sin_v[kMaafMaxPairs];
+/// The guides and each pixel's kernels, planar; padding columns are never taps.
+void planar_kernels(const GatherGuides &g, const std::vector<MaafPixelKernel> &kernels, int pairs,
+                    PlanarFrame &f) {
+    const std::size_t stride = std::size_t(f.view.stride), plane = stride * std::size_t(g.height);
+    const float nan = std::numeric_limits<float>::quiet_NaN();
+    for (auto *v : {&f.coord_u, &f.coord_v, &f.normal_x, &f.normal_y, &f.normal_z, &f.widest_px})
+        v->assign(plane, 0.0f);
+    f.object_id.assign(plane, nan);
+    f.inv_two_sigma_sq.assign(std::size_t(pairs) * plane, 0.0f);
+    f.omega.assign(std::size_t(pairs) * plane, 0.0f);
+    f.radius_px.assign(std::size_t(pairs) * plane, 0.0f);
+    for (int y = 0; y < g.height; ++y)
+        for (int x = 0; x < g.width; ++x) {
+            const std::size_t i = g.index(x, y), o = std::size_t(y) * stride + std::size_t(x);
+            f.coord_u[o] = g.coord_u_m[i];
+            f.coord_v[o] = g.coord_v_m[i];
+            f.normal_x[o] = g.normal_x[i];
+            f.normal_y[o] = g.normal_y[i];
+            f.normal_z[o] = g.normal_z[i];
+            f.object_id[o] = g.object_id[i];
+            const MaafPixelKernel &k = kernels[i];
+            int widest = 0;
+            for (int p = 0; p < pairs; ++p) {
+                // Every component p appears in the term (p, 0): the widest term reaches max_p radius_p.
+                const int radius = k.filtered ? k.radius_px[p] : 0;
+                f.inv_two_sigma_sq[std::size_t(p) * plane + o] = k.inv_two_sigma_sq[p];
+                f.omega[std::size_t(p) * plane + o] = k.omega_x[p];
+                f.radius_px[std::size_t(p) * plane + o] = float(radius);
+                widest = std::max(widest, radius);
+            }
+            f.widest_px[o] = float(widest);
+            f.widest = std::max(f.widest, widest);
+        }
+}
 
-    void evaluate(const MaafPixelKernel &k, int pairs, float du, float dv) {
-        for (int p = 0; p < pairs; ++p) {
-            gauss_u[p] = fast_exp_nonpositive(-du * du * k.inv_two_sigma_sq[p]);
-            gauss_v[p] = fast_exp_nonpositive(-dv * dv * k.inv_two_sigma_sq[p]);
-        }
-        cos_u[0] = cos_v[0] = 1.0f;
-        sin_u[0] = sin_v[0] = 0.0f;
-        for (int p = 1; p < pairs; ++p) {  // e^{j C_x^p du}, shared by every pair with p on that axis
-            cos_u[p] = std::cos(k.omega_x[p] * du);
-            sin_u[p] = std::sin(k.omega_x[p] * du);
-            cos_v[p] = std::cos(k.omega_x[p] * dv);
-            sin_v[p] = std::sin(k.omega_x[p] * dv);
-        }
-    }
-    /// Every term's weight g_p(du) g_q(dv) e^{j (C_x^p du + sign_v C_x^q dv)} (MAAF Eq. 12) into re[j],
-    /// im[j]; 0 for a term whose reach `radius` is below the tap's `offset` (pixels).
-    void of_terms(const TermTable &t, const int *radius, int offset, float *re, float *im) const {
-        for (std::size_t j = 0; j < t.count; ++j) {
-            const int pu = t.pu[j], pv = t.pv[j];
-            const float a = cos_u[pu], b = sin_u[pu], c = cos_v[pv], d = t.sign_v[j] * sin_v[pv];
-            const float g = offset <= radius[j] ? gauss_u[pu] * gauss_v[pv] : 0.0f;
-            re[j] = g * (a * c - b * d);
-            im[j] = g * (a * d + b * c);
-        }
-    }
-};
-
-/// The complex sources, pixel-interleaved so that one tap's terms are
-/// contiguous: per pixel four blocks of `padded` floats (value re, value im,
-/// unoccluded re, unoccluded im).
-std::vector<float> complex_sources(const GatherGuides &g, const std::vector<Term> &terms, std::size_t padded,
-                                   const std::vector<std::vector<float>> &value_sums,
-                                   const std::vector<std::vector<float>> &unoccluded_sums) {
-    const std::size_t stride = 4 * padded;
-    std::vector<float> sources(std::size_t(g.width) * std::size_t(g.height) * stride, 0.0f);
+/// The complex sources, planar: value re, value im, unoccluded re,
+/// unoccluded im, `terms.size()` planes each.
+void planar_sources(const GatherGuides &g, const std::vector<Term> &terms,
+                    const std::vector<std::vector<float>> &value_sums,
+                    const std::vector<std::vector<float>> &unoccluded_sums, PlanarFrame &f) {
+    const std::size_t stride = std::size_t(f.view.stride), plane = stride * std::size_t(g.height);
+    const std::size_t count = terms.size();
+    f.sources.assign(4 * count * plane, 0.0f);
     parallel_for_rows(g.height, [&](int y) {
         for (int x = 0; x < g.width; ++x) {
-            const std::size_t i = g.index(x, y);
-            float *s = &sources[i * stride];
-            for (std::size_t j = 0; j < terms.size(); ++j) {
+            const std::size_t i = g.index(x, y), o = std::size_t(y) * stride + std::size_t(x);
+            for (std::size_t j = 0; j < count; ++j) {
+                float *s = &f.sources[j * plane + o];
                 for (const auto &[factor, c] : terms[j].re) {
-                    s[j] += factor * value_sums[c][i];
-                    s[2 * padded + j] += factor * unoccluded_sums[c][i];
+                    s[0] += factor * value_sums[c][i];
+                    s[2 * count * plane] += factor * unoccluded_sums[c][i];
                 }
                 for (const auto &[factor, c] : terms[j].im) {
-                    s[padded + j] += factor * value_sums[c][i];
-                    s[3 * padded + j] += factor * unoccluded_sums[c][i];
+                    s[count * plane] += factor * value_sums[c][i];
+                    s[3 * count * plane] += factor * unoccluded_sums[c][i];
                 }
             }
         }
     });
-    return sources;
 }
 
-/// The two passes over one frame's complex sources: a row's vertical pass
-/// feeds only that row's horizontal pass, so one row's intermediates exist
-/// at a time (RowBuffers, allocated once per row).
-class SeparablePasses {
-  public:
-    SeparablePasses(const GatherGuides &g, float normal_threshold_deg,
-                    const std::vector<MaafPixelKernel> &kernels, int pairs, const std::vector<Term> &terms,
-                    const std::vector<float> &sources)
-        : g_(g),
-          kernels_(kernels),
-          pairs_(pairs),
-          terms_(terms),
-          table_(terms),
-          sources_(sources),
-          cos_threshold_(std::cos(normal_threshold_deg * kPi / 180.0f)) {}
+/// Row y's guides for the horizontal pass: coord_u, coord_v, normal x, y, z,
+/// object id, each `row.length` long, NaN ids in the margins.
+void padded_guides(const PlanarFrame &f, int y, detail::MaafPaddedRow row, std::vector<float> &guides) {
+    const std::size_t length = std::size_t(row.length), stride = std::size_t(f.view.stride);
+    guides.assign(6 * length, 0.0f);
+    std::fill(guides.begin() + std::ptrdiff_t(5 * length), guides.end(),
+              std::numeric_limits<float>::quiet_NaN());
+    const std::size_t first = std::size_t(y) * stride, margin = std::size_t(row.margin);
+    std::size_t q = 0;
+    for (const std::vector<float> *plane :
+         {&f.coord_u, &f.coord_v, &f.normal_x, &f.normal_y, &f.normal_z, &f.object_id}) {
+        std::copy_n(plane->begin() + std::ptrdiff_t(first), stride,
+                    guides.begin() + std::ptrdiff_t(q * length + margin));
+        ++q;
+    }
+}
 
-    /// One row's scratch: the vertical pass's output, one centre's sums, the
-    /// terms' weights and reaches.
-    struct RowBuffers {
-        std::vector<float> intermediate, sum, re, im;
-        std::vector<int> radius;
-        TapWeights w;
-        RowBuffers(int width, std::size_t padded, std::size_t term_count)
-            : intermediate(std::size_t(width) * 4 * padded),
-              sum(4 * padded),
-              re(padded, 0.0f),
-              im(padded, 0.0f),
-              radius(term_count) {}
-    };
-    RowBuffers row_buffers() const { return RowBuffers(g_.width, table_.padded, table_.count); }
-
-    /// Vertical: each pixel of row y with its own kernel, into b.intermediate.
-    void vertical(int y, RowBuffers &b) const {
-        const std::size_t padded = table_.padded, stride = 4 * padded;
-        for (int x = 0; x < g_.width; ++x) {
-            const std::size_t c = g_.index(x, y);
-            const MaafPixelKernel &k = kernels_[c];
-            const int widest = term_radii(k, b.radius.data());
-            float *acc = &b.intermediate[std::size_t(x) * stride];
-            if (widest == 0) {
-                std::copy_n(&sources_[c * stride], stride, acc);
-                continue;
-            }
-            std::fill(b.sum.begin(), b.sum.end(), 0.0f);
-            for (int ty = std::max(0, y - widest); ty <= std::min(g_.height - 1, y + widest); ++ty) {
-                const std::size_t t = g_.index(x, ty);
-                if (!accepted(c, t)) continue;
-                const int offset = std::abs(ty - y);
-                b.w.evaluate(k, pairs_, g_.coord_u_m[t] - g_.coord_u_m[c], g_.coord_v_m[t] - g_.coord_v_m[c]);
-                b.w.of_terms(table_, b.radius.data(), offset, b.re.data(), b.im.data());
-                const float *s = &sources_[t * stride];
-                // Distinct buffers: restrict lets the compiler vectorise over the terms.
-                float *__restrict sum_v = b.sum.data(), *__restrict sum_u = b.sum.data() + 2 * padded;
-                const float *__restrict src_v = s, *__restrict src_u = s + 2 * padded;
-                const float *__restrict wr = b.re.data(), *__restrict wi = b.im.data();
-                for (std::size_t j = 0; j < padded; ++j) {  // complex weight times complex source
-                    sum_v[j] += wr[j] * src_v[j] - wi[j] * src_v[padded + j];
-                    sum_v[padded + j] += wr[j] * src_v[padded + j] + wi[j] * src_v[j];
-                    sum_u[j] += wr[j] * src_u[j] - wi[j] * src_u[padded + j];
-                    sum_u[padded + j] += wr[j] * src_u[padded + j] + wi[j] * src_u[j];
-                }
-            }
-            std::copy(b.sum.begin(), b.sum.end(), acc);
+/// MAAF Eq. 21's weighted sums of one row from the horizontal pass's real parts.
+void finish_row(const GatherGuides &g, const std::vector<MaafPixelKernel> &kernels,
+                const std::vector<Term> &terms, int y, std::size_t stride, const std::vector<float> &row_sums,
+                MaafFilteredSums &out) {
+    const std::size_t count = terms.size();
+    for (int x = 0; x < g.width; ++x) {
+        const std::size_t c = g.index(x, y);
+        const MaafPixelKernel &k = kernels[c];
+        if (!k.filtered) continue;
+        const auto sum = [&](std::size_t q) { return double(row_sums[q * stride + std::size_t(x)]); };
+        double numerator = 0, denominator = 0;
+        for (std::size_t j = 0; j < count; ++j) {  // MAAF Eq. 21: mu_p sigma_p mu_q sigma_q per pair
+            const double weight = terms[j].scale * k.weight[terms[j].pu] * k.weight[terms[j].pv];
+            numerator += weight * sum(j);
+            denominator += weight * sum(count + j);
         }
+        out.numerator[c] = numerator;
+        out.denominator[c] = denominator;
+        out.central_numerator[c] = sum(0);
+        out.central_denominator[c] = sum(count);
     }
-
-    /// Horizontal: each centre of row y with its own kernel over the vertical
-    /// pass's output, real parts only, then MAAF Eq. 21's weighted sums.
-    void horizontal(int y, RowBuffers &b, MaafFilteredSums &out) const {
-        const std::size_t padded = table_.padded, stride = 4 * padded;
-        for (int x = 0; x < g_.width; ++x) {
-            const std::size_t c = g_.index(x, y);
-            const MaafPixelKernel &k = kernels_[c];
-            if (!k.filtered) continue;
-            const int widest = term_radii(k, b.radius.data());
-            std::fill(b.sum.begin(), b.sum.end(), 0.0f);
-            for (int tx = std::max(0, x - widest); tx <= std::min(g_.width - 1, x + widest); ++tx) {
-                const std::size_t t = g_.index(tx, y);
-                if (!accepted(c, t)) continue;
-                const int offset = std::abs(tx - x);
-                b.w.evaluate(k, pairs_, g_.coord_u_m[t] - g_.coord_u_m[c], g_.coord_v_m[t] - g_.coord_v_m[c]);
-                b.w.of_terms(table_, b.radius.data(), offset, b.re.data(), b.im.data());
-                const float *s = &b.intermediate[std::size_t(tx) * stride];
-                float *__restrict sum_v = b.sum.data(), *__restrict sum_u = b.sum.data() + 2 * padded;
-                const float *__restrict src_v = s, *__restrict src_u = s + 2 * padded;
-                const float *__restrict wr = b.re.data(), *__restrict wi = b.im.data();
-                for (std::size_t j = 0; j < padded; ++j) {  // real parts only
-                    sum_v[j] += wr[j] * src_v[j] - wi[j] * src_v[padded + j];
-                    sum_u[j] += wr[j] * src_u[j] - wi[j] * src_u[padded + j];
-                }
-            }
-            double numerator = 0, denominator = 0;
-            for (std::size_t j = 0; j < table_.count;
-                 ++j) {  // MAAF Eq. 21: mu_p sigma_p mu_q sigma_q per pair
-                const double weight = terms_[j].scale * k.weight[terms_[j].pu] * k.weight[terms_[j].pv];
-                numerator += weight * double(b.sum[j]);
-                denominator += weight * double(b.sum[2 * padded + j]);
-            }
-            out.numerator[c] = numerator;
-            out.denominator[c] = denominator;
-            out.central_numerator[c] = double(b.sum[0]);
-            out.central_denominator[c] = double(b.sum[2 * padded]);
-        }
-    }
-
-  private:
-    /// gather()'s tap test: the centre always, else the same object with a normal within the threshold.
-    bool accepted(std::size_t c, std::size_t t) const {
-        const float cos_angle = g_.normal_x[c] * g_.normal_x[t] + g_.normal_y[c] * g_.normal_y[t] +
-                                g_.normal_z[c] * g_.normal_z[t];
-        return t == c || (g_.object_id[t] == g_.object_id[c] && cos_angle >= cos_threshold_);
-    }
-    /// Each term's reach at a pixel: max(radius_p, radius_q); 0 where it is not filtered. Returns the widest.
-    int term_radii(const MaafPixelKernel &k, int *radius) const {
-        int widest = 0;
-        for (std::size_t j = 0; j < table_.count; ++j) {
-            radius[j] = k.filtered ? std::max(k.radius_px[terms_[j].pu], k.radius_px[terms_[j].pv]) : 0;
-            widest = std::max(widest, radius[j]);
-        }
-        return widest;
-    }
-
-    const GatherGuides &g_;
-    const std::vector<MaafPixelKernel> &kernels_;
-    const int pairs_;
-    const std::vector<Term> &terms_;
-    const TermTable table_;
-    const std::vector<float> &sources_;
-    const float cos_threshold_;
-};
+}
 
 }  // namespace
 
@@ -272,19 +178,51 @@ MaafFilteredSums maaf_separable_filter(const GatherGuides &g, float normal_thres
         throw Error("MAAF separable filter: N used must lie in [1, N of the sums]");
     const std::size_t count = std::size_t(g.width) * std::size_t(g.height);
     const std::vector<Term> terms = terms_for(sum_pairs, pairs);
-    const std::vector<float> sources =
-        complex_sources(g, terms, TermTable(terms).padded, value_sums, unoccluded_sums);
-    const SeparablePasses passes(g, normal_threshold_deg, kernels, pairs, terms, sources);
+    PlanarFrame f;
+    detail::MaafSeparableFrame &view = f.view;
+    view.width = g.width;
+    view.height = g.height;
+    view.stride = (g.width + detail::kMaafRowPadding - 1) / detail::kMaafRowPadding * detail::kMaafRowPadding;
+    view.pairs = pairs;
+    view.terms = int(terms.size());
+    for (const Term &t : terms) {
+        f.term_pu.push_back(t.pu);
+        f.term_pv.push_back(t.pv);
+        f.term_sign_v.push_back(t.sign_v);
+    }
+    view.term_pu = f.term_pu.data();
+    view.term_pv = f.term_pv.data();
+    view.term_sign_v = f.term_sign_v.data();
+    view.cos_threshold = std::cos(normal_threshold_deg * kPi / 180.0f);
+    planar_kernels(g, kernels, pairs, f);
+    planar_sources(g, terms, value_sums, unoccluded_sums, f);
+    view.coord_u = f.coord_u.data();
+    view.coord_v = f.coord_v.data();
+    view.normal_x = f.normal_x.data();
+    view.normal_y = f.normal_y.data();
+    view.normal_z = f.normal_z.data();
+    view.object_id = f.object_id.data();
+    view.inv_two_sigma_sq = f.inv_two_sigma_sq.data();
+    view.omega = f.omega.data();
+    view.radius_px = f.radius_px.data();
+    view.widest_px = f.widest_px.data();
+    view.sources = f.sources.data();
 
     MaafFilteredSums out;
     out.numerator.assign(count, 0.0);
     out.denominator.assign(count, 0.0);
     out.central_numerator.assign(count, 0.0);
     out.central_denominator.assign(count, 0.0);
+    // A row's vertical pass feeds only that row's horizontal pass: one row's intermediates at a time.
+    const detail::MaafPaddedRow row{f.widest, f.widest + view.stride + f.widest};
+    const std::size_t stride = std::size_t(view.stride);
     parallel_for_rows(g.height, [&](int y) {
-        SeparablePasses::RowBuffers buffers = passes.row_buffers();
-        passes.vertical(y, buffers);
-        passes.horizontal(y, buffers, out);
+        std::vector<float> intermediate(4 * terms.size() * std::size_t(row.length), 0.0f), guides;
+        std::vector<float> row_sums(2 * terms.size() * stride);
+        detail::maaf_vertical_row(view, y, intermediate.data(), row);
+        padded_guides(f, y, row, guides);
+        detail::maaf_horizontal_row(view, y, intermediate.data(), guides.data(), row, row_sums.data());
+        finish_row(g, kernels, terms, y, stride, row_sums, out);
     });
     return out;
 }
