@@ -56,93 +56,122 @@ std::vector<Term> terms_for(int sum_pairs, int pairs) {
     return terms;
 }
 
-/// The frame's planes for the row kernels (maaf_separable_rows.h), owned:
-/// guides, kernels and complex sources, rows padded to kMaafRowPadding.
-struct PlanarFrame {
-    std::vector<int> term_pu, term_pv;
-    std::vector<float> term_sign_v;
-    std::vector<float> coord_u, coord_v, normal_x, normal_y, normal_z, object_id;
-    std::vector<float> inv_two_sigma_sq, omega, radius_px, widest_px, sources;
-    int widest = 0;  ///< the largest reach in the frame, pixels
-    detail::MaafSeparableFrame view;
+/// The frame laid out for maaf_line_pass(): image rows padded to `stride`
+/// pixels, image columns to `column` pixels; guides and kernels by row for
+/// the horizontal pass, guides, kernels and complex sources by column (each
+/// column's arrays together, `margin` pixels of padding above and below,
+/// object id NaN there) for the vertical pass.
+struct LineFrame {
+    std::vector<int> pu, pv;
+    std::vector<float> sign_v;
+    detail::MaafTerms terms;
+    int width = 0, height = 0, stride = 0, column = 0;
+    int margin = 0;                              ///< the largest reach in the frame, pixels
+    std::size_t column_length = 0;               ///< margin + column + margin
+    std::vector<float> row_guides, row_kernels;  ///< 6 and 3 N + 1 arrays of stride * height
+    std::vector<float> column_guides;            ///< per column 6 arrays of column_length
+    std::vector<float> column_kernels;           ///< per column 3 N + 1 arrays of `column`
+    std::vector<float> column_sources;           ///< per column 4 * terms arrays of column_length
+
+    std::size_t kernel_arrays() const { return 3 * std::size_t(terms.pairs) + 1; }
+    std::size_t row_plane() const { return std::size_t(stride) * std::size_t(height); }
 };
 
-/// The guides and each pixel's kernels, planar; padding columns are never taps.
-void planar_kernels(const GatherGuides &g, const std::vector<MaafPixelKernel> &kernels, int pairs,
-                    PlanarFrame &f) {
-    const std::size_t stride = std::size_t(f.view.stride), plane = stride * std::size_t(g.height);
-    const float nan = std::numeric_limits<float>::quiet_NaN();
-    for (auto *v : {&f.coord_u, &f.coord_v, &f.normal_x, &f.normal_y, &f.normal_z, &f.widest_px})
-        v->assign(plane, 0.0f);
-    f.object_id.assign(plane, nan);
-    f.inv_two_sigma_sq.assign(std::size_t(pairs) * plane, 0.0f);
-    f.omega.assign(std::size_t(pairs) * plane, 0.0f);
-    f.radius_px.assign(std::size_t(pairs) * plane, 0.0f);
-    for (int y = 0; y < g.height; ++y)
-        for (int x = 0; x < g.width; ++x) {
-            const std::size_t i = g.index(x, y), o = std::size_t(y) * stride + std::size_t(x);
-            f.coord_u[o] = g.coord_u_m[i];
-            f.coord_v[o] = g.coord_v_m[i];
-            f.normal_x[o] = g.normal_x[i];
-            f.normal_y[o] = g.normal_y[i];
-            f.normal_z[o] = g.normal_z[i];
-            f.object_id[o] = g.object_id[i];
-            const MaafPixelKernel &k = kernels[i];
-            int widest = 0;
-            for (int p = 0; p < pairs; ++p) {
-                // Every component p appears in the term (p, 0): the widest term reaches max_p radius_p.
-                const int radius = k.filtered ? k.radius_px[p] : 0;
-                f.inv_two_sigma_sq[std::size_t(p) * plane + o] = k.inv_two_sigma_sq[p];
-                f.omega[std::size_t(p) * plane + o] = k.omega_x[p];
-                f.radius_px[std::size_t(p) * plane + o] = float(radius);
-                widest = std::max(widest, radius);
-            }
-            f.widest_px[o] = float(widest);
-            f.widest = std::max(f.widest, widest);
-        }
+/// Pixel i's six guides and 3 N + 1 kernel values (LineFrame's order).
+void pixel_values(const GatherGuides &g, const MaafPixelKernel &k, std::size_t i, int pairs, float *guide,
+                  float *kernel) {
+    guide[0] = g.coord_u_m[i];
+    guide[1] = g.coord_v_m[i];
+    guide[2] = g.normal_x[i];
+    guide[3] = g.normal_y[i];
+    guide[4] = g.normal_z[i];
+    guide[5] = g.object_id[i];
+    int widest = 0;
+    for (int p = 0; p < pairs; ++p) {
+        // Every component p appears in the term (p, 0): the widest term reaches max_p radius_p.
+        const int radius = k.filtered ? k.radius_px[p] : 0;
+        kernel[p] = k.inv_two_sigma_sq[p];
+        kernel[pairs + p] = k.omega_x[p];
+        kernel[2 * pairs + p] = float(radius);
+        widest = std::max(widest, radius);
+    }
+    kernel[3 * pairs] = float(widest);
 }
 
-/// The complex sources, planar: value re, value im, unoccluded re,
-/// unoccluded im, `terms.size()` planes each.
-void planar_sources(const GatherGuides &g, const std::vector<Term> &terms,
-                    const std::vector<std::vector<float>> &value_sums,
-                    const std::vector<std::vector<float>> &unoccluded_sums, PlanarFrame &f) {
-    const std::size_t stride = std::size_t(f.view.stride), plane = stride * std::size_t(g.height);
-    const std::size_t count = terms.size();
-    f.sources.assign(4 * count * plane, 0.0f);
-    parallel_for_rows(g.height, [&](int y) {
-        for (int x = 0; x < g.width; ++x) {
-            const std::size_t i = g.index(x, y), o = std::size_t(y) * stride + std::size_t(x);
-            for (std::size_t j = 0; j < count; ++j) {
-                float *s = &f.sources[j * plane + o];
-                for (const auto &[factor, c] : terms[j].re) {
-                    s[0] += factor * value_sums[c][i];
-                    s[2 * count * plane] += factor * unoccluded_sums[c][i];
+/// The guides and kernels, by row and by column; padding is never a tap.
+void line_guides(const GatherGuides &g, const std::vector<MaafPixelKernel> &kernels, LineFrame &f) {
+    const std::size_t arrays = f.kernel_arrays(), plane = f.row_plane(), stride = std::size_t(f.stride);
+    const std::size_t column = std::size_t(f.column), length = f.column_length;
+    const float nan = std::numeric_limits<float>::quiet_NaN();
+    f.row_guides.assign(6 * plane, 0.0f);
+    std::fill(f.row_guides.begin() + std::ptrdiff_t(5 * plane), f.row_guides.end(), nan);
+    f.row_kernels.assign(arrays * plane, 0.0f);
+    f.column_guides.assign(std::size_t(f.width) * 6 * length, 0.0f);
+    f.column_kernels.assign(std::size_t(f.width) * arrays * column, 0.0f);
+    for (int x = 0; x < f.width; ++x)
+        std::fill_n(f.column_guides.begin() + std::ptrdiff_t((std::size_t(x) * 6 + 5) * length), length, nan);
+    constexpr int kBlock = detail::kMaafLinePadding;  // as column_sources
+    parallel_for_rows((f.width + kBlock - 1) / kBlock, [&](int block) {
+        float guide[6], kernel[3 * kMaafMaxPairs + 1];
+        const int x_end = std::min(f.width, (block + 1) * kBlock);
+        for (int y = 0; y < f.height; ++y)
+            for (int x = block * kBlock; x < x_end; ++x) {
+                const std::size_t i = g.index(x, y), r = std::size_t(y) * stride + std::size_t(x);
+                pixel_values(g, kernels[i], i, f.terms.pairs, guide, kernel);
+                const std::size_t gc = std::size_t(x) * 6 * length + std::size_t(f.margin + y);
+                const std::size_t kc = std::size_t(x) * arrays * column + std::size_t(y);
+                for (std::size_t q = 0; q < 6; ++q) {
+                    f.row_guides[q * plane + r] = guide[q];
+                    f.column_guides[gc + q * length] = guide[q];
                 }
-                for (const auto &[factor, c] : terms[j].im) {
-                    s[count * plane] += factor * value_sums[c][i];
-                    s[3 * count * plane] += factor * unoccluded_sums[c][i];
+                for (std::size_t q = 0; q < arrays; ++q) {
+                    f.row_kernels[q * plane + r] = kernel[q];
+                    f.column_kernels[kc + q * column] = kernel[q];
                 }
             }
-        }
     });
 }
 
-/// Row y's guides for the horizontal pass: coord_u, coord_v, normal x, y, z,
-/// object id, each `row.length` long, NaN ids in the margins.
-void padded_guides(const PlanarFrame &f, int y, detail::MaafPaddedRow row, std::vector<float> &guides) {
-    const std::size_t length = std::size_t(row.length), stride = std::size_t(f.view.stride);
+/// The complex sources by column: value re, value im, unoccluded re,
+/// unoccluded im, `terms.size()` arrays each, with the frame's margin.
+void column_sources(const GatherGuides &g, const std::vector<Term> &terms,
+                    const std::vector<std::vector<float>> &value_sums,
+                    const std::vector<std::vector<float>> &unoccluded_sums, LineFrame &f) {
+    const std::size_t count = terms.size(), length = f.column_length;
+    f.column_sources.assign(std::size_t(f.width) * 4 * count * length, 0.0f);
+    // Blocks of kMaafLinePadding columns: reads along rows, writes down columns, both a cache line at a time.
+    constexpr int kBlock = detail::kMaafLinePadding;
+    parallel_for_rows((g.width + kBlock - 1) / kBlock, [&](int block) {
+        const int x_end = std::min(g.width, (block + 1) * kBlock);
+        for (int y = 0; y < g.height; ++y)
+            for (int x = block * kBlock; x < x_end; ++x) {
+                const std::size_t i = g.index(x, y);
+                float *column =
+                    &f.column_sources[std::size_t(x) * 4 * count * length + std::size_t(f.margin)];
+                for (std::size_t j = 0; j < count; ++j) {
+                    float *s = column + j * length + std::size_t(y);
+                    for (const auto &[factor, c] : terms[j].re) {
+                        s[0] += factor * value_sums[c][i];
+                        s[2 * count * length] += factor * unoccluded_sums[c][i];
+                    }
+                    for (const auto &[factor, c] : terms[j].im) {
+                        s[count * length] += factor * value_sums[c][i];
+                        s[3 * count * length] += factor * unoccluded_sums[c][i];
+                    }
+                }
+            }
+    });
+}
+
+/// Row y's guides for the horizontal pass, `margin` pixels of padding each side.
+void padded_guides(const LineFrame &f, int y, std::size_t length, std::vector<float> &guides) {
+    const std::size_t plane = f.row_plane(), stride = std::size_t(f.stride);
     guides.assign(6 * length, 0.0f);
     std::fill(guides.begin() + std::ptrdiff_t(5 * length), guides.end(),
               std::numeric_limits<float>::quiet_NaN());
-    const std::size_t first = std::size_t(y) * stride, margin = std::size_t(row.margin);
-    std::size_t q = 0;
-    for (const std::vector<float> *plane :
-         {&f.coord_u, &f.coord_v, &f.normal_x, &f.normal_y, &f.normal_z, &f.object_id}) {
-        std::copy_n(plane->begin() + std::ptrdiff_t(first), stride,
-                    guides.begin() + std::ptrdiff_t(q * length + margin));
-        ++q;
-    }
+    for (std::size_t q = 0; q < 6; ++q)
+        std::copy_n(f.row_guides.begin() + std::ptrdiff_t(q * plane + std::size_t(y) * stride), stride,
+                    guides.begin() + std::ptrdiff_t(q * length + std::size_t(f.margin)));
 }
 
 /// MAAF Eq. 21's weighted sums of one row from the horizontal pass's real parts.
@@ -168,6 +197,49 @@ void finish_row(const GatherGuides &g, const std::vector<MaafPixelKernel> &kerne
     }
 }
 
+/// Rows [first, first + count) (count a multiple of kMaafLinePadding): the
+/// vertical pass of every column into `intermediate` (by row, 4 * terms
+/// arrays of margin + stride + margin per row), then each row's horizontal pass.
+void filter_band(const LineFrame &f, const GatherGuides &g, const std::vector<MaafPixelKernel> &kernels,
+                 const std::vector<Term> &terms, int first, int count, MaafFilteredSums &out) {
+    const std::size_t planes = 4 * terms.size(), stride = std::size_t(f.stride);
+    const std::size_t length = std::size_t(f.margin) + stride + std::size_t(f.margin);
+    std::vector<float> intermediate(std::size_t(count) * planes * length, 0.0f), guides;
+    std::vector<float> row_sums(2 * terms.size() * stride);
+    const std::size_t arrays = f.kernel_arrays(), column = std::size_t(f.column);
+    detail::MaafLine line;
+    for (int x = 0; x < f.width; ++x) {  // vertical: centres down column x
+        line.count = count;
+        line.margin = f.margin;
+        line.guides = f.column_guides.data() + std::size_t(x) * 6 * f.column_length + std::size_t(first);
+        line.guide_stride = f.column_length;
+        line.kernels = f.column_kernels.data() + std::size_t(x) * arrays * column + std::size_t(first);
+        line.kernel_stride = column;
+        line.sources =
+            f.column_sources.data() + std::size_t(x) * planes * f.column_length + std::size_t(first);
+        line.source_stride = f.column_length;
+        line.out = intermediate.data() + std::size_t(f.margin) + std::size_t(x);
+        line.out_centre_step = planes * length;
+        line.out_plane_step = length;
+        detail::maaf_line_pass(f.terms, line, true);
+    }
+    for (int y = first; y < std::min(first + count, f.height); ++y) {  // horizontal: along row y
+        padded_guides(f, y, length, guides);
+        line.count = f.stride;
+        line.guides = guides.data();
+        line.guide_stride = length;
+        line.kernels = f.row_kernels.data() + std::size_t(y) * stride;
+        line.kernel_stride = f.row_plane();
+        line.sources = intermediate.data() + std::size_t(y - first) * planes * length;
+        line.source_stride = length;
+        line.out = row_sums.data();
+        line.out_centre_step = 1;
+        line.out_plane_step = stride;
+        detail::maaf_line_pass(f.terms, line, false);
+        finish_row(g, kernels, terms, y, stride, row_sums, out);
+    }
+}
+
 }  // namespace
 
 MaafFilteredSums maaf_separable_filter(const GatherGuides &g, float normal_threshold_deg,
@@ -178,51 +250,37 @@ MaafFilteredSums maaf_separable_filter(const GatherGuides &g, float normal_thres
         throw Error("MAAF separable filter: N used must lie in [1, N of the sums]");
     const std::size_t count = std::size_t(g.width) * std::size_t(g.height);
     const std::vector<Term> terms = terms_for(sum_pairs, pairs);
-    PlanarFrame f;
-    detail::MaafSeparableFrame &view = f.view;
-    view.width = g.width;
-    view.height = g.height;
-    view.stride = (g.width + detail::kMaafRowPadding - 1) / detail::kMaafRowPadding * detail::kMaafRowPadding;
-    view.pairs = pairs;
-    view.terms = int(terms.size());
+    LineFrame f;
     for (const Term &t : terms) {
-        f.term_pu.push_back(t.pu);
-        f.term_pv.push_back(t.pv);
-        f.term_sign_v.push_back(t.sign_v);
+        f.pu.push_back(t.pu);
+        f.pv.push_back(t.pv);
+        f.sign_v.push_back(t.sign_v);
     }
-    view.term_pu = f.term_pu.data();
-    view.term_pv = f.term_pv.data();
-    view.term_sign_v = f.term_sign_v.data();
-    view.cos_threshold = std::cos(normal_threshold_deg * kPi / 180.0f);
-    planar_kernels(g, kernels, pairs, f);
-    planar_sources(g, terms, value_sums, unoccluded_sums, f);
-    view.coord_u = f.coord_u.data();
-    view.coord_v = f.coord_v.data();
-    view.normal_x = f.normal_x.data();
-    view.normal_y = f.normal_y.data();
-    view.normal_z = f.normal_z.data();
-    view.object_id = f.object_id.data();
-    view.inv_two_sigma_sq = f.inv_two_sigma_sq.data();
-    view.omega = f.omega.data();
-    view.radius_px = f.radius_px.data();
-    view.widest_px = f.widest_px.data();
-    view.sources = f.sources.data();
+    f.terms = {pairs,       int(terms.size()), f.pu.data(),
+               f.pv.data(), f.sign_v.data(),   std::cos(normal_threshold_deg * kPi / 180.0f)};
+    constexpr int kPadding = detail::kMaafLinePadding;
+    f.width = g.width;
+    f.height = g.height;
+    f.stride = (g.width + kPadding - 1) / kPadding * kPadding;
+    f.column = (g.height + kPadding - 1) / kPadding * kPadding;
+    // The margin is the largest reach, known only from the kernels: a first look at them.
+    for (const MaafPixelKernel &k : kernels)
+        for (int p = 0; p < pairs && k.filtered; ++p) f.margin = std::max(f.margin, k.radius_px[p]);
+    f.column_length = std::size_t(f.margin) + std::size_t(f.column) + std::size_t(f.margin);
+    line_guides(g, kernels, f);
+    column_sources(g, terms, value_sums, unoccluded_sums, f);
 
     MaafFilteredSums out;
     out.numerator.assign(count, 0.0);
     out.denominator.assign(count, 0.0);
     out.central_numerator.assign(count, 0.0);
     out.central_denominator.assign(count, 0.0);
-    // A row's vertical pass feeds only that row's horizontal pass: one row's intermediates at a time.
-    const detail::MaafPaddedRow row{f.widest, f.widest + view.stride + f.widest};
-    const std::size_t stride = std::size_t(view.stride);
-    parallel_for_rows(g.height, [&](int y) {
-        std::vector<float> intermediate(4 * terms.size() * std::size_t(row.length), 0.0f), guides;
-        std::vector<float> row_sums(2 * terms.size() * stride);
-        detail::maaf_vertical_row(view, y, intermediate.data(), row);
-        padded_guides(f, y, row, guides);
-        detail::maaf_horizontal_row(view, y, intermediate.data(), guides.data(), row, row_sums.data());
-        finish_row(g, kernels, terms, y, stride, row_sums, out);
+    // Bands of rows: a band's vertical pass feeds only its own rows' horizontal passes.
+    constexpr int kBandRows = 2 * kPadding;
+    const int bands = (f.column + kBandRows - 1) / kBandRows;
+    parallel_for_rows(bands, [&](int band) {
+        const int first = band * kBandRows;
+        filter_band(f, g, kernels, terms, first, std::min(kBandRows, f.column - first), out);
     });
     return out;
 }

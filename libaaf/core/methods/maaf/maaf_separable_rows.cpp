@@ -98,23 +98,36 @@ struct Centres {
     V u, v, normal_x, normal_y, normal_z, id, cos_threshold;
     V inv_two_sigma_sq[kMaafMaxPairs], omega[kMaafMaxPairs], radius[kMaafMaxPairs];
     int widest = 0;  ///< the largest reach of any lane, pixels
+    /// Per term, the largest reach max(radius_p, radius_q) of any lane: past it
+    /// the term's weight is 0 in every lane and adds nothing (from +0, adding
+    /// +-0 changes no sum's bits), so it is skipped.
+    int term_reach[kMaafMaxTerms] = {};
 
-    Centres(D d, const MaafSeparableFrame &f, std::size_t i) {
-        u = hn::LoadU(d, f.coord_u + i);
-        v = hn::LoadU(d, f.coord_v + i);
-        normal_x = hn::LoadU(d, f.normal_x + i);
-        normal_y = hn::LoadU(d, f.normal_y + i);
-        normal_z = hn::LoadU(d, f.normal_z + i);
-        id = hn::LoadU(d, f.object_id + i);
-        cos_threshold = hn::Set(d, f.cos_threshold);
-        const std::size_t plane = std::size_t(f.stride) * std::size_t(f.height);
-        for (int p = 0; p < f.pairs; ++p) {
-            inv_two_sigma_sq[p] = hn::LoadU(d, f.inv_two_sigma_sq + std::size_t(p) * plane + i);
-            omega[p] = hn::LoadU(d, f.omega + std::size_t(p) * plane + i);
-            radius[p] = hn::LoadU(d, f.radius_px + std::size_t(p) * plane + i);
+    /// Centres i .. i + lanes - 1 of `line`; their guides are the taps at offset 0.
+    Centres(D d, const MaafTerms &t, const MaafLine &line, std::size_t i) {
+        const float *g = line.guides + std::size_t(line.margin) + i;
+        const std::size_t gs = line.guide_stride;
+        u = hn::LoadU(d, g);
+        v = hn::LoadU(d, g + gs);
+        normal_x = hn::LoadU(d, g + 2 * gs);
+        normal_y = hn::LoadU(d, g + 3 * gs);
+        normal_z = hn::LoadU(d, g + 4 * gs);
+        id = hn::LoadU(d, g + 5 * gs);
+        cos_threshold = hn::Set(d, t.cos_threshold);
+        const float *k = line.kernels + i;
+        const std::size_t ks = line.kernel_stride, pairs = std::size_t(t.pairs);
+        for (std::size_t p = 0; p < pairs; ++p) {
+            inv_two_sigma_sq[p] = hn::LoadU(d, k + p * ks);
+            omega[p] = hn::LoadU(d, k + (pairs + p) * ks);
+            radius[p] = hn::LoadU(d, k + (2 * pairs + p) * ks);
         }
-        for (std::size_t lane = 0; lane < hn::Lanes(d); ++lane)
-            widest = std::max(widest, int(f.widest_px[i + lane]));
+        for (std::size_t lane = 0; lane < hn::Lanes(d); ++lane) {
+            widest = std::max(widest, int(k[3 * pairs * ks + lane]));
+            for (int j = 0; j < t.terms; ++j)
+                term_reach[j] =
+                    std::max(term_reach[j], int(std::max(k[(2 * pairs + std::size_t(t.pu[j])) * ks + lane],
+                                                         k[(2 * pairs + std::size_t(t.pv[j])) * ks + lane])));
+        }
     }
 };
 
@@ -128,7 +141,7 @@ struct Tap {
 /// (MAAF Eq. 12, 13) for one tap, 0 where gather() rejects the tap or the
 /// term's reach max(radius_p, radius_q) is below the tap's offset.
 /// The phase factors e^{j C_x^p du} are shared by every term with p on that axis.
-HWY_INLINE void term_weights(D d, const MaafSeparableFrame &f, const Centres &c, const Tap &t, V *re, V *im) {
+HWY_INLINE void term_weights(D d, const MaafTerms &f, const Centres &c, const Tap &t, V *re, V *im) {
     M accepted = hn::FirstN(d, hn::Lanes(d));  // the centre itself always counts
     if (t.offset_px != 0) {
         const V cos_angle = hn::Add(hn::Add(hn::Mul(c.normal_x, t.normal_x), hn::Mul(c.normal_y, t.normal_y)),
@@ -151,9 +164,10 @@ HWY_INLINE void term_weights(D d, const MaafSeparableFrame &f, const Centres &c,
     }
     const V offset = hn::Set(d, float(t.offset_px));
     for (int j = 0; j < f.terms; ++j) {
-        const int pu = f.term_pu[j], pv = f.term_pv[j];
+        if (t.offset_px > c.term_reach[j]) continue;  // not read (the passes skip the term)
+        const int pu = f.pu[j], pv = f.pv[j];
         const V a = cos_u[pu], b = sin_u[pu], cv = cos_v[pv];
-        const V dq = f.term_sign_v[j] < 0 ? hn::Neg(sin_v[pv]) : sin_v[pv];
+        const V dq = f.sign_v[j] < 0 ? hn::Neg(sin_v[pv]) : sin_v[pv];
         const M reached = hn::And(accepted, hn::Le(offset, hn::Max(c.radius[pu], c.radius[pv])));
         // Selects, not products: a rejected tap's weight is 0 whatever its guides held.
         const V g = hn::Mul(gauss_u[pu], gauss_v[pv]);
@@ -162,108 +176,79 @@ HWY_INLINE void term_weights(D d, const MaafSeparableFrame &f, const Centres &c,
     }
 }
 
-/// Scratch for one row: the sums of a vector of centres, one vector per plane.
-struct RowScratch {
-    hwy::AlignedFreeUniquePtr<float[]> sums;
-    RowScratch(D d, int terms) : sums(hwy::AllocateAligned<float>(4 * std::size_t(terms) * hn::Lanes(d))) {}
-};
+/// sum += a * b - c * e (or + for `add`), each product and sum rounded on its own.
+HWY_INLINE void accumulate(D d, float *sum, V a, V b, V c, V e, bool add) {
+    const V product = add ? hn::Add(hn::Mul(a, b), hn::Mul(c, e)) : hn::Sub(hn::Mul(a, b), hn::Mul(c, e));
+    hn::Store(hn::Add(hn::Load(d, sum), product), d, sum);
+}
 
-void VerticalRow(const MaafSeparableFrame &f, int y, float *out, MaafPaddedRow row) {
-    const D d;
-    const std::size_t lanes = hn::Lanes(d), stride = std::size_t(f.stride);
-    const std::size_t plane = stride * std::size_t(f.height), planes = 4 * std::size_t(f.terms);
-    RowScratch scratch(d, f.terms);
-    float *sums = scratch.sums.get();
-    V re[kMaafMaxTerms], im[kMaafMaxTerms];
-    for (std::size_t x = 0; x < stride; x += lanes) {
-        const std::size_t centre = std::size_t(y) * stride + x;
-        const Centres c(d, f, centre);
-        float *dst = out + std::size_t(row.margin) + x;
-        if (c.widest == 0) {  // no lane filtered: every centre keeps its sources
-            for (std::size_t q = 0; q < planes; ++q)
-                hn::StoreU(hn::LoadU(d, f.sources + q * plane + centre), d,
-                           dst + q * std::size_t(row.length));
-            continue;
+/// Adds one tap's weighted sources to the sums (`planes` vectors): complex
+/// weight times complex source, or its real part only.
+HWY_INLINE void add_tap(D d, const MaafTerms &f, const Centres &c, const Tap &tap, const V *re, const V *im,
+                        const float *src, std::size_t source_stride, bool complex, float *sums) {
+    const std::size_t lanes = hn::Lanes(d), terms = std::size_t(f.terms);
+    const std::size_t block = terms * lanes;  // the sums of one of the four (two) source kinds
+    for (std::size_t j = 0; j < terms; ++j) {
+        if (tap.offset_px > c.term_reach[j]) continue;  // a weight of 0 in every lane
+        const V value_re = hn::LoadU(d, src + j * source_stride);
+        const V value_im = hn::LoadU(d, src + (terms + j) * source_stride);
+        const V unoccluded_re = hn::LoadU(d, src + (2 * terms + j) * source_stride);
+        const V unoccluded_im = hn::LoadU(d, src + (3 * terms + j) * source_stride);
+        float *s = sums + j * lanes;
+        accumulate(d, s, re[j], value_re, im[j], value_im, false);
+        if (complex) {
+            accumulate(d, s + block, re[j], value_im, im[j], value_re, true);
+            accumulate(d, s + 2 * block, re[j], unoccluded_re, im[j], unoccluded_im, false);
+            accumulate(d, s + 3 * block, re[j], unoccluded_im, im[j], unoccluded_re, true);
+        } else {
+            accumulate(d, s + block, re[j], unoccluded_re, im[j], unoccluded_im, false);
         }
-        for (std::size_t q = 0; q < planes; ++q) hn::Store(hn::Zero(d), d, sums + q * lanes);
-        const int first = std::max(0, y - c.widest), last = std::min(f.height - 1, y + c.widest);
-        for (int ty = first; ty <= last; ++ty) {
-            const std::size_t t = std::size_t(ty) * stride + x;
-            const Tap tap{hn::LoadU(d, f.coord_u + t),
-                          hn::LoadU(d, f.coord_v + t),
-                          hn::LoadU(d, f.normal_x + t),
-                          hn::LoadU(d, f.normal_y + t),
-                          hn::LoadU(d, f.normal_z + t),
-                          hn::LoadU(d, f.object_id + t),
-                          std::abs(ty - y)};
-            term_weights(d, f, c, tap, re, im);
-            const std::size_t terms = std::size_t(f.terms);
-            for (std::size_t j = 0; j < terms; ++j) {  // complex weight times complex source
-                const V value_re = hn::LoadU(d, f.sources + j * plane + t);
-                const V value_im = hn::LoadU(d, f.sources + (terms + j) * plane + t);
-                const V unoccluded_re = hn::LoadU(d, f.sources + (2 * terms + j) * plane + t);
-                const V unoccluded_im = hn::LoadU(d, f.sources + (3 * terms + j) * plane + t);
-                float *s = sums + j * lanes;
-                const std::size_t block = terms * lanes;
-                hn::Store(
-                    hn::Add(hn::Load(d, s), hn::Sub(hn::Mul(re[j], value_re), hn::Mul(im[j], value_im))), d,
-                    s);
-                hn::Store(hn::Add(hn::Load(d, s + block),
-                                  hn::Add(hn::Mul(re[j], value_im), hn::Mul(im[j], value_re))),
-                          d, s + block);
-                hn::Store(hn::Add(hn::Load(d, s + 2 * block),
-                                  hn::Sub(hn::Mul(re[j], unoccluded_re), hn::Mul(im[j], unoccluded_im))),
-                          d, s + 2 * block);
-                hn::Store(hn::Add(hn::Load(d, s + 3 * block),
-                                  hn::Add(hn::Mul(re[j], unoccluded_im), hn::Mul(im[j], unoccluded_re))),
-                          d, s + 3 * block);
-            }
-        }
-        // A lane whose own widest reach is 0 keeps its sources, as a lane of an unfiltered vector.
-        const M keeps = hn::Eq(hn::LoadU(d, f.widest_px + centre), hn::Zero(d));
-        for (std::size_t q = 0; q < planes; ++q)
-            hn::StoreU(hn::IfThenElse(keeps, hn::LoadU(d, f.sources + q * plane + centre),
-                                      hn::Load(d, sums + q * lanes)),
-                       d, dst + q * std::size_t(row.length));
     }
 }
 
-void HorizontalRow(const MaafSeparableFrame &f, int y, const float *in, const float *guides,
-                   MaafPaddedRow row, float *out) {
+/// Stores a vector of centres' outputs (`planes` vectors of sums); a lane
+/// of a complex pass whose largest reach is 0 keeps its own sources.
+HWY_INLINE void store_centres(D d, const MaafTerms &f, const MaafLine &line, std::size_t i, const float *sums,
+                              bool complex) {
+    const std::size_t lanes = hn::Lanes(d), planes = (complex ? 4 : 2) * std::size_t(f.terms);
+    const float *own = line.sources + std::size_t(line.margin) + i;
+    const M keeps = hn::And(
+        hn::Eq(hn::LoadU(d, line.kernels + 3 * std::size_t(f.pairs) * line.kernel_stride + i), hn::Zero(d)),
+        complex ? hn::FirstN(d, lanes) : hn::FirstN(d, 0));
+    HWY_ALIGN float lane_values[kMaafLinePadding];  // at least a vector
+    for (std::size_t q = 0; q < planes; ++q) {
+        const V value =
+            hn::IfThenElse(keeps, hn::LoadU(d, own + q * line.source_stride), hn::Load(d, sums + q * lanes));
+        float *dst = line.out + i * line.out_centre_step + q * line.out_plane_step;
+        if (line.out_centre_step == 1) {
+            hn::StoreU(value, d, dst);
+            continue;
+        }
+        hn::Store(value, d, lane_values);  // centres along a column: one output row each
+        for (std::size_t lane = 0; lane < lanes; ++lane) dst[lane * line.out_centre_step] = lane_values[lane];
+    }
+}
+
+void LinePass(const MaafTerms &f, const MaafLine &line, bool complex) {
     const D d;
-    const std::size_t lanes = hn::Lanes(d), stride = std::size_t(f.stride), terms = std::size_t(f.terms);
-    const std::size_t length = std::size_t(row.length);
-    const float *g_u = guides, *g_v = guides + length, *g_nx = guides + 2 * length,
-                *g_ny = guides + 3 * length, *g_nz = guides + 4 * length, *g_id = guides + 5 * length;
-    RowScratch scratch(d, f.terms);
-    float *sums = scratch.sums.get();
+    const std::size_t lanes = hn::Lanes(d), planes = (complex ? 4 : 2) * std::size_t(f.terms);
+    const std::size_t gs = line.guide_stride;
+    hwy::AlignedFreeUniquePtr<float[]> buffer = hwy::AllocateAligned<float>(planes * lanes);
+    float *sums = buffer.get();
     V re[kMaafMaxTerms], im[kMaafMaxTerms];
-    for (std::size_t x = 0; x < stride; x += lanes) {
-        const Centres c(d, f, std::size_t(y) * stride + x);
-        for (std::size_t q = 0; q < 2 * terms; ++q) hn::Store(hn::Zero(d), d, sums + q * lanes);
+    for (std::size_t i = 0; i < std::size_t(line.count); i += lanes) {
+        const Centres c(d, f, line, i);
+        for (std::size_t q = 0; q < planes; ++q) hn::Store(hn::Zero(d), d, sums + q * lanes);
         for (int offset = -c.widest; offset <= c.widest; ++offset) {
-            const std::size_t t = std::size_t(std::ptrdiff_t(row.margin) + std::ptrdiff_t(x) + offset);
-            const Tap tap{hn::LoadU(d, g_u + t),  hn::LoadU(d, g_v + t),  hn::LoadU(d, g_nx + t),
-                          hn::LoadU(d, g_ny + t), hn::LoadU(d, g_nz + t), hn::LoadU(d, g_id + t),
+            const std::size_t t = std::size_t(std::ptrdiff_t(line.margin) + std::ptrdiff_t(i) + offset);
+            const float *g = line.guides + t;
+            const Tap tap{hn::LoadU(d, g),          hn::LoadU(d, g + gs),     hn::LoadU(d, g + 2 * gs),
+                          hn::LoadU(d, g + 3 * gs), hn::LoadU(d, g + 4 * gs), hn::LoadU(d, g + 5 * gs),
                           std::abs(offset)};
             term_weights(d, f, c, tap, re, im);
-            for (std::size_t j = 0; j < terms; ++j) {  // real parts only
-                const V value_re = hn::LoadU(d, in + j * length + t);
-                const V value_im = hn::LoadU(d, in + (terms + j) * length + t);
-                const V unoccluded_re = hn::LoadU(d, in + (2 * terms + j) * length + t);
-                const V unoccluded_im = hn::LoadU(d, in + (3 * terms + j) * length + t);
-                float *s = sums + j * lanes;
-                hn::Store(
-                    hn::Add(hn::Load(d, s), hn::Sub(hn::Mul(re[j], value_re), hn::Mul(im[j], value_im))), d,
-                    s);
-                float *s_u = sums + (terms + j) * lanes;
-                hn::Store(hn::Add(hn::Load(d, s_u),
-                                  hn::Sub(hn::Mul(re[j], unoccluded_re), hn::Mul(im[j], unoccluded_im))),
-                          d, s_u);
-            }
+            add_tap(d, f, c, tap, re, im, line.sources + t, line.source_stride, complex, sums);
         }
-        for (std::size_t q = 0; q < 2 * terms; ++q)
-            hn::StoreU(hn::Load(d, sums + q * lanes), d, out + q * stride + x);
+        store_centres(d, f, line, i, sums, complex);
     }
 }
 
@@ -276,18 +261,11 @@ HWY_AFTER_NAMESPACE();
 
 namespace aaf::detail {
 
-HWY_EXPORT(VerticalRow);
-HWY_EXPORT(HorizontalRow);
+HWY_EXPORT(LinePass);
 
-void maaf_vertical_row(const MaafSeparableFrame &frame, int y, float *out, MaafPaddedRow row) {
+void maaf_line_pass(const MaafTerms &terms, const MaafLine &line, bool complex) {
     (void)instruction_set();  // applies AAF_ISA before the first dispatch
-    HWY_DYNAMIC_DISPATCH(VerticalRow)(frame, y, out, row);
-}
-
-void maaf_horizontal_row(const MaafSeparableFrame &frame, int y, const float *in, const float *guides,
-                         MaafPaddedRow row, float *sums) {
-    (void)instruction_set();
-    HWY_DYNAMIC_DISPATCH(HorizontalRow)(frame, y, in, guides, row, sums);
+    HWY_DYNAMIC_DISPATCH(LinePass)(terms, line, complex);
 }
 
 }  // namespace aaf::detail

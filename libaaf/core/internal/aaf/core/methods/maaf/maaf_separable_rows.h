@@ -1,5 +1,7 @@
 #pragma once
 
+#include <cstddef>
+
 #include "aaf/core/methods/maaf/maaf_accumulation.h"
 
 namespace aaf::detail {
@@ -9,57 +11,53 @@ namespace aaf::detail {
 inline constexpr int kMaafMaxTerms =
     1 + 2 * (kMaafMaxPairs - 1) + 2 * (kMaafMaxPairs - 1) * (kMaafMaxPairs - 1);
 
-/// Row storage of maaf_separable_filter()'s planes is padded to a multiple
-/// of this many pixels (the widest vector, AVX-512's 16 floats), so that the
-/// row kernels load whole vectors of centres without a scalar tail.
-inline constexpr int kMaafRowPadding = 16;
+/// Lines of centres are padded to a multiple of this many pixels (the
+/// widest vector, AVX-512's 16 floats), so the kernels load whole vectors.
+inline constexpr int kMaafLinePadding = 16;
 
-/// One frame's inputs to the separable MAAF passes, planar: plane q of a
-/// per-pixel quantity starts at q * stride * height, pixel (x, y) at
-/// y * stride + x. Padding columns hold object id NaN (never a tap) and radii 0.
-struct MaafSeparableFrame {
-    int width = 0, height = 0, stride = 0;
+/// What every line of one frame shares: the terms and the tap test.
+struct MaafTerms {
     int pairs = 1;  ///< N used: components p = 0 .. pairs - 1 per axis
     int terms = 1;  ///< the complex terms (maaf_separable.cpp's terms_for)
-    const int *term_pu = nullptr, *term_pv = nullptr;
-    const float *term_sign_v = nullptr;  ///< +1: e^{j (a + b)}, -1: e^{j (a - b)}
-    float cos_threshold = 1.0f;          ///< taps whose normals turn further are rejected
-    /// Guides: signed coordinates along the light's axes (metres), unit normals, object ids.
-    const float *coord_u = nullptr, *coord_v = nullptr;
-    const float *normal_x = nullptr, *normal_y = nullptr, *normal_z = nullptr, *object_id = nullptr;
-    /// Kernels, `pairs` planes each: 1 / (2 s_p^2) (m^-2), C_x^p (rad/m), reach in pixels (0: not filtered).
-    const float *inv_two_sigma_sq = nullptr, *omega = nullptr, *radius_px = nullptr;
-    const float *widest_px = nullptr;  ///< per pixel, the largest of its terms' reaches
-    /// 4 * terms planes: value re, value im, unoccluded re, unoccluded im, each `terms` planes.
+    const int *pu = nullptr, *pv = nullptr;
+    const float *sign_v = nullptr;  ///< +1: e^{j (a + b)}, -1: e^{j (a - b)}
+    float cos_threshold = 1.0f;     ///< taps whose normals turn further are rejected
+};
+
+/// One line (an image row, or an image column for the vertical pass) of
+/// `count` centres, count a multiple of kMaafLinePadding, and its taps: the
+/// taps of centre i at offset o are at margin + i + o of the tap arrays,
+/// margin at least the largest reach; taps outside the image have object id NaN.
+struct MaafLine {
+    int count = 0, margin = 0;
+    /// The taps' guides: coordinates along the light's axes (metres), unit
+    /// normal x, y, z, object id; guide k at guides + k * guide_stride.
+    const float *guides = nullptr;
+    std::size_t guide_stride = 0;
+    /// The centres' kernels, centre i at i: 1 / (2 s_p^2) (m^-2, `pairs`
+    /// arrays), C_x^p (rad/m, `pairs`), reach radius_p (pixels, `pairs`, 0
+    /// where not filtered), then the largest reach; array k at kernels + k * kernel_stride.
+    const float *kernels = nullptr;
+    std::size_t kernel_stride = 0;
+    /// The taps' complex sources (4 * terms arrays: value re, value im,
+    /// unoccluded re, unoccluded im) or, for the real pass, the same.
     const float *sources = nullptr;
+    std::size_t source_stride = 0;
+    /// Centre i's output q at out + i * out_centre_step + q * out_plane_step.
+    float *out = nullptr;
+    std::size_t out_centre_step = 1, out_plane_step = 0;
 };
 
-/// One row of intermediates or guides of the horizontal pass: `count` pixels
-/// with `margin` pixels of padding each side, pixel x at margin + x.
-struct MaafPaddedRow {
-    int margin = 0, length = 0;
-};
-
-/// The vertical pass of row y: for each centre x of the row, with its own
-/// kernels, the sum over the taps (x, ty), |ty - y| <= its reach, that
-/// gather() accepts (the centre always; else the same object and a normal
-/// within the threshold) of each term's weight g_p(du) g_q(dv)
-/// e^{j (C_x^p du + sign_v C_x^q dv)} times its complex sources (MAAF Eq.
-/// 12, 13), into out[q * row.length + row.margin + x], q over the 4 * terms
-/// planes of MaafSeparableFrame::sources. A centre whose widest reach is 0
-/// keeps its sources. Taps are summed in order of ty, every multiply and add
-/// rounded on its own, so every instruction set and lane count gives the
-/// same bits.
-void maaf_vertical_row(const MaafSeparableFrame &frame, int y, float *out, MaafPaddedRow row);
-
-/// The horizontal pass of row y over the vertical pass's output `in` (as
-/// maaf_vertical_row writes it), with each centre's kernels and the row's
-/// guides padded likewise (`guides`: coord_u, coord_v, normal x, y, z,
-/// object id, six rows of row.length; object id NaN in the margins): the
-/// real parts of each term's filtered value and unoccluded sources into the
-/// row's sums[j * frame.stride + x] and sums[(terms + j) * frame.stride + x].
-/// Taps in order of tx; the same bits on every instruction set.
-void maaf_horizontal_row(const MaafSeparableFrame &frame, int y, const float *in, const float *guides,
-                         MaafPaddedRow row, float *sums);
+/// One pass of the separable MAAF filter over a line: for each centre, with
+/// its own kernels, the sum over the taps within its reach that gather()
+/// accepts (the centre always; else the same object and a normal within the
+/// threshold) of each term's weight g_p(du) g_q(dv) e^{j (C_x^p du +
+/// sign_v C_x^q dv)} (MAAF Eq. 12, 13) times its complex sources. `complex`:
+/// all 4 * terms outputs (the vertical pass; a centre whose largest reach is
+/// 0 keeps its sources); else the real parts of the value and unoccluded
+/// terms, 2 * terms outputs (the horizontal pass). Taps are summed in order
+/// of offset, every multiply and add rounded on its own, so every
+/// instruction set and lane count gives the same bits.
+void maaf_line_pass(const MaafTerms &terms, const MaafLine &line, bool complex);
 
 }  // namespace aaf::detail
