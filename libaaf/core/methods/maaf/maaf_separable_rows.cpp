@@ -140,8 +140,9 @@ struct Tap {
 /// Every term's weight g_p(du) g_q(dv) e^{j (C_x^p du + sign_v C_x^q dv)}
 /// (MAAF Eq. 12, 13) for one tap, 0 where gather() rejects the tap or the
 /// term's reach max(radius_p, radius_q) is below the tap's offset.
-/// The phase factors e^{j C_x^p du} are shared by every term with p on that axis.
-HWY_INLINE void term_weights(D d, const MaafTerms &f, const Centres &c, const Tap &t, V *re, V *im) {
+/// The phase factors e^{j C_x^p du} are shared by every term with p on that
+/// axis. Term j's weight goes to weights[2 j lanes] (re) and the next vector (im).
+HWY_INLINE void term_weights(D d, const MaafTerms &f, const Centres &c, const Tap &t, float *weights) {
     M accepted = hn::FirstN(d, hn::Lanes(d));  // the centre itself always counts
     if (t.offset_px != 0) {
         const V cos_angle = hn::Add(hn::Add(hn::Mul(c.normal_x, t.normal_x), hn::Mul(c.normal_y, t.normal_y)),
@@ -171,84 +172,97 @@ HWY_INLINE void term_weights(D d, const MaafTerms &f, const Centres &c, const Ta
         const M reached = hn::And(accepted, hn::Le(offset, hn::Max(c.radius[pu], c.radius[pv])));
         // Selects, not products: a rejected tap's weight is 0 whatever its guides held.
         const V g = hn::Mul(gauss_u[pu], gauss_v[pv]);
-        re[j] = hn::IfThenElseZero(reached, hn::Mul(g, hn::Sub(hn::Mul(a, cv), hn::Mul(b, dq))));
-        im[j] = hn::IfThenElseZero(reached, hn::Mul(g, hn::Add(hn::Mul(a, dq), hn::Mul(b, cv))));
+        float *w = weights + 2 * std::size_t(j) * hn::Lanes(d);
+        hn::Store(hn::IfThenElseZero(reached, hn::Mul(g, hn::Sub(hn::Mul(a, cv), hn::Mul(b, dq)))), d, w);
+        hn::Store(hn::IfThenElseZero(reached, hn::Mul(g, hn::Add(hn::Mul(a, dq), hn::Mul(b, cv)))), d,
+                  w + hn::Lanes(d));
     }
 }
 
-/// sum += a * b - c * e (or + for `add`), each product and sum rounded on its own.
-HWY_INLINE void accumulate(D d, float *sum, V a, V b, V c, V e, bool add) {
-    const V product = add ? hn::Add(hn::Mul(a, b), hn::Mul(c, e)) : hn::Sub(hn::Mul(a, b), hn::Mul(c, e));
-    hn::Store(hn::Add(hn::Load(d, sum), product), d, sum);
+/// a * b - c * e (or + for `add`), each product and the sum rounded on its own.
+HWY_INLINE V complex_part(V a, V b, V c, V e, bool add) {
+    return add ? hn::Add(hn::Mul(a, b), hn::Mul(c, e)) : hn::Sub(hn::Mul(a, b), hn::Mul(c, e));
 }
 
-/// Adds one tap's weighted sources to the sums (`planes` vectors): complex
-/// weight times complex source, or its real part only.
-HWY_INLINE void add_tap(D d, const MaafTerms &f, const Centres &c, const Tap &tap, const V *re, const V *im,
-                        const float *src, std::size_t source_stride, bool complex, float *sums) {
-    const std::size_t lanes = hn::Lanes(d), terms = std::size_t(f.terms);
-    const std::size_t block = terms * lanes;  // the sums of one of the four (two) source kinds
-    for (std::size_t j = 0; j < terms; ++j) {
-        if (tap.offset_px > c.term_reach[j]) continue;  // a weight of 0 in every lane
-        const V value_re = hn::LoadU(d, src + j * source_stride);
-        const V value_im = hn::LoadU(d, src + (terms + j) * source_stride);
-        const V unoccluded_re = hn::LoadU(d, src + (2 * terms + j) * source_stride);
-        const V unoccluded_im = hn::LoadU(d, src + (3 * terms + j) * source_stride);
-        float *s = sums + j * lanes;
-        accumulate(d, s, re[j], value_re, im[j], value_im, false);
+/// Term j's sums for a vector of centres over its taps |offset| <= reach,
+/// in order of offset, in registers: complex weight times complex source,
+/// or its real part only. `weights` holds every tap's (term_weights, tap
+/// offset -widest first); `src` is the term's first source array at the centres.
+HWY_INLINE void term_sums(D d, const MaafTerms &f, const MaafLine &line, const float *weights, int widest,
+                          std::size_t j, int reach, const float *src, bool complex, V *sums) {
+    const std::size_t lanes = hn::Lanes(d), terms = std::size_t(f.terms), ss = line.source_stride;
+    const float *value_re = src + j * ss, *value_im = src + (terms + j) * ss;
+    const float *unoccluded_re = src + (2 * terms + j) * ss, *unoccluded_im = src + (3 * terms + j) * ss;
+    V sum0 = hn::Zero(d), sum1 = hn::Zero(d), sum2 = hn::Zero(d), sum3 = hn::Zero(d);
+    for (int offset = -reach; offset <= reach; ++offset) {
+        const float *w = weights + (std::size_t(offset + widest) * terms + j) * 2 * lanes;
+        const V re = hn::Load(d, w), im = hn::Load(d, w + lanes);
+        const std::ptrdiff_t t = offset;
+        const V v_re = hn::LoadU(d, value_re + t), v_im = hn::LoadU(d, value_im + t);
+        const V u_re = hn::LoadU(d, unoccluded_re + t), u_im = hn::LoadU(d, unoccluded_im + t);
+        sum0 = hn::Add(sum0, complex_part(re, v_re, im, v_im, false));
         if (complex) {
-            accumulate(d, s + block, re[j], value_im, im[j], value_re, true);
-            accumulate(d, s + 2 * block, re[j], unoccluded_re, im[j], unoccluded_im, false);
-            accumulate(d, s + 3 * block, re[j], unoccluded_im, im[j], unoccluded_re, true);
+            sum1 = hn::Add(sum1, complex_part(re, v_im, im, v_re, true));
+            sum2 = hn::Add(sum2, complex_part(re, u_re, im, u_im, false));
+            sum3 = hn::Add(sum3, complex_part(re, u_im, im, u_re, true));
         } else {
-            accumulate(d, s + block, re[j], unoccluded_re, im[j], unoccluded_im, false);
+            sum1 = hn::Add(sum1, complex_part(re, u_re, im, u_im, false));
         }
     }
+    sums[0] = sum0;
+    sums[1] = sum1;
+    sums[2] = sum2;
+    sums[3] = sum3;
 }
 
-/// Stores a vector of centres' outputs (`planes` vectors of sums); a lane
-/// of a complex pass whose largest reach is 0 keeps its own sources.
-HWY_INLINE void store_centres(D d, const MaafTerms &f, const MaafLine &line, std::size_t i, const float *sums,
-                              bool complex) {
-    const std::size_t lanes = hn::Lanes(d), planes = (complex ? 4 : 2) * std::size_t(f.terms);
-    const float *own = line.sources + std::size_t(line.margin) + i;
-    const M keeps = hn::And(
-        hn::Eq(hn::LoadU(d, line.kernels + 3 * std::size_t(f.pairs) * line.kernel_stride + i), hn::Zero(d)),
-        complex ? hn::FirstN(d, lanes) : hn::FirstN(d, 0));
-    HWY_ALIGN float lane_values[kMaafLinePadding];  // at least a vector
-    for (std::size_t q = 0; q < planes; ++q) {
-        const V value =
-            hn::IfThenElse(keeps, hn::LoadU(d, own + q * line.source_stride), hn::Load(d, sums + q * lanes));
-        float *dst = line.out + i * line.out_centre_step + q * line.out_plane_step;
-        if (line.out_centre_step == 1) {
-            hn::StoreU(value, d, dst);
-            continue;
-        }
-        hn::Store(value, d, lane_values);  // centres along a column: one output row each
-        for (std::size_t lane = 0; lane < lanes; ++lane) dst[lane * line.out_centre_step] = lane_values[lane];
+/// Stores output q of a vector of centres; a lane of a complex pass whose
+/// largest reach is 0 keeps its own source (`keeps`).
+HWY_INLINE void store_output(D d, const MaafLine &line, std::size_t i, std::size_t q, V value,
+                             hn::Mask<D> keeps) {
+    const float *own = line.sources + std::size_t(line.margin) + i + q * line.source_stride;
+    value = hn::IfThenElse(keeps, hn::LoadU(d, own), value);
+    float *dst = line.out + i * line.out_centre_step + q * line.out_plane_step;
+    if (line.out_centre_step == 1) {
+        hn::StoreU(value, d, dst);
+        return;
     }
+    HWY_ALIGN float lane_values[kMaafLinePadding];  // centres down a column: one output row each
+    hn::Store(value, d, lane_values);
+    for (std::size_t lane = 0; lane < hn::Lanes(d); ++lane)
+        dst[lane * line.out_centre_step] = lane_values[lane];
 }
 
 void LinePass(const MaafTerms &f, const MaafLine &line, bool complex) {
     const D d;
-    const std::size_t lanes = hn::Lanes(d), planes = (complex ? 4 : 2) * std::size_t(f.terms);
-    const std::size_t gs = line.guide_stride;
-    hwy::AlignedFreeUniquePtr<float[]> buffer = hwy::AllocateAligned<float>(planes * lanes);
-    float *sums = buffer.get();
-    V re[kMaafMaxTerms], im[kMaafMaxTerms];
+    const std::size_t lanes = hn::Lanes(d), terms = std::size_t(f.terms), gs = line.guide_stride;
+    // Every tap's weights for one vector of centres: at most 2 margin + 1 taps.
+    hwy::AlignedFreeUniquePtr<float[]> buffer =
+        hwy::AllocateAligned<float>((2 * std::size_t(line.margin) + 1) * terms * 2 * lanes);
+    float *weights = buffer.get();
     for (std::size_t i = 0; i < std::size_t(line.count); i += lanes) {
         const Centres c(d, f, line, i);
-        for (std::size_t q = 0; q < planes; ++q) hn::Store(hn::Zero(d), d, sums + q * lanes);
         for (int offset = -c.widest; offset <= c.widest; ++offset) {
-            const std::size_t t = std::size_t(std::ptrdiff_t(line.margin) + std::ptrdiff_t(i) + offset);
-            const float *g = line.guides + t;
+            const float *g =
+                line.guides + std::size_t(std::ptrdiff_t(line.margin) + std::ptrdiff_t(i) + offset);
             const Tap tap{hn::LoadU(d, g),          hn::LoadU(d, g + gs),     hn::LoadU(d, g + 2 * gs),
                           hn::LoadU(d, g + 3 * gs), hn::LoadU(d, g + 4 * gs), hn::LoadU(d, g + 5 * gs),
                           std::abs(offset)};
-            term_weights(d, f, c, tap, re, im);
-            add_tap(d, f, c, tap, re, im, line.sources + t, line.source_stride, complex, sums);
+            term_weights(d, f, c, tap, weights + std::size_t(offset + c.widest) * terms * 2 * lanes);
         }
-        store_centres(d, f, line, i, sums, complex);
+        const hn::Mask<D> keeps =
+            complex ? hn::Eq(hn::LoadU(d, line.kernels + 3 * std::size_t(f.pairs) * line.kernel_stride + i),
+                             hn::Zero(d))
+                    : hn::FirstN(d, 0);
+        const float *src = line.sources + std::size_t(line.margin) + i;
+        V sums[4];
+        for (std::size_t j = 0; j < terms; ++j) {
+            // Past its reach a term's weight is 0 in every lane: its taps stop there (from +0, adding
+            // +-0 changes no sum's bits). A centre that filters nothing has reach 0: its own tap.
+            term_sums(d, f, line, weights, c.widest, j, std::min(c.term_reach[j], c.widest), src, complex,
+                      sums);
+            for (std::size_t part = 0; part < (complex ? 4u : 2u); ++part)
+                store_output(d, line, i, part * terms + j, sums[part], keeps);
+        }
     }
 }
 
