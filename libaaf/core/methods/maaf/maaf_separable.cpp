@@ -137,29 +137,44 @@ void line_guides(const GatherGuides &g, const std::vector<MaafPixelKernel> &kern
 void column_sources(const GatherGuides &g, const std::vector<Term> &terms,
                     const std::vector<std::vector<float>> &value_sums,
                     const std::vector<std::vector<float>> &unoccluded_sums, LineFrame &f) {
-    const std::size_t count = terms.size(), length = f.column_length;
-    f.column_sources.assign(std::size_t(f.width) * 4 * count * length, 0.0f);
-    // Blocks of kMaafLinePadding columns: reads along rows, writes down columns, both a cache line at a time.
-    constexpr int kBlock = detail::kMaafLinePadding;
-    parallel_for_rows((g.width + kBlock - 1) / kBlock, [&](int block) {
-        const int x_end = std::min(g.width, (block + 1) * kBlock);
-        for (int y = 0; y < g.height; ++y)
-            for (int x = block * kBlock; x < x_end; ++x) {
-                const std::size_t i = g.index(x, y);
-                float *column =
-                    &f.column_sources[std::size_t(x) * 4 * count * length + std::size_t(f.margin)];
+    const std::size_t count = terms.size(), length = f.column_length, planes = 4 * count;
+    f.column_sources.assign(std::size_t(f.width) * planes * length, 0.0f);
+    // Tiles of kTile x kTile pixels: summed along rows (as the sums are read), then copied down columns.
+    constexpr int kTile = detail::kMaafLinePadding;
+    constexpr std::size_t kTilePixels = std::size_t(kTile) * std::size_t(kTile);
+    parallel_for_rows((g.width + kTile - 1) / kTile, [&](int block) {
+        const int x0 = block * kTile, columns = std::min(kTile, g.width - x0);
+        std::vector<float> tile(planes * kTilePixels);  // [plane][row][column]
+        for (int y0 = 0; y0 < g.height; y0 += kTile) {
+            const int rows = std::min(kTile, g.height - y0);
+            std::fill(tile.begin(), tile.end(), 0.0f);
+            for (int r = 0; r < rows; ++r) {
+                const std::size_t first = g.index(x0, y0 + r), row = std::size_t(r * kTile);
+                // One channel's run of the row at a time: the loop over the tile's columns vectorises.
+                auto add = [&](std::size_t q, float factor, const std::vector<float> &sums) {
+                    float *__restrict s = &tile[q * kTilePixels + row];
+                    const float *__restrict in = &sums[first];
+                    for (int c = 0; c < columns; ++c) s[c] += factor * in[c];
+                };
                 for (std::size_t j = 0; j < count; ++j) {
-                    float *s = column + j * length + std::size_t(y);
-                    for (const auto &[factor, c] : terms[j].re) {
-                        s[0] += factor * value_sums[c][i];
-                        s[2 * count * length] += factor * unoccluded_sums[c][i];
+                    for (const auto &[factor, channel] : terms[j].re) {
+                        add(j, factor, value_sums[channel]);
+                        add(2 * count + j, factor, unoccluded_sums[channel]);
                     }
-                    for (const auto &[factor, c] : terms[j].im) {
-                        s[count * length] += factor * value_sums[c][i];
-                        s[3 * count * length] += factor * unoccluded_sums[c][i];
+                    for (const auto &[factor, channel] : terms[j].im) {
+                        add(count + j, factor, value_sums[channel]);
+                        add(3 * count + j, factor, unoccluded_sums[channel]);
                     }
                 }
             }
+            for (int c = 0; c < columns; ++c)
+                for (std::size_t q = 0; q < planes; ++q) {
+                    float *dst = &f.column_sources[(std::size_t(x0 + c) * planes + q) * length +
+                                                   std::size_t(f.margin + y0)];
+                    for (int r = 0; r < rows; ++r)
+                        dst[r] = tile[q * kTilePixels + std::size_t(r * kTile + c)];
+                }
+        }
     });
 }
 
