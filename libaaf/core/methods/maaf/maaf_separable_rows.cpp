@@ -1,4 +1,4 @@
-// The separable MAAF passes over a row (maaf_separable_rows.h) for every
+// The separable MAAF passes over a line, an image row or column (maaf_separable_rows.h), for every
 // instruction set Google Highway targets, chosen at run time: a vector of
 // centres at a time, each lane its own centre with its own kernels and its
 // own sums in tap order. Compiled without contraction (CMakeLists.txt) and
