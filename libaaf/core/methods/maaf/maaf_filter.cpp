@@ -147,11 +147,12 @@ GatherGuides maaf_guides(const MaafInputs &in, const LightPlane &light, const Ma
 /// `view` in the guides' row-major layout, non-finite values as 0.
 std::vector<float> finite_copy(ConstPlaneView view, const GatherGuides &guides) {
     std::vector<float> plane(std::size_t(guides.width) * std::size_t(guides.height));
-    for (int y = 0; y < guides.height; ++y)
+    parallel_for_rows(guides.height, [&](int y) {
         for (int x = 0; x < guides.width; ++x) {
             const float value = view(x, y);
             plane[guides.index(x, y)] = std::isfinite(value) ? value : 0.0f;
         }
+    });
     return plane;
 }
 

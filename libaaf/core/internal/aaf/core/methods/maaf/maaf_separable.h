@@ -40,10 +40,13 @@ struct MaafFilteredSums {
 /// metres). A pair's taps reach max(radius_p, radius_q) pixels along each
 /// pass (a square window, as the full-window filter); taps are rejected as
 /// gather() rejects them (another object, a normal beyond the threshold;
-/// the centre always counts). All pairs share one traversal per row, in
-/// float with fast_exp and per-tap phase factors e^{j C_x^p du} reused by
-/// every pair; each pixel's sum runs in a fixed order, so the result does
-/// not depend on the thread count. Runs on the current oneTBB arena.
+/// the centre always counts). Both passes run in maaf_line_pass() (one
+/// centre per vector lane, maaf_separable_rows.h): each tap's Gaussians and
+/// phase factors e^{j C_x^p du} (a polynomial sin/cos, not a recurrence:
+/// du is not linear in the pixel offset) are computed once and shared by
+/// every term, in float, unfused; each pixel's sums run in a fixed order,
+/// so the result depends neither on the thread count nor on the
+/// instruction set. Runs on the current oneTBB arena.
 MaafFilteredSums maaf_separable_filter(const GatherGuides &guides, float normal_threshold_deg,
                                        const std::vector<MaafPixelKernel> &kernels, int sum_pairs, int pairs,
                                        const std::vector<std::vector<float>> &value_sums,
