@@ -529,7 +529,7 @@ void RatioNoiseRow(const RatioNoiseSweep &s, int y, const unsigned char *active,
                            raw + x0 + l0);
                 continue;
             }
-            alignas(64) float out[kRatioNoiseRunPx];
+            alignas(64) float out[kRatioNoiseRunPx] = {};  // GCC cannot see Store fill it
             hn::Store(mean, d, out);
             for (int l = 0; l < run - l0; ++l)
                 if (active[x0 + l0 + l]) raw[x0 + l0 + l] = out[l];
