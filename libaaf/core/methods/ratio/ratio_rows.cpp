@@ -265,7 +265,7 @@ void row_x(const RatioBilateralSweep &s, int y, const float *const *source_rows,
     const VI last = hn::Set(di, width - 1);
     for (int x0 = 0; x0 < width; x0 += lanes) {
         const int copied_end = end_of_copied_span(radius, x0, width);
-        if (copied_end != x0) {  // pixels that keep their values
+        if (copied_end > x0) {  // pixels that keep their values
             for (int k = 0; k < K; ++k)
                 std::memcpy(s.output[k] + row + std::size_t(x0), source_rows[k] + x0,
                             std::size_t(copied_end - x0) * sizeof(float));
@@ -303,7 +303,7 @@ void row_y(const RatioBilateralSweep &s, int y, int x_begin, int x_end, float *v
     const VI up = hn::Set(di, -y), down = hn::Set(di, p.height - 1 - y);
     for (int x0 = x_begin; x0 < x_end; x0 += lanes) {
         const int copied_end = end_of_copied_span(radius, x0, x_end);
-        if (copied_end != x0) {  // pixels that keep their values
+        if (copied_end > x0) {  // pixels that keep their values
             for (int k = 0; k < K; ++k)
                 std::memcpy(values + std::size_t(k) * span + std::size_t(x0 - x_begin),
                             s.source[k] + row + x0, std::size_t(copied_end - x0) * sizeof(float));
