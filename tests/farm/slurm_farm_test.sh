@@ -5,9 +5,10 @@
 # missing).
 #
 # Usage: slurm_farm_test.sh CASE AAF_EXECUTABLE WORK_DIR, CASE one of
-#   sequence  a 24-frame render and a filter after it, 4 tasks each: every
-#             task COMPLETED (controller, completion log and sacct), the
-#             frames byte-identical to local runs
+#   sequence  a 24-frame render and two filters after it (one with
+#             --temporal-window 2, whose chunks read the frames around
+#             them), 4 tasks each: every task COMPLETED (controller,
+#             completion log and sacct), the frames byte-identical to local runs
 #   requeue   a task cancelled while a frame is written, then requeued:
 #             nothing partial under a final name, its frames then finished
 #   resubmit  the same filter job submitted again skips the up-to-date
@@ -64,28 +65,38 @@ sequence)
   [ "$(grep -c '^task' dry.txt)" -eq 4 ] && grep -qx 'task 3: frames 19-24' dry.txt \
     || { cat dry.txt; fail "the dry run does not list 4 tasks of 6 frames"; }
   render=$("$submit" --aaf "$aaf" --frames 1-24 --chunk 6 --logs "$shot/logs" \
-    render grids "$shot/noisy.####.exr" "${size[@]}")
+    render grids "$shot/noisy.####.exr" "${size[@]}" --aovs aaf,motion)
   filter=$("$submit" --aaf "$aaf" --frames 1-24 --chunk 6 --logs "$shot/logs" \
     --sbatch "--dependency=afterok:$render" \
     filter aaf "$shot/noisy.####.exr" "$shot/aaf.####.exr" --map position=P --mu 2.5)
+  # A temporal window: each task reads the frames around its chunk itself.
+  window=$("$submit" --aaf "$aaf" --frames 1-24 --chunk 6 --logs "$shot/logs" \
+    --sbatch "--dependency=afterok:$render" \
+    filter aaf "$shot/noisy.####.exr" "$shot/window.####.exr" --temporal-window 2)
   wait_job "$render" 120
   wait_job "$filter" 120
+  wait_job "$window" 120
   expect_completed "$render" 4
   expect_completed "$filter" 4
+  expect_completed "$window" 4
   expect_accounted "$render" 4
   expect_accounted "$filter" 4
+  expect_accounted "$window" 4
   for task in 0 1 2 3; do
     [ -f "$shot/logs/aaf-filter.${filter}_$task.log" ] || fail "no log of filter task $task"
   done
   # One local run over the same frames gives the same bytes.
   mkdir -p local
-  "$aaf" render grids -o "local/noisy.####.exr" --frames 1-24 "${size[@]}" --progress none
+  "$aaf" render grids -o "local/noisy.####.exr" --frames 1-24 "${size[@]}" --aovs aaf,motion --progress none
   same_frames local "$shot" noisy 1 24
   "$aaf" filter aaf "$shot/noisy.####.exr" -o "local/aaf.####.exr" --frames 1-24 --progress none \
     --map position=P --mu 2.5
   same_frames local "$shot" aaf 1 24
+  "$aaf" filter aaf "$shot/noisy.####.exr" -o "local/window.####.exr" --frames 1-24 --progress none \
+    --temporal-window 2
+  same_frames local "$shot" window 1 24
   no_temporaries "$shot"
-  echo "OK: 4 render and 4 filter tasks COMPLETED on the one-node cluster (sacct agrees); 24 frames each, byte-identical to local runs"
+  echo "OK: 4 render, 4 filter and 4 temporal-window filter tasks COMPLETED on the one-node cluster (sacct agrees); 24 frames each, byte-identical to local runs"
   ;;
 requeue)
   mkdir -p ref
