@@ -108,8 +108,9 @@ HWY_INLINE Centres load_centres(const GatherGuides &g, std::ptrdiff_t c0, VI rea
 /// Adds the taps at offsets o_begin..o_end of the centres `c` into their
 /// sums, in that order. Without `Guarded` every tap vector lies inside the
 /// planes; with `Uniform` every lane's taps share its id and normal
-/// (Centres' uniform reach), so the tests are skipped: the same bits.
-template <int K, bool Sheared, bool AlongY, bool Guarded, bool Uniform>
+/// (Centres' uniform reach), so the tests are skipped; without `Masked`
+/// every offset is within every lane's reach (and row). The same bits.
+template <int K, bool Sheared, bool AlongY, bool Guarded, bool Uniform, bool Masked = true>
 HWY_INLINE void add_taps(const AafSweep &s, const Centres &c, int o_begin, int o_end, V (&sum)[K],
                          V &weight_sum) {
     const D d;
@@ -126,7 +127,8 @@ HWY_INLINE void add_taps(const AafSweep &s, const Centres &c, int o_begin, int o
         // |o| <= reach (and along x 0 <= x + o < width), lane by lane;
         // with symmetric borders reach <= min(x, width - 1 - x) implies the latter.
         auto inside = hn::Gt(c.reach, hn::Set(di, (o < 0 ? -o : o) - 1));
-        if (clip_x) {
+        if (!Masked) inside = hn::FirstN(di, kLanes);
+        if (Masked && clip_x) {
             const VI x_tap = hn::Add(c.x, hn::Set(di, o));
             inside =
                 hn::And(inside, hn::And(hn::Gt(x_tap, hn::Set(di, -1)), hn::Lt(x_tap, hn::Set(di, g.width))));
@@ -154,29 +156,49 @@ HWY_INLINE void add_taps(const AafSweep &s, const Centres &c, int o_begin, int o
                          ? hn::Add(hn::Mul(hn::Mul(du, du), c.coef_u), hn::Mul(hn::Mul(dv, dv), c.coef_v))
                          : hn::Mul(hn::Add(hn::Mul(du, du), hn::Mul(dv, dv)), c.coef_u);
         if (Sheared) exponent = hn::Add(exponent, hn::Mul(hn::Mul(dn, dn), c.coef_n));
-        const V weight = hn::IfThenElseZero(kept, exp2_nonpositive(exponent));
+        const V weight = Masked || !Uniform ? hn::IfThenElseZero(kept, exp2_nonpositive(exponent))
+                                            : exp2_nonpositive(exponent);
         weight_sum = hn::Add(weight_sum, weight);
-        for (int k = 0; k < K; ++k)
-            sum[k] = hn::IfThenElse(active, hn::Add(sum[k], hn::Mul(weight, load(s.source[k], t))), sum[k]);
+        for (int k = 0; k < K; ++k) {
+            const V added = hn::Add(sum[k], hn::Mul(weight, load(s.source[k], t)));
+            sum[k] = Masked ? hn::IfThenElse(active, added, sum[k]) : added;
+        }
     }
 }
 
-/// The taps of the centres `c` over offsets o_begin..o_end: the unchecked
-/// loads where every tap vector lies inside the planes, and the tests
-/// skipped where every lane's uniform reach covers its own.
+/// The taps of the centres `c` over offsets o_begin..o_end, in that order:
+/// the unchecked loads where every tap vector lies inside the planes, the
+/// tests skipped where every lane's uniform reach covers its own, and no
+/// masks over the offsets every lane takes (|o| <= the narrowest reach).
 template <int K, bool Sheared, bool AlongY>
-HWY_INLINE void add_all_taps(const AafSweep &s, const Centres &c, int o_begin, int o_end, bool uniform,
-                             V (&sum)[K], V &weight_sum) {
+HWY_INLINE void add_all_taps(const AafSweep &s, const Centres &c, int x0, int o_begin, int o_end,
+                             int narrowest, bool uniform, V (&sum)[K], V &weight_sum) {
     const GatherGuides &g = *s.guides;
     const std::ptrdiff_t size = std::ptrdiff_t(g.width) * g.height;
     const std::ptrdiff_t step = AlongY ? std::ptrdiff_t(g.width) : 1;
     const bool inner =
         c.c0 + std::ptrdiff_t(o_begin) * step >= 0 && c.c0 + std::ptrdiff_t(o_end) * step + kLanes <= size;
-    if (inner && uniform)
-        return add_taps<K, Sheared, AlongY, false, true>(s, c, o_begin, o_end, sum, weight_sum);
-    if (inner) return add_taps<K, Sheared, AlongY, false, false>(s, c, o_begin, o_end, sum, weight_sum);
-    if (uniform) return add_taps<K, Sheared, AlongY, true, true>(s, c, o_begin, o_end, sum, weight_sum);
-    add_taps<K, Sheared, AlongY, true, false>(s, c, o_begin, o_end, sum, weight_sum);
+    if (!inner) {
+        if (uniform) return add_taps<K, Sheared, AlongY, true, true>(s, c, o_begin, o_end, sum, weight_sum);
+        return add_taps<K, Sheared, AlongY, true, false>(s, c, o_begin, o_end, sum, weight_sum);
+    }
+    int low = std::max(o_begin, -narrowest), high = std::min(o_end, narrowest);
+    if (!AlongY && !s.symmetric_borders) {  // every lane's taps inside the row too
+        low = std::max(low, -x0);
+        high = std::min(high, g.width - x0 - kLanes);
+    }
+    if (low > high) {  // no offset all lanes take: all masked
+        low = o_end + 1;
+        high = o_end;
+    }
+    if (uniform) {
+        add_taps<K, Sheared, AlongY, false, true>(s, c, o_begin, low - 1, sum, weight_sum);
+        add_taps<K, Sheared, AlongY, false, true, false>(s, c, low, high, sum, weight_sum);
+        return add_taps<K, Sheared, AlongY, false, true>(s, c, high + 1, o_end, sum, weight_sum);
+    }
+    add_taps<K, Sheared, AlongY, false, false>(s, c, o_begin, low - 1, sum, weight_sum);
+    add_taps<K, Sheared, AlongY, false, false, false>(s, c, low, high, sum, weight_sum);
+    add_taps<K, Sheared, AlongY, false, false>(s, c, high + 1, o_end, sum, weight_sum);
 }
 
 /// Each lane's reach for the kLanes centres from column x0 of row y: its
@@ -298,7 +320,8 @@ void gather_row_along(const AafSweep &s, int y, int x_begin, int x_end) {
             // Along y the taps' rows are shared by all lanes: 0 <= y + o < height.
             const int o_begin = AlongY ? std::max(-widest, -y) : -widest;
             const int o_end = AlongY ? std::min(widest, g.height - 1 - y) : widest;
-            add_all_taps<K, Sheared, AlongY>(s, c, o_begin, o_end, uniform, sum, weight_sum);
+            const int narrowest = hn::GetLane(hn::MinOfLanes(di, reach));
+            add_all_taps<K, Sheared, AlongY>(s, c, x0, o_begin, o_end, narrowest, uniform, sum, weight_sum);
             // The centre always counts: a NaN or zero normal fails its own
             // test (nor does a NaN id match itself), so it is added back with weight 1.
             const V length_sq =
