@@ -9,13 +9,13 @@
 // once untimed first, and each counter is the median over the iterations
 // (before 2026-12-03, a mean, with aaf_filter's first call in it):
 //   aaf_ms      aaf_filter with default AafParams (guides + gather)
-//   gather_ms   gather() alone, one channel, on guides built once outside the timing
+//   gather_ms   aaf_gather() alone, one channel, on guides built once outside the timing
 //   opencv_ms   cv::GaussianBlur on the visibility (CV_32F), sigma = mean AAF beta in
 //               pixels, kernel size OpenCV's default for that sigma, OpenCV's own threads
 //   bilateral_ms  cv::bilateralFilter on the same image: spatial sigma the same, range
 //               sigma 0.1 (visibility lies in [0, 1]), diameter OpenCV's default (-1)
 //   fixed_ms    aaf::fixed_gaussian_filter with the same sigma
-//   gather3_ms  gather() of 3 channels with the same weights in one pass
+//   gather3_ms  aaf_gather() of 3 channels with the same weights in one pass
 //   3x_gather1_ms  the same 3 channels as 3 one-channel gathers
 // The OpenCV blur has one width for the whole image, no per-pixel width and
 // no rejection: it is a lower bound on what any filter of that width costs.
@@ -54,8 +54,8 @@
 
 #include "aaf/core/kernels/fixed_gaussian.h"
 #include "aaf/core/kernels/gather.h"
-#include "aaf/core/kernels/gather_rows.h"
 #include "aaf/core/methods/aaf/aaf_filter.h"
+#include "aaf/core/methods/aaf/aaf_gather_rows.h"
 #include "aaf/core/methods/aaf/occluder_fill.h"
 #include "aaf/core/util/instruction_set.h"
 #include "aaf/core/util/thread_count.h"
@@ -135,8 +135,8 @@ const Fixture &fixture(int width, int height) {
 
     // The gather timed alone must be the gather aaf_filter runs: same result, bit for bit.
     std::vector<float> gathered(n);
-    aaf::gather(f.guides, f.settings, {aaf::plane_view(f.visibility.data(), width, height)},
-                {aaf::plane_view(gathered.data(), width, height)});
+    aaf::aaf_gather(f.guides, aaf::AafParams{}, {aaf::plane_view(f.visibility.data(), width, height)},
+                    {aaf::plane_view(gathered.data(), width, height)});
     f.gather_matches_aaf = gathered == filtered;
     return f;
 }
@@ -191,7 +191,7 @@ void BM_AafVsBaselines(benchmark::State &state) {
         // Warm-up, untimed: every filter once, so first-touch and allocations are out of the timing.
         aaf::aaf_filter(f.inputs, f.light, aaf::AafParams{}, aaf_outputs);
         opencv_blur();
-        aaf::gather(f.guides, f.settings, {vis}, {outputs3[0]});
+        aaf::aaf_gather(f.guides, aaf::AafParams{}, {vis}, {outputs3[0]});
         aaf::fixed_gaussian_filter(vis, f.mean_sigma_px, outputs3[0]);
         opencv_bilateral();
 
@@ -203,7 +203,7 @@ void BM_AafVsBaselines(benchmark::State &state) {
             benchmark::ClobberMemory();
 
             t = std::chrono::steady_clock::now();
-            aaf::gather(f.guides, f.settings, {vis}, {outputs3[0]});
+            aaf::aaf_gather(f.guides, aaf::AafParams{}, {vis}, {outputs3[0]});
             gather_ms.push_back(ms_since(t));
             benchmark::DoNotOptimize(out.data());
             benchmark::ClobberMemory();
@@ -236,13 +236,14 @@ void BM_AafVsBaselines(benchmark::State &state) {
             benchmark::ClobberMemory();
 
             t = std::chrono::steady_clock::now();
-            aaf::gather(f.guides, f.settings, sources3, outputs3);
+            aaf::aaf_gather(f.guides, aaf::AafParams{}, sources3, outputs3);
             gather3_ms.push_back(ms_since(t));
             benchmark::DoNotOptimize(out3.data());
             benchmark::ClobberMemory();
 
             t = std::chrono::steady_clock::now();
-            for (int k = 0; k < 3; ++k) aaf::gather(f.guides, f.settings, {sources3[k]}, {outputs3[k]});
+            for (int k = 0; k < 3; ++k)
+                aaf::aaf_gather(f.guides, aaf::AafParams{}, {sources3[k]}, {outputs3[k]});
             gather1x3_ms.push_back(ms_since(t));
             benchmark::DoNotOptimize(out3.data());
             benchmark::ClobberMemory();
@@ -322,8 +323,9 @@ void BM_AafPhases(benchmark::State &state) {
             guide_rows_ms.push_back(ms_since(t) - fill_ms.back());
             std::copy(f.visibility.begin(), f.visibility.end(), out.begin());
             t = std::chrono::steady_clock::now();
-            aaf::gather(f.guides, f.settings, {aaf::plane_view<const float>(out.data(), width, height)},
-                        {aaf::plane_view(out.data(), width, height)});
+            aaf::aaf_gather(f.guides, aaf::AafParams{},
+                            {aaf::plane_view<const float>(out.data(), width, height)},
+                            {aaf::plane_view(out.data(), width, height)});
             gather_ms.push_back(ms_since(t));
             t = std::chrono::steady_clock::now();
             aaf::aaf_filter(f.inputs, f.light, params, outputs);
@@ -419,7 +421,7 @@ std::string cpu_name() {
 int main(int argc, char **argv) {
     benchmark::AddCustomContext("cpu", cpu_name());
     benchmark::AddCustomContext("aaf_isa", aaf::instruction_set_name(aaf::instruction_set()));
-    benchmark::AddCustomContext("aaf_gather_target", aaf::detail::gather_row_target());
+    benchmark::AddCustomContext("aaf_gather_target", aaf::detail::aaf_gather_row_target());
     const char *opencv_widest = cv::checkHardwareSupport(CV_CPU_AVX512_SKX) ? "AVX512_SKX"
                                 : cv::checkHardwareSupport(CV_CPU_AVX2)     ? "AVX2"
                                                                             : "below AVX2";

@@ -244,7 +244,7 @@ std::function<void()> method_kernels(const aaf::Method &m, KernelPlanes &k) {
                 sources.push_back(k.view(k.demodulated[c]));
                 outputs.push_back(k.view(k.filtered_pass[c]));
             }
-            aaf::gather(guides, aaf::aaf_gather_settings(params), sources, outputs);
+            aaf::aaf_gather(guides, params, sources, outputs);
         }
         k.compose();
     };

@@ -40,7 +40,7 @@ struct Golden {
 };
 
 const Golden kGolden[] = {
-    {"aaf", 0x5cc0abe64d28c5f7, 0x21898f969ea7e1dc, 0xece1f0ce2d944f6d, 0x6998987c0339da2c},
+    {"aaf", 0xe8df97acd8a0b47d, 0xe8df97acd8a0b47d, 0x0a7832d26da9720c, 0x0a7832d26da9720c},
     {"gaussian", 0xa205a6afb5c4ff8a, 0xa205a6afb5c4ff8a, 0xe563c08506aa4719, 0xe563c08506aa4719},
     {"maaf", 0x8325c4b7bcded58b, 0x8325c4b7bcded58b, 0x23bfd07e4743f5a5, 0x23bfd07e4743f5a5},
     {"isg-shadow", 0x35b1779d889bdd46, 0x35be5daea7fcd2bc, 0xf6d07775607a9108, 0xf6d07775607a9108},

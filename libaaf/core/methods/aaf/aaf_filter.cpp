@@ -180,7 +180,7 @@ void aaf_filter_visibility(const GatherGuides &guides, const AafParams &params, 
             filtered_visibility(x, y) = std::isfinite(v) ? v : 0.0f;
         }
     });
-    gather(guides, aaf_gather_settings(params), {filtered_visibility}, {filtered_visibility});
+    aaf_gather(guides, params, {filtered_visibility}, {filtered_visibility});
 }
 
 }  // namespace aaf

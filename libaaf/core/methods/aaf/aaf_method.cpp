@@ -60,7 +60,7 @@ void filter_visibility_and_pass(const MethodImages &images, const GatherGuides &
         sources.push_back(plane_view<const float>(demodulated[c].data(), width, height));
         outputs.push_back(filtered[c]);
     }
-    gather(guides, aaf_gather_settings(params), sources, outputs);
+    aaf_gather(guides, params, sources, outputs);
     if (!albedo) return;
     parallel_for_rows(height, [&](int y) {
         for (std::size_t c = 0; c < 3; ++c)

@@ -48,11 +48,19 @@ void aaf_filter(const AafInputs &inputs, const LightPlane &light, const AafParam
 /// plane (AAF Eq. 12) and, per pixel, the Gaussian of AAF Eq. 11 with the
 /// beta of AAF Eq. 13 and a reach of ceil(3 beta / pixel size) pixels;
 /// `beta_m`, when valid, receives beta (world metres, 0 = not filtered).
-/// aaf_filter() is this, then gather() of the visibility. Throws as aaf_filter.
+/// aaf_filter() is this, then aaf_gather() of the visibility. Throws as aaf_filter.
 GatherGuides aaf_gather_guides(const AafInputs &inputs, const LightPlane &light, const AafParams &params,
                                PlaneView beta_m = {});
 /// The gather settings AafParams selects (normal threshold, separable or 2D).
 GatherSettings aaf_gather_settings(const AafParams &params);
+/// AAF's gather of `sources` into `outputs` (each may be its own source)
+/// with the weights and tests of `guides` from aaf_gather_guides(): the
+/// separable mode as AAF's own two passes (AAF Sec. 6, aaf_gather.cpp), the
+/// same sums as gather() in that mode with each tap's exponential in base 2
+/// and no fused multiply-add, so every instruction set gives the same bits;
+/// the 2D mode is gather() itself. Throws aaf::Error on mismatched sizes.
+void aaf_gather(const GatherGuides &guides, const AafParams &params,
+                const std::vector<ConstPlaneView> &sources, const std::vector<PlaneView> &outputs);
 /// aaf_filter()'s last step on guides aaf_gather_guides() made from the same
 /// inputs and parameters: the gather of `visibility` (a non-finite value
 /// read as 0) into `filtered_visibility`, which may be `visibility` itself.
