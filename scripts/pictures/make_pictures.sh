@@ -47,6 +47,21 @@ strip "$methods/aaf/pictures/grids.png" $crop "$work/grids.exr:R,G,B" "$work/gri
 oiiotool "$work/beta.png" "$work/spp.png" --mosaic:pad=2 2x1 -d uint8 -o "$methods/aaf/pictures/grids_beta_spp.png"
 echo "wrote libaaf/core/methods/aaf/pictures/grids_beta_spp.png"
 
+# AAF on a static sequence (grids, 9 spp, per-frame noise): the change of
+# aaf.V from frame 4 to frame 5, x4 (the flicker a viewer sees), filtered
+# frame by frame, then with --temporal-window 2.
+"$aaf" render grids --width 320 --height 240 --spp 9 --frames 2-7 --aovs aaf,motion -o "$work/seq.####.exr" \
+  "${quiet[@]}"
+"$aaf" filter aaf "$work/seq.####.exr" -o "$work/alone.####.exr" --frames 4-5 "${quiet[@]}"
+"$aaf" filter aaf "$work/seq.####.exr" -o "$work/window.####.exr" --frames 4-5 --temporal-window 2 "${quiet[@]}"
+for mode in alone window; do
+  oiiotool "$work/$mode.0005.exr" --ch aaf.V "$work/$mode.0004.exr" --ch aaf.V --sub --abs --mulc 4 \
+    --cut 160x120+80+60 --ch 0,0,0 -o "$work/flicker_$mode.exr"
+done
+oiiotool "$work/flicker_alone.exr" "$work/flicker_window.exr" --mosaic:pad=2 2x1 -d uint8 \
+  -o "$methods/aaf/pictures/grids_flicker.png"
+echo "wrote libaaf/core/methods/aaf/pictures/grids_flicker.png"
+
 # The gaussian baseline (grids): the same 9 spp, one screen-space width.
 "$aaf" filter gaussian "$work/grids.exr" -o "$work/grids_gaussian.exr" "${quiet[@]}"
 strip "$methods/gaussian/pictures/grids.png" 160x120+80+60 "$work/grids.exr:R,G,B" \
