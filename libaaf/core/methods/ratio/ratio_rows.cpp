@@ -237,31 +237,44 @@ void row_x(const RatioBilateralSweep &s, int y, const float *const *source_rows,
     const std::int32_t *radius = &p.radius_px[row];
     const int reach = std::max(0, *std::max_element(radius, radius + width));
     // A lane's taps lie in the row (lo >= -x, hi <= width - 1 - x), but a
-    // vector's loads run up to a vector past its last lane's: the vectors
-    // from `tail_x0` on, whose loads may pass the row's end, load from a copy
-    // of the row's tail with zeros after it; the others from the row itself.
+    // vector's loads run from its first lane's lowest tap to its last lane's
+    // highest plus a vector: the vectors that may read before the row's
+    // start (x0 < head_end) or past its end (x0 >= tail_x0) load from a copy
+    // of their part of the row with zeros around it; the others from the row
+    // itself. Where the two meet, one copy serves the whole row.
+    const int head_end = std::min(width, (reach + lanes - 1) / lanes * lanes);
     const int first_tail_x0 = std::max(0, width - reach - lanes + 1);
-    const int tail_x0 = (first_tail_x0 + lanes - 1) / lanes * lanes;
-    const int tail_begin = std::max(0, tail_x0 - reach);
-    const std::size_t tail_floats = std::size_t(width - tail_begin + lanes);
+    int tail_x0 = std::min(width, (first_tail_x0 + lanes - 1) / lanes * lanes);
+    const bool one_copy = tail_x0 <= head_end;
+    if (one_copy) tail_x0 = width;
+    const int copy_end = one_copy ? width : head_end;  // the head copy's vectors: [0, copy_end)
+    const int front = reach, back = reach + lanes;
+    const std::size_t head_floats = std::size_t(front + std::min(width, copy_end + back) + back);
+    const std::size_t tail_floats = std::size_t(front + (width - std::max(0, tail_x0 - reach)) + back);
+    const std::size_t slot = std::max(head_floats, tail_floats);
     thread_local std::vector<float> scratch;
-    scratch.resize(std::max(scratch.size(), tail_floats * std::size_t(4 + K)));
-    auto tail_of = [&](int plane, const float *row_values) {
-        float *to = &scratch[std::size_t(plane) * tail_floats];
-        std::memcpy(to, row_values + tail_begin, std::size_t(width - tail_begin) * sizeof(float));
-        std::fill_n(to + (width - tail_begin), lanes, 0.0f);
-        return to - tail_begin;  // indexed by x, as the row
+    scratch.resize(std::max(scratch.size(), slot * std::size_t(2 * (4 + K))));
+    // The row's [from, to) copied with `front` zeros before and `back` after, indexed by x as the row.
+    auto padded = [&](int index, const float *row_values, int from, int to) {
+        float *copy = &scratch[std::size_t(index) * slot];
+        std::fill_n(copy, front, 0.0f);
+        std::memcpy(copy + front, row_values + from, std::size_t(to - from) * sizeof(float));
+        std::fill_n(copy + front + (to - from), back, 0.0f);
+        return copy + front - from;
     };
     const Taps in_row{&p.px[row], &p.py[row], &p.pz[row], &p.inv_scale[row], {}};
-    Taps tail{nullptr, nullptr, nullptr, nullptr, {}};
-    if (tail_x0 < width) {
-        tail = Taps{tail_of(0, in_row.px),
-                    tail_of(1, in_row.py),
-                    tail_of(2, in_row.pz),
-                    tail_of(3, in_row.inv_scale),
-                    {}};
-        for (int k = 0; k < K; ++k) tail.source[k] = tail_of(4 + k, source_rows[k]);
-    }
+    auto copied_taps = [&](int first_index, int from, int to) {
+        Taps taps{padded(first_index, in_row.px, from, to),
+                  padded(first_index + 1, in_row.py, from, to),
+                  padded(first_index + 2, in_row.pz, from, to),
+                  padded(first_index + 3, in_row.inv_scale, from, to),
+                  {}};
+        for (int k = 0; k < K; ++k) taps.source[k] = padded(first_index + 4 + k, source_rows[k], from, to);
+        return taps;
+    };
+    Taps head{nullptr, nullptr, nullptr, nullptr, {}}, tail = head;
+    if (copy_end > 0) head = copied_taps(0, 0, std::min(width, copy_end + reach + lanes));
+    if (tail_x0 < width) tail = copied_taps(4 + K, std::max(0, tail_x0 - reach), width);
     const VI last = hn::Set(di, width - 1);
     for (int x0 = 0; x0 < width; x0 += lanes) {
         const int copied_end = end_of_copied_span(radius, x0, width);
@@ -279,6 +292,7 @@ void row_x(const RatioBilateralSweep &s, int y, const float *const *source_rows,
         Taps at = in_row;
         for (int k = 0; k < K; ++k) at.source[k] = source_rows[k];
         if (x0 >= tail_x0) at = tail;
+        if (x0 < copy_end && head.px) at = head;
         for (const float **plane : {&at.px, &at.py, &at.pz, &at.inv_scale}) *plane += x0;
         for (int k = 0; k < K; ++k) at.source[k] += x0;
         V sums[K], weight_sum;
