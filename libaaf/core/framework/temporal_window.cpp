@@ -153,6 +153,7 @@ bool neighbour_values(const TemporalFrameView &centre, const TemporalFrameView &
 /// One neighbour warped onto the centre: its values (NaN where no tap
 /// survived) and the mean absolute difference from the centre's.
 struct Warped {
+    int offset = 0;                          ///< the neighbour's frame minus the centre's
     std::vector<std::vector<float>> values;  ///< per blended layer, row-major
     std::vector<float> difference;           ///< NaN where no tap survived
 };
@@ -163,6 +164,7 @@ Warped warp_neighbour(const FramesByOffset &frames, const TemporalFrameView &nei
     const int width = centre.position[0].width, height = centre.position[0].height;
     const std::size_t pixels = std::size_t(width) * std::size_t(height), count = centre.values.size();
     Warped warped;
+    warped.offset = neighbour.offset;
     warped.values.assign(count, std::vector<float>(pixels, kNoValue));
     warped.difference.assign(pixels, kNoValue);
     const float min_cos = std::cos(settings.normal_threshold_deg * 3.14159265f / 180.0f);
@@ -187,36 +189,71 @@ Warped warp_neighbour(const FramesByOffset &frames, const TemporalFrameView &nei
     return warped;
 }
 
-/// The robust scale of the differences over each tile: 1.4826 x the median
-/// of those that are not 0 (the standard deviation for Gaussian noise), or 0
-/// when fewer than half of the tile's are not 0: noise touches most pixels
-/// of a tile, a change (an edge that moved) a band. Not counting the zeros
-/// keeps the noisy pixels of a tile that is partly noise-free (fully lit, or
-/// lit by a light sampled without noise) from looking like changes. One
-/// value per tile, row-major.
-std::vector<float> tile_noise_scales(const std::vector<float> &difference, int width, int height) {
-    const int tiles_x = (width + kTemporalTilePx - 1) / kTemporalTilePx;
-    const int tiles_y = (height + kTemporalTilePx - 1) / kTemporalTilePx;
-    std::vector<float> scales(std::size_t(tiles_x) * std::size_t(tiles_y), 0.0f);
-    parallel_for_rows(tiles_y, [&](int ty) {
-        std::vector<float> tile;
-        for (int tx = 0; tx < tiles_x; ++tx) {
-            tile.clear();
+/// The robust scale of the differences around each block: 1.4826 x the
+/// median of those that are not 0 over the region of blocks centred on it
+/// (the standard deviation for Gaussian noise), or 0 when fewer than half
+/// of the region's are not 0: noise touches most pixels of a region, a
+/// change (an edge that moved) a band. Not counting the zeros keeps the
+/// noisy pixels of a region that is partly noise-free (fully lit, or lit by
+/// a light sampled without noise) from looking like changes; a region
+/// centred on each block follows the noise where it changes within a frame
+/// (a penumbra beside a nearly noise-free background). One value per block,
+/// row-major.
+std::vector<float> block_noise_scales(const std::vector<float> &difference, int width, int height) {
+    const int blocks_x = (width + kTemporalBlockPx - 1) / kTemporalBlockPx;
+    const int blocks_y = (height + kTemporalBlockPx - 1) / kTemporalBlockPx;
+    constexpr int reach_px = kTemporalBlockPx * (kTemporalScaleRegionBlocks / 2);
+    std::vector<float> scales(std::size_t(blocks_x) * std::size_t(blocks_y), 0.0f);
+    parallel_for_rows(blocks_y, [&](int by) {
+        std::vector<float> region;
+        const int y_begin = std::max(0, by * kTemporalBlockPx - reach_px);
+        const int y_end = std::min(height, (by + 1) * kTemporalBlockPx + reach_px);
+        for (int bx = 0; bx < blocks_x; ++bx) {
+            region.clear();
             std::size_t valid = 0;
-            for (int y = ty * kTemporalTilePx; y < std::min(height, (ty + 1) * kTemporalTilePx); ++y)
-                for (int x = tx * kTemporalTilePx; x < std::min(width, (tx + 1) * kTemporalTilePx); ++x) {
+            const int x_begin = std::max(0, bx * kTemporalBlockPx - reach_px);
+            const int x_end = std::min(width, (bx + 1) * kTemporalBlockPx + reach_px);
+            for (int y = y_begin; y < y_end; ++y)
+                for (int x = x_begin; x < x_end; ++x) {
                     const float d = difference[std::size_t(y) * std::size_t(width) + std::size_t(x)];
                     if (!std::isfinite(d)) continue;
                     ++valid;
-                    if (d > 0) tile.push_back(d);
+                    if (d > 0) region.push_back(d);
                 }
-            if (tile.empty() || 2 * tile.size() < valid) continue;
-            auto middle = tile.begin() + std::ptrdiff_t(tile.size() / 2);
-            std::nth_element(tile.begin(), middle, tile.end());
-            scales[std::size_t(ty) * std::size_t(tiles_x) + std::size_t(tx)] = 1.4826f * *middle;
+            if (region.empty() || 2 * region.size() < valid) continue;
+            auto middle = region.begin() + std::ptrdiff_t(region.size() / 2);
+            std::nth_element(region.begin(), middle, region.end());
+            scales[std::size_t(by) * std::size_t(blocks_x) + std::size_t(bx)] = 1.4826f * *middle;
         }
     });
     return scales;
+}
+
+/// The noise of pixel `i` as its window shows it, in units of a difference
+/// between two frames: sqrt(2) x 1.4826 x the median absolute deviation of
+/// its values across the frames whose taps survived (the centre's
+/// included), averaged over the blended layers. An edge that crosses the
+/// pixel during the window moves a minority of its values and leaves this
+/// near 0; noise the region's median misses (a pixel noisier than its
+/// surroundings) shows here. 0 with fewer than 3 values.
+float window_noise_scale(const TemporalFrameView &centre, const std::vector<Warped> &warped, int x, int y,
+                         std::size_t i, std::vector<float> &scratch) {
+    const std::size_t count = centre.values.size();
+    double sum = 0;
+    for (std::size_t c = 0; c < count; ++c) {
+        scratch.clear();
+        scratch.push_back(centre.values[c](x, y));
+        for (const Warped &neighbour : warped)
+            if (std::isfinite(neighbour.difference[i])) scratch.push_back(neighbour.values[c][i]);
+        if (scratch.size() < 3) return 0.0f;
+        const auto middle = scratch.begin() + std::ptrdiff_t(scratch.size() / 2);
+        std::nth_element(scratch.begin(), middle, scratch.end());
+        const float median = *middle;
+        for (float &v : scratch) v = std::fabs(v - median);
+        std::nth_element(scratch.begin(), middle, scratch.end());
+        sum += *middle;
+    }
+    return float(1.41421356 * 1.4826 * sum / double(count));
 }
 
 /// The shading test's weight of a neighbour's value that differs by `difference` where the noise is `scale`.
@@ -251,21 +288,33 @@ void blend_temporal_window(const TemporalFrameView &centre, const std::vector<Te
         if (std::abs(frame.offset) > settings.radius_frames || (settings.causal && frame.offset > 0))
             continue;
         warped.push_back(warp_neighbour(frames, frame, settings));
-        scales.push_back(tile_noise_scales(warped.back().difference, width, height));
+        scales.push_back(block_noise_scales(warped.back().difference, width, height));
     }
-    const int tiles_x = (width + kTemporalTilePx - 1) / kTemporalTilePx;
+    const int blocks_x = (width + kTemporalBlockPx - 1) / kTemporalBlockPx;
+    // Only a window centred on the frame may take its noise from the
+    // pixel's own values: a steady change then spreads them evenly about the
+    // centre's and averages to it; a one-sided window would lag behind it.
+    int before = 0, after = 0;
+    for (const Warped &neighbour : warped) (neighbour.offset < 0 ? before : after) += 1;
+    const bool centred = before == after;
     parallel_for_rows(height, [&](int y) {
         std::vector<double> sums(count);
+        std::vector<float> scratch;
         for (int x = 0; x < width; ++x) {
             const std::size_t i = std::size_t(y) * std::size_t(width) + std::size_t(x);
-            const std::size_t tile =
-                std::size_t(y / kTemporalTilePx) * std::size_t(tiles_x) + std::size_t(x / kTemporalTilePx);
+            const std::size_t block =
+                std::size_t(y / kTemporalBlockPx) * std::size_t(blocks_x) + std::size_t(x / kTemporalBlockPx);
+            const float own_scale = centred ? window_noise_scale(centre, warped, x, y, i, scratch) : 0.0f;
             double weight_sum = 1;
             for (std::size_t c = 0; c < count; ++c) sums[c] = centre.values[c](x, y);
             for (std::size_t n = 0; n < warped.size(); ++n) {
                 const float difference = warped[n].difference[i];
                 if (!std::isfinite(difference)) continue;
-                const float w = shading_weight(difference, scales[n][tile], settings.shading_tolerance);
+                // The pixel's own noise may raise its region's, within limits:
+                // the values a soft edge sweeps through spread evenly too.
+                const float region = scales[n][block];
+                const float noise = std::max(region, std::min(own_scale, kTemporalOwnScaleLimit * region));
+                const float w = shading_weight(difference, noise, settings.shading_tolerance);
                 if (!(w > 0)) continue;
                 weight_sum += w;
                 for (std::size_t c = 0; c < count; ++c) sums[c] += double(w) * warped[n].values[c][i];

@@ -116,6 +116,36 @@ TEST_CASE("temporal window: per-frame noise of a static frame averages down over
     CHECK(blended > 0.15 * alone);  // not smoothed in space: at best the five frames' mean
 }
 
+TEST_CASE("temporal window: a patch noisier than its surroundings averages down too", "[temporal]") {
+    // A filter's residual noise changes within a frame (a narrow width in a
+    // penumbra beside a wide one in the light): a 6 x 6 px patch with ten
+    // times the noise of the rest, which sets the region's median.
+    std::vector<SyntheticFrame> frames;
+    std::mt19937 random(11);
+    std::normal_distribution<float> gaussian(0.0f, 1.0f);
+    const auto in_patch = [](int x, int y) { return x >= 30 && x < 36 && y >= 20 && y < 26; };
+    for (int f = 0; f < 5; ++f) {
+        frames.emplace_back(0, 0.0f, smooth_shade);
+        for (int y = 0; y < kHeight; ++y)
+            for (int x = 0; x < kWidth; ++x)
+                frames.back().value[std::size_t(y) * kWidth + std::size_t(x)] +=
+                    (in_patch(x, y) ? 0.05f : 0.005f) * gaussian(random);
+    }
+    const std::vector<float> out = blend(frames, 2, 2);
+    double alone = 0, blended = 0;
+    for (int y = 0; y < kHeight; ++y)
+        for (int x = 0; x < kWidth; ++x) {
+            if (!in_patch(x, y)) continue;
+            const std::size_t i = std::size_t(y) * kWidth + std::size_t(x);
+            const double truth = smooth_shade(float(x), float(y), 0);
+            alone += (frames[2].value[i] - truth) * (frames[2].value[i] - truth);
+            blended += (out[i] - truth) * (out[i] - truth);
+        }
+    // Measured against its region alone, the patch's neighbours differ by
+    // many times the noise there and would be rejected (blended == alone).
+    CHECK(blended < 0.5 * alone);
+}
+
 TEST_CASE("temporal window: a camera pan is followed by the motion layer", "[temporal]") {
     // Noise-free, 2 px per frame: the warped neighbours land on whole pixels of the same surface.
     std::vector<SyntheticFrame> still;

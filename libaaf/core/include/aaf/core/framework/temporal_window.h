@@ -22,16 +22,26 @@ struct TemporalWindowSettings {
     /// A neighbour's value is down-weighted when it differs from the frame's
     /// own by more than the residual noise: its weight is exp(-e^2 / (2 (tau
     /// sigma)^2)), e the mean absolute difference over the blended channels,
-    /// sigma the robust scale of that difference over the pixel's tile
-    /// (1.4826 x the median of its non-zero values, kTemporalTilePx square tiles;
-    /// 0, no change allowed, when most of the tile's are 0): a shadow or a
+    /// sigma the robust scale of that difference around the pixel (1.4826 x
+    /// the median of its non-zero values over the pixel's region, see below;
+    /// 0, no change allowed, when most of the region's are 0; raised where the
+    /// pixel's own values spread more): a shadow or a
     /// light that moves over still geometry changes the value far beyond the
     /// noise and does not ghost. tau is this.
     float shading_tolerance = 3.0f;
 };
 
-/// Side of the square tiles over which the shading test measures the noise.
-inline constexpr int kTemporalTilePx = 16;
+/// The shading test measures the noise once per square block of this side,
+/// over the region of kTemporalScaleRegionBlocks x kTemporalScaleRegionBlocks
+/// blocks centred on it (20 x 20 pixels): wide enough that an edge moving a
+/// few pixels a frame stays a minority of it, centred so that it follows
+/// the noise where it changes within a frame.
+inline constexpr int kTemporalBlockPx = 4;
+inline constexpr int kTemporalScaleRegionBlocks = 5;
+/// A pixel noisier than its region (where the filter's width changes) is
+/// measured by its own values across a centred window (their median
+/// absolute deviation), up to this many times its region's noise.
+inline constexpr float kTemporalOwnScaleLimit = 3.0f;
 
 /// One frame of the window as the blend reads it; views of one size.
 struct TemporalFrameView {
