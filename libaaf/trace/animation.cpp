@@ -59,6 +59,25 @@ void SceneDescription::set_frame(double frame) {
         lights[i].plane.center = key.center;
         lights[i].intensity = key.intensity;
     }
+    for (std::size_t i = 0; i < meshes.size() && i < animation.meshes.size(); ++i) {
+        const std::vector<ObjectKey> &keys = animation.meshes[i];
+        if (keys.empty()) continue;
+        const auto offset_at = [&keys](double at) {
+            return sample(keys, at,
+                          [](const ObjectKey &a, const ObjectKey &b, float t) {
+                              ObjectKey mixed;
+                              mixed.offset_m = lerp(a.offset_m, b.offset_m, t);
+                              return mixed;
+                          })
+                .offset_m;
+        };
+        Mesh &mesh = meshes[i];
+        const Vec3 offset = offset_at(frame);
+        const Vec3 shift = offset - mesh.offset_m;
+        for (Vec3 &position : mesh.positions) position = position + shift;
+        mesh.offset_m = offset;
+        mesh.moved_since_previous_frame_m = offset - offset_at(frame - 1);
+    }
 }
 
 }  // namespace aaf::trace

@@ -348,6 +348,8 @@ std::optional<double> scene_first_key_frame(const std::string &scene) {
     if (!description.animation.camera.empty()) consider(description.animation.camera.front().frame);
     for (const std::vector<LightKey> &keys : description.animation.lights)
         if (!keys.empty()) consider(keys.front().frame);
+    for (const std::vector<ObjectKey> &keys : description.animation.meshes)
+        if (!keys.empty()) consider(keys.front().frame);
     return first;
 }
 

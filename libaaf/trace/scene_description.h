@@ -53,6 +53,10 @@ struct Mesh {
     std::vector<std::uint32_t> indices;  ///< three per triangle
     int object_id = 1;                   ///< > 0; 0 is the background
     Material material;
+    /// Translation applied to `positions` by the animation (set_frame()), and
+    /// its change since the previous frame (for motion vectors), metres.
+    Vec3 offset_m{0, 0, 0};
+    Vec3 moved_since_previous_frame_m{0, 0, 0};
 
     std::size_t triangle_count() const { return indices.size() / 3; }
 
@@ -86,9 +90,15 @@ struct LightKey {
     Vec3 center;
     float intensity = 1;
 };
+/// An object's translation from where the scene file puts it.
+struct ObjectKey {
+    double frame = 1;
+    Vec3 offset_m;
+};
 struct Animation {
-    std::vector<CameraKey> camera;              ///< empty = static camera
-    std::vector<std::vector<LightKey>> lights;  ///< per light; empty = static
+    std::vector<CameraKey> camera;               ///< empty = static camera
+    std::vector<std::vector<LightKey>> lights;   ///< per light; empty = static
+    std::vector<std::vector<ObjectKey>> meshes;  ///< per mesh (its object's track); empty = static
     Vec3 camera_up{0, 1, 0};
 };
 
@@ -106,7 +116,7 @@ struct SceneDescription {
     const LightPlane &key_light() const { return lights.front().plane; }
     /// The camera at `frame` (the static camera when it has no keys).
     Camera camera_at(double frame) const;
-    /// Moves the camera and lights to `frame`.
+    /// Moves the camera, lights and objects to `frame`.
     void set_frame(double frame);
 };
 

@@ -525,8 +525,10 @@ std::vector<Key> read_keys(const Node &node, const ReadKey &read_key) {
     return keys;
 }
 
-void read_animation(const Node &node, SceneDescription &scene, const CameraKey &static_camera) {
-    node.allow_only({"camera", "lights"});
+/// `object_meshes[i]`: the meshes objects[i] of the file became, [first, last).
+void read_animation(const Node &node, SceneDescription &scene, const CameraKey &static_camera,
+                    const std::vector<std::pair<std::size_t, std::size_t>> &object_meshes) {
+    node.allow_only({"camera", "lights", "objects"});
     if (auto camera = node.find("camera"))
         scene.animation.camera = read_keys<CameraKey>(*camera, [&](const Node &key_node) {
             key_node.allow_only({"frame", "position", "look_at", "fov_y_deg", "focus_distance_m"});
@@ -562,6 +564,29 @@ void read_animation(const Node &node, SceneDescription &scene, const CameraKey &
                 });
         }
     }
+    if (auto objects = node.find("objects")) {
+        scene.animation.meshes.resize(scene.meshes.size());
+        std::vector<bool> tracked(object_meshes.size(), false);
+        for (std::size_t i = 0; i < objects->size(); ++i) {
+            const Node track = (*objects)[i];
+            track.allow_only({"object", "keys"});
+            const int index = track.at("object").integer();
+            if (index < 0 || std::size_t(index) >= object_meshes.size())
+                track.at("object").fail("no such object");
+            if (tracked[std::size_t(index)])
+                track.fail("object " + std::to_string(index) + " already has a track");
+            tracked[std::size_t(index)] = true;
+            const std::vector<ObjectKey> keys =
+                read_keys<ObjectKey>(track.at("keys"), [](const Node &key_node) {
+                    key_node.allow_only({"frame", "offset"});
+                    ObjectKey key;
+                    key.offset_m = key_node.at("offset").point();
+                    return key;
+                });
+            const auto [first, last] = object_meshes[std::size_t(index)];
+            for (std::size_t m = first; m < last; ++m) scene.animation.meshes[m] = keys;
+        }
+    }
 }
 
 }  // namespace
@@ -592,13 +617,15 @@ SceneDescription load_scene_file(const std::string &path, int width, int height)
     const Node objects = root.at("objects");
     if (objects.size() == 0) objects.fail("a scene needs at least one object");
     const fs::path scene_dir = fs::path(path).parent_path();
+    std::vector<std::pair<std::size_t, std::size_t>> object_meshes;
     for (std::size_t i = 0; i < objects.size(); ++i) {
         const std::size_t meshes_before = scene.meshes.size();
         read_object(objects[i], scene_dir, materials, int(i) + 1, scene.meshes);
         check_within_scene(objects[i], scene.meshes, meshes_before);
+        object_meshes.emplace_back(meshes_before, scene.meshes.size());
     }
 
-    if (auto animation = root.find("animation")) read_animation(*animation, scene, camera_key);
+    if (auto animation = root.find("animation")) read_animation(*animation, scene, camera_key, object_meshes);
     return scene;
 }
 

@@ -45,6 +45,9 @@ std::uint64_t scene_hash(const SceneDescription &scene, const RenderSettings &se
         }
         h.add(std::int64_t(mesh.positions.size()));
         for (Vec3 p : mesh.positions) h.add(p);
+        // The motion vectors' share of an animated object (only when it moves).
+        const Vec3 moved = mesh.moved_since_previous_frame_m;
+        if (moved.x != 0 || moved.y != 0 || moved.z != 0) h.add(moved);
         h.add(std::int64_t(mesh.indices.size()));
         h.add_bytes(mesh.indices.data(), mesh.indices.size() * sizeof(mesh.indices[0]));
     }

@@ -69,7 +69,7 @@ fs::path static_sequence() {
 }  // namespace
 
 TEST_CASE(
-    "filter --temporal-window: on a static shot, aaf's and ratio's flicker drops 1.8x or more and no frame "
+    "filter --temporal-window: on a static shot, aaf's flicker drops 3x or more, ratio's 2.4x, and no frame "
     "gets worse",
     "[cli][temporal]") {
     const fs::path dir = static_sequence();
@@ -84,8 +84,8 @@ TEST_CASE(
             compare_sequence(dir / (method + "_alone.####.exr"), dir / "ref.####.exr", "1-16");
         const SequenceErrors window =
             compare_sequence(dir / (method + "_window.####.exr"), dir / "ref.####.exr", "1-16");
-        // Measured: 2.4x (aaf) and 2.0x (ratio) with K = 2 on this shot (scripts/temporal_study.sh).
-        CHECK(window.temporal_mean < alone.temporal_mean / 1.8);
+        // Measured: 3.2x (aaf) and 2.7x (ratio) with K = 2 on this shot (scripts/temporal_study.sh).
+        CHECK(window.temporal_mean < alone.temporal_mean / (method == "aaf" ? 3.0 : 2.4));
         REQUIRE(window.rmse.size() == alone.rmse.size());
         for (std::size_t f = 0; f < alone.rmse.size(); ++f) {
             INFO("frame " << f + 1);

@@ -625,6 +625,44 @@ TEST_CASE("Motion vectors of a sideways camera move match the pinhole projection
     CHECK(trace::render_scene(path, settings).channel("motion.X")(16, 16) == 0.0f);
 }
 
+TEST_CASE("An object's keyframes move it, and its motion vectors follow it", "[trace][motion]") {
+    const std::filesystem::path dir =
+        std::filesystem::path(AAF_TEST_BINARY_DIR) / "scratch" / "moving_object";
+    std::filesystem::create_directories(dir);
+    const std::string path = (dir / "moving.json").string();
+    // Straight down from 2.5 m on a still camera; a thin 1 m square slab
+    // 0.5 m above the floor slides 0.1 m along +x (raster +x) from frame 1 to 2.
+    std::ofstream(path) << R"({
+  "camera": {"position": [0, 2.5, 0], "look_at": [0, 0, 0], "up": [0, 0, -1], "fov_y_deg": 45},
+  "lights": [{"center": [0, 3, 0], "edge_u": [0.5, 0, 0], "edge_v": [0, 0, 0.5]}],
+  "objects": [{"type": "plane", "size": [10, 10]},
+              {"type": "box", "min": [-0.5, 0.5, -0.5], "max": [0.5, 0.52, 0.5]}],
+  "animation": {"objects": [{"object": 1, "keys": [{"frame": 1, "offset": [0, 0, 0]},
+                                                   {"frame": 2, "offset": [0.1, 0, 0]}]}]}
+})";
+    trace::RenderSettings settings;
+    settings.width = settings.height = 33;
+    settings.spp = 1;
+    settings.aovs = {"motion", "position", "id"};
+    settings.frame = 2;
+    const AovSet aovs = trace::render_scene(path, settings);
+    // The slab's top, 1.98 m from the camera, moved 0.1 m: 0.1 / (1.98 * 2 tan(22.5 deg) / 33) pixels.
+    const double pixel_m = 1.98 * 2 * std::tan(22.5 * 3.14159265358979 / 180) / 33;
+    CHECK(aovs.channel("id.object")(16, 16) == 2.0f);
+    CHECK(position(aovs, 16, 16).y == Approx(0.52f));
+    CHECK(aovs.channel("motion.X")(16, 16) == Approx(0.1 / pixel_m).epsilon(1e-3));
+    CHECK(aovs.channel("motion.Y")(16, 16) == Approx(0.0).margin(1e-4));
+    // The floor beside it stays still; the slab's left edge (x = -0.5 m at
+    // frame 1, -0.4 m at frame 2) uncovered the floor under pixel 7 (-0.45 m).
+    CHECK(aovs.channel("id.object")(1, 16) == 1.0f);
+    CHECK(aovs.channel("motion.X")(1, 16) == 0.0f);
+    CHECK(aovs.channel("id.object")(7, 16) == 1.0f);
+    settings.frame = 1;  // before the first key the slab holds still
+    const AovSet first = trace::render_scene(path, settings);
+    CHECK(first.channel("id.object")(7, 16) == 2.0f);
+    CHECK(first.channel("motion.X")(16, 16) == 0.0f);
+}
+
 TEST_CASE("A checkpoint written between rounds resumes to the uninterrupted render", "[trace][resume]") {
     trace::RenderSettings settings;
     settings.width = 20;
