@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <limits>
 #include <map>
 #include <string>
@@ -16,6 +17,9 @@ namespace aaf {
 
 namespace {
 
+/// Values closer than this, relative, are the same value: a noise-free
+/// pixel's per-frame results may differ in their last bits.
+constexpr float kSameValueRelative = 1e-5f;
 constexpr float kNoValue = std::numeric_limits<float>::quiet_NaN();
 
 /// The window's frames by offset; the centre's is 0.
@@ -181,9 +185,10 @@ Warped warp_neighbour(const FramesByOffset &frames, const TemporalFrameView &nei
             double difference = 0;
             for (std::size_t c = 0; c < count; ++c) {
                 warped.values[c][i] = values[c];
-                difference += std::fabs(double(values[c]) - double(centre.values[c](x, y)));
+                difference =
+                    std::max(difference, std::fabs(double(values[c]) - double(centre.values[c](x, y))));
             }
-            warped.difference[i] = float(difference / double(count));
+            warped.difference[i] = float(difference);
         }
     });
     return warped;
@@ -199,7 +204,8 @@ Warped warp_neighbour(const FramesByOffset &frames, const TemporalFrameView &nei
 /// centred on each block follows the noise where it changes within a frame
 /// (a penumbra beside a nearly noise-free background). One value per block,
 /// row-major.
-std::vector<float> block_noise_scales(const std::vector<float> &difference, int width, int height) {
+std::vector<float> block_noise_scales(const std::vector<float> &difference, int width, int height,
+                                      float factor = 1.4826f) {
     const int blocks_x = (width + kTemporalBlockPx - 1) / kTemporalBlockPx;
     const int blocks_y = (height + kTemporalBlockPx - 1) / kTemporalBlockPx;
     constexpr int reach_px = kTemporalBlockPx * (kTemporalScaleRegionBlocks / 2);
@@ -223,7 +229,7 @@ std::vector<float> block_noise_scales(const std::vector<float> &difference, int 
             if (region.empty() || 2 * region.size() < valid) continue;
             auto middle = region.begin() + std::ptrdiff_t(region.size() / 2);
             std::nth_element(region.begin(), middle, region.end());
-            scales[std::size_t(by) * std::size_t(blocks_x) + std::size_t(bx)] = 1.4826f * *middle;
+            scales[std::size_t(by) * std::size_t(blocks_x) + std::size_t(bx)] = factor * *middle;
         }
     });
     return scales;
@@ -232,28 +238,34 @@ std::vector<float> block_noise_scales(const std::vector<float> &difference, int 
 /// The noise of pixel `i` as its window shows it, in units of a difference
 /// between two frames: sqrt(2) x 1.4826 x the median absolute deviation of
 /// its values across the frames whose taps survived (the centre's
-/// included), averaged over the blended layers. An edge that crosses the
+/// included), the largest over the blended layers. An edge that crosses the
 /// pixel during the window moves a minority of its values and leaves this
 /// near 0; noise the region's median misses (a pixel noisier than its
-/// surroundings) shows here. 0 with fewer than 3 values.
+/// surroundings) shows here. Exactly 0 when most of its values are the same
+/// (within a few ulps): the pixel is noise-free in those frames (in an
+/// umbra, or fully lit). -1 with fewer than 3 values. `balanced`: as many
+/// of those frames before the centre as after it.
 float window_noise_scale(const TemporalFrameView &centre, const std::vector<Warped> &warped, int x, int y,
-                         std::size_t i, std::vector<float> &scratch) {
-    const std::size_t count = centre.values.size();
-    double sum = 0;
-    for (std::size_t c = 0; c < count; ++c) {
+                         std::size_t i, std::vector<float> &scratch, bool &balanced) {
+    int before = 0, after = 0;
+    for (const Warped &neighbour : warped)
+        if (std::isfinite(neighbour.difference[i])) (neighbour.offset < 0 ? before : after) += 1;
+    balanced = before == after;
+    if (before + after < 2) return -1.0f;
+    double largest = 0;
+    for (std::size_t c = 0; c < centre.values.size(); ++c) {
         scratch.clear();
         scratch.push_back(centre.values[c](x, y));
         for (const Warped &neighbour : warped)
             if (std::isfinite(neighbour.difference[i])) scratch.push_back(neighbour.values[c][i]);
-        if (scratch.size() < 3) return 0.0f;
         const auto middle = scratch.begin() + std::ptrdiff_t(scratch.size() / 2);
         std::nth_element(scratch.begin(), middle, scratch.end());
         const float median = *middle;
         for (float &v : scratch) v = std::fabs(v - median);
         std::nth_element(scratch.begin(), middle, scratch.end());
-        sum += *middle;
+        if (*middle > kSameValueRelative * std::fabs(median)) largest = std::max(largest, double(*middle));
     }
-    return float(1.41421356 * 1.4826 * sum / double(count));
+    return float(1.41421356 * 1.4826 * largest);
 }
 
 /// The shading test's weight of a neighbour's value that differs by `difference` where the noise is `scale`.
@@ -291,29 +303,47 @@ void blend_temporal_window(const TemporalFrameView &centre, const std::vector<Te
         scales.push_back(block_noise_scales(warped.back().difference, width, height));
     }
     const int blocks_x = (width + kTemporalBlockPx - 1) / kTemporalBlockPx;
-    // Only a window centred on the frame may take its noise from the
-    // pixel's own values: a steady change then spreads them evenly about the
-    // centre's and averages to it; a one-sided window would lag behind it.
-    int before = 0, after = 0;
-    for (const Warped &neighbour : warped) (neighbour.offset < 0 ? before : after) += 1;
-    const bool centred = before == after;
+    // Each pixel's own spread across the window, and its median over the
+    // region: a moving shadow changes a coherent part of a region in every
+    // neighbour (filling the differences' median) but a minority of each
+    // pixel's frames (leaving its own spread to the noise).
+    const std::size_t pixels = std::size_t(width) * std::size_t(height);
+    std::vector<float> own(pixels, kNoValue);
+    std::vector<std::uint8_t> balanced(pixels, 0);
+    parallel_for_rows(height, [&](int y) {
+        std::vector<float> scratch;
+        for (int x = 0; x < width; ++x) {
+            const std::size_t i = std::size_t(y) * std::size_t(width) + std::size_t(x);
+            bool even = false;
+            const float scale = window_noise_scale(centre, warped, x, y, i, scratch, even);
+            if (scale >= 0) own[i] = scale;
+            balanced[i] = even;
+        }
+    });
+    const std::vector<float> region_own = block_noise_scales(own, width, height, 1.0f);
     parallel_for_rows(height, [&](int y) {
         std::vector<double> sums(count);
-        std::vector<float> scratch;
         for (int x = 0; x < width; ++x) {
             const std::size_t i = std::size_t(y) * std::size_t(width) + std::size_t(x);
             const std::size_t block =
                 std::size_t(y / kTemporalBlockPx) * std::size_t(blocks_x) + std::size_t(x / kTemporalBlockPx);
-            const float own_scale = centred ? window_noise_scale(centre, warped, x, y, i, scratch) : 0.0f;
             double weight_sum = 1;
             for (std::size_t c = 0; c < count; ++c) sums[c] = centre.values[c](x, y);
             for (std::size_t n = 0; n < warped.size(); ++n) {
                 const float difference = warped[n].difference[i];
                 if (!std::isfinite(difference)) continue;
-                // The pixel's own noise may raise its region's, within limits:
-                // the values a soft edge sweeps through spread evenly too.
-                const float region = scales[n][block];
-                const float noise = std::max(region, std::min(own_scale, kTemporalOwnScaleLimit * region));
+                // The region's noise: its differences' scale, bounded by its
+                // pixels' own spreads.
+                float noise = std::min(scales[n][block], region_own[block]);
+                if (std::isfinite(own[i])) {
+                    if (own[i] == 0)
+                        noise = 0;  // noise-free in most of its frames: any difference is a change
+                    else if (balanced[i])
+                        // A pixel noisier than its region raises it, within limits:
+                        // only where as many frames follow as precede, so that
+                        // a steady change averages to the centre's value.
+                        noise = std::max(noise, std::min(own[i], kTemporalOwnScaleLimit * noise));
+                }
                 const float w = shading_weight(difference, noise, settings.shading_tolerance);
                 if (!(w > 0)) continue;
                 weight_sum += w;

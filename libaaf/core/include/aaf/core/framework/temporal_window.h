@@ -21,13 +21,17 @@ struct TemporalWindowSettings {
     float normal_threshold_deg = 25.0f;
     /// A neighbour's value is down-weighted when it differs from the frame's
     /// own by more than the residual noise: its weight is exp(-e^2 / (2 (tau
-    /// sigma)^2)), e the mean absolute difference over the blended channels,
-    /// sigma the robust scale of that difference around the pixel (1.4826 x
-    /// the median of its non-zero values over the pixel's region, see below;
-    /// 0, no change allowed, when most of the region's are 0; raised where the
-    /// pixel's own values spread more): a shadow or a
-    /// light that moves over still geometry changes the value far beyond the
-    /// noise and does not ghost. tau is this.
+    /// sigma)^2)), e the largest absolute difference over the blended
+    /// channels, sigma the noise around the pixel: the robust scale of the
+    /// differences over the pixel's region (1.4826 x the median of its non-zero
+    /// values; 0, no change allowed, when most of the region's are 0), bounded
+    /// by the median over the region of its pixels' own spreads across the
+    /// window (their values' median absolute deviation), 0 where the pixel's
+    /// own values are mostly the same (noise-free), and raised, within
+    /// kTemporalOwnScaleLimit, where the pixel spreads more than its region
+    /// and as many of its frames follow as precede. A shadow or a light that
+    /// moves over still geometry changes the value far beyond the noise and
+    /// does not ghost. tau is this.
     float shading_tolerance = 3.0f;
 };
 
