@@ -354,4 +354,30 @@ void blend_temporal_window(const TemporalFrameView &centre, const std::vector<Te
     });
 }
 
+void blend_temporal_history(const TemporalFrameView &centre, const TemporalFrameView &history, float alpha,
+                            const TemporalWindowSettings &settings, const std::vector<PlaneView> &out) {
+    const int width = centre.position[0].width, height = centre.position[0].height;
+    const std::size_t count = centre.values.size();
+    check_frame(centre, count, width, height);
+    check_frame(history, count, width, height);
+    if (history.offset != -1) throw Error("temporal history: the history is the previous frame (offset -1)");
+    if (out.size() != count) throw Error("temporal history: as many outputs as layers to blend are needed");
+    for (PlaneView view : out) check_view(view, width, height, false, "an output");
+    if (!(alpha > 0 && alpha <= 1) || !(settings.plane_tolerance > 0))
+        throw Error("temporal history: alpha must be in (0, 1] and the plane tolerance > 0");
+    const FramesByOffset frames{{0, &centre}, {-1, &history}};
+    const Warped warped = warp_neighbour(frames, history, settings);
+    parallel_for_rows(height, [&](int y) {
+        for (int x = 0; x < width; ++x) {
+            const std::size_t i = std::size_t(y) * std::size_t(width) + std::size_t(x);
+            if (!std::isfinite(warped.difference[i])) {
+                for (std::size_t c = 0; c < count; ++c) out[c](x, y) = centre.values[c](x, y);
+                continue;
+            }
+            for (std::size_t c = 0; c < count; ++c)
+                out[c](x, y) = alpha * centre.values[c](x, y) + (1 - alpha) * warped.values[c][i];
+        }
+    });
+}
+
 }  // namespace aaf

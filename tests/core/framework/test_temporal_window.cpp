@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "aaf/core/framework/temporal_window.h"
+#include "aaf/core/util/error.h"
 #include "aaf/core/util/thread_count.h"
 
 using namespace aaf;
@@ -207,4 +208,29 @@ TEST_CASE("temporal window: the same bytes on 1 and 2 threads", "[temporal]") {
     run_with_threads(1, [&] { one = blend(frames, 2, 2); });
     run_with_threads(2, [&] { two = blend(frames, 2, 2); });
     CHECK(std::memcmp(one.data(), two.data(), one.size() * sizeof(float)) == 0);
+}
+
+TEST_CASE("temporal history: alpha x frame + (1 - alpha) x the previous output, followed by the motion layer",
+          "[temporal]") {
+    // The camera pans 2 px a frame; the previous output holds the shade plus 0.1.
+    const SyntheticFrame now(1, 2.0f, smooth_shade), before(0, 2.0f, smooth_shade);
+    SyntheticFrame history = before;
+    for (float &v : history.value) v += 0.1f;
+    TemporalWindowSettings settings;
+    std::vector<float> out(std::size_t(kWidth) * kHeight);
+    blend_temporal_history(now.view(0), history.view(-1), 0.25f, settings,
+                           {plane_view(out.data(), kWidth, kHeight)});
+    for (int y = 0; y < kHeight; ++y)
+        for (int x = 0; x < kWidth - 2; ++x) {  // the last 2 columns were off screen before
+            const std::size_t i = std::size_t(y) * kWidth + std::size_t(x);
+            REQUIRE(out[i] == Approx(now.value[i] + 0.75f * 0.1f).margin(1e-5));
+        }
+    // Another object where the surface was: the frame's own value.
+    for (float &id : history.id) id = 2;
+    blend_temporal_history(now.view(0), history.view(-1), 0.25f, settings,
+                           {plane_view(out.data(), kWidth, kHeight)});
+    CHECK(std::memcmp(out.data(), now.value.data(), out.size() * sizeof(float)) == 0);
+    CHECK_THROWS_AS(blend_temporal_history(now.view(0), history.view(-1), 0.0f, settings,
+                                           {plane_view(out.data(), kWidth, kHeight)}),
+                    Error);
 }

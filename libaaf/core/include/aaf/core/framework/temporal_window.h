@@ -81,4 +81,16 @@ struct TemporalFrameView {
 void blend_temporal_window(const TemporalFrameView &centre, const std::vector<TemporalFrameView> &neighbours,
                            const TemporalWindowSettings &settings, const std::vector<PlaneView> &out);
 
+/// The causal, recursive case (the ratio estimator's `--temporal`, its Sec.
+/// 4.1 pass 5): `history` (offset -1; its `values` the previous frame's
+/// output, its geometry the previous frame's) is looked up where the
+/// centre's surface points were, as blend_temporal_window() looks up a
+/// neighbour (the centre's motion, bilinear over the taps on the same
+/// surface), and `out` = alpha x centre + (1 - alpha) x history where a tap
+/// survives, the centre's value elsewhere: an exponential history, with no
+/// shading test. `out` may alias the centre's values. Deterministic for any
+/// thread count; throws aaf::Error on mismatched sizes or alpha outside (0, 1].
+void blend_temporal_history(const TemporalFrameView &centre, const TemporalFrameView &history, float alpha,
+                            const TemporalWindowSettings &settings, const std::vector<PlaneView> &out);
+
 }  // namespace aaf

@@ -35,6 +35,7 @@ struct TemporalSettings {
 /// weights renormalised), and writes alpha x current + (1 - alpha) x history;
 /// where no tap survives (disocclusion, off screen) the current colour.
 /// Non-finite history taps are rejected. `out` may alias current.colour.
+/// The temporal window's causal, recursive case (blend_temporal_history()).
 /// Deterministic, any thread count; throws aaf::Error on mismatched sizes.
 void temporal_accumulate(const TemporalFrame &current, const std::array<ConstPlaneView, 2> &motion,
                          const TemporalFrame &previous, const TemporalSettings &settings,
