@@ -125,18 +125,75 @@ struct WindowState {
     TemporalWindowSettings settings;
     FilterFileOptions options;
     std::shared_ptr<const int> frame;
-    std::map<int, AovSet> kept;  ///< frame -> its per-frame output's window channels
+    std::map<int, AovSet> kept;    ///< frame -> its per-frame output's window channels
+    std::map<int, AovSet> inputs;  ///< frame -> its input's width inputs and guides
 };
 
+/// Replaces the method's width inputs (MethodRoles::window_min and
+/// window_max) in `input`, frame `*state.frame`'s, by their extremes over
+/// the window's frames (temporal_window_extrema()), each read once while
+/// the window needs it; false when the method has none.
+bool steady_widths(WindowState &state, const FilterPlan &plan, const ChannelMap &resolved, AovSet &input) {
+    const MethodRoles &roles = plan.method->info().roles;
+    const auto present = [&](const std::vector<Role> &wanted) {
+        std::vector<std::string> names;
+        for (Role role : wanted)
+            for (const std::string &name : plan.channels.channels(role))
+                if (input.has_channel(name)) names.push_back(name);
+        return names;
+    };
+    const std::vector<std::string> minima = present(roles.window_min), maxima = present(roles.window_max);
+    if (minima.empty() && maxima.empty()) return false;
+    WindowChannels channels;
+    channels.blended = minima;
+    channels.blended.insert(channels.blended.end(), maxima.begin(), maxima.end());
+    channels.position = required_guide<3>(Role::Position, resolved, input);
+    channels.normal = required_guide<3>(Role::Normal, resolved, input);
+    channels.motion = required_guide<2>(Role::Motion, resolved, input);
+    channels.object_id = optional_guide(Role::ObjectId, resolved, input);
+    channels.pixel_size = optional_guide(Role::PixelSize, resolved, input);
+
+    const int frame = *state.frame;
+    const std::vector<int> frames = temporal_window_frames(state.pattern, frame, state.settings);
+    state.inputs.erase(state.inputs.begin(), state.inputs.lower_bound(frames.front()));
+    state.inputs.erase(state.inputs.upper_bound(frames.back()), state.inputs.end());
+    FrameFilter read_only = state.per_frame;
+    read_only.run = [](const FilterPlan &, AovSet read) { return read; };
+    for (int other : frames) {
+        if (other == frame || state.inputs.count(other)) continue;
+        const std::string path = frame_path(state.pattern, other);
+        FilterFileReport ignored;  // its own run reports it
+        state.inputs.emplace(
+            other,
+            kept_channels(filter_file_in_memory(path, read_only, state.options, ignored), channels, path));
+    }
+    const AovSet own = kept_channels(input, channels, frame_path(state.pattern, frame));
+    for (const bool take_max : {false, true}) {
+        WindowChannels part = channels;
+        part.blended = take_max ? maxima : minima;
+        if (part.blended.empty()) continue;
+        std::vector<TemporalFrameView> neighbours;
+        for (int other : frames)
+            if (other != frame) neighbours.push_back(frame_view(state.inputs.at(other), part, other - frame));
+        std::vector<PlaneView> out;
+        for (const std::string &name : part.blended) out.push_back(input.channel(name));
+        temporal_window_extrema(frame_view(own, part, 0), neighbours, state.settings, take_max, out);
+    }
+    return true;
+}
+
 /// Blends `output`, frame `*state.frame`'s per-frame output, with its window.
-void blend_window(WindowState &state, const FilterPlan &plan, const ChannelMap &resolved, AovSet &output) {
+/// `per_frame`: the frame filtered alone, what its neighbours blend (the
+/// same whichever frame filtered it first).
+void blend_window(WindowState &state, const FilterPlan &plan, const ChannelMap &resolved, AovSet &output,
+                  const AovSet &per_frame) {
     const int frame = *state.frame;
     const WindowChannels channels = window_channels(plan, resolved, output);
     const std::vector<int> frames = temporal_window_frames(state.pattern, frame, state.settings);
     // Frames before the window are not needed again by a sequence in order.
     state.kept.erase(state.kept.begin(), state.kept.lower_bound(frames.front()));
     state.kept.erase(state.kept.upper_bound(frames.back()), state.kept.end());
-    state.kept.insert_or_assign(frame, kept_channels(output, channels, frame_path(state.pattern, frame)));
+    state.kept.insert_or_assign(frame, kept_channels(per_frame, channels, frame_path(state.pattern, frame)));
     for (int other : frames) {
         if (state.kept.count(other)) continue;
         const std::string path = frame_path(state.pattern, other);
@@ -191,8 +248,20 @@ FrameFilter temporal_filter(FrameFilter filter, const std::string &pattern,
     state->frame = std::move(frame);
     filter.run = [state, run = filter.run](const FilterPlan &plan, AovSet input) {
         const ChannelMap resolved = state->options.channels.resolved(input);
-        AovSet output = run(plan, std::move(input));
-        blend_window(*state, plan, resolved, output);
+        // Steadied widths change the frame's own filtering; its neighbours
+        // blend it as filtered alone, so that is filtered too (twice the
+        // filter's time for AAF, whose widths come from its inputs).
+        const MethodRoles &roles = plan.method->info().roles;
+        if (roles.window_min.empty() && roles.window_max.empty()) {
+            AovSet output = run(plan, std::move(input));
+            blend_window(*state, plan, resolved, output, output);
+            return output;
+        }
+        AovSet steadied = input;
+        const bool steady = steady_widths(*state, plan, resolved, steadied);
+        AovSet alone = run(plan, std::move(input));
+        AovSet output = steady ? run(plan, std::move(steadied)) : alone;
+        blend_window(*state, plan, resolved, output, alone);
         return output;
     };
     return filter;

@@ -108,11 +108,13 @@ float footprint_m(const TemporalFrameView &frame, int x, int y) {
     return widest;
 }
 
-/// What the neighbour holds at the centre pixel's surface point: its
-/// values bilinearly over the taps on the same surface, false when none is.
-bool neighbour_values(const TemporalFrameView &centre, const TemporalFrameView &neighbour, float fx, float fy,
-                      int x, int y, float scale, float min_cos, const TemporalWindowSettings &settings,
-                      float *values) {
+/// Calls `visit(tx, ty, w)` for each of the 4 taps around (fx, fy) in
+/// `neighbour` that lie on the centre pixel's surface (tangent plane,
+/// normal, object id) and hold finite values, w its bilinear weight.
+template <typename Visit>
+void same_surface_taps(const TemporalFrameView &centre, const TemporalFrameView &neighbour, float fx,
+                       float fy, int x, int y, float scale, float min_cos,
+                       const TemporalWindowSettings &settings, const Visit &visit) {
     const float p[3] = {centre.position[0](x, y), centre.position[1](x, y), centre.position[2](x, y)};
     const float n[3] = {centre.normal[0](x, y), centre.normal[1](x, y), centre.normal[2](x, y)};
     const float id = centre.object_id.valid() ? centre.object_id(x, y) : 0.0f;
@@ -120,9 +122,6 @@ bool neighbour_values(const TemporalFrameView &centre, const TemporalFrameView &
     const int width = centre.position[0].width, height = centre.position[0].height;
     const int x0 = int(std::floor(fx)), y0 = int(std::floor(fy));
     const float ax = fx - float(x0), ay = fy - float(y0);
-    const std::size_t count = centre.values.size();
-    double weight_sum = 0;
-    std::vector<double> sums(count, 0.0);
     for (int j = 0; j < 2; ++j)
         for (int i = 0; i < 2; ++i) {
             const int tx = x0 + i, ty = y0 + j;
@@ -143,12 +142,25 @@ bool neighbour_values(const TemporalFrameView &centre, const TemporalFrameView &
             if (neighbour.object_id.valid() && centre.object_id.valid() && neighbour.object_id(tx, ty) != id)
                 continue;
             bool finite = true;
-            for (std::size_t c = 0; c < count; ++c)
-                finite = finite && std::isfinite(neighbour.values[c](tx, ty));
-            if (!finite) continue;
-            weight_sum += w;
-            for (std::size_t c = 0; c < count; ++c) sums[c] += double(w) * neighbour.values[c](tx, ty);
+            for (ConstPlaneView values : neighbour.values) finite = finite && std::isfinite(values(tx, ty));
+            if (finite) visit(tx, ty, w);
         }
+}
+
+/// What the neighbour holds at the centre pixel's surface point: its
+/// values bilinearly over the taps on the same surface, false when none is.
+bool neighbour_values(const TemporalFrameView &centre, const TemporalFrameView &neighbour, float fx, float fy,
+                      int x, int y, float scale, float min_cos, const TemporalWindowSettings &settings,
+                      float *values) {
+    const std::size_t count = centre.values.size();
+    double weight_sum = 0;
+    std::vector<double> sums(count, 0.0);
+    same_surface_taps(centre, neighbour, fx, fy, x, y, scale, min_cos, settings,
+                      [&](int tx, int ty, float w) {
+                          weight_sum += w;
+                          for (std::size_t c = 0; c < count; ++c)
+                              sums[c] += double(w) * neighbour.values[c](tx, ty);
+                      });
     if (weight_sum < 1e-3) return false;
     for (std::size_t c = 0; c < count; ++c) values[c] = float(sums[c] / weight_sum);
     return true;
@@ -350,6 +362,47 @@ void blend_temporal_window(const TemporalFrameView &centre, const std::vector<Te
                 for (std::size_t c = 0; c < count; ++c) sums[c] += double(w) * warped[n].values[c][i];
             }
             for (std::size_t c = 0; c < count; ++c) out[c](x, y) = float(sums[c] / weight_sum);
+        }
+    });
+}
+
+void temporal_window_extrema(const TemporalFrameView &centre,
+                             const std::vector<TemporalFrameView> &neighbours,
+                             const TemporalWindowSettings &settings, bool take_max,
+                             const std::vector<PlaneView> &out) {
+    const int width = centre.position[0].width, height = centre.position[0].height;
+    const std::size_t count = centre.values.size();
+    check_frame(centre, count, width, height);
+    FramesByOffset frames{{0, &centre}};
+    for (const TemporalFrameView &frame : neighbours) {
+        check_frame(frame, count, width, height);
+        if (frame.offset == 0 || !frames.emplace(frame.offset, &frame).second)
+            throw Error("temporal window: two frames at offset " + std::to_string(frame.offset));
+    }
+    if (out.size() != count) throw Error("temporal window: as many outputs as layers to combine are needed");
+    for (PlaneView view : out) check_view(view, width, height, false, "an output");
+    const float min_cos = std::cos(settings.normal_threshold_deg * 3.14159265f / 180.0f);
+    const auto better = [take_max](float a, float b) { return take_max ? a > b : a < b; };
+    parallel_for_rows(height, [&](int y) {
+        for (int x = 0; x < width; ++x) {
+            for (std::size_t c = 0; c < count; ++c) out[c](x, y) = centre.values[c](x, y);
+            const float scale = footprint_m(centre, x, y);
+            if (!(scale > 0) || !std::isfinite(scale)) continue;
+            for (const TemporalFrameView &neighbour : neighbours) {
+                if (std::abs(neighbour.offset) > settings.radius_frames ||
+                    (settings.causal && neighbour.offset > 0))
+                    continue;
+                float fx = 0, fy = 0;
+                if (!follow_motion(frames, x, y, neighbour.offset, fx, fy)) continue;
+                same_surface_taps(centre, neighbour, fx, fy, x, y, scale, min_cos, settings,
+                                  [&](int tx, int ty, float) {
+                                      for (std::size_t c = 0; c < count; ++c) {
+                                          const float v = neighbour.values[c](tx, ty);
+                                          if (!std::isfinite(out[c](x, y)) || better(v, out[c](x, y)))
+                                              out[c](x, y) = v;
+                                      }
+                                  });
+            }
         }
     });
 }

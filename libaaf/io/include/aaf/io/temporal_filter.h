@@ -24,13 +24,16 @@ std::vector<int> temporal_window_frames(const std::string &pattern, int frame,
 /// `filter` with a temporal window over the sequence `pattern`
 /// (`aaf filter METHOD --temporal-window K`): running frame `*frame` (set
 /// by the caller before each filter_file()) filters it as `filter` does,
-/// then blends the method's outputs (every output role but its widths, and
-/// the beauty it composes) with those of the frames
-/// temporal_window_frames() names, each filtered the same way from its own
-/// input (blend_temporal_window()). Neighbours are filtered once and kept
-/// while the window still needs them, so a sequence in order filters each
-/// frame once; their outputs are the per-frame ones, never blended, so a
-/// frame's bytes depend only on its window's inputs. `options` are those
+/// its width inputs (MethodRoles::window_min, window_max: AAF's occluder
+/// distances) first replaced by their extremes over the window
+/// (temporal_window_extrema()), then blends the method's outputs (every
+/// output role but its widths, and the beauty it composes) with those of
+/// the frames temporal_window_frames() names, each filtered alone from its
+/// own input (blend_temporal_window()). Neighbours are filtered once and
+/// kept while the window still needs them; a method with width inputs
+/// filters each frame twice (steadied, and alone for its neighbours). The
+/// neighbours' outputs are the per-frame ones, never blended, so a frame's
+/// bytes depend only on its window's inputs. `options` are those
 /// the frames are read with (their beauty stays the filter's). Throws
 /// aaf::InputError "<file>: ..." when a frame lacks the position, normal or
 /// motion layers, and aaf::Error for a filter that reads its previous

@@ -28,6 +28,11 @@ struct MethodRoles {
     /// Outputs that describe the filter itself (AAF's per-pixel widths)
     /// rather than estimate the image: a temporal window does not blend them.
     std::vector<Role> widths;
+    /// Inputs the filter's widths come from that a temporal window replaces
+    /// with their smallest (window_min) or largest (window_max) value over
+    /// its frames at the pixel's surface point, so that the widths hold still
+    /// from frame to frame (AAF's occluder distances).
+    std::vector<Role> window_min, window_max;
     /// (input, output) pairs where the output is a normalised filtering of
     /// the input: a constant input gives that constant (a property every
     /// method's test checks).

@@ -81,6 +81,19 @@ struct TemporalFrameView {
 void blend_temporal_window(const TemporalFrameView &centre, const std::vector<TemporalFrameView> &neighbours,
                            const TemporalWindowSettings &settings, const std::vector<PlaneView> &out);
 
+/// The smallest (largest, `take_max`) of each of the centre's `values` over
+/// the window: its own and every neighbour's at the pixel's surface point
+/// (each of the taps blend_temporal_window() would keep, taken alone), into
+/// `out` (same count and size; may alias nothing of the inputs). A filter's
+/// width inputs so combined hold still from frame to frame (AAF's occluder
+/// distances: their extremes over more samples). Pixels without a surface
+/// keep their own values. Deterministic for any thread count; throws
+/// aaf::Error on mismatched sizes.
+void temporal_window_extrema(const TemporalFrameView &centre,
+                             const std::vector<TemporalFrameView> &neighbours,
+                             const TemporalWindowSettings &settings, bool take_max,
+                             const std::vector<PlaneView> &out);
+
 /// The causal, recursive case (the ratio estimator's `--temporal`, its Sec.
 /// 4.1 pass 5): `history` (offset -1; its `values` the previous frame's
 /// output, its geometry the previous frame's) is looked up where the
