@@ -234,3 +234,41 @@ TEST_CASE("temporal history: alpha x frame + (1 - alpha) x the previous output, 
                                            {plane_view(out.data(), kWidth, kHeight)}),
                     Error);
 }
+
+TEST_CASE(
+    "temporal window extremes: the smallest and largest value at the pixel's surface point over the window",
+    "[temporal]") {
+    // A camera pan of 2 px a frame: each frame's value is the frame number
+    // plus a shade, so the extremes at a surface point are frames -2 and +2.
+    std::vector<SyntheticFrame> frames;
+    for (int f = 0; f < 5; ++f) {
+        frames.emplace_back(f, 2.0f, smooth_shade);
+        for (float &v : frames.back().value) v += float(f);
+    }
+    std::vector<TemporalFrameView> neighbours;
+    for (int f = 0; f < 5; ++f)
+        if (f != 2) neighbours.push_back(frames[std::size_t(f)].view(f - 2));
+    TemporalWindowSettings settings;
+    settings.radius_frames = 2;
+    std::vector<float> low(std::size_t(kWidth) * kHeight), high(low.size());
+    temporal_window_extrema(frames[2].view(0), neighbours, settings, false,
+                            {plane_view(low.data(), kWidth, kHeight)});
+    temporal_window_extrema(frames[2].view(0), neighbours, settings, true,
+                            {plane_view(high.data(), kWidth, kHeight)});
+    for (int y = 0; y < kHeight; ++y)
+        for (int x = 4; x < kWidth - 4; ++x) {  // the surface points every frame saw
+            const std::size_t i = std::size_t(y) * kWidth + std::size_t(x);
+            REQUIRE(low[i] == Approx(frames[2].value[i] - 2.0f).margin(1e-5));
+            REQUIRE(high[i] == Approx(frames[2].value[i] + 2.0f).margin(1e-5));
+        }
+    // Another object in the neighbours' place: the frame's own value.
+    for (SyntheticFrame &frame : frames)
+        if (&frame != &frames[2])
+            for (float &id : frame.id) id = 2;
+    neighbours.clear();
+    for (int f = 0; f < 5; ++f)
+        if (f != 2) neighbours.push_back(frames[std::size_t(f)].view(f - 2));
+    temporal_window_extrema(frames[2].view(0), neighbours, settings, true,
+                            {plane_view(high.data(), kWidth, kHeight)});
+    CHECK(std::memcmp(high.data(), frames[2].value.data(), high.size() * sizeof(float)) == 0);
+}
