@@ -566,16 +566,15 @@ void read_animation(const Node &node, SceneDescription &scene, const CameraKey &
     }
     if (auto objects = node.find("objects")) {
         scene.animation.meshes.resize(scene.meshes.size());
-        std::vector<bool> tracked(object_meshes.size(), false);
         for (std::size_t i = 0; i < objects->size(); ++i) {
             const Node track = (*objects)[i];
             track.allow_only({"object", "keys"});
             const int index = track.at("object").integer();
             if (index < 0 || std::size_t(index) >= object_meshes.size())
                 track.at("object").fail("no such object");
-            if (tracked[std::size_t(index)])
+            const auto [first, last] = object_meshes[std::size_t(index)];
+            if (first < last && !scene.animation.meshes[first].empty())
                 track.fail("object " + std::to_string(index) + " already has a track");
-            tracked[std::size_t(index)] = true;
             const std::vector<ObjectKey> keys =
                 read_keys<ObjectKey>(track.at("keys"), [](const Node &key_node) {
                     key_node.allow_only({"frame", "offset"});
@@ -583,7 +582,6 @@ void read_animation(const Node &node, SceneDescription &scene, const CameraKey &
                     key.offset_m = key_node.at("offset").point();
                     return key;
                 });
-            const auto [first, last] = object_meshes[std::size_t(index)];
             for (std::size_t m = first; m < last; ++m) scene.animation.meshes[m] = keys;
         }
     }

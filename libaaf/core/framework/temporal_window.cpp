@@ -288,10 +288,11 @@ float shading_weight(float difference, float scale, float tolerance) {
     return std::exp(-0.5f * z * z);
 }
 
-}  // namespace
-
-void blend_temporal_window(const TemporalFrameView &centre, const std::vector<TemporalFrameView> &neighbours,
-                           const TemporalWindowSettings &settings, const std::vector<PlaneView> &out) {
+/// The window's frames by offset, once every view is checked against the
+/// centre's size and layer count and `out` against both; throws aaf::Error.
+FramesByOffset checked_window(const TemporalFrameView &centre,
+                              const std::vector<TemporalFrameView> &neighbours,
+                              const std::vector<PlaneView> &out) {
     const int width = centre.position[0].width, height = centre.position[0].height;
     const std::size_t count = centre.values.size();
     check_frame(centre, count, width, height);
@@ -301,8 +302,18 @@ void blend_temporal_window(const TemporalFrameView &centre, const std::vector<Te
         if (frame.offset == 0 || !frames.emplace(frame.offset, &frame).second)
             throw Error("temporal window: two frames at offset " + std::to_string(frame.offset));
     }
-    if (out.size() != count) throw Error("temporal window: as many outputs as layers to blend are needed");
+    if (out.size() != count) throw Error("temporal window: as many outputs as layers are needed");
     for (PlaneView view : out) check_view(view, width, height, false, "an output");
+    return frames;
+}
+
+}  // namespace
+
+void blend_temporal_window(const TemporalFrameView &centre, const std::vector<TemporalFrameView> &neighbours,
+                           const TemporalWindowSettings &settings, const std::vector<PlaneView> &out) {
+    const int width = centre.position[0].width, height = centre.position[0].height;
+    const std::size_t count = centre.values.size();
+    const FramesByOffset frames = checked_window(centre, neighbours, out);
     if (!(settings.plane_tolerance > 0) || !(settings.shading_tolerance > 0))
         throw Error("temporal window: the plane and shading tolerances must be > 0");
 
@@ -372,15 +383,7 @@ void temporal_window_extrema(const TemporalFrameView &centre,
                              const std::vector<PlaneView> &out) {
     const int width = centre.position[0].width, height = centre.position[0].height;
     const std::size_t count = centre.values.size();
-    check_frame(centre, count, width, height);
-    FramesByOffset frames{{0, &centre}};
-    for (const TemporalFrameView &frame : neighbours) {
-        check_frame(frame, count, width, height);
-        if (frame.offset == 0 || !frames.emplace(frame.offset, &frame).second)
-            throw Error("temporal window: two frames at offset " + std::to_string(frame.offset));
-    }
-    if (out.size() != count) throw Error("temporal window: as many outputs as layers to combine are needed");
-    for (PlaneView view : out) check_view(view, width, height, false, "an output");
+    const FramesByOffset frames = checked_window(centre, neighbours, out);
     const float min_cos = std::cos(settings.normal_threshold_deg * 3.14159265f / 180.0f);
     const auto better = [take_max](float a, float b) { return take_max ? a > b : a < b; };
     parallel_for_rows(height, [&](int y) {
