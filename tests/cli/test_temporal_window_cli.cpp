@@ -6,6 +6,7 @@
 #include <iterator>
 #include <nlohmann/json.hpp>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "run_aaf.h"
@@ -67,6 +68,28 @@ fs::path static_sequence(const std::string &name) {
     return dir;
 }
 
+/// `method` on the sequence in `dir` (in.####.exr, references ref.####.exr),
+/// frames `frames`, filtered frame by frame and with --temporal-window 2:
+/// each one's errors, after checking that no frame of the window's is worse.
+std::pair<SequenceErrors, SequenceErrors> alone_and_window(const fs::path &dir, const std::string &method,
+                                                           const std::string &frames) {
+    const std::string input = quoted(dir / "in.####.exr");
+    const fs::path alone_out = dir / (method + "_alone.####.exr"),
+                   window_out = dir / (method + "_window.####.exr");
+    require_run("filter " + method + " " + input + " -o " + quoted(alone_out) + " --frames " + frames +
+                " --progress none");
+    require_run("filter " + method + " " + input + " -o " + quoted(window_out) + " --frames " + frames +
+                " --temporal-window 2 --progress none");
+    const SequenceErrors alone = compare_sequence(alone_out, dir / "ref.####.exr", frames);
+    const SequenceErrors window = compare_sequence(window_out, dir / "ref.####.exr", frames);
+    REQUIRE(window.rmse.size() == alone.rmse.size());
+    for (std::size_t f = 0; f < alone.rmse.size(); ++f) {
+        INFO("frame " << f + 1);
+        CHECK(window.rmse[f] <= alone.rmse[f]);
+    }
+    return {alone, window};
+}
+
 }  // namespace
 
 TEST_CASE(
@@ -76,22 +99,9 @@ TEST_CASE(
     const fs::path dir = static_sequence("temporal_window_static");
     for (const std::string method : {"aaf", "ratio"}) {
         INFO(method);
-        require_run("filter " + method + " " + quoted(dir / "in.####.exr") + " -o " +
-                    quoted(dir / (method + "_alone.####.exr")) + " --frames 1-16 --progress none");
-        require_run("filter " + method + " " + quoted(dir / "in.####.exr") + " -o " +
-                    quoted(dir / (method + "_window.####.exr")) +
-                    " --frames 1-16 --temporal-window 2 --progress none");
-        const SequenceErrors alone =
-            compare_sequence(dir / (method + "_alone.####.exr"), dir / "ref.####.exr", "1-16");
-        const SequenceErrors window =
-            compare_sequence(dir / (method + "_window.####.exr"), dir / "ref.####.exr", "1-16");
-        // Measured: 2.76x (aaf) and 2.23x (ratio) with K = 2 on this shot (scripts/temporal_study.sh).
+        const auto [alone, window] = alone_and_window(dir, method, "1-16");
+        // Measured: 2.75x (aaf) and 2.23x (ratio) with K = 2 on this shot (scripts/temporal_study.sh).
         CHECK(window.temporal_mean < alone.temporal_mean / (method == "aaf" ? 2.5 : 2.0));
-        REQUIRE(window.rmse.size() == alone.rmse.size());
-        for (std::size_t f = 0; f < alone.rmse.size(); ++f) {
-            INFO("frame " << f + 1);
-            CHECK(window.rmse[f] <= alone.rmse[f]);
-        }
     }
 }
 
@@ -136,17 +146,8 @@ TEST_CASE(
         quoted(dir / "in.####.exr"));
     require_run("render studio --width 96 --height 72 --spp 256 --frames 1-8 --aovs aaf --progress none -o " +
                 quoted(dir / "ref.####.exr"));
-    require_run("filter aaf " + quoted(dir / "in.####.exr") + " -o " + quoted(dir / "alone.####.exr") +
-                " --frames 1-8 --progress none");
-    require_run("filter aaf " + quoted(dir / "in.####.exr") + " -o " + quoted(dir / "window.####.exr") +
-                " --frames 1-8 --temporal-window 2 --progress none");
-    const SequenceErrors alone = compare_sequence(dir / "alone.####.exr", dir / "ref.####.exr", "1-8");
-    const SequenceErrors window = compare_sequence(dir / "window.####.exr", dir / "ref.####.exr", "1-8");
+    const auto [alone, window] = alone_and_window(dir, "aaf", "1-8");
     CHECK(window.temporal_mean < alone.temporal_mean);
-    for (std::size_t f = 0; f < alone.rmse.size(); ++f) {
-        INFO("frame " << f + 1);
-        CHECK(window.rmse[f] <= alone.rmse[f]);
-    }
 }
 
 TEST_CASE(
@@ -164,21 +165,8 @@ TEST_CASE(
                 "--progress none -o " + quoted(dir / "ref.####.exr"));
     for (const std::string method : {"aaf", "maaf6"}) {
         INFO(method);
-        require_run("filter " + method + " " + quoted(dir / "in.####.exr") + " -o " +
-                    quoted(dir / (method + "_alone.####.exr")) + " --frames 1-12 --progress none");
-        require_run("filter " + method + " " + quoted(dir / "in.####.exr") + " -o " +
-                    quoted(dir / (method + "_window.####.exr")) +
-                    " --frames 1-12 --temporal-window 2 --progress none");
-        const SequenceErrors alone =
-            compare_sequence(dir / (method + "_alone.####.exr"), dir / "ref.####.exr", "1-12");
-        const SequenceErrors window =
-            compare_sequence(dir / (method + "_window.####.exr"), dir / "ref.####.exr", "1-12");
+        const auto [alone, window] = alone_and_window(dir, method, "1-12");
         CHECK(window.temporal_mean < alone.temporal_mean);
-        REQUIRE(window.rmse.size() == alone.rmse.size());
-        for (std::size_t f = 0; f < alone.rmse.size(); ++f) {
-            INFO("frame " << f + 1);
-            CHECK(window.rmse[f] <= alone.rmse[f]);
-        }
     }
 }
 
