@@ -131,9 +131,13 @@ TEST_CASE("MAAF's error against a reference falls as samples are added", "[trace
         INFO(spp << " spp: MAAF rmse " << error << ", unfiltered "
                  << rmse(plane(aovs, "shadow.V"), reference));
         CHECK(error < previous);
-        // Measured 0.063, 0.046, 0.043 against 0.136, 0.051, 0.023 unfiltered: the filter's width does
-        // not shrink with the samples (no consistency scaling), so at 64 spp its bias dominates.
-        if (spp <= 16) CHECK(error < rmse(plane(aovs, "shadow.V"), reference));
+        // Measured 0.066, 0.035, 0.0226 against 0.136, 0.051, 0.0227 unfiltered. Past the first pass's
+        // 16 samples the bands widen with the samples (MaafParams::band_spp): at 64 spp on these large
+        // pixels the filter is about one pixel wide, so it adds no bias (with the render's bands it
+        // gave 1.9x the unfiltered error).
+        const double unfiltered = rmse(plane(aovs, "shadow.V"), reference);
+        if (spp <= 16) CHECK(error < unfiltered);
+        CHECK(error < 1.05 * unfiltered);
         previous = error;
     }
 }

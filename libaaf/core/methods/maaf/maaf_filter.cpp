@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <memory>
 #include <string>
 
 #include "aaf/core/kernels/gather.h"
@@ -51,6 +52,7 @@ void check_inputs(const MaafInputs &in, const LightPlane &light, const MaafParam
         check_size(in.normal[std::size_t(c)], width, height, "normal");
     }
     check_size(in.object_id, width, height, "object_id");
+    if (in.samples.valid()) check_size(in.samples, width, height, "spp");
 }
 
 /// True when the stored wedge is one maaf_components() accepts.
@@ -59,14 +61,69 @@ bool usable_wedge(float s_min, float s_max, float omega_x_max, float pixel_size)
            std::isfinite(omega_x_max) && pixel_size > 0 && std::isfinite(pixel_size);
 }
 
-MaafPixelKernel pixel_kernels(const MaafInputs &in, const MaafParams &params, int pairs, int x, int y) {
+/// How much pixel (x, y)'s bands widen for its samples (MaafParams::band_spp): 1 at or below band_spp.
+double band_widening(const MaafInputs &in, const MaafParams &params, int x, int y) {
+    if (!(params.band_spp > 0) || !in.samples.valid()) return 1.0;
+    const double samples = double(in.samples(x, y));
+    return std::isfinite(samples) && samples > params.band_spp ? std::sqrt(samples / params.band_spp) : 1.0;
+}
+
+/// What MaafParams::pair_weights needs, built once per filter.
+struct PairWeights {
+    MaafPairWeights kind = MaafPairWeights::Eq10;
+    std::unique_ptr<SampleSpectrum> spectrum;         ///< Light: the light's density's
+    std::shared_ptr<const MaafFittedWeights> fitted;  ///< Fitted: the table for the light's band
+
+    PairWeights(const MaafParams &params, int pairs) : kind(params.pair_weights) {
+        SampleDensity density = params.light_density;
+        if (density.half_width == 0) density.half_width = 2.0 / params.omega_y_max_rad_per_m;
+        if (kind == MaafPairWeights::Light) spectrum = std::make_unique<SampleSpectrum>(density);
+        if (kind == MaafPairWeights::Fitted && pairs > 1)
+            fitted = shared_fitted_weights(density, params.omega_y_max_rad_per_m, pairs, params.k,
+                                           MaafKernelForm::Maaf4D);
+    }
+
+    /// mu_p of each of `components` (pairs p = 0 ..) of a wedge of slopes s_min, s_max; `clipped`:
+    /// the pixel band lowered its Omega_y^max.
+    void apply(std::vector<MaafComponent> &components, double s_min, double s_max, bool clipped) const {
+        if (components.size() < 2) return;
+        switch (kind) {
+            case MaafPairWeights::Eq10:
+                return;
+            case MaafPairWeights::One:
+                for (MaafComponent &c : components) c.weight = 1.0;
+                return;
+            case MaafPairWeights::Light:
+                for (MaafComponent &c : components) c.weight *= (*spectrum)(c.centre_y);
+                return;
+            case MaafPairWeights::Fitted: {
+                if (clipped) return;  // the table is for the light's own band
+                double mu[kMaafMaxPairs];
+                fitted->weights(s_max > 0 ? s_min / s_max : 1.0, mu);
+                for (std::size_t p = 1; p < components.size(); ++p) components[p].weight = mu[p - 1];
+                return;
+            }
+        }
+    }
+};
+
+MaafPixelKernel pixel_kernels(const MaafInputs &in, const MaafParams &params, const PairWeights &weights,
+                              int pairs, int x, int y) {
     MaafPixelKernel k;
     const float s_min = in.s_min(x, y), s_max = in.s_max(x, y), omega_x_max = in.omega_x_max(x, y);
     const float pixel_size = in.pixel_size(x, y);
     if (in.object_id(x, y) == 0 || !usable_wedge(s_min, s_max, omega_x_max, pixel_size)) return k;
-    const std::vector<MaafComponent> components =
-        maaf_pair_components(s_min, s_max, omega_x_max, params.omega_y_max_rad_per_m, pairs);
-    for (int p = 0; p < pairs; ++p) {
+    // AAF Sec. 5.2's consistency: past band_spp samples both bands widen as the square root of the
+    // samples (the pixel band too, or a wedge it clips would keep its width), and the central filter
+    // alone is used: the offset pairs' phases were accumulated at the render's bands. Its other
+    // components keep weight 0 and radius 0.
+    const double widening = band_widening(in, params, x, y);
+    const int used = widening > 1 ? 1 : pairs;
+    const double band_x = widening * double(omega_x_max), band_y = widening * params.omega_y_max_rad_per_m;
+    std::vector<MaafComponent> components = maaf_pair_components(s_min, s_max, band_x, band_y, used);
+    weights.apply(components, s_min, s_max,
+                  maaf_partitioned_omega_y_max(s_min, s_max, band_x, band_y) < band_y);
+    for (int p = 0; p < used; ++p) {
         const MaafComponent &c = components[std::size_t(p)];
         // The Fourier Gaussian's std is k sigma_x^p (MaafParams::k; the paper's reading is k = 1).
         const double fourier_sigma = params.k * c.sigma_x;
@@ -115,6 +172,7 @@ void add_pair_sums(const std::vector<MaafPixelKernel> &kernels, int pu, int pv,
 /// object ids) and every pixel's component kernels (`kernels`, row-major).
 GatherGuides maaf_guides(const MaafInputs &in, const LightPlane &light, const MaafParams &params, int pairs,
                          std::vector<MaafPixelKernel> &kernels) {
+    const PairWeights weights(params, pairs);
     const int width = in.pixel_size.width, height = in.pixel_size.height;
     GatherGuides guides;
     guides.resize(width, height);
@@ -138,7 +196,7 @@ GatherGuides maaf_guides(const MaafInputs &in, const LightPlane &light, const Ma
             guides.normal_y[i] = unit.y;
             guides.normal_z[i] = unit.z;
             guides.object_id[i] = in.object_id(x, y);
-            kernels[i] = pixel_kernels(in, params, pairs, x, y);
+            kernels[i] = pixel_kernels(in, params, weights, pairs, x, y);
         }
     });
     return guides;
@@ -215,6 +273,7 @@ void MaafParams::validate() const {
         throw Error("MAAF normal threshold must lie in [0, 180] degrees");
     if (max_radius_px < 0) throw Error("MAAF maximum filter radius must be >= 0 pixels");
     if (!(k > 0) || !std::isfinite(k)) throw Error("MAAF width scale k must be positive and finite");
+    if (!(band_spp >= 0) || !std::isfinite(band_spp)) throw Error("MAAF band spp must be >= 0 and finite");
 }
 
 void maaf_filter(const MaafInputs &in, const LightPlane &light, const MaafParams &params, PlaneView out) {

@@ -29,6 +29,15 @@ const ParameterDeclarations<MaafParams> &maaf_parameters() {
                 "pairs", &P::pairs_used, {{"all", 0}, {"1", 1}},
                 "Filter pairs N per 2D subspace: all of the sums' (the tracer writes N = 3, 25 filters in "
                 "4D) or 1, the central filter alone (AAF)")
+            .choice(
+                "pair_weights", &P::pair_weights,
+                {{"eq10", MaafPairWeights::Eq10},
+                 {"one", MaafPairWeights::One},
+                 {"light", MaafPairWeights::Light},
+                 {"fitted", MaafPairWeights::Fitted}},
+                "The offset pairs' weights mu_p: eq10, MAAF Eq. 10 as printed; one, mu_p = 1; light, Eq. 10 "
+                "times the light's spectrum at the pair's y centre; fitted, fitted per slope ratio to the "
+                "light's spectrum along the wedge (measured: README beside the method)")
             .real("k", &P::k, "",
                   "Width scale: each component's Fourier-domain std is k times its half-width sigma_x^p (1 = "
                   "the paper's reading of MAAF Eq. 8-9; 3 = AAF's k, N = 1 then equals AAF's default filter)",
@@ -36,6 +45,13 @@ const ParameterDeclarations<MaafParams> &maaf_parameters() {
             .real("normal_threshold", &P::normal_threshold_deg, "degrees",
                   "Reject taps whose normal turns more (MAAF Sec. 6.2)", 0, 180)
             .integer("max_radius", &P::max_radius_px, "pixels", "Largest filter radius", 0, 1 << 16)
+            .real("band_spp", &P::band_spp, "spp",
+                  "Samples per pixel at which the light and pixel bands are the render's; past it (the spp "
+                  "input) they widen as sqrt(spp / band_spp) and the pixel gets the central filter, so the "
+                  "filter narrows as samples are added and converges to the reference (AAF Sec. 5.2's "
+                  "consistency; 16 = the tracer's first pass); 0 = the render's bands whatever the samples "
+                  "(the paper's fixed width, whose bias stays)",
+                  0)
             .choice("filter", &P::separable, {{"separable", true}, {"2d", false}},
                     "separable: two 1D passes per component pair (complex exponentials, as AAF Sec. 6 "
                     "separates); 2d: every tap of MAAF Eq. 21, to measure the approximation"));
@@ -66,6 +82,7 @@ class MaafMethod final : public Method {
             roles::MaafValueSums, roles::MaafUnoccludedSums, roles::MaafWedge, Role::Position, Role::Normal,
             Role::ObjectId,       Role::PixelSize,           Role::Unshadowed};
         info_.roles.optional = shadow_composition_roles();
+        info_.roles.optional.push_back(Role::SamplesPerPixel);  // the width follows the samples (band_spp)
         info_.roles.outputs = {Role::FilteredVisibility, Role::Beauty};
         info_.parameters = maaf_parameters().infos();
         info_.required_attributes = light_attribute_names();
@@ -99,7 +116,10 @@ class MaafMethod final : public Method {
         in.object_id = images.input(Role::ObjectId);
         in.pixel_size = images.input(Role::PixelSize);
         MaafParams params = maaf_parameters().read(parameters);
+        if (params.band_spp > 0 && images.has(Role::SamplesPerPixel))
+            in.samples = images.input(Role::SamplesPerPixel);
         params.omega_y_max_rad_per_m = double(header_value<float>(images, attr::kMaafOmegaYMax));
+        params.light_density = light_sample_density(read_light_attributes(images.attributes()));
         if (!(params.omega_y_max_rad_per_m > 0) || !std::isfinite(params.omega_y_max_rad_per_m))
             throw InputError("header attribute '" + std::string(attr::kMaafOmegaYMax) + "' must be positive");
         const PlaneView filtered = images.output(Role::FilteredVisibility);

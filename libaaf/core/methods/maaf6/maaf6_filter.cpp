@@ -239,6 +239,8 @@ class LayerFilter {
         f.offsets_used = std::any_of(f.pairs.begin() + 1, f.pairs.end(),
                                      [](const Maaf6Component &c) { return c.weight != 0; });
         if (!f.offsets_used) f.pairs.resize(1);
+        if (params_.pair_weights == Maaf6PairWeights::One && f.offsets_used)
+            for (Maaf6Component &c : f.pairs) c.weight = 1.0;
         if (params_.pair_weights == Maaf6PairWeights::Light && f.offsets_used)
             for (Maaf6Component &c : f.pairs)
                 c.weight *= maaf6_light_attenuation(c.centre_y, wedge.omega_y_max);

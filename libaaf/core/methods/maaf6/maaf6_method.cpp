@@ -30,14 +30,6 @@ T header_value(const MethodImages &images, const char *name) {
     return *value;
 }
 
-/// The direct layer's y: a point of the light seen along one of the receiver's tangent axes,
-/// which follow the light's; one density for both, of the light's geometric-mean half side.
-SampleDensity light_density(const LightPlane &light) {
-    const double half = 0.5 * std::sqrt(double(light.width_m) * double(light.height_m));
-    if (light.profile == LightProfile::Uniform) return {DensityShape::Uniform, half, 1.0};
-    return {DensityShape::TruncatedGaussian, half, double(light.sigma_m)};
-}
-
 /// The filter's parameters and the indirect layer's own band_spp.
 struct Maaf6Settings : Maaf6FilterParams {
     double indirect_band_spp = 128;
@@ -54,11 +46,13 @@ const ParameterDeclarations<Maaf6Settings> &maaf6_parameters() {
             .choice("pair_weights", &P::pair_weights,
                     {{"fitted", Maaf6PairWeights::Fitted},
                      {"eq10", Maaf6PairWeights::Eq10},
+                     {"one", Maaf6PairWeights::One},
                      {"light", Maaf6PairWeights::Light}},
                     "mu_p of the offset pairs: fitted: least squares so that the filter passes the sampling "
                     "density's spectrum along the wedge, as the light integral does (not in the paper; "
                     "measured better than MAAF Eq. 10 on room, see its README); eq10: MAAF Eq. 10, the "
-                    "paper's; light: MAAF Eq. 10 times the Gaussian light model's spectrum at the pair's y "
+                    "paper's; one: mu_p = 1; light: MAAF Eq. 10 times the Gaussian light model's spectrum at "
+                    "the pair's y "
                     "centre")
             .real("k", &P::k, "",
                   "Width scale: each component's Fourier std is its half-width divided by k (as `aaf filter "
@@ -212,7 +206,7 @@ class Maaf6Method final : public Method {
             layer.y_max = images.input(roles::Maaf6Wedge, spec.wedge_channel + 1);
             layer.omega_y_max = double(header_value<float>(images, spec.omega));
             layer.y_density =
-                l == 0 ? light_density(light) : SampleDensity{DensityShape::CosineLobe, 1.0, 1.0};
+                l == 0 ? light_sample_density(light) : SampleDensity{DensityShape::CosineLobe, 1.0, 1.0};
             if (!(layer.omega_y_max > 0) || !std::isfinite(layer.omega_y_max))
                 throw InputError("header attribute '" + std::string(spec.omega) +
                                  "' must be positive and finite");

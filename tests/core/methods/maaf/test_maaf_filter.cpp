@@ -31,6 +31,8 @@ struct FlatScene {
     std::vector<std::vector<float>> value_sums, unoccluded_sums;
     double light_band = 2.0;
     double light_side_scale = 1.0;  ///< the light grid's y in [-1/2, 1/2] times this, metres
+    std::vector<float> samples;     ///< the spp input; empty: none
+    double band_spp = MaafParams{}.band_spp;
 
     FlatScene(int w, int h) : width(w), height(h) {
         const std::size_t n = std::size_t(w) * std::size_t(h);
@@ -107,6 +109,7 @@ struct FlatScene {
         in.normal = {view(nx), view(ny), view(nz)};
         in.object_id = view(object_id);
         in.pixel_size = view(pixel_size);
+        if (!samples.empty()) in.samples = view(samples);
         return in;
     }
 
@@ -118,6 +121,7 @@ struct FlatScene {
         params.omega_y_max_rad_per_m = omega_y_max();
         params.pairs_used = pairs_used;
         params.normal_threshold_deg = normal_threshold;
+        params.band_spp = band_spp;
         std::vector<float> out(px.size(), -1.0f);
         maaf_filter(inputs(), light, params, plane_view(out.data(), width, height));
         return out;
@@ -439,5 +443,71 @@ TEST_CASE("Separable MAAF equals MAAF Eq. 21 over the full window when the wedge
             worst = std::max(worst, std::abs(separable[i] - full[i]));
         INFO("k = " << k);
         CHECK(worst <= 1e-4f);
+    }
+}
+
+TEST_CASE(
+    "MAAF follows the samples: past band_spp a pixel gets the central filter at bands widened by "
+    "sqrt(spp / band_spp)",
+    "[maaf][filter][consistency]") {
+    FlatScene scene(36, 28);
+    scene.set_wedge(0.3, 1.1);
+    std::mt19937 rng(17);
+    std::uniform_real_distribution<double> unit(0.0, 1.0);
+    scene.accumulate(
+        [&](int x, int, double y1, double) { return x + 10 * y1 + 4 * unit(rng) > 18 ? 1.0 : 0.0; }, 3);
+    const std::vector<float> render_bands = scene.run();
+    // At or below band_spp, or with band_spp 0 (the fixed width), the samples change nothing.
+    scene.samples.assign(scene.px.size(), 16.0f);
+    CHECK(scene.run() == render_bands);
+    scene.samples.assign(scene.px.size(), 64.0f);
+    scene.band_spp = 0;
+    CHECK(scene.run() == render_bands);
+    // 64 samples against 16: both bands twice as wide, N = 1. The same filter by hand: N = 1 on the
+    // same sums with the light band and every pixel band doubled, no samples.
+    scene.band_spp = 16;
+    const std::vector<float> widened = scene.run();
+    FlatScene by_hand = scene;
+    by_hand.samples.clear();
+    by_hand.light_band = 2 * scene.light_band;
+    for (float &omega : by_hand.omega_x_max) omega *= 2;
+    CHECK(widened == by_hand.run(1));
+    // The widened filter is narrower: closer to the pixels' own values than the render's bands are.
+    double change_widened = 0, change_render = 0;
+    for (std::size_t i = 0; i < widened.size(); ++i) {
+        const double own = scene.value_sums[0][i] / scene.unoccluded_sums[0][i];
+        change_widened += std::abs(widened[i] - own);
+        change_render += std::abs(render_bands[i] - own);
+    }
+    INFO("mean |filtered - own|: widened " << change_widened / double(widened.size()) << ", render's bands "
+                                           << change_render / double(widened.size()));
+    CHECK(change_widened < 0.8 * change_render);
+}
+
+TEST_CASE("MAAF's pair weights change only the offset pairs: with N = 1 every choice is the central filter",
+          "[maaf][filter]") {
+    FlatScene scene(30, 24);
+    scene.set_wedge(0.3, 1.1);
+    std::mt19937 rng(23);
+    std::uniform_real_distribution<double> unit(0.0, 1.0);
+    scene.accumulate(
+        [&](int x, int, double y1, double) { return x + 12 * y1 + 4 * unit(rng) > 15 ? 1.0 : 0.0; }, 3);
+    auto run = [&](MaafPairWeights weights, int pairs_used) {
+        MaafParams params;
+        params.omega_y_max_rad_per_m = scene.omega_y_max();
+        params.pairs_used = pairs_used;
+        params.pair_weights = weights;
+        params.light_density = light_sample_density(scene.light);
+        std::vector<float> out(scene.px.size(), -1.0f);
+        maaf_filter(scene.inputs(), scene.light, params, plane_view(out.data(), scene.width, scene.height));
+        return out;
+    };
+    const std::vector<float> eq10 = run(MaafPairWeights::Eq10, 0), central = run(MaafPairWeights::Eq10, 1);
+    for (MaafPairWeights weights : {MaafPairWeights::One, MaafPairWeights::Light, MaafPairWeights::Fitted}) {
+        INFO("pair weights " << int(weights));
+        CHECK(run(weights, 1) == central);
+        const std::vector<float> offsets = run(weights, 0);
+        CHECK(all_finite(offsets));
+        CHECK(offsets != eq10);
     }
 }

@@ -5,6 +5,7 @@
 
 #include "aaf/core/contract/light_plane.h"
 #include "aaf/core/contract/plane_view.h"
+#include "aaf/core/methods/maaf/maaf_fitted_weights.h"
 
 namespace aaf {
 
@@ -25,6 +26,17 @@ struct MaafInputs {
     std::array<ConstPlaneView, 3> normal;
     ConstPlaneView object_id;
     ConstPlaneView pixel_size;
+    /// Optional: the samples the sums hold per pixel (the `spp` role); with
+    /// it the filter follows them (MaafParams::band_spp).
+    ConstPlaneView samples;
+};
+
+/// The offset pairs' weights mu_p (the central's is 1).
+enum class MaafPairWeights {
+    Eq10,    ///< MAAF Eq. 10 as printed: a Gaussian over the whole wedge
+    One,     ///< mu_p = 1 (the paper's Table 2 accuracies match this reading)
+    Light,   ///< MAAF Eq. 10 times the light's spectrum at C_y^p (its realised density, not in the paper)
+    Fitted,  ///< MaafFittedWeights (MaafKernelForm::Maaf4D) with the light's density (not in the paper)
 };
 
 /// Parameters of the MAAF filter.
@@ -52,6 +64,21 @@ struct MaafParams {
     /// separation); false: every tap of the square window (MAAF Eq. 21
     /// directly, through gather_modulated), slower, to measure the approximation.
     bool separable = true;
+    /// The samples per pixel at which the bands are the render's (16: the
+    /// tracer's first pass). A pixel with n > band_spp samples (MaafInputs::
+    /// samples) has its light and pixel bands widened by sqrt(n / band_spp),
+    /// as AAF's mu grows with the square root of the samples (AAF Sec. 5.2),
+    /// and gets the central filter alone at the widened bands (the sums'
+    /// phases belong to the render's bands): the filter narrows as samples are
+    /// added and a converged render is left as it is. 0: the render's bands
+    /// whatever the samples (the paper's fixed width, whose bias stays).
+    double band_spp = 16;
+    /// The offset pairs' mu_p. Fitted: per pixel from its slope ratio s_min / s_max, where the wedge
+    /// keeps the light's band (a wedge the pixel band clips gets MAAF Eq. 10's).
+    MaafPairWeights pair_weights = MaafPairWeights::Eq10;
+    /// What the light's samples are drawn from along one axis (light_sample_density(); Light and
+    /// Fitted only; half_width 0: a uniform light of half width 2 / Omega_y^max).
+    SampleDensity light_density;
 
     /// Throws aaf::Error naming the first parameter out of range.
     void validate() const;
@@ -69,8 +96,9 @@ struct MaafParams {
 /// object or with a normal beyond the threshold are rejected. A pixel
 /// without a wedge, or whose normalising sum is not positive, falls back to
 /// the central filter alone, then to its unfiltered value; no NaN or Inf is
-/// written. Runs on the current oneTBB arena; thread-count independent.
-/// Throws aaf::Error on mismatched sizes or bad parameters.
+/// written. Pixels with more samples than MaafParams::band_spp get the
+/// central filter at bands widened to their samples. Runs on the current oneTBB arena; thread-count
+/// independent. Throws aaf::Error on mismatched sizes or bad parameters.
 void maaf_filter(const MaafInputs &inputs, const LightPlane &light, const MaafParams &params,
                  PlaneView filtered_visibility);
 

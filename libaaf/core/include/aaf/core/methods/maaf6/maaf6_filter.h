@@ -5,7 +5,7 @@
 
 #include "aaf/core/contract/light_plane.h"
 #include "aaf/core/contract/plane_view.h"
-#include "aaf/core/methods/maaf6/maaf_fitted_weights.h"
+#include "aaf/core/methods/maaf/maaf_fitted_weights.h"
 
 namespace aaf {
 
@@ -33,6 +33,7 @@ struct Maaf6SharedInputs {
 /// The offset pairs' weights mu_p.
 enum class Maaf6PairWeights {
     Eq10,    ///< MAAF Eq. 10, as the paper
+    One,     ///< mu_p = 1 (the paper's Table 2 accuracies match this reading)
     Light,   ///< MAAF Eq. 10 times maaf6_light_attenuation() at C_y^p (a Gaussian light model; not in the
              ///< paper)
     Fitted,  ///< MaafFittedWeights: fitted to the sampling density's spectrum along the wedge (not in the

@@ -1,4 +1,4 @@
-#include "aaf/core/methods/maaf6/maaf_fitted_weights.h"
+#include "aaf/core/methods/maaf/maaf_fitted_weights.h"
 
 #include <algorithm>
 #include <cmath>
@@ -104,8 +104,14 @@ double SampleSpectrum::operator()(double omega) const {
     return (1.0 - f) * table_[i] + f * table_[i + 1];
 }
 
+SampleDensity light_sample_density(const LightPlane &light) {
+    const double half = 0.5 * std::sqrt(double(light.width_m) * double(light.height_m));
+    if (light.profile == LightProfile::Uniform) return {DensityShape::Uniform, half, 1.0};
+    return {DensityShape::TruncatedGaussian, half, double(light.sigma_m)};
+}
+
 std::vector<double> maaf_fit_pair_weights(const SampleSpectrum &phi, double omega_max, double t, int pairs,
-                                          double k) {
+                                          double k, MaafKernelForm form) {
     if (pairs < 2 || pairs > 8) throw Error("MAAF fitted weights: between 2 and 8 pairs");
     if (!(omega_max > 0) || !std::isfinite(omega_max) || !(k > 0) || !std::isfinite(k))
         throw Error("MAAF fitted weights: the band and k must be positive and finite");
@@ -116,10 +122,12 @@ std::vector<double> maaf_fit_pair_weights(const SampleSpectrum &phi, double omeg
         maaf_pair_components(1.0, s_max, std::numeric_limits<double>::infinity(), omega_max, pairs);
     const int n = pairs - 1;
     std::vector<double> a(static_cast<std::size_t>(pairs)), dc(static_cast<std::size_t>(pairs));
+    const bool maaf6 = form == MaafKernelForm::Maaf6;
     for (int p = 0; p < pairs; ++p) {
-        a[std::size_t(p)] = k / c[std::size_t(p)].sigma_x;  // primal std (maaf6_x_kernel)
+        const double sigma_x = c[std::size_t(p)].sigma_x;
+        a[std::size_t(p)] = maaf6 ? k / sigma_x : 1.0 / (k * sigma_x);  // primal std (MaafKernelForm)
         const double r = c[std::size_t(p)].centre_x * a[std::size_t(p)];
-        dc[std::size_t(p)] = std::exp(-0.5 * r * r);  // e_p, the pair's DC correction
+        dc[std::size_t(p)] = maaf6 ? std::exp(-0.5 * r * r) : 0.0;  // e_p, the pair's DC correction
     }
     std::vector<double> normal(static_cast<std::size_t>(n * n), 0.0), rhs(static_cast<std::size_t>(n), 0.0),
         basis(static_cast<std::size_t>(n));
@@ -139,9 +147,9 @@ std::vector<double> maaf_fit_pair_weights(const SampleSpectrum &phi, double omeg
                 const double hi = std::exp(-0.5 * ((w + cp.centre_x) * ap) * ((w + cp.centre_x) * ap));
                 const double mid = std::exp(-0.5 * (w * ap) * (w * ap));
                 const double phi_lo = phi(w * s - cp.centre_y), phi_hi = phi(w * s + cp.centre_y);
+                const double gain = maaf6 ? ap / a[0] : 1.0;  // the component's Fourier peak, central's 1
                 basis[std::size_t(p - 1)] =
-                    (ap / a[0]) * (lo * phi_lo + hi * phi_hi - dc[std::size_t(p)] * mid * (phi_lo + phi_hi)) /
-                    w;
+                    gain * (lo * phi_lo + hi * phi_hi - dc[std::size_t(p)] * mid * (phi_lo + phi_hi)) / w;
             }
             for (int p = 0; p < n; ++p) {
                 rhs[std::size_t(p)] -= basis[std::size_t(p)] * residual;
@@ -157,7 +165,8 @@ std::vector<double> maaf_fit_pair_weights(const SampleSpectrum &phi, double omeg
     return solve(normal, rhs, n);
 }
 
-MaafFittedWeights::MaafFittedWeights(const SampleDensity &density, double omega_max, int pairs, double k)
+MaafFittedWeights::MaafFittedWeights(const SampleDensity &density, double omega_max, int pairs, double k,
+                                     MaafKernelForm form)
     : pairs_(pairs) {
     if (!(omega_max > 0) || !std::isfinite(omega_max))
         throw Error("MAAF fitted weights: the band must be positive and finite");
@@ -168,7 +177,7 @@ MaafFittedWeights::MaafFittedWeights(const SampleDensity &density, double omega_
     table_.resize(kRatioNodes * static_cast<std::size_t>(std::max(n, 0)));
     for (int ti = 0; ti < kRatioNodes; ++ti) {
         const std::vector<double> mu =
-            maaf_fit_pair_weights(phi, omega_max, double(ti) / (kRatioNodes - 1), pairs, k);
+            maaf_fit_pair_weights(phi, omega_max, double(ti) / (kRatioNodes - 1), pairs, k, form);
         std::copy(mu.begin(), mu.end(), table_.begin() + std::ptrdiff_t(ti * n));
     }
 }
@@ -183,8 +192,8 @@ void MaafFittedWeights::weights(double t, double *mu) const {
 }
 
 std::shared_ptr<const MaafFittedWeights> shared_fitted_weights(const SampleDensity &density, double omega_max,
-                                                               int pairs, double k) {
-    using Key = std::tuple<DensityShape, double, double, double, int, double>;
+                                                               int pairs, double k, MaafKernelForm form) {
+    using Key = std::tuple<DensityShape, double, double, double, int, double, MaafKernelForm>;
     struct Entry {
         Key key;
         std::shared_ptr<const MaafFittedWeights> table;
@@ -192,7 +201,7 @@ std::shared_ptr<const MaafFittedWeights> shared_fitted_weights(const SampleDensi
     constexpr std::size_t kKept = 32;
     static std::mutex mutex;
     static std::deque<Entry> kept;  // oldest first
-    const Key key{density.shape, density.half_width, density.sigma, omega_max, pairs, k};
+    const Key key{density.shape, density.half_width, density.sigma, omega_max, pairs, k, form};
     const auto find = [&]() -> std::shared_ptr<const MaafFittedWeights> {
         for (const Entry &entry : kept)
             if (entry.key == key) return entry.table;
@@ -204,7 +213,7 @@ std::shared_ptr<const MaafFittedWeights> shared_fitted_weights(const SampleDensi
     }
     // Built outside the lock: other layers and callers are not held up. Two
     // callers may build the same table at once; both results are equal.
-    auto built = std::make_shared<const MaafFittedWeights>(density, omega_max, pairs, k);
+    auto built = std::make_shared<const MaafFittedWeights>(density, omega_max, pairs, k, form);
     const std::lock_guard<std::mutex> lock(mutex);
     if (auto table = find()) return table;
     if (kept.size() == kKept) kept.pop_front();

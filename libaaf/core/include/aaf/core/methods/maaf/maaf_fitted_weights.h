@@ -3,6 +3,8 @@
 #include <memory>
 #include <vector>
 
+#include "aaf/core/contract/light_plane.h"
+
 namespace aaf {
 
 /// The distribution the samples of one MAAF coordinate (y on the light, y as
@@ -26,6 +28,11 @@ struct SampleDensity {
     double sigma = 1;  ///< TruncatedGaussian only
 };
 
+/// A light's y seen along one of its axes (or a receiver's tangent axis that
+/// follows them): one density for both axes, of the light's geometric-mean
+/// half side; Uniform or TruncatedGaussian as its emission profile.
+SampleDensity light_sample_density(const LightPlane &light);
+
 /// The density's characteristic function phi(omega) = E[cos(omega y)]
 /// (phi(0) = 1, even): sin(w h) / (w h) for Uniform; 2 J1(w h) / (w h) for
 /// Semicircle; |w| K1(|w|) for CosineLobe (the marginal 1 / (2 (1 + y^2)^1.5)
@@ -44,6 +51,16 @@ class SampleSpectrum {
     SampleDensity density_;
     double table_step_ = 0;
     std::vector<double> table_;  ///< exact(i * table_step_)
+};
+
+/// How a filter realises its components along x, which the fit matches.
+enum class MaafKernelForm {
+    /// maaf6_x_kernel(): primal std a_p = k / sigma_x^p, each pair made zero-mean (e_p).
+    Maaf6,
+    /// maaf_filter() (4D): primal std a_p = 1 / (k sigma_x^p) weighted by sigma_x^p (MAAF Eq. 21), so
+    /// every component's Fourier peak is mu_p times the central's (the a_p / a_0 below is 1), and
+    /// no DC correction (e_p = 0).
+    Maaf4D,
 };
 
 /// Pair weights mu_1 .. mu_{N-1} fitted so that the maaf6 filter's response
@@ -70,14 +87,16 @@ class SampleSpectrum {
 /// [s_min / s_max, 1] (uniform over the wedge's area at each Omega_y, as
 /// MAAF Eq. 14 weighs it), W over (0, 4 Omega_y^max / s_min]. Everything scales with
 /// s_min and Omega_y^max, so the weights depend only on t = s_min / s_max,
-/// q = (the density's scale) x Omega_y^max, N and k.
+/// q = (the density's scale) x Omega_y^max, N and k. The 4D filter is fitted
+/// alike per light axis, with its own kernel form (MaafKernelForm::Maaf4D).
 class MaafFittedWeights {
   public:
     /// A table over t in [0, 1] (33 nodes) for a layer whose density is
     /// `density` (half_width 0: 2 / omega_max) and whose band is omega_max (per
     /// y unit): q = density scale x omega_max. pairs: N (2 .. 8); k: as Maaf6FilterParams::k. Throws
     /// aaf::Error on non-positive or non-finite arguments.
-    MaafFittedWeights(const SampleDensity &density, double omega_max, int pairs, double k);
+    MaafFittedWeights(const SampleDensity &density, double omega_max, int pairs, double k,
+                      MaafKernelForm form = MaafKernelForm::Maaf6);
 
     /// mu_1 .. mu_{N-1} into mu[0 .. N-2] for a wedge of slope ratio t =
     /// s_min / s_max (clamped to [0, 1]), interpolated linearly in t.
@@ -98,12 +117,13 @@ class MaafFittedWeights {
 /// has the bits a fresh one would. The last 32 argument sets are kept;
 /// thread-safe. Throws as the constructor.
 std::shared_ptr<const MaafFittedWeights> shared_fitted_weights(const SampleDensity &density, double omega_max,
-                                                               int pairs, double k);
+                                                               int pairs, double k,
+                                                               MaafKernelForm form = MaafKernelForm::Maaf6);
 
 /// One fit (MaafFittedWeights' "The fit"): mu_1 .. mu_{N-1} for slope ratio
 /// t in [0, 1], the density's spectrum `spectrum` and the band omega_max it is
 /// partitioned with (per y unit). Exposed for tests.
 std::vector<double> maaf_fit_pair_weights(const SampleSpectrum &spectrum, double omega_max, double t,
-                                          int pairs, double k);
+                                          int pairs, double k, MaafKernelForm form = MaafKernelForm::Maaf6);
 
 }  // namespace aaf

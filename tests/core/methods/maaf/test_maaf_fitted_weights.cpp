@@ -6,7 +6,7 @@
 #include <thread>
 #include <vector>
 
-#include "aaf/core/methods/maaf6/maaf_fitted_weights.h"
+#include "aaf/core/methods/maaf/maaf_fitted_weights.h"
 #include "aaf/core/util/error.h"
 
 using namespace aaf;
