@@ -167,23 +167,34 @@ void Maaf6SampleSide::accumulate(double y1, double u1, double y2, double u2, con
         }
 }
 
-void maaf6_x_kernel(const std::vector<Maaf6Component> &pairs, double k, double dx_m, double *kernel) {
+Maaf6XKernel::Maaf6XKernel(const std::vector<Maaf6Component> &pairs, double k) : k_(k) {
     for (std::size_t p = 0; p < pairs.size(); ++p) {
         const Maaf6Component &c = pairs[p];
+        // The DC of cos(C_x dx) g(dx; k / sigma_x): the pair's kernel is made zero-mean (see maaf6.h).
+        const double dc_ratio = c.sigma_x > 0 ? c.centre_x * k / c.sigma_x : 0.0;
+        const double dc = p > 0 && c.sigma_x > 0 ? std::exp(-0.5 * dc_ratio * dc_ratio) : 0.0;
+        pairs_.push_back({c.sigma_x, c.centre_x, c.weight, dc});
+    }
+}
+
+void Maaf6XKernel::operator()(double dx_m, double *kernel) const {
+    for (std::size_t p = 0; p < pairs_.size(); ++p) {
+        const Pair &c = pairs_[p];
         // Primal std k / sigma_x metres; sigma_x = 0 would be an infinitely wide kernel: constant.
-        const double t = dx_m * c.sigma_x / k;
+        const double t = dx_m * c.sigma_x / k_;
         const double envelope = std::exp(-0.5 * t * t);
         if (p == 0) {
             kernel[0] = envelope;  // MAAF Eq. 22, the central term
             continue;
         }
         const double phase = c.centre_x * dx_m;
-        // The DC of cos(C_x dx) g(dx; k / sigma_x): the pair's kernel is made zero-mean (see maaf6.h).
-        const double dc_ratio = c.sigma_x > 0 ? c.centre_x * k / c.sigma_x : 0.0;
-        const double dc = c.sigma_x > 0 ? std::exp(-0.5 * dc_ratio * dc_ratio) : 0.0;
-        kernel[2 * p - 1] = 2.0 * c.weight * (std::cos(phase) - dc) * envelope;  // MAAF Eq. 13, cos x cos
-        kernel[2 * p] = -2.0 * c.weight * std::sin(phase) * envelope;            // MAAF Eq. 13, - sin x sin
+        kernel[2 * p - 1] = 2.0 * c.weight * (std::cos(phase) - c.dc) * envelope;  // MAAF Eq. 13, cos x cos
+        kernel[2 * p] = -2.0 * c.weight * std::sin(phase) * envelope;              // MAAF Eq. 13, - sin x sin
     }
+}
+
+void maaf6_x_kernel(const std::vector<Maaf6Component> &pairs, double k, double dx_m, double *kernel) {
+    Maaf6XKernel(pairs, k)(dx_m, kernel);
 }
 
 }  // namespace aaf

@@ -140,8 +140,9 @@ void check_inputs(const Maaf6LayerInputs &layer, const Maaf6SharedInputs &shared
 
 /// What a filtered pixel's taps share: its components, its frame and windows.
 struct PixelFilter {
-    std::vector<Maaf6Component> pairs;         ///< only the central one where the offsets weigh 0
-    std::vector<Maaf6Component> axis_aligned;  ///< N = 1's (MYRD14's), beside the partition
+    std::vector<Maaf6Component> pairs;             ///< only the central one where the offsets weigh 0
+    std::vector<Maaf6Component> axis_aligned;      ///< N = 1's (MYRD14's), beside the partition
+    Maaf6XKernel x_kernel, axis_aligned_x_kernel;  ///< their x kernels (maaf6_x_kernel)
     bool offsets_used = false;
     int pixel_n = 1;    ///< the channels per axis gathered: 2N - 1, or 1 without offsets
     Vec3 p, n, t1, t2;  ///< the pixel's position, unit normal and tangent frame
@@ -274,6 +275,8 @@ class LayerFilter {
         f.axis_aligned_std_m =
             f.offsets_used && f.axis_aligned[0].sigma_x > 0 ? params_.k / f.axis_aligned[0].sigma_x : 1e30;
         f.axis_aligned_r = window_radius(shared_, params_, x, y, f.axis_aligned_std_m);
+        f.x_kernel = Maaf6XKernel(f.pairs, params_.k);
+        if (f.offsets_used) f.axis_aligned_x_kernel = Maaf6XKernel(f.axis_aligned, params_.k);
         f.mass_all = f.offsets_used
                          ? window_envelope(f.std_m / std::max(1e-12, double(shared_.pixel_size(x, y))), f.r,
                                            envelope_px)
@@ -289,8 +292,8 @@ class LayerFilter {
         // spectrum at (Omega_x, -Omega_y, -Omega_u), and our y, u axes point the way
         // that puts the wedge at positive slopes (README.md beside this file, "Filter").
         const Vec3 d = read3(shared_.position, tx, ty) - f.p;
-        maaf6_x_kernel(f.pairs, params_.k, double(dot(d, f.t1)), k1);
-        maaf6_x_kernel(f.pairs, params_.k, double(dot(d, f.t2)), k2);
+        f.x_kernel(double(dot(d, f.t1)), k1);
+        f.x_kernel(double(dot(d, f.t2)), k2);
         // Off the tangent plane (a step in depth, another surface of the same
         // normal), the central Gaussian of that distance: AAF's world distance.
         const double off_plane = double(dot(d, f.n)) / f.std_m;
@@ -309,8 +312,8 @@ class LayerFilter {
                 envelope_px[std::size_t(std::abs(tx - x))] * envelope_px[std::size_t(std::abs(ty - y))];
             if (std::abs(tx - x) <= f.axis_aligned_r && std::abs(ty - y) <= f.axis_aligned_r) {
                 double a1, a2;  // the steps of the gather below, for N = 1
-                maaf6_x_kernel(f.axis_aligned, params_.k, double(dot(d, f.t1)), &a1);
-                maaf6_x_kernel(f.axis_aligned, params_.k, double(dot(d, f.t2)), &a2);
+                f.axis_aligned_x_kernel(double(dot(d, f.t1)), &a1);
+                f.axis_aligned_x_kernel(double(dot(d, f.t2)), &a2);
                 const double off = double(dot(d, f.n)) / f.axis_aligned_std_m;
                 a1 *= std::exp(-0.5 * off * off) / double(count);
                 const double kernel = a1 * a2;

@@ -171,6 +171,23 @@ class Maaf6SampleSide {
 /// g(t; s) = exp(-t^2 / (2 s^2)); k scales every Fourier std (as `aaf filter maaf --k`).
 void maaf6_x_kernel(const std::vector<Maaf6Component> &pairs, double k, double dx_m, double *kernel);
 
+/// maaf6_x_kernel() for one pixel's components, evaluated at many
+/// displacements: what does not depend on the displacement (each pair's DC
+/// correction e_p) is computed once. The same bits as maaf6_x_kernel().
+class Maaf6XKernel {
+  public:
+    Maaf6XKernel() = default;
+    Maaf6XKernel(const std::vector<Maaf6Component> &pairs, double k);
+    void operator()(double dx_m, double *kernel) const;
+
+  private:
+    struct Pair {
+        double sigma_x, centre_x, weight, dc;
+    };
+    std::vector<Pair> pairs_;
+    double k_ = 1;
+};
+
 }  // namespace aaf
 
 namespace aaf {
