@@ -62,6 +62,34 @@ oiiotool "$work/flicker_alone.exr" "$work/flicker_window.exr" --mosaic:pad=2 2x1
   -o "$methods/aaf/pictures/grids_flicker.png"
 echo "wrote libaaf/core/methods/aaf/pictures/grids_flicker.png"
 
+# AAF on an animated sequence (testdata/sequences/crossing.json: a board's
+# shadow sweeps over a box on a still camera), 9 spp: frames 3, 6, 9, 12 as
+# columns (the lower part of the frame, twice the size); rows the input, each
+# frame filtered alone, with --temporal-window 2, and a 256 spp reference.
+# The window follows the motion layer: no ghost of the moving shadow.
+crossing="$root/testdata/sequences/crossing.json"
+"$aaf" render "$crossing" --width 128 --height 96 --spp 9 --frames 1-12 --aovs aaf,motion \
+  -o "$work/cross.####.exr" "${quiet[@]}"
+"$aaf" render "$crossing" --width 128 --height 96 --spp 256 --frames 3,6,9,12 --aovs aaf \
+  -o "$work/cross_ref.####.exr" "${quiet[@]}"
+"$aaf" filter aaf "$work/cross.####.exr" -o "$work/cross_alone.####.exr" --frames 1-12 "${quiet[@]}"
+"$aaf" filter aaf "$work/cross.####.exr" -o "$work/cross_window.####.exr" --frames 1-12 \
+  --temporal-window 2 "${quiet[@]}"
+rows=()
+for row in cross cross_alone cross_window cross_ref; do
+  cells=()
+  for frame in 0003 0006 0009 0012; do
+    "$aaf" preview "$work/$row.$frame.exr" --channels R G B -o "$work/${row}_$frame.png" > /dev/null
+    # The box's path through the shadow, twice the size.
+    oiiotool "$work/${row}_$frame.png" --cut 96x48+16+48 --resize:filter=box 192x96 -o "$work/${row}_${frame}_cut.png"
+    cells+=("$work/${row}_${frame}_cut.png")
+  done
+  oiiotool "${cells[@]}" --mosaic:pad=2 4x1 -o "$work/row_$row.png"
+  rows+=("$work/row_$row.png")
+done
+oiiotool "${rows[@]}" --mosaic:pad=2 1x4 -d uint8 -o "$methods/aaf/pictures/crossing_strip.png"
+echo "wrote libaaf/core/methods/aaf/pictures/crossing_strip.png"
+
 # The gaussian baseline (grids): the same 9 spp, one screen-space width.
 "$aaf" filter gaussian "$work/grids.exr" -o "$work/grids_gaussian.exr" "${quiet[@]}"
 strip "$methods/gaussian/pictures/grids.png" 160x120+80+60 "$work/grids.exr:R,G,B" \
