@@ -4,6 +4,7 @@
 #include <tbb/global_control.h>
 #include <tbb/task_arena.h>
 
+#include <algorithm>
 #include <catch2/catch.hpp>
 #include <cmath>
 #include <string>
@@ -231,4 +232,36 @@ TEST_CASE("maaf6: shadows alone and defocus alone are brought closer to their re
             CHECK(rmse(filtered(noisy, pairs), reference) < 0.97 * unfiltered);
         }
     }
+}
+
+TEST_CASE("maaf6: the vector filter is the scalar double-precision filter to float rounding", "[maaf6]") {
+    // The default (--filter vector: each tap for a vector of centres, in float with polynomial exp and
+    // sin/cos) against the one-centre-at-a-time double loop it replaced (--filter scalar, the same bits as
+    // before), on every effect together and with a narrower k (more pixels keep the partition), N = 3
+    // and N = 1. Measured: largest difference 4e-6 on values up to 2 (room, 320x240, 16 spp).
+    const AovSet render = render_room("all", 16, 3, 96, 72);
+    const Method &method = find_method("maaf6");
+    for (const double k : {1.0, 0.5})
+        for (const char *pairs : {"all", "1"}) {
+            ParameterSet parameters = method.default_parameters();
+            parameters.set("k", k);
+            parameters.set("pairs", std::string(pairs));
+            const AovSet vector = filter_aovs(method, render, ChannelMap{}, parameters);
+            parameters.set("filter", std::string("scalar"));
+            const AovSet scalar = filter_aovs(method, render, ChannelMap{}, parameters);
+            double worst = 0, largest = 0;
+            for (const char *name : {"R", "G", "B", "maaf6.direct.R", "maaf6.indirect.G"}) {
+                const ConstPlaneView v = vector.channel(name), s = scalar.channel(name);
+                for (int y = 0; y < render.height(); ++y)
+                    for (int x = 0; x < render.width(); ++x) {
+                        worst = std::max(worst, std::abs(double(v(x, y)) - double(s(x, y))) /
+                                                    (1.0 + std::abs(double(s(x, y)))));
+                        largest = std::max(largest, std::abs(double(s(x, y))));
+                    }
+            }
+            INFO("k " << k << ", pairs " << pairs << ": largest difference relative to 1 + |value| " << worst
+                      << " (values up to " << largest << ")");
+            CHECK(largest > 0.1);
+            CHECK(worst < 2e-5);
+        }
 }

@@ -2,11 +2,15 @@
 
 #include <algorithm>
 #include <cmath>
+#include <deque>
+#include <limits>
 #include <memory>
+#include <optional>
 #include <string>
 
 #include "aaf/core/methods/maaf/maaf_accumulation.h"
 #include "aaf/core/methods/maaf6/maaf6_components.h"
+#include "aaf/core/methods/maaf6/maaf6_rows.h"
 #include "aaf/core/util/error.h"
 #include "aaf/core/util/parallel.h"
 
@@ -173,6 +177,7 @@ class LayerFilter {
           stored_n_(2 * params.stored_pairs - 1),
           used_n_(2 * params.pairs_used - 1),
           cos_threshold_(std::cos(double(params.normal_threshold_deg) * kPi / 180.0)) {
+        if (params.vectorised && params.stored_pairs == 3) prepare_taps();
         // The fitted pair weights' tables (MaafFittedWeights): the y-wedge's and the lens wedge's.
         if (params.pair_weights == Maaf6PairWeights::Fitted && params.pairs_used > 1) {
             const int n = params.pairs_used;
@@ -184,51 +189,135 @@ class LayerFilter {
 
     /// Filters row y into `out`; its buffers are the row's own (rows run in parallel).
     void row(int y, const std::array<PlaneView, 3> &out) const {
-        const int width = shared_.object_id.width, height = shared_.object_id.height;
-        std::vector<double> k1(static_cast<std::size_t>(used_n_)), k2(static_cast<std::size_t>(used_n_));
+        const int width = shared_.object_id.width;
+        const int padded =
+            (width + detail::kMaaf6RowPadding - 1) / detail::kMaaf6RowPadding * detail::kMaaf6RowPadding;
+        std::vector<std::optional<PixelFilter>> filters(static_cast<std::size_t>(width));
         std::vector<double> envelope_px;  // the central envelope per pixel offset, for the window's mass
+        std::vector<float> params;
+        if (taps_) {
+            params.assign(std::size_t(detail::kCentreFieldCount) * std::size_t(padded), 0.0f);
+            std::fill_n(params.begin() + std::ptrdiff_t(detail::kCentreRadius) * padded, padded, -1.0f);
+        }
         for (int x = 0; x < width; ++x) {
-            const float own_count = shared_.samples(x, y);
-            auto own_mean = [&](int c) {
-                return own_count > 0 ? layer_.sums[std::size_t(c)](x, y) / own_count : 0.0f;
-            };
             Maaf6Wedge wedge;
             // No wedge to filter along (a pinhole without y-wedge, or the focal-plane box):
             // the pixel band is the pixel itself; MAAF Sec. 6.2 adds samples there instead.
             if (shared_.object_id(x, y) == 0 || !pixel_wedge(layer_, shared_, params_, x, y, wedge)) {
-                for (int c = 0; c < 3; ++c) out[std::size_t(c)](x, y) = own_mean(c);
+                for (int c = 0; c < 3; ++c) out[std::size_t(c)](x, y) = own_mean(x, y, c);
                 continue;
             }
-            const PixelFilter f = pixel_filter(wedge, x, y, envelope_px);
-            TapSums sums;
-            for (int ty = std::max(0, y - f.r); ty <= std::min(height - 1, y + f.r); ++ty)
-                for (int tx = std::max(0, x - f.r); tx <= std::min(width - 1, x + f.r); ++tx)
-                    if (tap_accepted(shared_, f.n, cos_threshold_, tx, ty))
-                        add_tap(f, x, y, tx, ty, envelope_px, k1.data(), k2.data(), sums);
-            // The filtered ratio times the pixel's own mean weight (AAF's r(x) V(x) factoring).
-            const double own_weight =
-                own_count > 0 ? double(layer_.weights[0](x, y)) / double(own_count) : 0.0;
-            const double unoccluded_mean =
-                sums.unoccluded_den > 0 ? sums.unoccluded / sums.unoccluded_den : own_weight;
-            // The offset components can cancel most of the normalisation: below a tenth of the
-            // central term's, fall back to the central term rather than amplify noise.
-            const bool partition_kept = f.offsets_used && sums.mass_kept >= kMinWindowMass * f.mass_all;
-            for (int col = 0; col < 3; ++col) {
-                double v = f.offsets_used && !partition_kept
-                               ? (sums.den1 > 1e-12 ? unoccluded_mean * sums.num1[col] / sums.den1
-                                                    : double(own_mean(col)))
-                           : sums.den > 0.1 * sums.den0 && sums.den0 > 1e-12
-                               ? unoccluded_mean * sums.num[col] / sums.den
-                           : sums.den0 > 1e-12 ? unoccluded_mean * sums.num0[col] / sums.den0
-                                               : double(own_mean(col));
-                if (!std::isfinite(v)) v = double(own_mean(col));
-                v = std::max(0.0, v);  // radiance is not negative; the offset kernels' ringing can be
-                out[std::size_t(col)](x, y) = float(v);
-            }
+            filters[std::size_t(x)] = pixel_filter(wedge, x, y, envelope_px);
+            if (taps_) centre_params(*filters[std::size_t(x)], x, y, params.data(), std::size_t(padded));
+        }
+        std::vector<float> vector_sums;
+        if (taps_) {
+            vector_sums.resize(std::size_t(detail::kSumFieldCount) * std::size_t(padded));
+            detail::maaf6_row_sums(*taps_, y, padded, params.data(), std::size_t(padded), vector_sums.data());
+        }
+        for (int x = 0; x < width; ++x) {
+            if (!filters[std::size_t(x)]) continue;
+            const PixelFilter &f = *filters[std::size_t(x)];
+            const TapSums sums =
+                taps_ ? lane_sums(vector_sums, std::size_t(padded), x) : scalar_sums(f, x, y, envelope_px);
+            finish(f, sums, x, y, out);
         }
     }
 
   private:
+    float own_mean(int x, int y, int c) const {
+        const float own_count = shared_.samples(x, y);
+        return own_count > 0 ? layer_.sums[std::size_t(c)](x, y) / own_count : 0.0f;
+    }
+
+    /// Pixel (x, y)'s sums over its window, one tap at a time in double (Maaf6FilterParams::vectorised
+    /// false).
+    TapSums scalar_sums(const PixelFilter &f, int x, int y, std::vector<double> &envelope_px) const {
+        const int width = shared_.object_id.width, height = shared_.object_id.height;
+        if (f.offsets_used)  // the central envelope per pixel offset (pixel_filter() computed it for the last
+                             // pixel)
+            window_envelope(f.std_m / std::max(1e-12, double(shared_.pixel_size(x, y))), f.r, envelope_px);
+        double k1[kMaafMaxPairs * 2], k2[kMaafMaxPairs * 2];
+        TapSums sums;
+        for (int ty = std::max(0, y - f.r); ty <= std::min(height - 1, y + f.r); ++ty)
+            for (int tx = std::max(0, x - f.r); tx <= std::min(width - 1, x + f.r); ++tx)
+                if (tap_accepted(shared_, f.n, cos_threshold_, tx, ty))
+                    add_tap(f, x, y, tx, ty, envelope_px, k1, k2, sums);
+        return sums;
+    }
+
+    /// Pixel x's sums from maaf6_row_sums().
+    static TapSums lane_sums(const std::vector<float> &sums, std::size_t stride, int x) {
+        const auto at = [&](int field) { return double(sums[std::size_t(field) * stride + std::size_t(x)]); };
+        TapSums s;
+        for (int col = 0; col < 3; ++col) {
+            s.num[col] = at(detail::kSumNumR + col);
+            s.num0[col] = at(detail::kSumNum0R + col);
+            s.num1[col] = at(detail::kSumNum1R + col);
+        }
+        s.den = at(detail::kSumDen);
+        s.den0 = at(detail::kSumDen0);
+        s.den1 = at(detail::kSumDen1);
+        s.unoccluded = at(detail::kSumUnoccluded);
+        s.unoccluded_den = at(detail::kSumUnoccludedDen);
+        s.mass_kept = at(detail::kSumMassKept);
+        return s;
+    }
+
+    /// Pixel x's filter as maaf6_row_sums() reads it (detail::Maaf6CentreField).
+    void centre_params(const PixelFilter &f, int x, int y, float *params, std::size_t stride) const {
+        const auto set = [&](int field, double value) {
+            params[std::size_t(field) * stride + std::size_t(x)] = float(value);
+        };
+        const Vec3 frame[4] = {f.p, f.n, f.t1, f.t2};
+        for (int v = 0; v < 4; ++v) {
+            set(detail::kCentrePx + 3 * v, frame[v].x);
+            set(detail::kCentrePx + 3 * v + 1, frame[v].y);
+            set(detail::kCentrePx + 3 * v + 2, frame[v].z);
+        }
+        const double k = params_.k;
+        for (std::size_t p = 0; p < f.pairs.size(); ++p) {
+            const Maaf6Component &c = f.pairs[p];
+            set(detail::kCentreScale0 + int(p), c.sigma_x / k);
+            if (p == 0) continue;
+            set(detail::kCentreOmega1 + int(p) - 1, c.centre_x);
+            set(detail::kCentreGain1 + int(p) - 1, 2.0 * c.weight);
+            const double dc_ratio = c.sigma_x > 0 ? c.centre_x * k / c.sigma_x : 0.0;  // as Maaf6XKernel
+            set(detail::kCentreDc1 + int(p) - 1, c.sigma_x > 0 ? std::exp(-0.5 * dc_ratio * dc_ratio) : 0.0);
+        }
+        set(detail::kCentreLensScale, f.lens_std_m > 0 ? 1.0 / f.lens_std_m : 0.0);
+        set(detail::kCentreAxisScale, f.offsets_used ? f.axis_aligned[0].sigma_x / k : 0.0);
+        set(detail::kCentreScalePixels,
+            std::max(1e-12, double(shared_.pixel_size(x, y))) * f.pairs[0].sigma_x / k);
+        set(detail::kCentreRadius, f.r);
+        set(detail::kCentreAxisRadius, f.offsets_used ? f.axis_aligned_r : -1);
+    }
+
+    /// The filtered ratio of pixel (x, y) from its sums, times its unoccluded light, into `out`.
+    void finish(const PixelFilter &f, const TapSums &sums, int x, int y,
+                const std::array<PlaneView, 3> &out) const {
+        const float own_count = shared_.samples(x, y);
+        // The filtered ratio times the pixel's own mean weight (AAF's r(x) V(x) factoring).
+        const double own_weight = own_count > 0 ? double(layer_.weights[0](x, y)) / double(own_count) : 0.0;
+        const double unoccluded_mean =
+            sums.unoccluded_den > 0 ? sums.unoccluded / sums.unoccluded_den : own_weight;
+        // The offset components can cancel most of the normalisation: below a tenth of the
+        // central term's, fall back to the central term rather than amplify noise.
+        const bool partition_kept = f.offsets_used && sums.mass_kept >= kMinWindowMass * f.mass_all;
+        for (int col = 0; col < 3; ++col) {
+            const double own = double(own_mean(x, y, col));
+            double v = f.offsets_used && !partition_kept
+                           ? (sums.den1 > 1e-12 ? unoccluded_mean * sums.num1[col] / sums.den1 : own)
+                       : sums.den > 0.1 * sums.den0 && sums.den0 > 1e-12
+                           ? unoccluded_mean * sums.num[col] / sums.den
+                       : sums.den0 > 1e-12 ? unoccluded_mean * sums.num0[col] / sums.den0
+                                           : own;
+            if (!std::isfinite(v)) v = own;
+            v = std::max(0.0, v);  // radiance is not negative; the offset kernels' ringing can be
+            out[std::size_t(col)](x, y) = float(v);
+        }
+    }
+
     /// The components of pixel (x, y) with their weights (the pair weights
     /// chosen), its frame and its windows; fills `envelope_px` with offsets.
     PixelFilter pixel_filter(const Maaf6Wedge &wedge, int x, int y, std::vector<double> &envelope_px) const {
@@ -337,6 +426,57 @@ class LayerFilter {
             s.num0[col] += central * double(layer_.sums[std::size_t(col)](tx, ty));
     }
 
+    /// The frame's taps as maaf6_row_sums() reads them: positions, unit normals (NaN where
+    /// tap_accepted() never accepts the tap), 1 / samples, and the layer's planes (copied
+    /// where a view is not a plain plane).
+    void prepare_taps() {
+        const int width = shared_.object_id.width, height = shared_.object_id.height;
+        const std::size_t count = std::size_t(width) * std::size_t(height);
+        tap_planes_.assign(7, std::vector<float>(count));
+        parallel_for_rows(height, [&](int y) {
+            for (int x = 0; x < width; ++x) {
+                const std::size_t i = std::size_t(y) * std::size_t(width) + std::size_t(x);
+                const Vec3 p = read3(shared_.position, x, y), n = read3(shared_.normal, x, y);
+                const float len = length(n), samples = shared_.samples(x, y);
+                const bool usable = shared_.object_id(x, y) != 0 && samples > 0 && len > 0;
+                const float values[7] = {p.x,
+                                         p.y,
+                                         p.z,
+                                         usable ? n.x / len : std::numeric_limits<float>::quiet_NaN(),
+                                         n.y / len,
+                                         n.z / len,
+                                         usable ? 1.0f / samples : 0.0f};
+                for (std::size_t k = 0; k < 7; ++k) tap_planes_[k][i] = values[k];
+            }
+        });
+        const auto plane = [&](const ConstPlaneView &view) -> const float * {
+            if (view.pixel_stride == 1 && view.row_stride == width) return view.data;
+            layer_copies_.emplace_back(count);
+            std::vector<float> &copy = layer_copies_.back();
+            for (int y = 0; y < height; ++y)
+                for (int x = 0; x < width; ++x)
+                    copy[std::size_t(y) * std::size_t(width) + std::size_t(x)] = view(x, y);
+            return copy.data();
+        };
+        for (const ConstPlaneView &v : layer_.sums) sum_planes_.push_back(plane(v));
+        for (const ConstPlaneView &v : layer_.weights) weight_planes_.push_back(plane(v));
+        detail::Maaf6Taps taps;
+        taps.width = width;
+        taps.height = height;
+        taps.row_stride = width;
+        taps.px = tap_planes_[0].data();
+        taps.py = tap_planes_[1].data();
+        taps.pz = tap_planes_[2].data();
+        taps.nx = tap_planes_[3].data();
+        taps.ny = tap_planes_[4].data();
+        taps.nz = tap_planes_[5].data();
+        taps.inv_samples = tap_planes_[6].data();
+        taps.sums = sum_planes_.data();
+        taps.weights = weight_planes_.data();
+        taps.cos_threshold = float(cos_threshold_);
+        taps_ = taps;
+    }
+
     const Maaf6LayerInputs &layer_;
     const Maaf6SharedInputs &shared_;
     const LightPlane &light_;
@@ -344,6 +484,10 @@ class LayerFilter {
     const int stored_n_, used_n_;
     const double cos_threshold_;
     std::shared_ptr<const MaafFittedWeights> fitted_y_, fitted_u_;
+    std::optional<detail::Maaf6Taps> taps_;  ///< set: the taps' sums by maaf6_row_sums()
+    std::vector<std::vector<float>> tap_planes_;
+    std::deque<std::vector<float>> layer_copies_;
+    std::vector<const float *> sum_planes_, weight_planes_;
 };
 
 }  // namespace

@@ -61,6 +61,9 @@ const ParameterDeclarations<Maaf6Settings> &maaf6_parameters() {
             .real("normal_threshold", &P::normal_threshold_deg, "degrees",
                   "Reject taps whose normal turns more (MAAF Sec. 6.2)", 0, 180)
             .integer("max_radius", &P::max_radius_px, "pixels", "Largest filter radius", 0, 1 << 12)
+            .choice("filter", &P::vectorised, {{"vector", true}, {"scalar", false}},
+                    "vector: each tap for a vector of centres at once, in float; scalar: one centre at a "
+                    "time in double, the reference the vector filter is tested against")
             .real("band_spp", &P::band_spp, "spp",
                   "Samples per pixel at which the direct layer's light and lens bands are MAAF Sec. 3's; "
                   "past it they widen as sqrt(spp / band_spp), the pixel band with them, and the pixel gets "

@@ -61,6 +61,10 @@ struct Maaf6FilterParams {
     /// whatever the samples, as the paper has them, whose bias no sample count
     /// removes (libaaf/core/methods/maaf6/README.md, "Consistency").
     double band_spp = 16;
+    /// true: each tap for a vector of centres at once, in float with polynomial exp and sin/cos
+    /// (the same bits on every instruction set); false: one centre at a time in double with the
+    /// C library's, the reference the tests compare with. The same filter otherwise.
+    bool vectorised = true;
 };
 
 /// Filters one layer (MAAF Eq. 21-22 with the 6D product of MAAF Sec. 6.2):
