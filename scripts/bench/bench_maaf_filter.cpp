@@ -14,6 +14,11 @@
 // pixels of each pixel's footprint, capped like the filter's radius.
 // (The full-window variant, --filter 2d, is about 20x slower again and is left
 // out: it would take minutes per iteration here.)
+// BM_Maaf6VsAaf: the combined-effects filter on a 16 spp render of `room`
+// with the maaf6 and aaf AOVs, each method's whole in-memory run
+// (filter_aovs, defaults) alternately, on `threads` threads (0: all):
+//   aaf_ms, maaf6_ms, maaf6_over_aaf; maaf6_scalar_ms, the same with
+//   --filter scalar (one centre at a time in double, the reference).
 // Run: ./build/scripts/bench/bench_maaf_filter (see scripts/bench/RESULTS.md).
 #include <benchmark/benchmark.h>
 
@@ -28,6 +33,8 @@
 #include <vector>
 
 #include "aaf/core/contract/aov_contract.h"
+#include "aaf/core/framework/filter_aovs.h"
+#include "aaf/core/framework/method_registry.h"
 #include "aaf/core/methods/aaf/aaf_filter.h"
 #include "aaf/core/methods/maaf/maaf_accumulation.h"
 #include "aaf/core/methods/maaf/maaf_components.h"
@@ -182,8 +189,54 @@ void BM_MaafVsAaf(benchmark::State &state) {
     state.counters["opencv_threads"] = cv::getNumThreads();
 }
 
+void BM_Maaf6VsAaf(benchmark::State &state) {
+    const int width = int(state.range(0)), height = int(state.range(1)), threads = int(state.range(2));
+    static std::map<int, aaf::AovSet> renders;
+    if (!renders.count(width)) {
+        aaf::trace::RenderSettings settings;
+        settings.width = width;
+        settings.height = height;
+        settings.spp = 16;
+        settings.aovs = aaf::trace::aov_groups_for_method("aaf") | aaf::trace::aov_groups_for_method("maaf6");
+        renders.emplace(width, aaf::trace::render_scene("room", settings));
+    }
+    const aaf::AovSet &render = renders.at(width);
+    const aaf::Method &aaf_method = aaf::find_method("aaf"), &maaf6 = aaf::find_method("maaf6");
+    aaf::ParameterSet scalar = maaf6.default_parameters();
+    scalar.set("filter", std::string("scalar"));
+    double aaf_ms = 0, maaf6_ms = 0, scalar_ms = 0;
+    for (auto _ : state) {
+        aaf::run_with_threads(threads, [&] {
+            auto t = std::chrono::steady_clock::now();
+            benchmark::DoNotOptimize(
+                aaf::filter_aovs(aaf_method, render, aaf::ChannelMap{}, aaf_method.default_parameters()));
+            aaf_ms += ms_since(t);
+            t = std::chrono::steady_clock::now();
+            benchmark::DoNotOptimize(
+                aaf::filter_aovs(maaf6, render, aaf::ChannelMap{}, maaf6.default_parameters()));
+            maaf6_ms += ms_since(t);
+            t = std::chrono::steady_clock::now();
+            benchmark::DoNotOptimize(aaf::filter_aovs(maaf6, render, aaf::ChannelMap{}, scalar));
+            scalar_ms += ms_since(t);
+        });
+    }
+    const double iters = double(state.iterations());
+    state.counters["aaf_ms"] = aaf_ms / iters;
+    state.counters["maaf6_ms"] = maaf6_ms / iters;
+    state.counters["maaf6_over_aaf"] = maaf6_ms / aaf_ms;
+    state.counters["maaf6_scalar_ms"] = scalar_ms / iters;
+    state.counters["scalar_over_vector"] = scalar_ms / maaf6_ms;
+}
+
 }  // namespace
 
+BENCHMARK(BM_Maaf6VsAaf)
+    ->ArgNames({"width", "height", "threads"})
+    ->Args({640, 480, 1})
+    ->Args({640, 480, 0})
+    ->Iterations(2)
+    ->Unit(benchmark::kMillisecond)
+    ->UseRealTime();
 BENCHMARK(BM_MaafVsAaf)
     ->ArgNames({"width", "height"})
     ->Args({640, 480})
