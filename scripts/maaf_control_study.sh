@@ -5,7 +5,8 @@
 # 160x120 against 1024 spp references; each filtered with N = 3 and N = 1
 # over a sweep of --k with the bands fixed at the render's; RMSE split into
 # bias and noise, each N at its best k beside the other, and the paper's
-# own comparison (both at k = 1). Writes scripts/maaf_control/
+# own comparison (both at k = 1); then maaf6 on room against N = 1 at equal
+# time (scripts/maaf_control/equal_time.py). Writes scripts/maaf_control/
 # (MAAF_CONTROL_OUT picks another folder). Extra arguments go to
 # scripts/maaf_control/control.py (--width, --height, --seeds, --spp, --cases ...).
 # Needs Debian's python3-numpy and python3-openimageio.
@@ -17,3 +18,4 @@ out="${MAAF_CONTROL_OUT:-$root/scripts/maaf_control}"
 work="${MAAF_CONTROL_WORK:-$(mktemp -d)}"
 [ -n "${MAAF_CONTROL_WORK:-}" ] || trap 'rm -rf "$work"' EXIT
 /usr/bin/python3 "$root/scripts/maaf_control/control.py" --aaf "$aaf" --out "$out" --work "$work" "$@"
+/usr/bin/python3 "$root/scripts/maaf_control/equal_time.py" --aaf "$aaf" --out "$out" --work "$work"
