@@ -43,6 +43,7 @@ HWY_INLINE V gaussian(D d, V x, V scale) {
 struct Centres {
     V p[3], n[3], t1[3], t2[3], scale[3], omega[2], gain[2], dc[2];
     V lens_scale, axis_scale, scale_px, radius, axis_radius;
+    M pairs_lanes;         ///< the lanes that use the offset pairs
     int reach = -1;        ///< the largest radius of any lane; -1: no lane is filtered
     bool offsets = false;  ///< a lane uses the offset pairs
     bool lens = false;     ///< a lane filters the unoccluded light with the lens band
@@ -67,6 +68,7 @@ struct Centres {
         scale_px = load(kCentreScalePixels);
         radius = load(kCentreRadius);
         axis_radius = load(kCentreAxisRadius);
+        pairs_lanes = hn::Or(hn::Ne(gain[0], hn::Zero(d)), hn::Ne(gain[1], hn::Zero(d)));
         for (std::size_t lane = 0; lane < hn::Lanes(d); ++lane) {
             const auto at = [&](int field) { return params[std::size_t(field) * stride + lane]; };
             reach = std::max(reach, int(at(kCentreRadius)));
@@ -133,12 +135,24 @@ HWY_INLINE void add_tap(D d, const Maaf6Taps &taps, const Centres &c, const TapL
     const V dn = dot3(dx, dy, dz, c.n[0], c.n[1], c.n[2]);
     const int pairs = c.offsets ? 3 : 1, functions = 2 * pairs - 1;
     V k1[kMaaf6Functions], k2[kMaaf6Functions];
-    x_kernel(d, c, d1, pairs, k1);
-    x_kernel(d, c, d2, pairs, k2);
-    // Off the tangent plane, the central Gaussian of that distance; per-pixel means.
     const V inv_samples = load(d, taps.inv_samples);
-    const V per_sample = hn::Mul(gaussian(d, dn, c.scale[0]), inv_samples);
-    for (int a = 0; a < functions; ++a) k1[a] = hn::Mul(k1[a], per_sample);
+    // A lane without offset pairs has the central Gaussian alone along t1, t2 and the normal: one
+    // exponential of the whole displacement (the frame is orthonormal), times 1 / samples, in k1[0]
+    // (k2[0] = 1), whatever its neighbours in the vector use (so every vector width gives its bits).
+    const V scaled_sq = hn::Mul(dot3(dx, dy, dz, dx, dy, dz), hn::Mul(c.scale[0], c.scale[0]));
+    const V central_only = hn::Mul(exp_nonpositive(d, hn::Mul(hn::Set(d, -0.5f), scaled_sq)), inv_samples);
+    if (c.offsets) {
+        x_kernel(d, c, d1, pairs, k1);
+        x_kernel(d, c, d2, pairs, k2);
+        // Off the tangent plane, the central Gaussian of that distance; per-pixel means.
+        const V per_sample = hn::Mul(gaussian(d, dn, c.scale[0]), inv_samples);
+        for (int a = 0; a < functions; ++a) k1[a] = hn::Mul(k1[a], per_sample);
+        k1[0] = hn::IfThenElse(c.pairs_lanes, k1[0], central_only);
+        k2[0] = hn::IfThenElse(c.pairs_lanes, k2[0], hn::Set(d, 1.0f));
+    } else {
+        k1[0] = central_only;
+        k2[0] = hn::Set(d, 1.0f);
+    }
     const V weight0 = load(d, taps.weights[0]);
     for (int a = 0; a < functions; ++a)
         for (int b = 0; b < functions; ++b) {
