@@ -49,14 +49,19 @@ def split(filtered, reference):
     return rmse, np.sqrt(bias_sq), np.sqrt(noise_sq)
 
 
-def main():
-    ap = argparse.ArgumentParser()
+def common_arguments(ap):
+    """The arguments control.py and equal_time.py share."""
     ap.add_argument("--aaf", required=True)
     ap.add_argument("--out", required=True)
     ap.add_argument("--work", required=True)
     ap.add_argument("--width", type=int, default=160)
     ap.add_argument("--height", type=int, default=120)
     ap.add_argument("--seeds", type=int, default=4)
+
+
+def main():
+    ap = argparse.ArgumentParser()
+    common_arguments(ap)
     ap.add_argument("--ref-spp", type=int, default=1024)
     ap.add_argument("--spp", default="9,16,32")
     ap.add_argument("--cases", default="maaf6:grids,maaf6:tentacles,maaf6:room,maaf:grids,maaf:tentacles")

@@ -19,7 +19,7 @@ import sys
 import time
 
 sys.path.insert(0, os.path.dirname(__file__))
-from control import beauty, run, split  # noqa: E402
+from control import beauty, common_arguments, run, split  # noqa: E402
 
 
 def wall(cmd, repeats=3):
@@ -46,12 +46,7 @@ def interpolate_loglog(points, x):
 
 def main():
     ap = argparse.ArgumentParser()
-    ap.add_argument("--aaf", required=True)
-    ap.add_argument("--out", required=True)
-    ap.add_argument("--work", required=True)
-    ap.add_argument("--width", type=int, default=160)
-    ap.add_argument("--height", type=int, default=120)
-    ap.add_argument("--seeds", type=int, default=4)
+    common_arguments(ap)
     ap.add_argument("--curve", default="9,16,24,32,48")
     ap.add_argument("--at", default="16,32")
     args = ap.parse_args()
