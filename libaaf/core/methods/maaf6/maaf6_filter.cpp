@@ -230,12 +230,11 @@ class LayerFilter {
         return own_count > 0 ? layer_.sums[std::size_t(c)](x, y) / own_count : 0.0f;
     }
 
-    /// Pixel (x, y)'s sums over its window, one tap at a time in double (Maaf6FilterParams::vectorised
-    /// false).
+    /// Pixel (x, y)'s sums over its window, one tap at a time in double (`--filter scalar`).
     TapSums scalar_sums(const PixelFilter &f, int x, int y, std::vector<double> &envelope_px) const {
         const int width = shared_.object_id.width, height = shared_.object_id.height;
-        if (f.offsets_used)  // the central envelope per pixel offset (pixel_filter() computed it for the last
-                             // pixel)
+        // The central envelope per pixel offset (pixel_filter() left the row's last pixel's there).
+        if (f.offsets_used)
             window_envelope(f.std_m / std::max(1e-12, double(shared_.pixel_size(x, y))), f.r, envelope_px);
         double k1[kMaafMaxPairs * 2], k2[kMaafMaxPairs * 2];
         TapSums sums;
