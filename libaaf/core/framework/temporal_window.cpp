@@ -208,16 +208,16 @@ Warped warp_neighbour(const FramesByOffset &frames, const TemporalFrameView &nei
 
 /// The robust scale of the differences around each block: 1.4826 x the
 /// median of those that are not 0 over the region of blocks centred on it
-/// (the standard deviation for Gaussian noise), or 0 when fewer than half
-/// of the region's are not 0: noise touches most pixels of a region, a
-/// change (an edge that moved) a band. Not counting the zeros keeps the
+/// (the standard deviation for Gaussian noise), or, with `majority`, 0 when
+/// fewer than half of the region's are not 0: noise touches most pixels of
+/// a region, a change (an edge that moved) a band. Not counting the zeros keeps the
 /// noisy pixels of a region that is partly noise-free (fully lit, or lit by
 /// a light sampled without noise) from looking like changes; a region
 /// centred on each block follows the noise where it changes within a frame
 /// (a penumbra beside a nearly noise-free background). One value per block,
 /// row-major.
 std::vector<float> block_noise_scales(const std::vector<float> &difference, int width, int height,
-                                      float factor = 1.4826f) {
+                                      float factor, bool majority) {
     const int blocks_x = (width + kTemporalBlockPx - 1) / kTemporalBlockPx;
     const int blocks_y = (height + kTemporalBlockPx - 1) / kTemporalBlockPx;
     constexpr int reach_px = kTemporalBlockPx * (kTemporalScaleRegionBlocks / 2);
@@ -238,7 +238,7 @@ std::vector<float> block_noise_scales(const std::vector<float> &difference, int 
                     ++valid;
                     if (d > 0) region.push_back(d);
                 }
-            if (region.empty() || 2 * region.size() < valid) continue;
+            if (region.empty() || (majority && 2 * region.size() < valid)) continue;
             auto middle = region.begin() + std::ptrdiff_t(region.size() / 2);
             std::nth_element(region.begin(), middle, region.end());
             scales[std::size_t(by) * std::size_t(blocks_x) + std::size_t(bx)] = factor * *middle;
@@ -317,13 +317,16 @@ void blend_temporal_window(const TemporalFrameView &centre, const std::vector<Te
     if (!(settings.plane_tolerance > 0) || !(settings.shading_tolerance > 0))
         throw Error("temporal window: the plane and shading tolerances must be > 0");
 
+    // The region scales twice: with the majority rule for the pixels with
+    // fewer than kTemporalRobustValues values, without for the others.
     std::vector<Warped> warped;
-    std::vector<std::vector<float>> scales;
+    std::vector<std::vector<float>> scales, scales_robust;
     for (const TemporalFrameView &frame : neighbours) {
         if (std::abs(frame.offset) > settings.radius_frames || (settings.causal && frame.offset > 0))
             continue;
         warped.push_back(warp_neighbour(frames, frame, settings));
-        scales.push_back(block_noise_scales(warped.back().difference, width, height));
+        scales.push_back(block_noise_scales(warped.back().difference, width, height, 1.4826f, true));
+        scales_robust.push_back(block_noise_scales(warped.back().difference, width, height, 1.4826f, false));
     }
     const int blocks_x = (width + kTemporalBlockPx - 1) / kTemporalBlockPx;
     // Each pixel's own spread across the window, and its median over the
@@ -343,7 +346,8 @@ void blend_temporal_window(const TemporalFrameView &centre, const std::vector<Te
             balanced[i] = even;
         }
     });
-    const std::vector<float> region_own = block_noise_scales(own, width, height, 1.0f);
+    const std::vector<float> region_own = block_noise_scales(own, width, height, 1.0f, true);
+    const std::vector<float> region_own_robust = block_noise_scales(own, width, height, 1.0f, false);
     parallel_for_rows(height, [&](int y) {
         std::vector<double> sums(count);
         for (int x = 0; x < width; ++x) {
@@ -352,12 +356,16 @@ void blend_temporal_window(const TemporalFrameView &centre, const std::vector<Te
                 std::size_t(y / kTemporalBlockPx) * std::size_t(blocks_x) + std::size_t(x / kTemporalBlockPx);
             double weight_sum = 1;
             for (std::size_t c = 0; c < count; ++c) sums[c] = centre.values[c](x, y);
+            int values = 1;
+            for (const Warped &neighbour : warped) values += std::isfinite(neighbour.difference[i]) ? 1 : 0;
+            const bool robust = values >= kTemporalRobustValues;
             for (std::size_t n = 0; n < warped.size(); ++n) {
                 const float difference = warped[n].difference[i];
                 if (!std::isfinite(difference)) continue;
                 // The region's noise: its differences' scale, bounded by its
                 // pixels' own spreads.
-                float noise = std::min(scales[n][block], region_own[block]);
+                float noise = robust ? std::min(scales_robust[n][block], region_own_robust[block])
+                                     : std::min(scales[n][block], region_own[block]);
                 if (std::isfinite(own[i])) {
                     if (own[i] == 0)
                         noise = 0;  // noise-free in most of its frames: any difference is a change

@@ -46,6 +46,14 @@ inline constexpr int kTemporalScaleRegionBlocks = 5;
 /// measured by its own values across a centred window (their median
 /// absolute deviation), up to this many times its region's noise.
 inline constexpr float kTemporalOwnScaleLimit = 3.0f;
+/// From this many values at a pixel (its centre's and its neighbours'
+/// surviving the surface tests), the median absolute deviation of its own
+/// values ignores a change in up to two of them, so a moving edge shows as
+/// a pixel whose own values agree; its region's noise is then measured over
+/// the pixels that change at all, however few (a penumbra in a noise-free
+/// region). With fewer, a region where most pixels do not change has no
+/// noise: its changing pixels are an edge that moved.
+inline constexpr int kTemporalRobustValues = 5;
 
 /// One frame of the window as the blend reads it; views of one size.
 struct TemporalFrameView {
