@@ -172,6 +172,9 @@ struct Warped {
     int offset = 0;                          ///< the neighbour's frame minus the centre's
     std::vector<std::vector<float>> values;  ///< per blended layer, row-major
     std::vector<float> difference;           ///< NaN where no tap survived
+    /// 1 where the value was read at a pixel centre (a whole-pixel motion,
+    /// nothing resampled), 0 where the lookup mixed pixels.
+    std::vector<std::uint8_t> whole_pixel;
 };
 
 Warped warp_neighbour(const FramesByOffset &frames, const TemporalFrameView &neighbour,
@@ -183,6 +186,7 @@ Warped warp_neighbour(const FramesByOffset &frames, const TemporalFrameView &nei
     warped.offset = neighbour.offset;
     warped.values.assign(count, std::vector<float>(pixels, kNoValue));
     warped.difference.assign(pixels, kNoValue);
+    warped.whole_pixel.assign(pixels, 0);
     const float min_cos = std::cos(settings.normal_threshold_deg * 3.14159265f / 180.0f);
     parallel_for_rows(height, [&](int y) {
         std::vector<float> values(count);
@@ -201,6 +205,7 @@ Warped warp_neighbour(const FramesByOffset &frames, const TemporalFrameView &nei
                     std::max(difference, std::fabs(double(values[c]) - double(centre.values[c](x, y))));
             }
             warped.difference[i] = float(difference);
+            warped.whole_pixel[i] = fx == std::floor(fx) && fy == std::floor(fy) ? 1 : 0;
         }
     });
     return warped;
@@ -280,6 +285,26 @@ float window_noise_scale(const TemporalFrameView &centre, const std::vector<Warp
     return float(1.41421356 * 1.4826 * largest);
 }
 
+/// Whether the centre's pixel (x, y) holds, in every blended layer, the
+/// value of at least two of its four neighbours in the frame (within
+/// kSameValueRelative): noise does not repeat a value, so the pixel is
+/// noise-free in this frame (an umbra, a region the sampled effect does not
+/// reach) however its neighbours in time spread.
+bool noise_free_in_frame(const TemporalFrameView &centre, int x, int y) {
+    const int width = centre.position[0].width, height = centre.position[0].height;
+    int same = 0;
+    for (const auto &[nx, ny] : {std::pair<int, int>{x - 1, y}, {x + 1, y}, {x, y - 1}, {x, y + 1}}) {
+        if (nx < 0 || ny < 0 || nx >= width || ny >= height) continue;
+        bool equal = true;
+        for (ConstPlaneView values : centre.values) {
+            const float a = values(x, y), b = values(nx, ny);
+            equal = equal && std::fabs(a - b) <= kSameValueRelative * std::fabs(a);
+        }
+        same += equal ? 1 : 0;
+    }
+    return same >= 2;
+}
+
 /// The shading test's weight of a neighbour's value that differs by `difference` where the noise is `scale`.
 float shading_weight(float difference, float scale, float tolerance) {
     if (difference == 0) return 1.0f;
@@ -335,7 +360,7 @@ void blend_temporal_window(const TemporalFrameView &centre, const std::vector<Te
     // pixel's frames (leaving its own spread to the noise).
     const std::size_t pixels = std::size_t(width) * std::size_t(height);
     std::vector<float> own(pixels, kNoValue);
-    std::vector<std::uint8_t> balanced(pixels, 0);
+    std::vector<std::uint8_t> balanced(pixels, 0), noise_free(pixels, 0);
     parallel_for_rows(height, [&](int y) {
         std::vector<float> scratch;
         for (int x = 0; x < width; ++x) {
@@ -344,6 +369,7 @@ void blend_temporal_window(const TemporalFrameView &centre, const std::vector<Te
             const float scale = window_noise_scale(centre, warped, x, y, i, scratch, even);
             if (scale >= 0) own[i] = scale;
             balanced[i] = even;
+            noise_free[i] = noise_free_in_frame(centre, x, y) ? 1 : 0;
         }
     });
     const std::vector<float> region_own = block_noise_scales(own, width, height, 1.0f, true);
@@ -366,14 +392,26 @@ void blend_temporal_window(const TemporalFrameView &centre, const std::vector<Te
                 // pixels' own spreads.
                 float noise = robust ? std::min(scales_robust[n][block], region_own_robust[block])
                                      : std::min(scales[n][block], region_own[block]);
-                if (std::isfinite(own[i])) {
-                    if (own[i] == 0)
+                if (noise_free[i]) {
+                    noise = 0;  // noise-free in this frame: any difference is a change
+                } else if (std::isfinite(own[i])) {
+                    if (own[i] == 0) {
                         noise = 0;  // noise-free in most of its frames: any difference is a change
-                    else if (balanced[i])
-                        // A pixel noisier than its region raises it, within limits:
-                        // only where as many frames follow as precede, so that
-                        // a steady change averages to the centre's value.
-                        noise = std::max(noise, std::min(own[i], kTemporalOwnScaleLimit * noise));
+                    } else if (balanced[i]) {
+                        // A pixel noisier than its region raises it, where as many
+                        // frames follow as precede (a steady change averages to the
+                        // centre's value): within kTemporalOwnScaleLimit where the
+                        // neighbour's value is resampled (it mixes four pixels and
+                        // carries the lookup's error besides the noise) or too few
+                        // values measure it; else to its own spread, a value beyond
+                        // tau of it then being a change (an edge's step), not noise.
+                        if (robust && warped[n].whole_pixel[i] && own[i] > kTemporalOwnScaleLimit * noise) {
+                            if (difference > settings.shading_tolerance * own[i]) continue;
+                            noise = own[i];
+                        } else {
+                            noise = std::max(noise, std::min(own[i], kTemporalOwnScaleLimit * noise));
+                        }
+                    }
                 }
                 const float w = shading_weight(difference, noise, settings.shading_tolerance);
                 if (!(w > 0)) continue;

@@ -24,14 +24,15 @@ struct TemporalWindowSettings {
     /// sigma)^2)), e the largest absolute difference over the blended
     /// channels, sigma the noise around the pixel: the robust scale of the
     /// differences over the pixel's region (1.4826 x the median of its non-zero
-    /// values; 0, no change allowed, when most of the region's are 0), bounded
-    /// by the median over the region of its pixels' own spreads across the
-    /// window (their values' median absolute deviation), 0 where the pixel's
-    /// own values are mostly the same (noise-free), and raised, within
-    /// kTemporalOwnScaleLimit, where the pixel spreads more than its region
-    /// and as many of its frames follow as precede. A shadow or a light that
-    /// moves over still geometry changes the value far beyond the noise and
-    /// does not ghost. tau is this.
+    /// values; with fewer than kTemporalRobustValues values, 0, no change
+    /// allowed, when most of the region's are 0), bounded by the median over
+    /// the region of its pixels' own spreads across the window (their values'
+    /// median absolute deviation), 0 where the pixel's own values are mostly
+    /// the same or where it repeats the value of two of its four neighbours in
+    /// the frame (noise-free), and raised (kTemporalOwnScaleLimit) where the
+    /// pixel spreads more than its region and as many of its frames follow as
+    /// precede. A shadow or a light that moves over still geometry changes the
+    /// value far beyond the noise and does not ghost. tau is this.
     float shading_tolerance = 3.0f;
 };
 
@@ -44,7 +45,9 @@ inline constexpr int kTemporalBlockPx = 4;
 inline constexpr int kTemporalScaleRegionBlocks = 5;
 /// A pixel noisier than its region (where the filter's width changes) is
 /// measured by its own values across a centred window (their median
-/// absolute deviation), up to this many times its region's noise.
+/// absolute deviation): up to this many times its region's noise where a
+/// neighbour's value is resampled (a moving camera or object), without a
+/// limit where it is read at a pixel centre.
 inline constexpr float kTemporalOwnScaleLimit = 3.0f;
 /// From this many values at a pixel (its centre's and its neighbours'
 /// surviving the surface tests), the median absolute deviation of its own
