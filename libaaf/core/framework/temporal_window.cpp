@@ -20,6 +20,9 @@ namespace {
 /// Values closer than this, relative, are the same value: a noise-free
 /// pixel's per-frame results may differ in their last bits.
 constexpr float kSameValueRelative = 1e-5f;
+/// Two values of a frame closer than this fraction of their layer's mean
+/// magnitude are the same value when telling a noise-free pixel.
+constexpr double kSameValueFloor = 1e-4;
 constexpr float kNoValue = std::numeric_limits<float>::quiet_NaN();
 
 /// The window's frames by offset; the centre's is 0.
@@ -285,20 +288,36 @@ float window_noise_scale(const TemporalFrameView &centre, const std::vector<Warp
     return float(1.41421356 * 1.4826 * largest);
 }
 
+/// Per blended layer, the difference below which two of the centre frame's
+/// values are the same in noise_free_in_frame(): kSameValueFloor x the
+/// layer's mean magnitude over the frame (a filter's faint residue in an
+/// umbra, far below any noise, is not noise).
+std::vector<float> same_value_floors(const TemporalFrameView &centre) {
+    std::vector<float> floors;
+    for (ConstPlaneView values : centre.values) {
+        double sum = 0;
+        for (int y = 0; y < values.height; ++y)
+            for (int x = 0; x < values.width; ++x)
+                if (std::isfinite(values(x, y))) sum += std::fabs(values(x, y));
+        floors.push_back(float(kSameValueFloor * sum / (double(values.width) * double(values.height))));
+    }
+    return floors;
+}
+
 /// Whether the centre's pixel (x, y) holds, in every blended layer, the
 /// value of at least two of its four neighbours in the frame (within
-/// kSameValueRelative): noise does not repeat a value, so the pixel is
-/// noise-free in this frame (an umbra, a region the sampled effect does not
-/// reach) however its neighbours in time spread.
-bool noise_free_in_frame(const TemporalFrameView &centre, int x, int y) {
+/// kSameValueRelative, or the layer's floor): noise does not repeat a value,
+/// so the pixel is noise-free in this frame (an umbra, a region the sampled
+/// effect does not reach) however its neighbours in time spread.
+bool noise_free_in_frame(const TemporalFrameView &centre, int x, int y, const std::vector<float> &floor) {
     const int width = centre.position[0].width, height = centre.position[0].height;
     int same = 0;
     for (const auto &[nx, ny] : {std::pair<int, int>{x - 1, y}, {x + 1, y}, {x, y - 1}, {x, y + 1}}) {
         if (nx < 0 || ny < 0 || nx >= width || ny >= height) continue;
         bool equal = true;
-        for (ConstPlaneView values : centre.values) {
-            const float a = values(x, y), b = values(nx, ny);
-            equal = equal && std::fabs(a - b) <= kSameValueRelative * std::fabs(a);
+        for (std::size_t c = 0; c < centre.values.size(); ++c) {
+            const float a = centre.values[c](x, y), b = centre.values[c](nx, ny);
+            equal = equal && std::fabs(a - b) <= std::max(kSameValueRelative * std::fabs(a), floor[c]);
         }
         same += equal ? 1 : 0;
     }
@@ -332,6 +351,74 @@ FramesByOffset checked_window(const TemporalFrameView &centre,
     return frames;
 }
 
+/// What the shading test knows of each pixel of the centre frame.
+struct PixelNoise {
+    std::vector<float> own;                          ///< window_noise_scale(), NaN with fewer than 3 values
+    std::vector<std::uint8_t> balanced, noise_free;  ///< window_noise_scale()'s, noise_free_in_frame()
+    /// The median of `own` over each block's region, with and without the majority rule.
+    std::vector<float> region_own, region_own_robust;
+};
+
+/// Each pixel's own spread across the window, and its median over the
+/// region: a moving shadow changes a coherent part of a region in every
+/// neighbour (filling the differences' median) but a minority of each
+/// pixel's frames (leaving its own spread to the noise).
+PixelNoise pixel_noise(const TemporalFrameView &centre, const std::vector<Warped> &warped) {
+    const int width = centre.position[0].width, height = centre.position[0].height;
+    const std::size_t pixels = std::size_t(width) * std::size_t(height);
+    const std::vector<float> same_floor = same_value_floors(centre);
+    PixelNoise noise;
+    noise.own.assign(pixels, kNoValue);
+    noise.balanced.assign(pixels, 0);
+    noise.noise_free.assign(pixels, 0);
+    parallel_for_rows(height, [&](int y) {
+        std::vector<float> scratch;
+        for (int x = 0; x < width; ++x) {
+            const std::size_t i = std::size_t(y) * std::size_t(width) + std::size_t(x);
+            bool even = false;
+            const float scale = window_noise_scale(centre, warped, x, y, i, scratch, even);
+            if (scale >= 0) noise.own[i] = scale;
+            noise.balanced[i] = even;
+            noise.noise_free[i] = noise_free_in_frame(centre, x, y, same_floor) ? 1 : 0;
+        }
+    });
+    noise.region_own = block_noise_scales(noise.own, width, height, 1.0f, true);
+    noise.region_own_robust = block_noise_scales(noise.own, width, height, 1.0f, false);
+    return noise;
+}
+
+/// The shading test's weight of `neighbour`'s value at pixel `i` (in
+/// `block`), `region_scale` its differences' scale over the block's region,
+/// `robust` when the pixel has kTemporalRobustValues values or more.
+float neighbour_weight(const PixelNoise &pixels, const Warped &neighbour, float region_scale, std::size_t i,
+                       std::size_t block, bool robust, const TemporalWindowSettings &settings) {
+    const float difference = neighbour.difference[i], own = pixels.own[i];
+    // The region's noise: its differences' scale, bounded by its pixels' own spreads.
+    float noise = std::min(region_scale, robust ? pixels.region_own_robust[block] : pixels.region_own[block]);
+    if (pixels.noise_free[i]) {
+        noise = 0;  // noise-free in this frame: any difference is a change
+    } else if (std::isfinite(own)) {
+        if (own == 0) {
+            noise = 0;  // noise-free in most of its frames: any difference is a change
+        } else if (pixels.balanced[i]) {
+            // A pixel noisier than its region raises it, where as many
+            // frames follow as precede (a steady change averages to the
+            // centre's value): within kTemporalOwnScaleLimit where the
+            // neighbour's value is resampled (it mixes four pixels and
+            // carries the lookup's error besides the noise) or too few
+            // values measure it; else to its own spread, a value beyond
+            // tau of it then being a change (an edge's step), not noise.
+            if (robust && neighbour.whole_pixel[i] && own > kTemporalOwnScaleLimit * noise) {
+                if (difference > settings.shading_tolerance * own) return 0.0f;
+                noise = own;
+            } else {
+                noise = std::max(noise, std::min(own, kTemporalOwnScaleLimit * noise));
+            }
+        }
+    }
+    return shading_weight(difference, noise, settings.shading_tolerance);
+}
+
 }  // namespace
 
 void blend_temporal_window(const TemporalFrameView &centre, const std::vector<TemporalFrameView> &neighbours,
@@ -353,27 +440,8 @@ void blend_temporal_window(const TemporalFrameView &centre, const std::vector<Te
         scales.push_back(block_noise_scales(warped.back().difference, width, height, 1.4826f, true));
         scales_robust.push_back(block_noise_scales(warped.back().difference, width, height, 1.4826f, false));
     }
+    const PixelNoise noise = pixel_noise(centre, warped);
     const int blocks_x = (width + kTemporalBlockPx - 1) / kTemporalBlockPx;
-    // Each pixel's own spread across the window, and its median over the
-    // region: a moving shadow changes a coherent part of a region in every
-    // neighbour (filling the differences' median) but a minority of each
-    // pixel's frames (leaving its own spread to the noise).
-    const std::size_t pixels = std::size_t(width) * std::size_t(height);
-    std::vector<float> own(pixels, kNoValue);
-    std::vector<std::uint8_t> balanced(pixels, 0), noise_free(pixels, 0);
-    parallel_for_rows(height, [&](int y) {
-        std::vector<float> scratch;
-        for (int x = 0; x < width; ++x) {
-            const std::size_t i = std::size_t(y) * std::size_t(width) + std::size_t(x);
-            bool even = false;
-            const float scale = window_noise_scale(centre, warped, x, y, i, scratch, even);
-            if (scale >= 0) own[i] = scale;
-            balanced[i] = even;
-            noise_free[i] = noise_free_in_frame(centre, x, y) ? 1 : 0;
-        }
-    });
-    const std::vector<float> region_own = block_noise_scales(own, width, height, 1.0f, true);
-    const std::vector<float> region_own_robust = block_noise_scales(own, width, height, 1.0f, false);
     parallel_for_rows(height, [&](int y) {
         std::vector<double> sums(count);
         for (int x = 0; x < width; ++x) {
@@ -386,34 +454,9 @@ void blend_temporal_window(const TemporalFrameView &centre, const std::vector<Te
             for (const Warped &neighbour : warped) values += std::isfinite(neighbour.difference[i]) ? 1 : 0;
             const bool robust = values >= kTemporalRobustValues;
             for (std::size_t n = 0; n < warped.size(); ++n) {
-                const float difference = warped[n].difference[i];
-                if (!std::isfinite(difference)) continue;
-                // The region's noise: its differences' scale, bounded by its
-                // pixels' own spreads.
-                float noise = robust ? std::min(scales_robust[n][block], region_own_robust[block])
-                                     : std::min(scales[n][block], region_own[block]);
-                if (noise_free[i]) {
-                    noise = 0;  // noise-free in this frame: any difference is a change
-                } else if (std::isfinite(own[i])) {
-                    if (own[i] == 0) {
-                        noise = 0;  // noise-free in most of its frames: any difference is a change
-                    } else if (balanced[i]) {
-                        // A pixel noisier than its region raises it, where as many
-                        // frames follow as precede (a steady change averages to the
-                        // centre's value): within kTemporalOwnScaleLimit where the
-                        // neighbour's value is resampled (it mixes four pixels and
-                        // carries the lookup's error besides the noise) or too few
-                        // values measure it; else to its own spread, a value beyond
-                        // tau of it then being a change (an edge's step), not noise.
-                        if (robust && warped[n].whole_pixel[i] && own[i] > kTemporalOwnScaleLimit * noise) {
-                            if (difference > settings.shading_tolerance * own[i]) continue;
-                            noise = own[i];
-                        } else {
-                            noise = std::max(noise, std::min(own[i], kTemporalOwnScaleLimit * noise));
-                        }
-                    }
-                }
-                const float w = shading_weight(difference, noise, settings.shading_tolerance);
+                if (!std::isfinite(warped[n].difference[i])) continue;
+                const float region_scale = robust ? scales_robust[n][block] : scales[n][block];
+                const float w = neighbour_weight(noise, warped[n], region_scale, i, block, robust, settings);
                 if (!(w > 0)) continue;
                 weight_sum += w;
                 for (std::size_t c = 0; c < count; ++c) sums[c] += double(w) * warped[n].values[c][i];
