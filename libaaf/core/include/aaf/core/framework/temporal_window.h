@@ -46,8 +46,9 @@ inline constexpr int kTemporalScaleRegionBlocks = 5;
 /// A pixel noisier than its region (where the filter's width changes) is
 /// measured by its own values across a centred window (their median
 /// absolute deviation): up to this many times its region's noise where a
-/// neighbour's value is resampled (a moving camera or object), without a
-/// limit where it is read at a pixel centre.
+/// neighbour's value is resampled (a moving camera or object) or fewer than
+/// kTemporalRobustValues values measure it; else without a limit, a
+/// neighbour farther than the tolerance times that spread being a change.
 inline constexpr float kTemporalOwnScaleLimit = 3.0f;
 /// From this many values at a pixel (its centre's and its neighbours'
 /// surviving the surface tests), the median absolute deviation of its own
