@@ -97,6 +97,36 @@ std::vector<SyntheticFrame> noisy_frames(float shift_px, float noise) {
     return frames;
 }
 
+/// `count` frames of smooth_shade on a still camera, each pixel's value
+/// replaced by value(frame, x, y, shade), pixels in row-major order.
+template <typename Value>
+std::vector<SyntheticFrame> still_frames(int count, const Value &value) {
+    std::vector<SyntheticFrame> frames;
+    for (int f = 0; f < count; ++f) {
+        frames.emplace_back(0, 0.0f, smooth_shade);
+        for (int y = 0; y < kHeight; ++y)
+            for (int x = 0; x < kWidth; ++x) {
+                float &v = frames.back().value[std::size_t(y) * kWidth + std::size_t(x)];
+                v = value(f, x, y, v);
+            }
+    }
+    return frames;
+}
+
+/// Squared error of `values` from the noise-free shade over the pixels `inside(x, y)` selects.
+template <typename Inside>
+double error_within(const std::vector<float> &values, const Inside &inside) {
+    double sum = 0;
+    for (int y = 0; y < kHeight; ++y)
+        for (int x = 0; x < kWidth; ++x)
+            if (inside(x, y)) {
+                const double d =
+                    values[std::size_t(y) * kWidth + std::size_t(x)] - smooth_shade(float(x), float(y), 0);
+                sum += d * d;
+            }
+    return sum;
+}
+
 }  // namespace
 
 TEST_CASE("temporal window: a static frame whose neighbours hold the same values is unchanged, bit for bit",
@@ -121,27 +151,14 @@ TEST_CASE("temporal window: a patch noisier than its surroundings averages down 
     // A filter's residual noise changes within a frame (a narrow width in a
     // penumbra beside a wide one in the light): a 6 x 6 px patch with ten
     // times the noise of the rest, which sets the region's median.
-    std::vector<SyntheticFrame> frames;
     std::mt19937 random(11);
     std::normal_distribution<float> gaussian(0.0f, 1.0f);
     const auto in_patch = [](int x, int y) { return x >= 30 && x < 36 && y >= 20 && y < 26; };
-    for (int f = 0; f < 5; ++f) {
-        frames.emplace_back(0, 0.0f, smooth_shade);
-        for (int y = 0; y < kHeight; ++y)
-            for (int x = 0; x < kWidth; ++x)
-                frames.back().value[std::size_t(y) * kWidth + std::size_t(x)] +=
-                    (in_patch(x, y) ? 0.05f : 0.005f) * gaussian(random);
-    }
-    const std::vector<float> out = blend(frames, 2, 2);
-    double alone = 0, blended = 0;
-    for (int y = 0; y < kHeight; ++y)
-        for (int x = 0; x < kWidth; ++x) {
-            if (!in_patch(x, y)) continue;
-            const std::size_t i = std::size_t(y) * kWidth + std::size_t(x);
-            const double truth = smooth_shade(float(x), float(y), 0);
-            alone += (frames[2].value[i] - truth) * (frames[2].value[i] - truth);
-            blended += (out[i] - truth) * (out[i] - truth);
-        }
+    const std::vector<SyntheticFrame> frames = still_frames(5, [&](int, int x, int y, float shade) {
+        return shade + (in_patch(x, y) ? 0.05f : 0.005f) * gaussian(random);
+    });
+    const double alone = error_within(frames[2].value, in_patch),
+                 blended = error_within(blend(frames, 2, 2), in_patch);
     // Measured against its region alone, the patch's neighbours differ by
     // many times the noise there and would be rejected (blended == alone);
     // within three times the region's noise they average to 0.44 of it. Its
@@ -156,29 +173,13 @@ TEST_CASE(
     // A 3 px penumbra whose noise is the only noise of its region (the
     // ratio estimator is exact in full light and umbra): most of the
     // region's pixels never change.
-    std::vector<SyntheticFrame> frames;
     std::mt19937 random(5);
     std::normal_distribution<float> gaussian(0.0f, 0.05f);
-    const auto in_band = [](int x) { return x >= 30 && x < 33; };
-    for (int f = 0; f < 5; ++f) {
-        frames.emplace_back(0, 0.0f, smooth_shade);
-        for (int y = 0; y < kHeight; ++y)
-            for (int x = 0; x < kWidth; ++x)
-                if (in_band(x))
-                    frames.back().value[std::size_t(y) * kWidth + std::size_t(x)] += gaussian(random);
-    }
-    const auto band_error = [&](const std::vector<float> &values) {
-        double sum = 0;
-        for (int y = 0; y < kHeight; ++y)
-            for (int x = 30; x < 33; ++x) {
-                const double d =
-                    values[std::size_t(y) * kWidth + std::size_t(x)] - smooth_shade(float(x), float(y), 0);
-                sum += d * d;
-            }
-        return sum;
-    };
+    const auto in_band = [](int x, int) { return x >= 30 && x < 33; };
+    const std::vector<SyntheticFrame> frames = still_frames(
+        5, [&](int, int x, int y, float shade) { return in_band(x, y) ? shade + gaussian(random) : shade; });
     // Five values: each pixel's own spread shows noise, not a moving edge.
-    CHECK(band_error(blend(frames, 2, 2)) < 0.5 * band_error(frames[2].value));
+    CHECK(error_within(blend(frames, 2, 2), in_band) < 0.5 * error_within(frames[2].value, in_band));
     // Three: one changed value of three is not told from noise, so the band
     // (a minority of its region) is taken for a moving edge and kept.
     const std::vector<float> three = blend(frames, 2, 1);
@@ -193,18 +194,12 @@ TEST_CASE(
     // umbra, 0 but for a filter's faint residue. Three frames: the two
     // neighbours agree with each other, and their spread alone cannot tell
     // the umbra from noise.
-    std::vector<SyntheticFrame> frames;
     std::mt19937 random(13);
     std::normal_distribution<float> gaussian(0.0f, 0.1f);
     const auto in_umbra = [](int x, int y) { return x >= 28 && x < 34 && y >= 20 && y < 26; };
-    for (int f = 0; f < 3; ++f) {
-        frames.emplace_back(0, 0.0f, smooth_shade);
-        for (int y = 0; y < kHeight; ++y)
-            for (int x = 0; x < kWidth; ++x) {
-                float &v = frames.back().value[std::size_t(y) * kWidth + std::size_t(x)];
-                v = f == 1 && in_umbra(x, y) ? 1e-7f * float((x + 2 * y) % 3) : v + gaussian(random);
-            }
-    }
+    const std::vector<SyntheticFrame> frames = still_frames(3, [&](int f, int x, int y, float shade) {
+        return f == 1 && in_umbra(x, y) ? 1e-7f * float((x + 2 * y) % 3) : shade + gaussian(random);
+    });
     const std::vector<float> out = blend(frames, 1, 1);
     double worst = 0;
     for (int y = 0; y < kHeight; ++y)
