@@ -208,7 +208,7 @@ void BM_Maaf6VsAaf(benchmark::State &state) {
     aaf::ParameterSet scalar = maaf6.default_parameters();
     scalar.set("filter", std::string("scalar"));
     // Warm-up, untimed: the first run after the render pays for its outputs'
-    // fresh pages (measured: AAF's first 1-thread run 3x its later ones).
+    // fresh pages (measured: AAF's first 1-thread run 9x its later ones).
     aaf::run_with_threads(threads, [&] {
         benchmark::DoNotOptimize(
             aaf::filter_aovs(aaf_method, render, aaf::ChannelMap{}, aaf_method.default_parameters()));
