@@ -292,7 +292,7 @@ TEST_CASE("compare: the heatmap PNG carries its scale in its metadata", "[cli][c
 
 TEST_CASE(
     "compare: a sequence's temporal error is the RMSE of the frame-to-frame change of its error, 0 for a "
-    "still error, undefined for the first frame; a single pair refuses it",
+    "still error, undefined for the first frame, and a single pair refuses it",
     "[cli][compare]") {
     const fs::path dir = scratch_dir("compare_temporal");
     // Flickering: frame f's error is 0.1 f, so it changes by 0.1 a frame.

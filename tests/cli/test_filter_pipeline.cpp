@@ -459,7 +459,7 @@ TEST_CASE("CLI filter: AOVs in other parts are read, left in place, and must sha
 }
 
 TEST_CASE(
-    "CLI filter: a thin-lens render keeps its defocused beauty with a note; --compose paper warns that "
+    "CLI filter: a thin-lens render keeps its defocused beauty with a note, and --compose paper warns that "
     "AAF's output has no defocus",
     "[cli][pipeline]") {
     const fs::path dir = scratch_dir("pipeline_lens");

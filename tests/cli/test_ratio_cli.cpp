@@ -88,8 +88,8 @@ bool same_pixels(const std::string &a, const std::string &b) {
 }  // namespace
 
 TEST_CASE(
-    "aaf filter ratio --temporal: each frame blends with the previous output, frame 1 alone; less flicker; "
-    "any thread count",
+    "aaf filter ratio --temporal: each frame blends with the previous output, frame 1 alone, with less "
+    "flicker, for any thread count",
     "[cli][ratio]") {
     const fs::path dir = scratch_dir("cli_ratio_temporal");
     const int frames = 5;

@@ -118,7 +118,7 @@ TEST_CASE("aaf compare OUT REF measures what every registered method estimates, 
 }
 
 TEST_CASE(
-    "Another renderer's beauty is corrected through its pass of the key light by aaf and gaussian; "
+    "Another renderer's beauty is corrected through its pass of the key light by aaf and gaussian, and "
     "other light added to it survives",
     "[methods][beauty]") {
     for (const char *name : {"aaf", "gaussian"}) {

@@ -112,7 +112,7 @@ TEST_CASE(
 
 TEST_CASE(
     "maaf6: the axis-aligned baseline (--pairs 1) reduces the error of indirect light alone and of all "
-    "effects together at 16 spp; a noise-free layer is left as it is",
+    "effects together at 16 spp, and a noise-free layer is left as it is",
     "[maaf6]") {
     // Shadows alone and defocus alone carry too little noise at this size to gain; they are checked
     // at 160x120 below.

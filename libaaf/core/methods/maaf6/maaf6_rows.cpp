@@ -181,8 +181,10 @@ HWY_INLINE void add_tap(D d, const Maaf6Taps &taps, const Centres &c, const TapL
     if (!c.axis) return;
     const M axis = hn::And(accepted, hn::And(hn::Le(hn::Abs(offset_x), c.axis_radius),
                                              hn::Le(hn::Abs(offset_y), c.axis_radius)));
-    const V a1 = hn::Mul(hn::Mul(gaussian(d, d1, c.axis_scale), gaussian(d, dn, c.axis_scale)), inv_samples);
-    const V kernel = hn::Mul(a1, gaussian(d, d2, c.axis_scale));
+    // As a lane without offset pairs computes it (one exponential of the whole displacement), so that
+    // a cut window gets `--pairs 1`'s bits.
+    const V axis_sq = hn::Mul(dot3(dx, dy, dz, dx, dy, dz), hn::Mul(c.axis_scale, c.axis_scale));
+    const V kernel = hn::Mul(exp_nonpositive(d, hn::Mul(hn::Set(d, -0.5f), axis_sq)), inv_samples);
     add(axis, acc[kSumDen1], hn::Mul(kernel, weight0));
     for (int col = 0; col < 3; ++col)
         add(axis, acc[kSumNum1R + col], hn::Mul(kernel, load(d, taps.sums[col])));

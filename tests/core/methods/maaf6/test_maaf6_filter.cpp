@@ -355,7 +355,7 @@ TEST_CASE(
 
 TEST_CASE(
     "MAAF 6D filter: where the guides or the border cut the window, the pixel gets the axis-aligned "
-    "filter's own bits; over a whole window the partition",
+    "filter's own bits, over a whole window the partition's",
     "[maaf6]") {
     // A floor (normal +y, 30 columns of 1 cm) meets a wall (normal +x) that its taps reject; noisy
     // visibility on a y-wedge whose partition is active (s 0.25-0.35, Omega_y^max 40, central 3 std
