@@ -129,24 +129,41 @@ struct WindowState {
     std::map<int, AovSet> inputs;  ///< frame -> its input's width inputs and guides
 };
 
-/// Replaces the method's width inputs (MethodRoles::window_min and
-/// window_max) in `input`, frame `*state.frame`'s, by their extremes over
-/// the window's frames (temporal_window_extrema()), each read once while
-/// the window needs it; false when the method has none.
-bool steady_widths(WindowState &state, const FilterPlan &plan, const ChannelMap &resolved, AovSet &input) {
-    const MethodRoles &roles = plan.method->info().roles;
-    const auto present = [&](const std::vector<Role> &wanted) {
-        std::vector<std::string> names;
-        for (Role role : wanted)
-            for (const std::string &name : plan.channels.channels(role))
-                if (input.has_channel(name)) names.push_back(name);
-        return names;
-    };
-    const std::vector<std::string> minima = present(roles.window_min), maxima = present(roles.window_max);
-    if (minima.empty() && maxima.empty()) return false;
+/// One width input channel a temporal window steadies (WindowWidthInput).
+struct SteadiedChannel {
+    std::string source, steady;
+    WindowExtreme extreme;
+};
+
+/// The method's width input channels `input` holds, with where their extremes go.
+std::vector<SteadiedChannel> steadied_channels(const FilterPlan &plan, const AovSet &input) {
+    std::vector<SteadiedChannel> steadied;
+    for (const WindowWidthInput &width : plan.method->info().roles.window_widths) {
+        const std::vector<std::string> &sources = plan.channels.channels(width.source);
+        const std::vector<std::string> &steady = plan.channels.channels(width.steady);
+        const auto steadied_count = std::size_t(std::count_if(width.extremes.begin(), width.extremes.end(),
+                                                              [](const auto &e) { return e.has_value(); }));
+        if (sources.size() != width.extremes.size() || steady.size() != steadied_count)
+            throw Error("temporal window: the width input '" + std::string(width.source.key) +
+                        "' declares other channels than its roles have");
+        std::size_t next = 0;  // the steady role's channel for the next steadied one
+        for (std::size_t c = 0; c < sources.size(); ++c) {
+            if (!width.extremes[c]) continue;
+            const std::string &target = steady[next++];
+            if (input.has_channel(sources[c])) steadied.push_back({sources[c], target, *width.extremes[c]});
+        }
+    }
+    return steadied;
+}
+
+/// Writes the extremes of the method's width inputs (MethodRoles::window_widths)
+/// over the window's frames into `input`, frame `*state.frame`'s: in place,
+/// or into the steady role's channels, added (temporal_window_extrema());
+/// each neighbour's inputs are read once while the window needs them.
+void steady_widths(WindowState &state, const ChannelMap &resolved,
+                   const std::vector<SteadiedChannel> &steadied, AovSet &input) {
     WindowChannels channels;
-    channels.blended = minima;
-    channels.blended.insert(channels.blended.end(), maxima.begin(), maxima.end());
+    for (const SteadiedChannel &c : steadied) channels.blended.push_back(c.source);
     channels.position = required_guide<3>(Role::Position, resolved, input);
     channels.normal = required_guide<3>(Role::Normal, resolved, input);
     channels.motion = required_guide<2>(Role::Motion, resolved, input);
@@ -168,18 +185,40 @@ bool steady_widths(WindowState &state, const FilterPlan &plan, const ChannelMap 
             kept_channels(filter_file_in_memory(path, read_only, state.options, ignored), channels, path));
     }
     const AovSet own = kept_channels(input, channels, frame_path(state.pattern, frame));
-    for (const bool take_max : {false, true}) {
+    for (const SteadiedChannel &c : steadied)
+        if (c.steady != c.source && !input.has_channel(c.steady)) input.add_channel(c.steady);
+    for (const WindowExtreme extreme :
+         {WindowExtreme::Min, WindowExtreme::Max, WindowExtreme::MinNonNegative}) {
         WindowChannels part = channels;
-        part.blended = take_max ? maxima : minima;
+        part.blended.clear();
+        std::vector<PlaneView> out;
+        for (const SteadiedChannel &c : steadied)
+            if (c.extreme == extreme) {
+                part.blended.push_back(c.source);
+                out.push_back(input.channel(c.steady));
+            }
         if (part.blended.empty()) continue;
         std::vector<TemporalFrameView> neighbours;
         for (int other : frames)
             if (other != frame) neighbours.push_back(frame_view(state.inputs.at(other), part, other - frame));
-        std::vector<PlaneView> out;
-        for (const std::string &name : part.blended) out.push_back(input.channel(name));
-        temporal_window_extrema(frame_view(own, part, 0), neighbours, state.settings, take_max, out);
+        temporal_window_extrema(frame_view(own, part, 0), neighbours, state.settings, extreme, out);
     }
-    return true;
+}
+
+/// The output of the filter run on steadied inputs with the frame's own
+/// inputs as they were read: the extremes are the filter's, not the file's.
+void restore_inputs(const std::vector<SteadiedChannel> &steadied, const AovSet &alone, AovSet &output) {
+    for (const SteadiedChannel &c : steadied) {
+        if (c.steady != c.source) {
+            if (output.has_channel(c.steady)) output.take_channel(c.steady);
+            continue;
+        }
+        if (!output.has_channel(c.source) || !alone.has_channel(c.source)) continue;
+        const ConstPlaneView from = alone.channel(c.source);
+        const PlaneView to = output.channel(c.source);
+        for (int y = 0; y < to.height; ++y)
+            for (int x = 0; x < to.width; ++x) to(x, y) = from(x, y);
+    }
 }
 
 /// Blends `output`, frame `*state.frame`'s per-frame output, with its window.
@@ -251,16 +290,17 @@ FrameFilter temporal_filter(FrameFilter filter, const std::string &pattern,
         // Steadied widths change the frame's own filtering; its neighbours
         // blend it as filtered alone, so that is filtered too (twice the
         // filter's time for AAF, whose widths come from its inputs).
-        const MethodRoles &roles = plan.method->info().roles;
-        if (roles.window_min.empty() && roles.window_max.empty()) {
+        const std::vector<SteadiedChannel> steadied = steadied_channels(plan, input);
+        if (steadied.empty()) {
             AovSet output = run(plan, std::move(input));
             blend_window(*state, plan, resolved, output, output);
             return output;
         }
-        AovSet steadied = input;
-        const bool steady = steady_widths(*state, plan, resolved, steadied);
+        AovSet steady = input;
+        steady_widths(*state, resolved, steadied, steady);
         AovSet alone = run(plan, std::move(input));
-        AovSet output = steady ? run(plan, std::move(steadied)) : alone;
+        AovSet output = run(plan, std::move(steady));
+        restore_inputs(steadied, alone, output);
         blend_window(*state, plan, resolved, output, alone);
         return output;
     };

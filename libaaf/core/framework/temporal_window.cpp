@@ -468,13 +468,25 @@ void blend_temporal_window(const TemporalFrameView &centre, const std::vector<Te
 
 void temporal_window_extrema(const TemporalFrameView &centre,
                              const std::vector<TemporalFrameView> &neighbours,
-                             const TemporalWindowSettings &settings, bool take_max,
+                             const TemporalWindowSettings &settings, WindowExtreme extreme,
                              const std::vector<PlaneView> &out) {
     const int width = centre.position[0].width, height = centre.position[0].height;
     const std::size_t count = centre.values.size();
     const FramesByOffset frames = checked_window(centre, neighbours, out);
     const float min_cos = std::cos(settings.normal_threshold_deg * 3.14159265f / 180.0f);
-    const auto better = [take_max](float a, float b) { return take_max ? a > b : a < b; };
+    // Whether `a` replaces the extreme so far, `b` (a non-finite one always goes).
+    const auto better = [extreme](float a, float b) {
+        if (!std::isfinite(b)) return true;
+        switch (extreme) {
+            case WindowExtreme::Min:
+                return a < b;
+            case WindowExtreme::Max:
+                return a > b;
+            case WindowExtreme::MinNonNegative:
+                return a >= 0 && (b < 0 || a < b);
+        }
+        return false;
+    };
     parallel_for_rows(height, [&](int y) {
         for (int x = 0; x < width; ++x) {
             for (std::size_t c = 0; c < count; ++c) out[c](x, y) = centre.values[c](x, y);
@@ -490,8 +502,7 @@ void temporal_window_extrema(const TemporalFrameView &centre,
                                   [&](int tx, int ty, float) {
                                       for (std::size_t c = 0; c < count; ++c) {
                                           const float v = neighbour.values[c](tx, ty);
-                                          if (!std::isfinite(out[c](x, y)) || better(v, out[c](x, y)))
-                                              out[c](x, y) = v;
+                                          if (better(v, out[c](x, y))) out[c](x, y) = v;
                                       }
                                   });
             }

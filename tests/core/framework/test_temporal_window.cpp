@@ -315,9 +315,9 @@ TEST_CASE(
     TemporalWindowSettings settings;
     settings.radius_frames = 2;
     std::vector<float> low(std::size_t(kWidth) * kHeight), high(low.size());
-    temporal_window_extrema(frames[2].view(0), neighbours, settings, false,
+    temporal_window_extrema(frames[2].view(0), neighbours, settings, WindowExtreme::Min,
                             {plane_view(low.data(), kWidth, kHeight)});
-    temporal_window_extrema(frames[2].view(0), neighbours, settings, true,
+    temporal_window_extrema(frames[2].view(0), neighbours, settings, WindowExtreme::Max,
                             {plane_view(high.data(), kWidth, kHeight)});
     for (int y = 0; y < kHeight; ++y)
         for (int x = 4; x < kWidth - 4; ++x) {  // the surface points every frame saw
@@ -332,7 +332,7 @@ TEST_CASE(
     neighbours.clear();
     for (int f = 0; f < 5; ++f)
         if (f != 2) neighbours.push_back(frames[std::size_t(f)].view(f - 2));
-    temporal_window_extrema(frames[2].view(0), neighbours, settings, true,
+    temporal_window_extrema(frames[2].view(0), neighbours, settings, WindowExtreme::Max,
                             {plane_view(high.data(), kWidth, kHeight)});
     CHECK(std::memcmp(high.data(), frames[2].value.data(), high.size() * sizeof(float)) == 0);
 }

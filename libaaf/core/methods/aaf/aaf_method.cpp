@@ -153,8 +153,8 @@ class AafMethod final : public Method {
         info_.roles.outputs = {Role::FilteredVisibility, roles::FilterWidth, Role::Beauty};
         info_.roles.widths = {roles::FilterWidth};
         // The slopes' extremes (AAF Eq. 4) over more frames' samples: widths that hold still.
-        info_.roles.window_min = {Role::D2Min};
-        info_.roles.window_max = {Role::D2Max};
+        info_.roles.window_widths = {{Role::D2Min, Role::D2Min, {WindowExtreme::Min}},
+                                     {Role::D2Max, Role::D2Max, {WindowExtreme::Max}}};
         info_.roles.filtered = {{Role::Visibility, Role::FilteredVisibility}};
         info_.parameters = aaf_parameter_declarations().infos();
         info_.required_attributes = light_attribute_names();

@@ -207,7 +207,7 @@ class LayerFilter {
                 for (int c = 0; c < 3; ++c) out[std::size_t(c)](x, y) = own_mean(x, y, c);
                 continue;
             }
-            filters[std::size_t(x)] = pixel_filter(wedge, x, y, envelope_px);
+            filters[std::size_t(x)] = pixel_filter(filter_wedge(wedge, x, y), x, y, envelope_px);
             if (taps_) centre_params(*filters[std::size_t(x)], x, y, params.data(), std::size_t(padded));
         }
         std::vector<float> vector_sums;
@@ -315,6 +315,53 @@ class LayerFilter {
             v = std::max(0.0, v);  // radiance is not negative; the offset kernels' ringing can be
             out[std::size_t(col)](x, y) = float(v);
         }
+    }
+
+    /// The wedge over the temporal window (Maaf6LayerInputs::window_y_min):
+    /// `own` widened to the window's slopes, of the same kind (a y-wedge only
+    /// where `own` has one, a u-wedge of the same sign, a lens band still
+    /// filtered), else `own`.
+    Maaf6Wedge steady_wedge(const Maaf6Wedge &own, int x, int y) const {
+        Maaf6Wedge steady = own;
+        if (own.has_y && layer_.window_y_min.valid() && layer_.window_y_max.valid()) {
+            const float lo = layer_.window_y_min(x, y), hi = layer_.window_y_max(x, y);
+            if (lo >= 0 && std::isfinite(hi) && hi >= lo) {
+                steady.y_min = std::min(own.y_min, double(lo));
+                steady.y_max = std::max(own.y_max, double(hi));
+            }
+        }
+        if (own.has_u && shared_.window_u_min.valid() && shared_.window_u_max.valid()) {
+            const float lo = shared_.window_u_min(x, y), hi = shared_.window_u_max(x, y);
+            Maaf6Wedge u = steady;
+            u.u_min = std::min(own.u_min, double(lo));
+            u.u_max = std::max(own.u_max, double(hi));
+            const bool same_sign = (own.u_min * own.u_max > 0) == (u.u_min * u.u_max > 0);
+            const bool lens_kept = own.has_y || maaf6_lens_band(u) > 0;
+            if (std::isfinite(lo) && std::isfinite(hi) && hi >= lo && same_sign && lens_kept) steady = u;
+        }
+        return steady;
+    }
+
+    /// The wedge pixel (x, y) of wedge `own` is filtered with: the window's
+    /// (steady_wedge()) where its filter carries the phases the sums were
+    /// accumulated with (maaf6_pair_components() of `own`; the axis-aligned
+    /// filter carries none), so that its widths hold still from frame to
+    /// frame; else `own`.
+    Maaf6Wedge filter_wedge(const Maaf6Wedge &own, int x, int y) const {
+        const Maaf6Wedge steady = steady_wedge(own, x, y);
+        if (steady.y_min == own.y_min && steady.y_max == own.y_max && steady.u_min == own.u_min &&
+            steady.u_max == own.u_max)
+            return own;
+        const int pairs = pixel_pairs(shared_, params_, x, y);
+        const double window_m = double(params_.max_radius_px) * double(shared_.pixel_size(x, y));
+        const std::vector<Maaf6Component> filter =
+            maaf6_filter_components(steady, pairs, params_.k, window_m);
+        const std::vector<Maaf6Component> stored = maaf6_pair_components(own, pairs);
+        for (std::size_t p = 1; p < filter.size(); ++p)
+            if (filter[p].weight != 0 &&
+                (filter[p].centre_y != stored[p].centre_y || filter[p].centre_u != stored[p].centre_u))
+                return own;
+        return steady;
     }
 
     /// The components of pixel (x, y) with their weights (the pair weights

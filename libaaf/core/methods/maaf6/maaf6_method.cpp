@@ -146,8 +146,15 @@ class Maaf6Method final : public Method {
                                 Role::Position,           Role::Normal,
                                 Role::ObjectId,           Role::PixelSize};
         // The render's own means of the two layers, replaced by the filtered ones.
-        info_.roles.optional = {Role::Beauty, roles::Maaf6Direct, roles::Maaf6Indirect};
+        info_.roles.optional = {Role::Beauty, roles::Maaf6Direct, roles::Maaf6Indirect,
+                                roles::Maaf6WindowWedge};
         info_.roles.outputs = {roles::Maaf6Direct, roles::Maaf6Indirect, Role::Beauty};
+        // The wedges' extremes over a temporal window (the pixel band aside): widths that hold still.
+        using E = WindowExtreme;
+        info_.roles.window_widths = {
+            {roles::Maaf6Wedge,
+             roles::Maaf6WindowWedge,
+             {E::MinNonNegative, E::Max, E::MinNonNegative, E::Max, E::Min, E::Max, std::nullopt}}};
         info_.parameters = maaf6_parameters().infos();
         info_.required_attributes = light_attribute_names();
         for (const char *name :
@@ -167,6 +174,11 @@ class Maaf6Method final : public Method {
         shared.u_min = images.input(roles::Maaf6Wedge, 4);
         shared.u_max = images.input(roles::Maaf6Wedge, 5);
         shared.omega_x = images.input(roles::Maaf6Wedge, 6);
+        const bool window = images.has(roles::Maaf6WindowWedge);
+        if (window) {
+            shared.window_u_min = images.input(roles::Maaf6WindowWedge, 4);
+            shared.window_u_max = images.input(roles::Maaf6WindowWedge, 5);
+        }
         for (std::size_t c = 0; c < 3; ++c) {
             shared.position[c] = images.input(Role::Position, c);
             shared.normal[c] = images.input(Role::Normal, c);
@@ -207,6 +219,10 @@ class Maaf6Method final : public Method {
                 layer.weights.push_back(images.input(spec.weights, std::size_t(c)));
             layer.y_min = images.input(roles::Maaf6Wedge, spec.wedge_channel);
             layer.y_max = images.input(roles::Maaf6Wedge, spec.wedge_channel + 1);
+            if (window) {
+                layer.window_y_min = images.input(roles::Maaf6WindowWedge, spec.wedge_channel);
+                layer.window_y_max = images.input(roles::Maaf6WindowWedge, spec.wedge_channel + 1);
+            }
             layer.omega_y_max = double(header_value<float>(images, spec.omega));
             layer.y_density =
                 l == 0 ? light_sample_density(light) : SampleDensity{DensityShape::CosineLobe, 1.0, 1.0};

@@ -42,6 +42,14 @@ std::vector<RoleInfo> maaf6_roles() {
          "the 3D wedges of the first pass averaged over 5x5 (MAAF Sec. 6.2): direct y slopes d1/d2 - 1, "
          "indirect y slopes = reflector distance z, defocus slopes 1 - z/F (either sign), -1 in both y "
          "channels = no y-wedge; the pixel band-limit 2 / pixel size"},
+        {roles::Maaf6WindowWedge,
+         {"maaf6.window.direct.ymin", "maaf6.window.direct.ymax", "maaf6.window.indirect.ymin",
+          "maaf6.window.indirect.ymax", "maaf6.window.umin", "maaf6.window.umax"},
+         "as maaf6_wedge",
+         "maaf6_wedge's slopes over a temporal window (`--temporal-window` writes them in memory, never to "
+         "a file): the y-wedges' smallest y_min and largest y_max (-1 where no frame has a y-wedge), the "
+         "u-wedge's smallest u_min and largest u_max; the filter takes the widths the sums' phases leave "
+         "free from them (the axis-aligned filter's, and the pairs' where the phases are the same)"},
         {roles::Maaf6Spp,
          {"maaf6.spp"},
          "samples",

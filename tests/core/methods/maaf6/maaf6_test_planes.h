@@ -31,6 +31,8 @@ struct Maaf6Planes {
     int width = 0, height = 0;
     std::vector<std::vector<float>> sums, weights;  ///< 3 (2N-1)^2 and (2N-1)^2 of them
     std::vector<float> y_min, y_max, u_min, u_max, omega_x, id, pixel_size, spp, position[3], normal[3];
+    /// Optional (empty: none): the wedge's extremes over a temporal window.
+    std::vector<float> window_y_min, window_y_max, window_u_min, window_u_max;
     SampleDensity y_density, lens_density;  ///< what y and u were drawn from (fitted pair weights)
 
     Maaf6LayerInputs layer(double omega_y_max) const {
@@ -39,6 +41,10 @@ struct Maaf6Planes {
         for (const auto &p : weights) in.weights.push_back(view(p));
         in.y_min = view(y_min);
         in.y_max = view(y_max);
+        if (!window_y_min.empty()) {
+            in.window_y_min = view(window_y_min);
+            in.window_y_max = view(window_y_max);
+        }
         in.omega_y_max = omega_y_max;
         in.y_density = y_density;
         return in;
@@ -47,6 +53,10 @@ struct Maaf6Planes {
         Maaf6SharedInputs in;
         in.u_min = view(u_min);
         in.u_max = view(u_max);
+        if (!window_u_min.empty()) {
+            in.window_u_min = view(window_u_min);
+            in.window_u_max = view(window_u_max);
+        }
         in.omega_x = view(omega_x);
         for (std::size_t c = 0; c < 3; ++c) {
             in.position[c] = view(position[c]);

@@ -102,6 +102,11 @@ struct EdgeCase {
     double k = 1;                       ///< Maaf6FilterParams::k
     Maaf6PairWeights pair_weights = Maaf6PairWeights::Eq10;  ///< Maaf6FilterParams::pair_weights
     double band_spp = 0;  ///< Maaf6FilterParams::band_spp (with `strata` samples per pixel)
+    /// The wedge's slopes over a temporal window (Maaf6LayerInputs::window_y_min); window_lo < 0: none.
+    double window_lo = -1, window_hi = -1;
+    /// With a y-wedge: a lens wedge of this one slope beside it (0: none; the samples' lens point
+    /// is the lens centre), and its slopes over the window (window_lens_lo < 0: the pixel's own).
+    double lens_slope = 0, window_lens_lo = -1, window_lens_hi = -1;
 };
 
 double edge_error(const EdgeCase &e, int pairs_used) {
@@ -118,8 +123,8 @@ double edge_error(const EdgeCase &e, int pairs_used) {
     weights.assign(25, std::vector<float>(n));
     planes.y_min.assign(n, e.y_wedge ? float(e.wedge_lo) : -1.0f);
     planes.y_max.assign(n, e.y_wedge ? float(e.wedge_hi) : -1.0f);
-    planes.u_min.assign(n, e.y_wedge ? 0.0f : float(e.wedge_lo));
-    planes.u_max.assign(n, e.y_wedge ? 0.0f : float(e.wedge_hi));
+    planes.u_min.assign(n, e.y_wedge ? float(e.lens_slope) : float(e.wedge_lo));
+    planes.u_max.assign(n, e.y_wedge ? float(e.lens_slope) : float(e.wedge_hi));
     planes.omega_x.assign(n, float(2 / pixel_m));
     planes.id.assign(n, 1.0f);
     planes.pixel_size.assign(n, float(pixel_m));
@@ -134,9 +139,9 @@ double edge_error(const EdgeCase &e, int pairs_used) {
     w.y_min = e.y_wedge ? e.wedge_lo : 0;
     w.y_max = e.y_wedge ? e.wedge_hi : 0;
     w.omega_y_max = e.omega_v;
-    w.has_u = !e.y_wedge;
-    w.u_min = e.y_wedge ? 0 : e.wedge_lo;
-    w.u_max = e.y_wedge ? 0 : e.wedge_hi;
+    w.has_u = !e.y_wedge || e.lens_slope > 0;
+    w.u_min = e.y_wedge ? e.lens_slope : e.wedge_lo;
+    w.u_max = e.y_wedge ? e.lens_slope : e.wedge_hi;
     w.omega_u_max = e.omega_v;
     w.omega_x_max = 2 / pixel_m;
     const Maaf6SampleSide side(maaf6_pair_components(w, 3));
@@ -161,6 +166,16 @@ double edge_error(const EdgeCase &e, int pairs_used) {
         for (int c = 0; c < 75; ++c) sums[std::size_t(c)][std::size_t(i)] = float(rgb[std::size_t(c)]);
         for (int c = 0; c < 25; ++c) weights[std::size_t(c)][std::size_t(i)] = float(weight[std::size_t(c)]);
     }
+    if (e.window_lo >= 0) {
+        planes.window_y_min.assign(n, e.y_wedge ? float(e.window_lo) : -1.0f);
+        planes.window_y_max.assign(n, e.y_wedge ? float(e.window_hi) : -1.0f);
+        planes.window_u_min.assign(n, e.y_wedge ? float(e.lens_slope) : float(e.window_lo));
+        planes.window_u_max.assign(n, e.y_wedge ? float(e.lens_slope) : float(e.window_hi));
+        if (e.window_lens_lo >= 0) {
+            planes.window_u_min.assign(n, float(e.window_lens_lo));
+            planes.window_u_max.assign(n, float(e.window_lens_hi));
+        }
+    }
     Maaf6FilterParams params;
     params.pairs_used = pairs_used;
     params.k = e.k;
@@ -168,7 +183,7 @@ double edge_error(const EdgeCase &e, int pairs_used) {
     params.band_spp = e.band_spp;
     planes.y_density = planes.lens_density = SampleDensity{DensityShape::Uniform, e.half, 1.0};
     std::vector<float> out[3];
-    filter_planes(planes, e.omega_v, e.y_wedge ? 0.0 : e.omega_v, params, out);
+    filter_planes(planes, e.omega_v, w.has_u ? e.omega_v : 0.0, params, out);
     double worst = 0;
     for (int y = params.max_radius_px; y < height - params.max_radius_px; ++y)
         for (int x = params.max_radius_px; x < width - params.max_radius_px; ++x) {
@@ -519,4 +534,56 @@ TEST_CASE("MAAF 6D filter: a pixel whose bands band_spp widens gets the axis-ali
         e.omega_v = 80;
         CHECK(edge_error(e, 3) != edge_error(e, 1));
     }
+}
+
+TEST_CASE(
+    "MAAF 6D filter: over a temporal window the widths come from the window's wedge wherever the sums' "
+    "phases allow it",
+    "[maaf6]") {
+    // The soft edge with a stored wedge of 0.5-0.7 and a window whose frames spanned 0.45-0.9, Omega^max
+    // 80: the partition is used with either wedge (x extents 160 and 178 rad/m, under the pixel band's
+    // 200; the central component's reach 3 / sigma_x^0 = 9.4 and 8.4 cm, inside the 12 cm window).
+    EdgeCase own;
+    own.slope = 0.6;
+    own.wedge_lo = 0.5;
+    own.wedge_hi = 0.7;
+    own.omega_v = 80;
+    EdgeCase window = own;
+    window.window_lo = 0.45;
+    window.window_hi = 0.9;
+    EdgeCase rendered = own;  // the sums of a render whose own wedge was the window's
+    rendered.wedge_lo = window.window_lo;
+    rendered.wedge_hi = window.window_hi;
+    for (const bool y_wedge : {true, false}) {
+        INFO((y_wedge ? "y-wedge" : "lens wedge"));
+        own.y_wedge = window.y_wedge = rendered.y_wedge = y_wedge;
+        REQUIRE(edge_error(own, 3) != edge_error(own, 1));  // the partition is used
+        REQUIRE(edge_error(rendered, 3) != edge_error(rendered, 1));
+        // The axis-aligned filter reads the central sums, which carry no phase: the window's widths.
+        CHECK(edge_error(window, 1) == edge_error(rendered, 1));
+        CHECK(edge_error(window, 1) != edge_error(own, 1));
+        // A window the same as the pixel's own wedge changes nothing.
+        EdgeCase same = own;
+        same.window_lo = own.wedge_lo;
+        same.window_hi = own.wedge_hi;
+        CHECK(edge_error(same, 3) == edge_error(own, 3));
+    }
+    // The pairs' centres along the partitioned axis, 2p Omega^max / 5 (unclipped), do not depend on
+    // the slopes: the pairs take the window's widths with the sums' own phases, ...
+    for (const bool y_wedge : {true, false}) {
+        INFO((y_wedge ? "y-wedge" : "lens wedge"));
+        own.y_wedge = window.y_wedge = rendered.y_wedge = y_wedge;
+        CHECK(edge_error(window, 3) == edge_error(rendered, 3));
+        CHECK(edge_error(window, 3) != edge_error(own, 3));
+    }
+    // ... but with a y-wedge and a lens wedge, the lens centres C_u^p are the pair's x range mapped
+    // through the u-wedge (MAAF Fig. 11c), which the window's y-wedge moves: there the pairs keep the
+    // render's wedge (the sums carry its C_u^p), and the axis-aligned filter takes the window's.
+    own.y_wedge = window.y_wedge = rendered.y_wedge = true;
+    own.lens_slope = window.lens_slope = rendered.lens_slope = 0.3;
+    window.window_lens_lo = 0.25;
+    window.window_lens_hi = 0.35;
+    REQUIRE(edge_error(own, 3) != edge_error(own, 1));
+    CHECK(edge_error(window, 3) == edge_error(own, 3));
+    CHECK(edge_error(window, 1) != edge_error(own, 1));
 }

@@ -24,9 +24,9 @@ std::vector<int> temporal_window_frames(const std::string &pattern, int frame,
 /// `filter` with a temporal window over the sequence `pattern`
 /// (`aaf filter METHOD --temporal-window K`): running frame `*frame` (set
 /// by the caller before each filter_file()) filters it as `filter` does,
-/// its width inputs (MethodRoles::window_min, window_max: AAF's occluder
-/// distances) first replaced by their extremes over the window
-/// (temporal_window_extrema()), then blends the method's outputs (every
+/// its width inputs (MethodRoles::window_widths: AAF's occluder distances,
+/// MAAF's wedges) first steadied to their extremes over the window
+/// (temporal_window_extrema(); the output keeps the inputs as read), then blends the method's outputs (every
 /// output role but its widths, and the beauty it composes) with those of
 /// the frames temporal_window_frames() names, each filtered alone from its
 /// own input (blend_temporal_window()). Neighbours are filtered once and

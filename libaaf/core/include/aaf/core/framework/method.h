@@ -4,6 +4,7 @@
 #include <map>
 #include <memory>
 #include <mutex>
+#include <optional>
 #include <string>
 #include <utility>
 #include <vector>
@@ -11,8 +12,22 @@
 #include "aaf/core/contract/aov_contract.h"
 #include "aaf/core/framework/parameters.h"
 #include "aaf/core/framework/progress.h"
+#include "aaf/core/framework/temporal_window.h"
 
 namespace aaf {
+
+/// A width input a temporal window steadies: each channel of `source` with
+/// an extreme becomes that extreme over the window's frames at the pixel's
+/// surface point (temporal_window_extrema()), in `steady`'s channels, in
+/// order. `steady` equal to `source` replaces it (AAF's occluder distances);
+/// another role, an optional input of the method, holds the extremes beside
+/// the frame's own values (MAAF 6D's wedges, whose own values set the phases
+/// its sums carry).
+struct WindowWidthInput {
+    Role source, steady;
+    /// One per channel of `source`; std::nullopt: not steadied (no channel in `steady`).
+    std::vector<std::optional<WindowExtreme>> extremes;
+};
 
 /// The AOV roles a method reads and writes: its contract (libaaf/AOV_CONTRACT.md
 /// lists them per method, generated from these declarations).
@@ -28,11 +43,9 @@ struct MethodRoles {
     /// Outputs that describe the filter itself (AAF's per-pixel widths)
     /// rather than estimate the image: a temporal window does not blend them.
     std::vector<Role> widths;
-    /// Inputs the filter's widths come from that a temporal window replaces
-    /// with their smallest (window_min) or largest (window_max) value over
-    /// its frames at the pixel's surface point, so that the widths hold still
-    /// from frame to frame (AAF's occluder distances).
-    std::vector<Role> window_min, window_max;
+    /// Inputs the filter's widths come from that a temporal window steadies
+    /// (WindowWidthInput), so that the widths hold still from frame to frame.
+    std::vector<WindowWidthInput> window_widths;
     /// (input, output) pairs where the output is a normalised filtering of
     /// the input: a constant input gives that constant (a property every
     /// method's test checks).

@@ -59,6 +59,15 @@ inline constexpr float kTemporalOwnScaleLimit = 3.0f;
 /// noise: its changing pixels are an edge that moved.
 inline constexpr int kTemporalRobustValues = 5;
 
+/// Which extreme over the window temporal_window_extrema() takes.
+enum class WindowExtreme {
+    Min,
+    Max,
+    /// The smallest value not below 0: negative values mark "none" (MAAF 6D's
+    /// -1 for a pixel without a y-wedge) and stay only where no frame has another.
+    MinNonNegative,
+};
+
 /// One frame of the window as the blend reads it; views of one size.
 struct TemporalFrameView {
     /// The frame's number minus the centre frame's.
@@ -93,7 +102,7 @@ struct TemporalFrameView {
 void blend_temporal_window(const TemporalFrameView &centre, const std::vector<TemporalFrameView> &neighbours,
                            const TemporalWindowSettings &settings, const std::vector<PlaneView> &out);
 
-/// The smallest (largest, `take_max`) of each of the centre's `values` over
+/// The smallest (largest, `extreme`) of each of the centre's `values` over
 /// the window: its own and every neighbour's at the pixel's surface point
 /// (each of the taps blend_temporal_window() would keep, taken alone), into
 /// `out` (same count and size; may alias nothing of the inputs). A filter's
@@ -103,7 +112,7 @@ void blend_temporal_window(const TemporalFrameView &centre, const std::vector<Te
 /// aaf::Error on mismatched sizes.
 void temporal_window_extrema(const TemporalFrameView &centre,
                              const std::vector<TemporalFrameView> &neighbours,
-                             const TemporalWindowSettings &settings, bool take_max,
+                             const TemporalWindowSettings &settings, WindowExtreme extreme,
                              const std::vector<PlaneView> &out);
 
 /// The causal, recursive case (the ratio estimator's `--temporal`, its Sec.

@@ -15,13 +15,18 @@ struct Maaf6LayerInputs {
     std::vector<ConstPlaneView> sums;     ///< 3 (2N-1)^2 planes: channel c's R, G, B at 3c .. 3c+2
     std::vector<ConstPlaneView> weights;  ///< (2N-1)^2 planes
     ConstPlaneView y_min, y_max;          ///< the layer's y slopes; -1 in both = no y-wedge
-    double omega_y_max = 0;               ///< the layer's Omega_y^max (light: rad/m; indirect: rad)
-    SampleDensity y_density;              ///< what y is drawn from (Maaf6PairWeights::Fitted only)
+    /// Optional (invalid views: none): the y slopes' extremes over a temporal
+    /// window (roles::Maaf6WindowWedge), for the widths the phases leave free.
+    ConstPlaneView window_y_min, window_y_max;
+    double omega_y_max = 0;   ///< the layer's Omega_y^max (light: rad/m; indirect: rad)
+    SampleDensity y_density;  ///< what y is drawn from (Maaf6PairWeights::Fitted only)
 };
 
 struct Maaf6SharedInputs {
     ConstPlaneView u_min, u_max;  ///< defocus slopes 1 - z/F
-    ConstPlaneView omega_x;       ///< pixel band-limit, rad/m
+    /// Optional, as Maaf6LayerInputs::window_y_min: the u slopes' extremes over the window.
+    ConstPlaneView window_u_min, window_u_max;
+    ConstPlaneView omega_x;  ///< pixel band-limit, rad/m
     std::array<ConstPlaneView, 3> position, normal;
     ConstPlaneView object_id;  ///< 0 = background (no primary hit)
     ConstPlaneView pixel_size;

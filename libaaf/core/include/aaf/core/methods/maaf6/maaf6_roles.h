@@ -19,6 +19,9 @@ inline constexpr Role Maaf6IndirectSums{"maaf6_indirect_sums"};  ///< indirect r
 inline constexpr Role Maaf6IndirectWeights{"maaf6_indirect_weights"};  ///< the same functions alone
 inline constexpr Role Maaf6Wedge{"maaf6_wedge"};  ///< the 3D wedges the sums were accumulated with
 inline constexpr Role Maaf6Spp{"maaf6_spp"};      ///< path samples of the pixel
+/// The wedge's slopes' extremes over a temporal window (`--temporal-window`
+/// writes them in memory): the widths the sums' phases leave free.
+inline constexpr Role Maaf6WindowWedge{"maaf6_window_wedge"};
 }  // namespace roles
 
 namespace attr {
