@@ -5,6 +5,7 @@
 #include <limits>
 #include <memory>
 #include <string>
+#include <utility>
 
 #include "aaf/core/kernels/gather.h"
 #include "aaf/core/methods/maaf/maaf_accumulation.h"
@@ -47,6 +48,10 @@ void check_inputs(const MaafInputs &in, const LightPlane &light, const MaafParam
     check_size(in.s_min, width, height, "maaf s_min");
     check_size(in.s_max, width, height, "maaf s_max");
     check_size(in.omega_x_max, width, height, "maaf omega_x_max");
+    if (in.window_s_min.valid() || in.window_s_max.valid()) {
+        check_size(in.window_s_min, width, height, "maaf window s_min");
+        check_size(in.window_s_max, width, height, "maaf window s_max");
+    }
     for (int c = 0; c < 3; ++c) {
         check_size(in.position[std::size_t(c)], width, height, "position");
         check_size(in.normal[std::size_t(c)], width, height, "normal");
@@ -107,6 +112,23 @@ struct PairWeights {
     }
 };
 
+/// The slopes pixel (x, y) of wedge [s_min, s_max] is filtered with: the
+/// window's (MaafInputs::window_s_min) where they partition the same
+/// Omega_y^max at these bands (the offset pairs' centres 2p Omega / (2N - 1),
+/// the phases the sums carry: MAAF Eq. 6) or only the central filter is
+/// used, so that the widths hold still from frame to frame; else its own.
+std::pair<double, double> filter_slopes(const MaafInputs &in, int x, int y, double s_min, double s_max,
+                                        double band_x, double band_y, int used) {
+    if (!in.window_s_min.valid() || !in.window_s_max.valid()) return {s_min, s_max};
+    const float window_lo = in.window_s_min(x, y), window_hi = in.window_s_max(x, y);
+    if (!(window_lo >= 0) || !std::isfinite(window_hi)) return {s_min, s_max};
+    const double lo = std::min(s_min, double(window_lo)), hi = std::max(s_max, double(window_hi));
+    if (used == 1 || maaf_partitioned_omega_y_max(lo, hi, band_x, band_y) ==
+                         maaf_partitioned_omega_y_max(s_min, s_max, band_x, band_y))
+        return {lo, hi};
+    return {s_min, s_max};
+}
+
 MaafPixelKernel pixel_kernels(const MaafInputs &in, const MaafParams &params, const PairWeights &weights,
                               int pairs, int x, int y) {
     MaafPixelKernel k;
@@ -120,9 +142,9 @@ MaafPixelKernel pixel_kernels(const MaafInputs &in, const MaafParams &params, co
     const double widening = band_widening(in, params, x, y);
     const int used = widening > 1 ? 1 : pairs;
     const double band_x = widening * double(omega_x_max), band_y = widening * params.omega_y_max_rad_per_m;
-    std::vector<MaafComponent> components = maaf_pair_components(s_min, s_max, band_x, band_y, used);
-    weights.apply(components, s_min, s_max,
-                  maaf_partitioned_omega_y_max(s_min, s_max, band_x, band_y) < band_y);
+    const auto [lo, hi] = filter_slopes(in, x, y, s_min, s_max, band_x, band_y, used);
+    std::vector<MaafComponent> components = maaf_pair_components(lo, hi, band_x, band_y, used);
+    weights.apply(components, lo, hi, maaf_partitioned_omega_y_max(lo, hi, band_x, band_y) < band_y);
     for (int p = 0; p < used; ++p) {
         const MaafComponent &c = components[std::size_t(p)];
         // The Fourier Gaussian's std is k sigma_x^p (MaafParams::k; the paper's reading is k = 1).

@@ -83,7 +83,12 @@ class MaafMethod final : public Method {
             Role::ObjectId,       Role::PixelSize,           Role::Unshadowed};
         info_.roles.optional = shadow_composition_roles();
         info_.roles.optional.push_back(Role::SamplesPerPixel);  // the width follows the samples (band_spp)
+        info_.roles.optional.push_back(roles::MaafWindowWedge);
         info_.roles.outputs = {Role::FilteredVisibility, Role::Beauty};
+        // The wedge's slopes over a temporal window (the bands aside): widths that hold still.
+        info_.roles.window_widths = {{roles::MaafWedge,
+                                      roles::MaafWindowWedge,
+                                      {WindowExtreme::Min, WindowExtreme::Max, std::nullopt, std::nullopt}}};
         info_.parameters = maaf_parameters().infos();
         info_.required_attributes = light_attribute_names();
         info_.required_attributes.push_back(attr::kMaafPairs);
@@ -109,6 +114,10 @@ class MaafMethod final : public Method {
         in.s_min = images.input(roles::MaafWedge, 0);
         in.s_max = images.input(roles::MaafWedge, 1);
         in.omega_x_max = images.input(roles::MaafWedge, 2);
+        if (images.has(roles::MaafWindowWedge)) {
+            in.window_s_min = images.input(roles::MaafWindowWedge, 0);
+            in.window_s_max = images.input(roles::MaafWindowWedge, 1);
+        }
         for (std::size_t c = 0; c < 3; ++c) {
             in.position[c] = images.input(Role::Position, c);
             in.normal[c] = images.input(Role::Normal, c);

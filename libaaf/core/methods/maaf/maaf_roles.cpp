@@ -38,6 +38,12 @@ std::vector<RoleInfo> maaf_roles() {
          "slopes d1/d2 - 1, the pixel band-limit Omega_x^max (0 = no wedge, not filtered) and the "
          "partitioned "
          "Omega_y^max of the light-side functions"},
+        {roles::MaafWindowWedge,
+         {"maaf.window.smin", "maaf.window.smax"},
+         "slopes (unitless)",
+         "maaf_wedge's slopes over a temporal window (`--temporal-window` writes them in memory, never to a "
+         "file): the smallest s_min and the largest s_max; the filter takes its widths from them where the "
+         "partitioned Omega_y^max, and so the sums' phases, stay the same"},
     };
 }
 

@@ -30,8 +30,9 @@ struct FlatScene {
     std::vector<float> px, py, pz, nx, ny, nz, object_id, pixel_size, d1, s_min, s_max, omega_x_max;
     std::vector<std::vector<float>> value_sums, unoccluded_sums;
     double light_band = 2.0;
-    double light_side_scale = 1.0;  ///< the light grid's y in [-1/2, 1/2] times this, metres
-    std::vector<float> samples;     ///< the spp input; empty: none
+    double light_side_scale = 1.0;                  ///< the light grid's y in [-1/2, 1/2] times this, metres
+    std::vector<float> samples;                     ///< the spp input; empty: none
+    std::vector<float> window_s_min, window_s_max;  ///< the wedge over a temporal window; empty: none
     double band_spp = MaafParams{}.band_spp;
 
     FlatScene(int w, int h) : width(w), height(h) {
@@ -110,6 +111,10 @@ struct FlatScene {
         in.object_id = view(object_id);
         in.pixel_size = view(pixel_size);
         if (!samples.empty()) in.samples = view(samples);
+        if (!window_s_min.empty()) {
+            in.window_s_min = view(window_s_min);
+            in.window_s_max = view(window_s_max);
+        }
         return in;
     }
 
@@ -510,4 +515,44 @@ TEST_CASE("MAAF's pair weights change only the offset pairs: with N = 1 every ch
         CHECK(all_finite(offsets));
         CHECK(offsets != eq10);
     }
+}
+
+TEST_CASE(
+    "MAAF over a temporal window: the widths come from the window's slopes where the sums' phases stay "
+    "the same",
+    "[maaf][filter][temporal]") {
+    FlatScene scene(36, 28);
+    scene.set_wedge(0.3, 1.1);
+    std::mt19937 rng(23);
+    std::uniform_real_distribution<double> unit(0.0, 1.0);
+    scene.accumulate(
+        [&](int x, int, double y1, double) { return x + 10 * y1 + 4 * unit(rng) > 18 ? 1.0 : 0.0; }, 3);
+    const std::vector<float> own = scene.run(), own_n1 = scene.run(1);
+    // A window whose frames spanned 0.25-1.3: the partitioned Omega_y^max is the light's band with
+    // either wedge (unclipped), so the offset pairs' phases are the sums' own. The same as a render
+    // whose own wedge was the window's (the same sums: their phases follow Omega_y^max alone).
+    const std::size_t n = scene.px.size();
+    FlatScene window = scene;
+    window.window_s_min.assign(n, 0.25f);
+    window.window_s_max.assign(n, 1.3f);
+    FlatScene rendered = scene;
+    rendered.s_min.assign(n, 0.25f);
+    rendered.s_max.assign(n, 1.3f);
+    REQUIRE(maaf_partitioned_omega_y_max(0.25, 1.3, scene.omega_x_max[0], scene.omega_y_max()) ==
+            scene.omega_y_max());
+    CHECK(window.run() == rendered.run());
+    CHECK(window.run() != own);
+    CHECK(window.run(1) == rendered.run(1));
+    // A window the same as the pixel's own wedge changes nothing.
+    window.window_s_min = scene.s_min;
+    window.window_s_max = scene.s_max;
+    CHECK(window.run() == own);
+    // A window slope the pixel band clips (Omega_y^max / s_min beyond it) would move the phases:
+    // the pairs keep the render's wedge; the central filter alone (N = 1) takes the window's.
+    window.window_s_min.assign(n, 0.001f);
+    window.window_s_max.assign(n, 1.3f);
+    REQUIRE(maaf_partitioned_omega_y_max(0.001, 1.3, scene.omega_x_max[0], scene.omega_y_max()) <
+            scene.omega_y_max());
+    CHECK(window.run() == own);
+    CHECK(window.run(1) != own_n1);
 }

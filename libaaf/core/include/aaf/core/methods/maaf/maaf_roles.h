@@ -18,6 +18,9 @@ namespace roles {
 inline constexpr Role MaafValueSums{"maaf_value"};
 inline constexpr Role MaafUnoccludedSums{"maaf_unoccluded"};  ///< the same, every sample unoccluded
 inline constexpr Role MaafWedge{"maaf_wedge"};                ///< the wedge the sums were accumulated with
+/// The wedge's slopes' extremes over a temporal window (`--temporal-window`
+/// writes them in memory): the widths the sums' phases leave free.
+inline constexpr Role MaafWindowWedge{"maaf_window_wedge"};
 }  // namespace roles
 
 namespace attr {
