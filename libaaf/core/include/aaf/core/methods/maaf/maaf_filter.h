@@ -25,8 +25,8 @@ struct MaafInputs {
     /// Optional (invalid views: none): the slopes' extremes over a temporal
     /// window (roles::MaafWindowWedge). A pixel takes its widths from
     /// [min(s_min, window_s_min), max(s_max, window_s_max)] where that wedge
-    /// partitions the same Omega_y^max as its own (the sums' phases, MAAF
-    /// Eq. 6), or where the central filter is used alone.
+    /// partitions the same Omega_y^max as its own (the sums' phases follow
+    /// it: MAAF Eq. 6), or where the central filter is used alone.
     ConstPlaneView window_s_min, window_s_max;
     std::array<ConstPlaneView, 3> position;
     std::array<ConstPlaneView, 3> normal;
