@@ -18,6 +18,8 @@
 #include <hwy/foreach_target.h>  // IWYU pragma: keep
 #include <hwy/highway.h>
 
+#include "aaf/core/kernels/vector_math-inl.h"
+
 HWY_BEFORE_NAMESPACE();
 namespace aaf::detail {
 namespace HWY_NAMESPACE {
@@ -29,31 +31,6 @@ using V = hn::Vec<D>;
 using VI = hn::Vec<DI>;
 using M = hn::Mask<D>;
 constexpr int kLanes = int(HWY_LANES(float));
-
-/// 2^x for x <= 0: x = k + f with k an integer and |f| <= 1/2, 2^k from the
-/// exponent bits, 2^f a degree-4 polynomial (relative error 3e-6, fitted
-/// with 2^0 = 1 exactly, so the centre tap weighs exactly 1). Floored at
-/// 2^-64 (Max turns a NaN into that floor on x86): a weight that small
-/// changes no sum it joins, and times a source it stays clear of the
-/// denormals that slow arithmetic down.
-HWY_INLINE V exp2_nonpositive(V x) {
-    const D d;
-    const DI di;
-    const V floored = hn::Max(x, hn::Set(d, -64.0f));
-    const V rounding_shift = hn::Set(d, 12582912.0f);  // 1.5 * 2^23: the add rounds to an integer
-    const V shifted = hn::Add(floored, rounding_shift);
-    const V f = hn::Sub(floored, hn::Sub(shifted, rounding_shift));
-    // Estrin's scheme, (1 + c1 f) + f^2 ((c2 + c3 f) + c4 f^2): a shorter
-    // chain of dependent operations than Horner's, so more taps overlap.
-    const V f2 = hn::Mul(f, f);
-    const V low = hn::Add(hn::Mul(hn::Set(d, 0.693124175f), f), hn::Set(d, 1.0f));
-    const V middle = hn::Add(hn::Mul(hn::Set(d, 0.0559064262f), f), hn::Set(d, 0.240240991f));
-    const V high = hn::Add(middle, hn::Mul(hn::Set(d, 0.00958285294f), f2));
-    const V p = hn::Add(low, hn::Mul(f2, high));
-    // shifted's bits are 0x4B400000 + k: move k + 127 into the exponent field.
-    const VI bits = hn::ShiftLeft<23>(hn::Add(hn::BitCast(di, shifted), hn::Set(di, 127 - 0x4B400000)));
-    return hn::Mul(p, hn::BitCast(d, bits));
-}
 
 /// Lanes' worth of `plane` from element `index` (may be negative or run past
 /// `size`): a plain load inside the plane, else through a zero-padded copy.
@@ -156,8 +133,8 @@ HWY_INLINE void add_taps(const AafSweep &s, const Centres &c, int o_begin, int o
                          ? hn::Add(hn::Mul(hn::Mul(du, du), c.coef_u), hn::Mul(hn::Mul(dv, dv), c.coef_v))
                          : hn::Mul(hn::Add(hn::Mul(du, du), hn::Mul(dv, dv)), c.coef_u);
         if (Sheared) exponent = hn::Add(exponent, hn::Mul(hn::Mul(dn, dn), c.coef_n));
-        const V weight = Masked || !Uniform ? hn::IfThenElseZero(kept, exp2_nonpositive(exponent))
-                                            : exp2_nonpositive(exponent);
+        const V weight = Masked || !Uniform ? hn::IfThenElseZero(kept, exp2_nonpositive(d, exponent))
+                                            : exp2_nonpositive(d, exponent);
         weight_sum = hn::Add(weight_sum, weight);
         for (int k = 0; k < K; ++k) {
             const V added = hn::Add(sum[k], hn::Mul(weight, load(s.source[k], t)));

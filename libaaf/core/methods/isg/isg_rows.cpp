@@ -1,7 +1,9 @@
 // The ISG methods' per-pixel loops (isg_rows.h) for every instruction set
 // Google Highway targets, chosen at run time. Each lane is one pixel and
 // computes what the scalar formulas (isg_formulas.h) compute, operation for
-// operation; the range weights' exponential is Highway's (hwy/contrib/math).
+// operation; the range weights' exponential is exp2_nonpositive
+// (vector_math-inl.h: plain multiplies and adds, the same bits on every
+// instruction set).
 #include "isg_rows.h"
 
 #include <algorithm>
@@ -17,27 +19,17 @@
 #define HWY_TARGET_INCLUDE "methods/isg/isg_rows.cpp"
 #include <hwy/foreach_target.h>  // IWYU pragma: keep
 #include <hwy/highway.h>
-// After highway.h: math-inl.h is included once per target.
-#include <hwy/contrib/math/math-inl.h>
+
+#include "aaf/core/kernels/vector_math-inl.h"
 
 HWY_BEFORE_NAMESPACE();
 namespace aaf::isg {
 namespace HWY_NAMESPACE {
 namespace hn = hwy::HWY_NAMESPACE;
 
-// A full vector of floats, one pixel per lane; its sums in double take two
-// vectors, one per half (one on the single-lane scalar target).
+// A full vector of floats, one pixel per lane.
 using DF = hn::ScalableTag<float>;
 using DI = hn::RebindToSigned<DF>;
-#if HWY_TARGET == HWY_SCALAR
-using DH = DF;
-constexpr int kHalves = 1;
-#else
-using DH = hn::Half<DF>;
-constexpr int kHalves = 2;
-#endif
-using DD = hn::Rebind<double, DH>;
-using VD = hn::Vec<DD>;
 using VF = hn::Vec<DF>;
 using VI = hn::Vec<DI>;
 using MF = hn::Mask<DF>;
@@ -143,6 +135,17 @@ HWY_INLINE VI round_half_away(VF t) {
     return hn::ConvertTo(DI(), hn::Add(t, hn::CopySign(hn::Set(df, 0.49999997f), t)));
 }
 
+/// round_half_away(tap r) for a radius r >= 0 with |tap r| < 2^22: t has
+/// the sign of the tap (or is a zero, which truncates to 0 with either
+/// sign's half), so the signed half is a constant, and the integer's bits
+/// come from the 1.5 * 2^23 shift (no range fix-up of a conversion).
+HWY_INLINE VI round_half_away(float tap, VF radius) {
+    const DF df;
+    const VF rounded =
+        hn::Trunc(hn::Add(hn::Mul(hn::Set(df, tap), radius), hn::Set(df, std::copysign(0.49999997f, tap))));
+    return hn::Sub(hn::BitCast(DI(), hn::Add(rounded, hn::Set(df, 12582912.0f))), hn::Set(DI(), 0x4B400000));
+}
+
 /// Index of pixel (x, y) in every plane of `layout`.
 HWY_INLINE VI pixel_index(const PlaneLayout &layout, VI x, VI y) {
     const DI di;
@@ -215,78 +218,48 @@ HWY_INLINE void store(VF value, const PlaneView &out, const RowLanes &lanes) {
     for (int i = 0; i < lanes.count; ++i) out(x0 + i, hn::GetLane(lanes.y)) = values[i];
 }
 
-/// The lanes of `v` in double, half `h` of them.
-HWY_INLINE VD promote_half(VF v, int h) {
-#if HWY_TARGET == HWY_SCALAR
-    (void)h;
-    return hn::PromoteTo(DD(), v);
-#else
-    return hn::PromoteTo(DD(), h == 0 ? hn::LowerHalf(DH(), v) : hn::UpperHalf(DH(), v));
-#endif
-}
-
-/// The halves' doubles rounded to float, back in one vector.
-HWY_INLINE VF demote_halves(const VD (&halves)[kHalves]) {
-#if HWY_TARGET == HWY_SCALAR
-    return hn::DemoteTo(DF(), halves[0]);
-#else
-    return hn::Combine(DF(), hn::DemoteTo(DH(), halves[1]), hn::DemoteTo(DH(), halves[0]));
-#endif
-}
-
-/// Sums of ISG Eq. 4 in double: a pixel's weights and its weighted values.
+/// Sums of ISG Eq. 4: a pixel's weights and its weighted values, each lane
+/// adding its taps in order (float: the same bits for any vector width).
 template <int kValues>
 struct WeightedSums {
-    VD weight[kHalves], value[kValues][kHalves];
+    VF weight, value[kValues];
     WeightedSums() {
-        for (int h = 0; h < kHalves; ++h) {
-            weight[h] = hn::Zero(DD());
-            for (int k = 0; k < kValues; ++k) value[k][h] = hn::Zero(DD());
-        }
+        weight = hn::Zero(DF());
+        for (int k = 0; k < kValues; ++k) value[k] = hn::Zero(DF());
     }
     /// Adds weight `w` of the lanes in `m` (the others add 0, which leaves
-    /// a sum's bits as they are): value k gets double(w) * values[k].
+    /// a sum's bits as they are): value k gets w * values[k].
     void add(MF m, VF w, const VF (&values)[kValues]) {
         const VF w_in = hn::IfThenElseZero(m, w);
-        VF v_in[kValues];
-        for (int k = 0; k < kValues; ++k) v_in[k] = hn::IfThenElseZero(m, values[k]);
-        for (int h = 0; h < kHalves; ++h) {
-            const VD wd = promote_half(w_in, h);
-            weight[h] = hn::Add(weight[h], wd);
-            for (int k = 0; k < kValues; ++k)
-                value[k][h] = hn::Add(value[k][h], hn::Mul(wd, promote_half(v_in[k], h)));
-        }
+        weight = hn::Add(weight, w_in);
+        for (int k = 0; k < kValues; ++k)
+            value[k] = hn::Add(value[k], hn::Mul(w_in, hn::IfThenElseZero(m, values[k])));
     }
     /// add() of finite `values`: the lanes not in `m` add weight 0 and
     /// 0 x value = +-0, which leaves every sum's bits as they are (a sum
     /// that starts at +0 and adds is never -0).
     void add_finite(MF m, VF w, const VF (&values)[kValues]) {
         const VF w_in = hn::IfThenElseZero(m, w);
-        for (int h = 0; h < kHalves; ++h) {
-            const VD wd = promote_half(w_in, h);
-            weight[h] = hn::Add(weight[h], wd);
-            for (int k = 0; k < kValues; ++k)
-                value[k][h] = hn::Add(value[k][h], hn::Mul(wd, promote_half(values[k], h)));
-        }
+        weight = hn::Add(weight, w_in);
+        for (int k = 0; k < kValues; ++k) value[k] = hn::Add(value[k], hn::Mul(w_in, values[k]));
     }
-    /// The lanes whose weights sum to more than 0 (a positive sum of floats
-    /// stays positive in float).
-    MF positive() const { return hn::Gt(demote_halves(weight), hn::Zero(DF())); }
-    VF mean(int k) const {
-        VD quotient[kHalves];
-        for (int h = 0; h < kHalves; ++h) quotient[h] = hn::Div(value[k][h], weight[h]);
-        return demote_halves(quotient);
-    }
+    /// The lanes whose weights sum to more than 0.
+    MF positive() const { return hn::Gt(weight, hn::Zero(DF())); }
+    VF mean(int k) const { return hn::Div(value[k], weight); }
 };
 
-/// exp(-l^2 / sigma), l = |p - p0| / scene size (ISG Eq. 6-7); NaN lanes are
-/// dropped from `m` (a non-finite weight passes the tap over).
+/// exp(-l^2 / sigma), l = |p - p0| / scene size (ISG Eq. 6-7), at least
+/// 2^-64 (exp2_nonpositive()'s floor: a far tap still counts where no other
+/// does, as the exponential's own tiny value did); NaN lanes are dropped
+/// from `m` (a non-finite weight passes the tap over).
 HWY_INLINE VF shadow_range(const ShadowSweep &s, const Point &p, const Point &p0, MF &m) {
     const DF df;
-    const VF l = hn::Mul(length(p - p0), hn::Set(df, s.range.inv_scene_size));
-    const VF exponent = hn::Mul(hn::Mul(hn::Neg(l), l), hn::Set(df, s.range.inv_sigma));
+    // In base 2, from the squared distance with the constants folded: no square root per tap.
+    const Point delta = p - p0;
+    const float scale = -1.44269504f * (s.range.inv_scene_size * s.range.inv_scene_size) * s.range.inv_sigma;
+    const VF exponent = hn::Mul(dot(delta, delta), hn::Set(df, scale));
     m = hn::AndNot(hn::IsNaN(exponent), m);
-    return hn::Exp(df, exponent);
+    return detail::HWY_NAMESPACE::exp2_nonpositive(df, exponent);
 }
 
 /// The lanes' pixels in the packed planes of ShadowScratch (dense, row
@@ -302,10 +275,9 @@ struct ShadowBlock {
 /// one of an interior block).
 template <bool kInterior>
 HWY_INLINE VI shadow_tap(const ShadowBlock &b, VF radius_px, float tap_x, float tap_y, MF &m) {
-    const DF df;
     const DI di;
-    const VI dx = round_half_away(hn::Mul(hn::Set(df, tap_x), radius_px));
-    const VI dy = round_half_away(hn::Mul(hn::Set(df, tap_y), radius_px));
+    // radius_px is >= 0 and at most max_radius_px (clamp_radius()), |tap| <= 1.
+    const VI dx = round_half_away(tap_x, radius_px), dy = round_half_away(tap_y, radius_px);
     if constexpr (kInterior) {
         return hn::Add(b.base, hn::Add(hn::Mul(dy, hn::Set(di, b.dense.width)), dx));
     } else {
@@ -530,16 +502,20 @@ void ShadowRow(const ShadowSweep &s, int y) {
     }
 }
 
-/// exp(-(a l^2 + b n^2) / sigma) (ISG Eq. 10-12) with n = 1 - N.N0; NaN
-/// lanes are dropped from `m`.
+/// exp(-(a l^2 + b n^2) / sigma) (ISG Eq. 10-12) with n = 1 - N.N0, at
+/// least 2^-64; NaN lanes are dropped from `m`.
 HWY_INLINE VF glossy_range(const GlossySweep &s, VI index, const Point &p0, const Point &n0, MF &m) {
     const DF df;
-    const VF l = hn::Mul(length(load_point(s.position, index) - p0), hn::Set(df, s.range.inv_scene_size));
+    const Point delta = load_point(s.position, index) - p0;
     const VF n = hn::Sub(hn::Set(df, 1.0f), dot(load_point(s.normal, index), n0));
-    const VF a_l2 = hn::Mul(hn::Mul(hn::Set(df, s.a), l), l), b_n2 = hn::Mul(hn::Mul(hn::Set(df, s.b), n), n);
-    const VF exponent = hn::Mul(hn::Neg(hn::Add(a_l2, b_n2)), hn::Set(df, s.range.inv_sigma));
+    // a l^2 from the squared distance (no square root), in base 2; a, b >= 0,
+    // so the exponent is <= 0.
+    const VF a_l2 =
+        hn::Mul(dot(delta, delta), hn::Set(df, s.a * (s.range.inv_scene_size * s.range.inv_scene_size)));
+    const VF b_n2 = hn::Mul(hn::Mul(hn::Set(df, s.b), n), n);
+    const VF exponent = hn::Mul(hn::Add(a_l2, b_n2), hn::Set(df, -1.44269504f * s.range.inv_sigma));
     m = hn::AndNot(hn::IsNaN(exponent), m);
-    return hn::Exp(df, exponent);
+    return detail::HWY_NAMESPACE::exp2_nonpositive(df, exponent);
 }
 
 /// ISG Sec. 3.2's parameter search: the mean reflected distance within

@@ -3,9 +3,10 @@
 // The per-pixel loops of the three ISG methods (Robison and Shirley 2009),
 // vectorised with Google Highway and chosen at run time (isg_rows.cpp):
 // neighbouring pixels of a row share a vector, each lane walking its own
-// pixel's taps in the taps' order, sums in double. Every multiply and add is
-// rounded on its own (no fused multiply-add outside the exponential), so a
-// pixel's bits depend neither on the thread count nor on the lane count.
+// pixel's taps in the taps' order, sums in float. Every multiply and add is
+// rounded on its own (no fused multiply-add), so a pixel's bits depend
+// neither on the thread count, nor on the lane count, nor on the
+// instruction set.
 #include <cstddef>
 #include <vector>
 
