@@ -1,7 +1,7 @@
 #pragma once
 
 // The per-pixel loops of the three ISG methods (Robison and Shirley 2009),
-// vectorised with Google Highway and chosen at run time (isg_rows.cpp):
+// vectorised with Google Highway and chosen at run time (isg_shadow_rows.cpp, isg_rows.cpp):
 // neighbouring pixels of a row share a vector, each lane walking its own
 // pixel's taps in the taps' order, sums in float. Every multiply and add is
 // rounded on its own (no fused multiply-add), so a pixel's bits depend
