@@ -571,11 +571,13 @@ struct EndToEndView {
 };
 
 /// The raw Embree program on the render's rays: a device and a BVH of the
-/// scene as the render builds them, then rtcOccluded1 over every key-light
-/// shadow ray of the 256 spp render, on every thread. Only the build and the
-/// loops are timed (wall clock): the rays are generated a chunk of rows at a
-/// time in between, untimed. Returns the seconds; `rays` counts the rays.
-double raw_embree_program(const EndToEndView &view, std::size_t &rays) {
+/// scene as the render builds them, then `query` (run_occluded1 or
+/// run_intersect1) over every key-light shadow ray of the 256 spp render, on
+/// every thread. Only the build and the loops are timed (wall clock): the
+/// rays are generated a chunk of rows at a time in between, untimed. Returns
+/// the seconds; `rays` counts the rays.
+double raw_embree_program(const EndToEndView &view, std::size_t (*query)(RTCScene, const std::vector<Ray> &),
+                          std::size_t &rays) {
     auto start = std::chrono::steady_clock::now();
     const EmbreeScene bvh(view.scene, false);
     double total_s = seconds(start);
@@ -600,7 +602,7 @@ double raw_embree_program(const EndToEndView &view, std::size_t &rays) {
             [&](const tbb::blocked_range<int> &range) {
                 set_flush_to_zero(true);  // as the render's workers
                 for (int r = range.begin(); r != range.end(); ++r)
-                    benchmark::DoNotOptimize(run_occluded1(bvh.handle(), row_rays[std::size_t(r)]));
+                    benchmark::DoNotOptimize(query(bvh.handle(), row_rays[std::size_t(r)]));
             },
             tbb::simple_partitioner());
         total_s += seconds(start);
@@ -612,18 +614,23 @@ double raw_embree_program(const EndToEndView &view, std::size_t &rays) {
 /// `aaf render` end to end (the process as its user waits for it: start-up,
 /// scene, BVH, passes, AOVs, the EXR write) against the raw Embree program
 /// on the same rays, alternately, every thread each; and `aaf --version`,
-/// the process start-up alone. One pair per iteration: with repetitions,
+/// the process start-up alone. One set per iteration: with repetitions,
 /// the median of end_to_end_over_raw is the median of the pairwise ratios.
+/// The raw program runs twice: rtcOccluded1 (visibility alone, the
+/// yardstick) and rtcIntersect1 (the closest hit, which a render below
+/// kSamplesPerRound spp asks of every ray: its first round gives
+/// d2min/d2max, AAF Sec. 6).
 void BM_EndToEnd(benchmark::State &state) {
     static const EndToEndView view;
     const std::string output = (std::filesystem::temp_directory_path() / "aaf_bench_end_to_end.exr").string();
     // $AAF_BEFORE, another build's aaf (e.g. main's), alternated with this one: a change's speed-up.
     const char *before = std::getenv("AAF_BEFORE");
-    double render_s = 0, raw_s = 0, startup_s = 0, before_s = 0;
+    double render_s = 0, raw_s = 0, closest_s = 0, startup_s = 0, before_s = 0;
     std::size_t rays = 0;
     for (auto _ : state) {
         render_s += run_process(aaf_render_command(aaf_program(), output));
-        raw_s += raw_embree_program(view, rays);
+        raw_s += raw_embree_program(view, run_occluded1, rays);
+        closest_s += raw_embree_program(view, run_intersect1, rays);
         startup_s += run_process({aaf_program(), "--version"});
         if (before) before_s += run_process(aaf_render_command(before, output));
     }
@@ -634,8 +641,10 @@ void BM_EndToEnd(benchmark::State &state) {
     state.counters["aaf_version_ms"] = startup_s / n * 1e3;
     state.counters["aaf_Mrays_s"] = double(rays) * n / render_s / 1e6;
     state.counters["raw_Mrays_s"] = double(rays) * n / raw_s / 1e6;
+    state.counters["raw_closest_ms"] = closest_s / n * 1e3;
     // The same rays: rays per second of aaf render over the raw program's.
     state.counters["end_to_end_over_raw"] = raw_s / render_s;
+    state.counters["end_to_end_over_raw_closest"] = closest_s / render_s;
     if (!before) return;
     state.counters["before_end_to_end_over_raw"] = raw_s / before_s;
     state.counters["speed_over_before"] = before_s / render_s;
