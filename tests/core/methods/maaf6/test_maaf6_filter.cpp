@@ -5,6 +5,8 @@
 #include <array>
 #include <catch2/catch.hpp>
 #include <cmath>
+#include <cstring>
+#include <limits>
 #include <random>
 #include <vector>
 
@@ -107,9 +109,16 @@ struct EdgeCase {
     /// With a y-wedge: a lens wedge of this one slope beside it (0: none; the samples' lens point
     /// is the lens centre), and its slopes over the window (window_lens_lo < 0: the pixel's own).
     double lens_slope = 0, window_lens_lo = -1, window_lens_hi = -1;
+    /// A column of pixels (>= 0) that every neighbour rejects (their normal turned 90 degrees),
+    /// whose sums and weights all hold `rejected_value`.
+    int rejected_column = -1;
+    float rejected_value = 0;
+    bool rejected_position = true;  ///< false: the rejected pixels' positions are NaN (no hit)
 };
 
-double edge_error(const EdgeCase &e, int pairs_used) {
+/// The largest error of edge case `e` filtered with `pairs_used` pairs (EdgeCase); `filtered`, when
+/// given, receives the filtered R of every pixel.
+double edge_error(const EdgeCase &e, int pairs_used, std::vector<float> *filtered = nullptr) {
     // 41 pixels along the edge's axis, 25 (one window) across it.
     const int width = e.axis == 1 ? 41 : 25, height = e.axis == 1 ? 25 : 41, n = width * height, strata = 256;
     const double pixel_m = 0.01;
@@ -165,6 +174,14 @@ double edge_error(const EdgeCase &e, int pairs_used) {
         exact[std::size_t(i)] = float(mean);
         for (int c = 0; c < 75; ++c) sums[std::size_t(c)][std::size_t(i)] = float(rgb[std::size_t(c)]);
         for (int c = 0; c < 25; ++c) weights[std::size_t(c)][std::size_t(i)] = float(weight[std::size_t(c)]);
+        if (i % width == e.rejected_column) {
+            nrm[0][std::size_t(i)] = 1.0f;
+            nrm[1][std::size_t(i)] = 0.0f;
+            for (auto &plane : sums) plane[std::size_t(i)] = e.rejected_value;
+            for (auto &plane : weights) plane[std::size_t(i)] = e.rejected_value;
+            if (!e.rejected_position)
+                for (auto &plane : pos) plane[std::size_t(i)] = std::numeric_limits<float>::quiet_NaN();
+        }
     }
     if (e.window_lo >= 0) {
         planes.window_y_min.assign(n, e.y_wedge ? float(e.window_lo) : -1.0f);
@@ -184,6 +201,7 @@ double edge_error(const EdgeCase &e, int pairs_used) {
     planes.y_density = planes.lens_density = SampleDensity{DensityShape::Uniform, e.half, 1.0};
     std::vector<float> out[3];
     filter_planes(planes, e.omega_v, w.has_u ? e.omega_v : 0.0, params, out);
+    if (filtered) *filtered = out[0];
     double worst = 0;
     for (int y = params.max_radius_px; y < height - params.max_radius_px; ++y)
         for (int x = params.max_radius_px; x < width - params.max_radius_px; ++x) {
@@ -586,4 +604,37 @@ TEST_CASE(
     REQUIRE(edge_error(own, 3) != edge_error(own, 1));
     CHECK(edge_error(window, 3) == edge_error(own, 3));
     CHECK(edge_error(window, 1) != edge_error(own, 1));
+}
+
+TEST_CASE("MAAF 6D filter: a rejected tap adds nothing, whatever its sums hold, NaN included", "[maaf6]") {
+    // The soft edge through the partition, with a column every neighbour rejects (another normal):
+    // vectors of taps with rejected and accepted lanes. Whether the rejected taps' sums hold 5, NaN,
+    // or they have no position, every other pixel gets the same bits.
+    EdgeCase e;
+    e.slope = 0.6;
+    e.wedge_lo = 0.5;
+    e.wedge_hi = 0.7;
+    e.omega_v = 80;
+    e.rejected_column = 20;
+    std::vector<float> finite, with_nan, axis_aligned, no_position;
+    e.rejected_value = 5.0f;
+    edge_error(e, 3, &finite);
+    edge_error(e, 1, &axis_aligned);
+    e.rejected_position = false;
+    edge_error(e, 3, &no_position);
+    e.rejected_value = std::numeric_limits<float>::quiet_NaN();
+    edge_error(e, 3, &with_nan);
+    const int width = 41, height = 25;  // EdgeCase along t1
+    std::size_t compared = 0, partitioned = 0;
+    for (std::size_t i = 0; i < finite.size(); ++i) {
+        if (int(i) % width == e.rejected_column) continue;
+        INFO("pixel " << i);
+        REQUIRE(std::isfinite(with_nan[i]));
+        REQUIRE(std::memcmp(&finite[i], &with_nan[i], sizeof(float)) == 0);
+        REQUIRE(std::memcmp(&finite[i], &no_position[i], sizeof(float)) == 0);
+        partitioned += finite[i] != axis_aligned[i];
+        ++compared;
+    }
+    CHECK(partitioned > compared / 4);  // the offset pairs are used
+    CHECK(compared == finite.size() - std::size_t(height));
 }
