@@ -89,9 +89,9 @@ HWY_INLINE ShadowTap read_shadow_tap(const ShadowBlock &b, const float *packed, 
 }
 
 /// ISG Eq. 4's sums over `taps` for the lanes in `m`, with the range
-/// weights of ISG Eq. 6-7. Taps go two at a time, so that one's weight (a
-/// square root and an exponential, long in latency) overlaps the other's;
-/// they are added in order. A pair with no lane to count is passed over; a tap with none in
+/// weights of ISG Eq. 6-7. Taps go two at a time, so that one's weight (an
+/// exponential, long in latency) overlaps the other's; they are added in
+/// order. A pair with no lane to count is passed over; a tap with none in
 /// a pair adds zeros, which leave the sums' bits as they are (add_finite()).
 template <bool kInterior, bool kSearch>
 HWY_INLINE WeightedSums<1> shadow_sums(const ShadowSweep &s, const ShadowBlock &b, const float *packed,
