@@ -31,11 +31,29 @@ std::string format_attribute(const AttributeValue &value) {
     return buffer;
 }
 
+/// The channels' lines: name and storage, with --stats each one's min, max and mean.
+void print_channels(const AovSet &aovs, bool stats) {
+    std::printf("channels (the first part's, then those read from other parts):\n");
+    for (std::size_t c = 0; c < aovs.channel_names().size(); ++c) {
+        const char *storage = aovs.precision(c) == Precision::Half ? "half" : "float";
+        if (!stats) {
+            std::printf("  %-20s %s\n", aovs.channel_names()[c].c_str(), storage);
+            continue;
+        }
+        const AovSet::Plane &plane = aovs.plane(c);
+        auto [lo, hi] = std::minmax_element(plane.begin(), plane.end());
+        const double mean = std::accumulate(plane.begin(), plane.end(), 0.0) / double(plane.size());
+        std::printf("  %-20s %-5s min %-12g max %-12g mean %g\n", aovs.channel_names()[c].c_str(), storage,
+                    *lo, *hi, mean);
+    }
+}
+
 }  // namespace
 
 void add_info_command(CLI::App &app) {
     struct Options {
         std::string input, light;
+        bool stats = false;
     };
     auto options = std::make_shared<Options>();
     CLI::App *cmd = app.add_subcommand("info", "List channels, attributes and which methods a file can feed");
@@ -43,11 +61,17 @@ void add_info_command(CLI::App &app) {
     cmd->add_option("--light", options->light,
                     "JSON key light (as aaf filter --light): the methods' readiness with it in place of the "
                     "file's aaf:light:* header");
+    cmd->add_flag("--stats", options->stats,
+                  "Read every pixel: each channel's min, max and mean, and the mean spp (without it only the "
+                  "header is read)");
     cmd->callback([options] {
         io::ImageLayout layout;
         const auto light = light_option(options->light);
-        AovSet aovs = io::read_aovs(options->input, &layout);
-        std::printf("%s: %d x %d, %zu channels\n", options->input.c_str(), aovs.width(), aovs.height(),
+        // The header alone unless the pixels are asked for: instant on a frame of any size.
+        AovSet aovs = options->stats ? io::read_aovs(options->input, &layout)
+                                     : io::read_aov_header(options->input, layout);
+        const io::PixelWindow size = layout.data_window();
+        std::printf("%s: %d x %d, %zu channels\n", options->input.c_str(), size.width, size.height,
                     aovs.channel_names().size());
         // Other parts: listed, and those of the same size read as `aaf filter` reads them.
         std::vector<std::string> borrowable;
@@ -56,22 +80,20 @@ void add_info_command(CLI::App &app) {
             for (const std::string &name : part.channels) names += " " + name;
             std::printf("part %d '%s': %d x %d,%s\n", part.index, part.name.c_str(), part.width, part.height,
                         names.c_str());
-            if (part.width == aovs.width() && part.height == aovs.height())
-                borrowable.insert(borrowable.end(), part.channels.begin(), part.channels.end());
+            if (part.width == size.width && part.height == size.height)
+                for (const std::string &name : part.channels)
+                    if (!aovs.has_channel(name)) borrowable.push_back(name);
         }
-        io::add_channels_from_other_parts(options->input, layout, borrowable, aovs);
-        std::printf("channels (the first part's, then those read from other parts):\n");
-        for (std::size_t c = 0; c < aovs.channel_names().size(); ++c) {
-            const AovSet::Plane &plane = aovs.plane(c);
-            auto [lo, hi] = std::minmax_element(plane.begin(), plane.end());
-            const double mean = std::accumulate(plane.begin(), plane.end(), 0.0) / double(plane.size());
-            std::printf("  %-20s min %-12g max %-12g mean %g\n", aovs.channel_names()[c].c_str(), *lo, *hi,
-                        mean);
+        if (options->stats) {
+            io::add_channels_from_other_parts(options->input, layout, borrowable, aovs);
+        } else {
+            for (const std::string &name : borrowable) aovs.add_channel(name);
         }
+        print_channels(aovs, options->stats);
         const ChannelMap channels = ChannelMap{}.resolved(aovs);  // other renderers' names too
         const std::string &spp_name = channels.channel(Role::SamplesPerPixel);
         const std::string &id_name = channels.channel(Role::ObjectId);
-        if (aovs.has_channel(spp_name) && aovs.has_channel(id_name))
+        if (options->stats && aovs.has_channel(spp_name) && aovs.has_channel(id_name))
             std::printf("mean spp over shaded pixels: %g\n",
                         mean_spp_over_shaded(aovs.channel(spp_name), aovs.channel(id_name)));
         if (apply_light_option(light, aovs))

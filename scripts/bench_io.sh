@@ -27,7 +27,8 @@
 #                 back as zip:1 on N threads, Imf::setGlobalThreadCount)
 #   aaf_filter    aaf filter aaf in.exr -o out.exr --threads N
 # for N = 2 and 1, with the medians and their ratio; then `aaf --version`
-# (median of 20 runs: the start-up alone) and `aaf info in.exr`. With
+# (median of 20 runs: the start-up alone), `aaf info in.exr` (the header)
+# and `aaf info --stats in.exr` (every pixel). With
 # FLOOR_ONLY=1 only this part runs.
 # Usage: scripts/bench_io.sh [WIDTHxHEIGHT ...]
 set -euo pipefail
@@ -79,13 +80,16 @@ for size in "${sizes[@]}"; do
 done
 version_ms=()
 info_ms=()
+stats_ms=()
 in=$(render_input "${sizes[0]}")
 for ((r = 0; r < 20; ++r)); do
     version_ms+=("$(elapsed_ms "$aaf" --version)")
     info_ms+=("$(elapsed_ms "$aaf" info "$in")")
+    stats_ms+=("$(elapsed_ms "$aaf" info --stats "$in")")
 done
+m() { printf '%s\n' "$@" | median | xargs printf '%.1f'; }
 echo
-echo "aaf --version: median of 20 runs $(printf '%s\n' "${version_ms[@]}" | median | xargs printf '%.1f') ms; aaf info ${sizes[0]} frame: median of 20 runs $(printf '%s\n' "${info_ms[@]}" | median | xargs printf '%.1f') ms"
+echo "aaf --version: median of 20 runs $(m "${version_ms[@]}") ms; ${sizes[0]} frame: aaf info (the header) $(m "${info_ms[@]}") ms, aaf info --stats (every pixel) $(m "${stats_ms[@]}") ms"
 echo
 [ "${FLOOR_ONLY:-0}" = 1 ] && exit 0
 

@@ -47,7 +47,7 @@ t4=$(now)
 rmse_noisy=$("$aaf" compare "$out/grids_noisy.exr" "$reference" | awk '{print $2}')
 rmse_aaf=$("$aaf" compare "$out/grids_aaf.exr" "$reference" | awk '{print $2}')
 t5=$(now)
-avg_spp=$("$aaf" info "$out/grids_noisy.exr" | awk '/^mean spp over shaded pixels/ {print $6}')
+avg_spp=$("$aaf" info --stats "$out/grids_noisy.exr" | awk '/^mean spp over shaded pixels/ {print $6}')
 
 # The paper's full pipeline: 9 spp first pass, per-pixel rate of AAF Eq. 21 (mu 2, cap 100), filter.
 t6=$(now)
@@ -56,7 +56,7 @@ t6=$(now)
 t7=$(now)
 "$aaf" filter aaf "$out/grids_adaptive.exr" -o "$out/grids_adaptive_aaf.exr" --mu 2
 t8=$(now)
-adaptive_spp=$("$aaf" info "$out/grids_adaptive.exr" | awk '/^mean spp over shaded pixels/ {print $6}')
+adaptive_spp=$("$aaf" info --stats "$out/grids_adaptive.exr" | awk '/^mean spp over shaded pixels/ {print $6}')
 rmse_adaptive=$("$aaf" compare "$out/grids_adaptive.exr" "$reference" | awk '{print $2}')
 rmse_adaptive_aaf=$("$aaf" compare "$out/grids_adaptive_aaf.exr" "$reference" | awk '{print $2}')
 "$aaf" plan "$out/grids_noisy.exr" -o "$out/grids_plan.exr" --mu 2 --max-spp 100

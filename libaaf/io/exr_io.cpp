@@ -206,6 +206,41 @@ AovSet read_exr(const std::string &path, ImageLayout *layout) {
     return aovs;
 }
 
+/// read_exr() from the header alone: the channels 0 in a 1 x 1 set.
+AovSet read_exr_header(const std::string &path, ImageLayout *layout) {
+    std::unique_ptr<Imf::MultiPartInputFile> file;
+    try {
+        file = std::make_unique<Imf::MultiPartInputFile>(path.c_str());
+    } catch (const std::bad_alloc &) {
+        throw InputError(path + ": cannot read image: the reader ran out of memory on a corrupt file");
+    } catch (const std::exception &e) {
+        throw InputError(path + ": cannot read image: " + one_line(e.what()));
+    }
+    const Imf::Header &header = file->header(0);
+    if (is_deep(header)) throw InputError(path + ": deep images are not supported");
+    const std::vector<std::string> names = canonical_channel_order(header.channels());
+    if (names.empty()) throw InputError(path + ": cannot read image: no channels");
+    AovSet aovs(1, 1);
+    for (const std::string &name : names) {
+        if (aovs.has_channel(name)) throw InputError(path + ": duplicate channel " + quoted(name));
+        aovs.add_channel(name);
+        if (header.channels().findChannel(name)->type == Imf::HALF) aovs.set_precision(name, Precision::Half);
+    }
+    read_exr_attributes(header, aovs);
+    if (layout) {
+        ImageLayout::Impl &carried = layout->impl();
+        carried.source_path = path;
+        carried.first_part = header;
+        carried.data = window_of(header.dataWindow());
+        carried.display = window_of(header.displayWindow());
+        carried.parts = file->parts();
+        carried.format = "openexr";
+        for (int part = 1; part < file->parts(); ++part)
+            if (is_deep(file->header(part))) throw InputError(path + ": deep parts are not supported");
+    }
+    return aovs;
+}
+
 AovSet read_other(const std::string &path, ImageLayout *layout) {
     OtherImage image = formats_module().read_other_image(path, memory_budget_bytes());
     if (layout) {
@@ -378,6 +413,10 @@ bool is_lossy_compression(const std::string &name) {
 
 AovSet read_aovs(const std::string &path, ImageLayout *layout) {
     return check_before_opening(path) ? read_exr(path, layout) : read_other(path, layout);
+}
+
+AovSet read_aov_header(const std::string &path, ImageLayout &layout) {
+    return check_before_opening(path) ? read_exr_header(path, &layout) : read_other(path, &layout);
 }
 
 void require_exr_file(const std::string &path) {

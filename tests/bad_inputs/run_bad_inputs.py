@@ -15,7 +15,7 @@ the README's promises for a bad input:
   fails fast instead of filling the machine);
 - nothing left behind: no new file (output, temporary) unless the case says it
   `creates` it, every other input byte-identical, `removes` gone; a created
-  file reads back (`aaf info` exits 0).
+  file reads back (`aaf info --stats` exits 0).
 
 Prints one line per case that is not clean, then the summary
 `bad inputs: N tried, C clean, K crashes, H hangs, F wrong` (and how many
@@ -158,9 +158,9 @@ def file_problems(case, before, after, aaf, scratch, timeout, address_limit):
         if name not in after:
             problems.append("did not write %s" % name)
         elif name.lower().endswith(".exr"):
-            code, _, _ = run_aaf(aaf, ["info", name], scratch, timeout, address_limit)
+            code, _, _ = run_aaf(aaf, ["info", "--stats", name], scratch, timeout, address_limit)
             if code != 0:
-                problems.append("%s does not read back (aaf info exits %s)" % (name, code))
+                problems.append("%s does not read back (aaf info --stats exits %s)" % (name, code))
     problems += ["did not remove %s" % n for n in sorted(removes) if n in after]
     return problems
 

@@ -48,6 +48,15 @@ class ImageLayout {
 /// when the file is missing, unreadable, deep, or has duplicate channel names.
 AovSet read_aovs(const std::string &path, ImageLayout *layout = nullptr);
 
+/// What read_aovs() reads of `path` but its pixels, for a quick look: from
+/// an OpenEXR file's header alone, its first part's channels (each 0, half
+/// ones marked) and attributes in a 1 x 1 set, its size and parts in
+/// `layout` (data_window()); an image of another format is read whole.
+/// Throws as read_aovs() does for what the header shows (a missing or
+/// corrupt file, deep data, no channels, a size over the memory limit);
+/// a file whose pixels are damaged passes (read_aovs() reports it).
+AovSet read_aov_header(const std::string &path, ImageLayout &layout);
+
 /// Throws aaf::InputError "<path>: not an AOV EXR (...)" when `path` is a
 /// file of another format (a PNG, a JPEG): the AOVs are read from OpenEXR
 /// files. A missing or unreadable path passes, for read_aovs() to report.
