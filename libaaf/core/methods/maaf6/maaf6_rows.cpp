@@ -126,27 +126,40 @@ HWY_INLINE void add(M m, V &acc, V value) {
     acc = hn::Add(acc, hn::IfThenElseZero(m, value));
 }
 
-/// One accepted (in some lane) tap's contributions to a vector of centres' sums (maaf6_filter.cpp's add_tap).
+/// Adds kernel times a tap's weight and R, G, B sums to a filter's four
+/// sums where `m`: the sums are the caller's registers, so that a vector's
+/// 25 channels add to them in order without a trip through memory.
+HWY_INLINE void add_channel(M m, V kernel, V weight, V r, V g, V b, V &den, V &num_r, V &num_g, V &num_b) {
+    add(m, den, hn::Mul(kernel, weight));
+    add(m, num_r, hn::Mul(kernel, r));
+    add(m, num_g, hn::Mul(kernel, g));
+    add(m, num_b, hn::Mul(kernel, b));
+}
+
+/// One accepted (in some lane) tap's contributions to a vector of centres'
+/// sums (maaf6_filter.cpp's add_tap), `kPairs` pairs per axis: 3 where a
+/// lane uses the offset pairs, else 1.
+template <int kPairs>
 HWY_INLINE void add_tap(D d, const Maaf6Taps &taps, const Centres &c, const TapLoader &load, M accepted,
                         V tap_px, V tap_py, V tap_pz, V offset_x, V offset_y, V *acc) {
+    constexpr int kFunctions = 2 * kPairs - 1;
     const V dx = hn::Sub(tap_px, c.p[0]), dy = hn::Sub(tap_py, c.p[1]), dz = hn::Sub(tap_pz, c.p[2]);
-    const V d1 = dot3(dx, dy, dz, c.t1[0], c.t1[1], c.t1[2]);
-    const V d2 = dot3(dx, dy, dz, c.t2[0], c.t2[1], c.t2[2]);
-    const V dn = dot3(dx, dy, dz, c.n[0], c.n[1], c.n[2]);
-    const int pairs = c.offsets ? 3 : 1, functions = 2 * pairs - 1;
-    V k1[kMaaf6Functions], k2[kMaaf6Functions];
+    V k1[kFunctions], k2[kFunctions];
     const V inv_samples = load(d, taps.inv_samples);
     // A lane without offset pairs has the central Gaussian alone along t1, t2 and the normal: one
     // exponential of the whole displacement (the frame is orthonormal), times 1 / samples, in k1[0]
     // (k2[0] = 1), whatever its neighbours in the vector use (so every vector width gives its bits).
     const V scaled_sq = hn::Mul(dot3(dx, dy, dz, dx, dy, dz), hn::Mul(c.scale[0], c.scale[0]));
     const V central_only = hn::Mul(exp_nonpositive(d, hn::Mul(hn::Set(d, -0.5f), scaled_sq)), inv_samples);
-    if (c.offsets) {
-        x_kernel(d, c, d1, pairs, k1);
-        x_kernel(d, c, d2, pairs, k2);
+    if constexpr (kPairs > 1) {
+        const V d1 = dot3(dx, dy, dz, c.t1[0], c.t1[1], c.t1[2]);
+        const V d2 = dot3(dx, dy, dz, c.t2[0], c.t2[1], c.t2[2]);
+        const V dn = dot3(dx, dy, dz, c.n[0], c.n[1], c.n[2]);
+        x_kernel(d, c, d1, kPairs, k1);
+        x_kernel(d, c, d2, kPairs, k2);
         // Off the tangent plane, the central Gaussian of that distance; per-pixel means.
         const V per_sample = hn::Mul(gaussian(d, dn, c.scale[0]), inv_samples);
-        for (int a = 0; a < functions; ++a) k1[a] = hn::Mul(k1[a], per_sample);
+        for (int a = 0; a < kFunctions; ++a) k1[a] = hn::Mul(k1[a], per_sample);
         k1[0] = hn::IfThenElse(c.pairs_lanes, k1[0], central_only);
         k2[0] = hn::IfThenElse(c.pairs_lanes, k2[0], hn::Set(d, 1.0f));
     } else {
@@ -154,27 +167,34 @@ HWY_INLINE void add_tap(D d, const Maaf6Taps &taps, const Centres &c, const TapL
         k2[0] = hn::Set(d, 1.0f);
     }
     const V weight0 = load(d, taps.weights[0]);
-    for (int a = 0; a < functions; ++a)
-        for (int b = 0; b < functions; ++b) {
+    const V sum0_r = load(d, taps.sums[0]), sum0_g = load(d, taps.sums[1]), sum0_b = load(d, taps.sums[2]);
+    V den = acc[kSumDen], num_r = acc[kSumNumR], num_g = acc[kSumNumG], num_b = acc[kSumNumB];
+    for (int a = 0; a < kFunctions; ++a)
+        for (int b = 0; b < kFunctions; ++b) {
             const int channel = a * kMaaf6Functions + b;
             const V kernel = hn::Mul(k1[a], k2[b]);
-            add(accepted, acc[kSumDen],
-                hn::Mul(kernel, channel == 0 ? weight0 : load(d, taps.weights[channel])));
-            for (int col = 0; col < 3; ++col)
-                add(accepted, acc[kSumNumR + col], hn::Mul(kernel, load(d, taps.sums[3 * channel + col])));
+            if (channel == 0) {
+                add_channel(accepted, kernel, weight0, sum0_r, sum0_g, sum0_b, den, num_r, num_g, num_b);
+            } else {
+                const float *const *sums = taps.sums + 3 * channel;
+                add_channel(accepted, kernel, load(d, taps.weights[channel]), load(d, sums[0]),
+                            load(d, sums[1]), load(d, sums[2]), den, num_r, num_g, num_b);
+            }
         }
-    const V central = hn::Mul(k1[0], k2[0]);
-    add(accepted, acc[kSumDen0], hn::Mul(central, weight0));
-    for (int col = 0; col < 3; ++col)
-        add(accepted, acc[kSumNum0R + col], hn::Mul(central, load(d, taps.sums[col])));
+    acc[kSumDen] = den;
+    acc[kSumNumR] = num_r;
+    acc[kSumNumG] = num_g;
+    acc[kSumNumB] = num_b;
+    add_channel(accepted, hn::Mul(k1[0], k2[0]), weight0, sum0_r, sum0_g, sum0_b, acc[kSumDen0],
+                acc[kSumNum0R], acc[kSumNum0G], acc[kSumNum0B]);
     if (c.lens) {  // the unoccluded light through the lens band: a Gaussian of the whole displacement
         const M lens = hn::And(accepted, hn::Gt(c.lens_scale, hn::Zero(d)));
-        const V scaled_sq = hn::Mul(dot3(dx, dy, dz, dx, dy, dz), hn::Mul(c.lens_scale, c.lens_scale));
-        const V kernel = exp_nonpositive(d, hn::Mul(hn::Set(d, -0.5f), scaled_sq));
+        const V lens_sq = hn::Mul(dot3(dx, dy, dz, dx, dy, dz), hn::Mul(c.lens_scale, c.lens_scale));
+        const V kernel = exp_nonpositive(d, hn::Mul(hn::Set(d, -0.5f), lens_sq));
         add(lens, acc[kSumUnoccluded], hn::Mul(hn::Mul(kernel, weight0), inv_samples));
         add(lens, acc[kSumUnoccludedDen], kernel);
     }
-    if (!c.offsets) return;
+    if constexpr (kPairs == 1) return;
     // The central envelope's mass the guides keep, and the axis-aligned filter over its own window.
     add(accepted, acc[kSumMassKept],
         hn::Mul(gaussian(d, offset_x, c.scale_px), gaussian(d, offset_y, c.scale_px)));
@@ -185,9 +205,8 @@ HWY_INLINE void add_tap(D d, const Maaf6Taps &taps, const Centres &c, const TapL
     // a cut window gets `--pairs 1`'s bits.
     const V axis_sq = hn::Mul(dot3(dx, dy, dz, dx, dy, dz), hn::Mul(c.axis_scale, c.axis_scale));
     const V kernel = hn::Mul(exp_nonpositive(d, hn::Mul(hn::Set(d, -0.5f), axis_sq)), inv_samples);
-    add(axis, acc[kSumDen1], hn::Mul(kernel, weight0));
-    for (int col = 0; col < 3; ++col)
-        add(axis, acc[kSumNum1R + col], hn::Mul(kernel, load(d, taps.sums[col])));
+    add_channel(axis, kernel, weight0, sum0_r, sum0_g, sum0_b, acc[kSumDen1], acc[kSumNum1R], acc[kSumNum1G],
+                acc[kSumNum1B]);
 }
 
 void RowSums(const Maaf6Taps &taps, int y, int count, const float *params, std::size_t stride, float *sums) {
@@ -217,8 +236,11 @@ void RowSums(const Maaf6Taps &taps, int y, int count, const float *params, std::
                     dot3(c.n[0], c.n[1], c.n[2], load(d, taps.nx), load(d, taps.ny), load(d, taps.nz));
                 const M accepted = hn::And(inside, hn::Ge(cos_angle, cos_threshold));
                 if (hn::AllFalse(d, accepted)) continue;
-                add_tap(d, taps, c, load, accepted, load(d, taps.px), load(d, taps.py), load(d, taps.pz),
-                        offset_x, offset_y, acc);
+                const V tap_px = load(d, taps.px), tap_py = load(d, taps.py), tap_pz = load(d, taps.pz);
+                if (c.offsets)
+                    add_tap<3>(d, taps, c, load, accepted, tap_px, tap_py, tap_pz, offset_x, offset_y, acc);
+                else
+                    add_tap<1>(d, taps, c, load, accepted, tap_px, tap_py, tap_pz, offset_x, offset_y, acc);
             }
         }
         for (int f = 0; f < kSumFieldCount; ++f) hn::StoreU(acc[f], d, sums + std::size_t(f) * stride + x0);
