@@ -37,9 +37,11 @@ double maaf_partitioned_omega_y_max(double s_min, double s_max, double omega_x_m
     return std::min(omega_y_max, s_min * omega_x_max);
 }
 
-std::vector<MaafComponent> maaf_components(double s_min, double s_max, double omega_x_max, double omega_y_max,
-                                           int pairs) {
-    check_arguments(s_min, s_max, omega_x_max, omega_y_max, pairs);
+namespace {
+
+/// Components p of [first, pairs - 1] of the wedge (MAAF Eq. 6-10), after check_arguments().
+std::vector<MaafComponent> components_from(double s_min, double s_max, double omega_x_max, double omega_y_max,
+                                           int pairs, int first) {
     const double omega = maaf_partitioned_omega_y_max(s_min, s_max, omega_x_max, omega_y_max);
     // The wedge's Omega_x extents at Omega_y = omega along its two edges,
     // written so that s_min = 0 and s_max = inf stay finite.
@@ -48,8 +50,8 @@ std::vector<MaafComponent> maaf_components(double s_min, double s_max, double om
     const double segments = 2.0 * pairs - 1.0;  // 2N - 1 equal slices of [-omega, omega]
 
     std::vector<MaafComponent> components;
-    components.reserve(std::size_t(2 * pairs - 1));
-    for (int p = -(pairs - 1); p <= pairs - 1; ++p) {
+    components.reserve(std::size_t(pairs - first));
+    for (int p = first; p <= pairs - 1; ++p) {
         MaafComponent c;
         c.index = p;
         c.sign = (p > 0) - (p < 0);
@@ -67,10 +69,18 @@ std::vector<MaafComponent> maaf_components(double s_min, double s_max, double om
     return components;
 }
 
+}  // namespace
+
+std::vector<MaafComponent> maaf_components(double s_min, double s_max, double omega_x_max, double omega_y_max,
+                                           int pairs) {
+    check_arguments(s_min, s_max, omega_x_max, omega_y_max, pairs);
+    return components_from(s_min, s_max, omega_x_max, omega_y_max, pairs, -(pairs - 1));
+}
+
 std::vector<MaafComponent> maaf_pair_components(double s_min, double s_max, double omega_x_max,
                                                 double omega_y_max, int pairs) {
-    std::vector<MaafComponent> all = maaf_components(s_min, s_max, omega_x_max, omega_y_max, pairs);
-    return std::vector<MaafComponent>(all.begin() + (pairs - 1), all.end());
+    check_arguments(s_min, s_max, omega_x_max, omega_y_max, pairs);
+    return components_from(s_min, s_max, omega_x_max, omega_y_max, pairs, 0);  // p >= 0 only
 }
 
 double maaf_fourier_filter(const std::vector<MaafComponent> &components, double omega_x, double omega_y) {

@@ -87,8 +87,11 @@ std::vector<Maaf6Component> maaf6_pair_components(const Maaf6Wedge &w, int pairs
     return out;
 }
 
-Maaf6PartitionCheck maaf6_partition_check(const Maaf6Wedge &w, int pairs, double k, double window_m) {
-    const std::vector<Maaf6Component> components = maaf6_pair_components(w, pairs);
+namespace {
+
+/// maaf6_partition_check() of `components`, maaf6_pair_components(w, pairs).
+Maaf6PartitionCheck partition_check(const Maaf6Wedge &w, int pairs, double k, double window_m,
+                                    const std::vector<Maaf6Component> &components) {
     Maaf6PartitionCheck check;
     if (pairs == 1) return check;
     // The x band the partition was cut to, as maaf6_pair_components() computes it.
@@ -105,10 +108,16 @@ Maaf6PartitionCheck maaf6_partition_check(const Maaf6Wedge &w, int pairs, double
     return check;
 }
 
+}  // namespace
+
+Maaf6PartitionCheck maaf6_partition_check(const Maaf6Wedge &w, int pairs, double k, double window_m) {
+    return partition_check(w, pairs, k, window_m, maaf6_pair_components(w, pairs));
+}
+
 std::vector<Maaf6Component> maaf6_filter_components(const Maaf6Wedge &w, int pairs, double k,
                                                     double window_m) {
     std::vector<Maaf6Component> out = maaf6_pair_components(w, pairs);
-    if (maaf6_partition_check(w, pairs, k, window_m).partition_used()) return out;
+    if (partition_check(w, pairs, k, window_m, out).partition_used()) return out;
     const Maaf6Component central = maaf6_pair_components(w, 1)[0];  // MYRD14's axis-aligned filter
     for (Maaf6Component &c : out) c.weight = 0;
     out[0] = central;
