@@ -180,42 +180,42 @@ AovSet read_first_part(Imf::MultiPartInputFile &file, const std::string &path) {
     return aovs;
 }
 
-AovSet read_exr(const std::string &path, ImageLayout *layout) {
-    use_io_threads();
-    std::unique_ptr<Imf::MultiPartInputFile> file;
+/// Opens `path` with OpenEXR; its errors become aaf::InputError "<path>: cannot read image: ...".
+std::unique_ptr<Imf::MultiPartInputFile> open_exr(const std::string &path) {
     try {
-        file = std::make_unique<Imf::MultiPartInputFile>(path.c_str());
+        return std::make_unique<Imf::MultiPartInputFile>(path.c_str());
     } catch (const std::bad_alloc &) {
         throw InputError(path + ": cannot read image: the reader ran out of memory on a corrupt file");
     } catch (const std::exception &e) {
         throw InputError(path + ": cannot read image: " + one_line(e.what()));
     }
+}
+
+/// Fills `layout` with what `file` holds besides the first part's pixels.
+void carry_layout(const std::string &path, const Imf::MultiPartInputFile &file, ImageLayout &layout) {
+    ImageLayout::Impl &carried = layout.impl();
+    const Imf::Header &header = file.header(0);
+    carried.source_path = path;
+    carried.first_part = header;
+    carried.data = window_of(header.dataWindow());
+    carried.display = window_of(header.displayWindow());
+    carried.parts = file.parts();
+    carried.format = "openexr";
+    for (int part = 1; part < file.parts(); ++part)
+        if (is_deep(file.header(part))) throw InputError(path + ": deep parts are not supported");
+}
+
+AovSet read_exr(const std::string &path, ImageLayout *layout) {
+    use_io_threads();
+    const std::unique_ptr<Imf::MultiPartInputFile> file = open_exr(path);
     AovSet aovs = read_first_part(*file, path);
-    if (layout) {
-        ImageLayout::Impl &carried = layout->impl();
-        const Imf::Header &header = file->header(0);
-        carried.source_path = path;
-        carried.first_part = header;
-        carried.data = window_of(header.dataWindow());
-        carried.display = window_of(header.displayWindow());
-        carried.parts = file->parts();
-        carried.format = "openexr";
-        for (int part = 1; part < file->parts(); ++part)
-            if (is_deep(file->header(part))) throw InputError(path + ": deep parts are not supported");
-    }
+    if (layout) carry_layout(path, *file, *layout);
     return aovs;
 }
 
 /// read_exr() from the header alone: the channels 0 in a 1 x 1 set.
-AovSet read_exr_header(const std::string &path, ImageLayout *layout) {
-    std::unique_ptr<Imf::MultiPartInputFile> file;
-    try {
-        file = std::make_unique<Imf::MultiPartInputFile>(path.c_str());
-    } catch (const std::bad_alloc &) {
-        throw InputError(path + ": cannot read image: the reader ran out of memory on a corrupt file");
-    } catch (const std::exception &e) {
-        throw InputError(path + ": cannot read image: " + one_line(e.what()));
-    }
+AovSet read_exr_header(const std::string &path, ImageLayout &layout) {
+    const std::unique_ptr<Imf::MultiPartInputFile> file = open_exr(path);
     const Imf::Header &header = file->header(0);
     if (is_deep(header)) throw InputError(path + ": deep images are not supported");
     const std::vector<std::string> names = canonical_channel_order(header.channels());
@@ -227,17 +227,7 @@ AovSet read_exr_header(const std::string &path, ImageLayout *layout) {
         if (header.channels().findChannel(name)->type == Imf::HALF) aovs.set_precision(name, Precision::Half);
     }
     read_exr_attributes(header, aovs);
-    if (layout) {
-        ImageLayout::Impl &carried = layout->impl();
-        carried.source_path = path;
-        carried.first_part = header;
-        carried.data = window_of(header.dataWindow());
-        carried.display = window_of(header.displayWindow());
-        carried.parts = file->parts();
-        carried.format = "openexr";
-        for (int part = 1; part < file->parts(); ++part)
-            if (is_deep(file->header(part))) throw InputError(path + ": deep parts are not supported");
-    }
+    carry_layout(path, *file, layout);
     return aovs;
 }
 
@@ -416,7 +406,7 @@ AovSet read_aovs(const std::string &path, ImageLayout *layout) {
 }
 
 AovSet read_aov_header(const std::string &path, ImageLayout &layout) {
-    return check_before_opening(path) ? read_exr_header(path, &layout) : read_other(path, &layout);
+    return check_before_opening(path) ? read_exr_header(path, layout) : read_other(path, &layout);
 }
 
 void require_exr_file(const std::string &path) {
