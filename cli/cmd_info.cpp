@@ -31,13 +31,14 @@ std::string format_attribute(const AttributeValue &value) {
     return buffer;
 }
 
-/// The channels' lines: name and storage, with --stats each one's min, max and mean.
-void print_channels(const AovSet &aovs, bool stats) {
+/// The channels' lines: name, storage (an EXR's half or float; another format's
+/// is its own, not named) and with --stats each one's min, max and mean.
+void print_channels(const AovSet &aovs, bool exr, bool stats) {
     std::printf("channels (the first part's, then those read from other parts):\n");
     for (std::size_t c = 0; c < aovs.channel_names().size(); ++c) {
-        const char *storage = aovs.precision(c) == Precision::Half ? "half" : "float";
+        const char *storage = !exr ? "" : aovs.precision(c) == Precision::Half ? "half" : "float";
         if (!stats) {
-            std::printf("  %-20s %s\n", aovs.channel_names()[c].c_str(), storage);
+            std::printf(exr ? "  %-20s %s\n" : "  %s%s\n", aovs.channel_names()[c].c_str(), storage);
             continue;
         }
         const AovSet::Plane &plane = aovs.plane(c);
@@ -89,7 +90,7 @@ void add_info_command(CLI::App &app) {
         } else {
             for (const std::string &name : borrowable) aovs.add_channel(name);
         }
-        print_channels(aovs, options->stats);
+        print_channels(aovs, layout.format_name() == "openexr", options->stats);
         const ChannelMap channels = ChannelMap{}.resolved(aovs);  // other renderers' names too
         const std::string &spp_name = channels.channel(Role::SamplesPerPixel);
         const std::string &id_name = channels.channel(Role::ObjectId);
