@@ -58,6 +58,44 @@ TEST_CASE("EXR round-trip keeps every channel bit-exact and the attributes", "[i
     CHECK(std::get<std::string>(back.attributes.at("aaf:light:kind")) == "gaussian");
 }
 
+TEST_CASE("read_aov_header gives read_aovs' channels, storage and attributes without the pixels", "[io]") {
+    const fs::path dir = scratch_dir("header_only");
+    AovSet aovs(40, 30);
+    aovs.add_channel("shadow.V", 0.5f);
+    aovs.add_channel("R", 0.25f);
+    aovs.set_precision("R", Precision::Half);
+    aovs.attributes["aaf:light:sigma_m"] = 0.5f;
+    aovs.attributes["aaf:light:kind"] = std::string("gaussian");
+    const std::string path = (dir / "aovs.exr").string();
+    io::write_aovs(aovs, path);
+
+    const AovSet full = io::read_aovs(path);
+    io::ImageLayout layout;
+    const AovSet header = io::read_aov_header(path, layout);
+    CHECK(header.channel_names() == full.channel_names());
+    for (std::size_t c = 0; c < full.channel_names().size(); ++c)
+        CHECK(header.precision(c) == full.precision(c));
+    CHECK(header.attributes.size() == full.attributes.size());
+    CHECK(std::get<float>(header.attributes.at("aaf:light:sigma_m")) == 0.5f);
+    CHECK(header.pixel_count() == 1);  // a stand-in: the size is the layout's
+    CHECK(layout.data_window().width == 40);
+    CHECK(layout.data_window().height == 30);
+    CHECK(layout.format_name() == "openexr");
+
+    // Damaged pixels (the last chunk's compressed bytes): the header still reads, the pixels do not.
+    {
+        const auto size = fs::file_size(path);
+        std::fstream file(path, std::ios::in | std::ios::out | std::ios::binary);
+        file.seekp(std::streamoff(size - 32));
+        for (int i = 0; i < 32; ++i) file.put(char(0x5a));
+    }
+    io::ImageLayout again;
+    CHECK(io::read_aov_header(path, again).channel_names() == full.channel_names());
+    CHECK_THROWS_AS(io::read_aovs(path), InputError);
+    CHECK_THROWS_WITH(io::read_aov_header((dir / "missing.exr").string(), again),
+                      Catch::Contains("missing.exr"));
+}
+
 TEST_CASE("Unreadable inputs give an error naming the file", "[io]") {
     const fs::path dir = scratch_dir("bad_input");
     CHECK_THROWS_WITH(io::read_aovs((dir / "missing.exr").string()), Catch::Contains("missing.exr"));
