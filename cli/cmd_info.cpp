@@ -75,21 +75,26 @@ void add_info_command(CLI::App &app) {
         std::printf("%s: %d x %d, %zu channels\n", options->input.c_str(), size.width, size.height,
                     aovs.channel_names().size());
         // Other parts: listed, and those of the same size read as `aaf filter` reads them.
-        std::vector<std::string> borrowable;
+        std::vector<std::string> borrowable, borrowed_half;
         for (const io::PartSummary &part : io::other_parts(options->input, layout)) {
             std::string names;
             for (const std::string &name : part.channels) names += " " + name;
             std::printf("part %d '%s': %d x %d,%s\n", part.index, part.name.c_str(), part.width, part.height,
                         names.c_str());
-            if (part.width == size.width && part.height == size.height)
-                for (const std::string &name : part.channels)
-                    if (!aovs.has_channel(name)) borrowable.push_back(name);
+            if (part.width != size.width || part.height != size.height) continue;
+            for (std::size_t c = 0; c < part.channels.size(); ++c) {
+                if (aovs.has_channel(part.channels[c])) continue;
+                borrowable.push_back(part.channels[c]);
+                if (part.half[c]) borrowed_half.push_back(part.channels[c]);
+            }
         }
         if (options->stats) {
             io::add_channels_from_other_parts(options->input, layout, borrowable, aovs);
         } else {
             for (const std::string &name : borrowable) aovs.add_channel(name);
         }
+        for (const std::string &name : borrowed_half)
+            if (aovs.has_channel(name)) aovs.set_precision(name, Precision::Half);
         print_channels(aovs, layout.format_name() == "openexr", options->stats);
         const ChannelMap channels = ChannelMap{}.resolved(aovs);  // other renderers' names too
         const std::string &spp_name = channels.channel(Role::SamplesPerPixel);

@@ -430,8 +430,15 @@ std::vector<PartSummary> other_parts(const std::string &path, const ImageLayout 
         for (int part = 1; part < file.parts(); ++part) {
             const Imf::Header &header = file.header(part);
             const PixelWindow window = window_of(header.dataWindow());
-            parts.push_back({part, part_name(header, part), window.width, window.height,
-                             canonical_channel_order(header.channels())});
+            PartSummary summary{part,
+                                part_name(header, part),
+                                window.width,
+                                window.height,
+                                canonical_channel_order(header.channels()),
+                                {}};
+            for (const std::string &name : summary.channels)
+                summary.half.push_back(header.channels().findChannel(name)->type == Imf::HALF);
+            parts.push_back(std::move(summary));
         }
     } catch (const std::exception &e) {
         throw InputError(path + ": cannot read image: " + one_line(e.what()));

@@ -4,6 +4,9 @@
 #include <filesystem>
 #include <fstream>
 #include <string>
+#include <vector>
+
+#include <OpenImageIO/imageio.h>
 
 #include "run_aaf.h"
 
@@ -23,7 +26,40 @@ void damage_last_bytes(const fs::path &path, std::size_t count) {
     for (std::size_t i = 0; i < count; ++i) file.put(char(0x5a));
 }
 
+/// A two-part EXR of 4 x 3 pixels: part "rgba" R, G, B as float, part "data"
+/// (the same size) depth.Z as half.
+void write_two_parts(const fs::path &path) {
+    OIIO::ImageSpec specs[2] = {OIIO::ImageSpec(4, 3, 3, OIIO::TypeDesc::FLOAT),
+                                OIIO::ImageSpec(4, 3, 1, OIIO::TypeDesc::HALF)};
+    specs[0].channelnames = {"R", "G", "B"};
+    specs[0].attribute("name", "rgba");
+    specs[1].channelnames = {"depth.Z"};
+    specs[1].attribute("name", "data");
+    const std::vector<float> colour(4 * 3 * 3, 0.5f), depth(4 * 3, 2.0f);
+    auto out = OIIO::ImageOutput::create("openexr");
+    REQUIRE(out);
+    REQUIRE(out->open(path.string(), 2, specs));
+    REQUIRE(out->write_image(OIIO::TypeDesc::FLOAT, colour.data()));
+    REQUIRE(out->open(path.string(), specs[1], OIIO::ImageOutput::AppendSubimage));
+    REQUIRE(out->write_image(OIIO::TypeDesc::FLOAT, depth.data()));
+    REQUIRE(out->close());
+}
+
 }  // namespace
+
+TEST_CASE("CLI: aaf info names each channel's storage, in other parts too, with or without --stats",
+          "[cli][info]") {
+    const fs::path path = aaf_test::scratch_dir("info_parts") / "parts.exr";
+    write_two_parts(path);
+    for (const char *stats : {"", "--stats "}) {
+        const RunResult info = run_aaf(std::string("info ") + stats + path.string());
+        INFO(info.output);
+        REQUIRE(info.exit_code == 0);
+        CHECK_THAT(info.output, Catch::Contains("part 1 'data': 4 x 3, depth.Z"));
+        CHECK_THAT(info.output, Catch::Matches("[\\s\\S]*\\n  R +float[^\\n]*\\n[\\s\\S]*"));
+        CHECK_THAT(info.output, Catch::Matches("[\\s\\S]*\\n  depth\\.Z +half[^\\n]*\\n[\\s\\S]*"));
+    }
+}
 
 TEST_CASE("CLI: aaf info reads the header alone, aaf info --stats every pixel", "[cli][info]") {
     const fs::path dir = aaf_test::scratch_dir("info_header");

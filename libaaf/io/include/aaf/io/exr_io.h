@@ -68,6 +68,7 @@ struct PartSummary {
     std::string name;
     int width = 0, height = 0;
     std::vector<std::string> channels;
+    std::vector<bool> half;  ///< per channel: stored as half (else float or uint)
 };
 /// The parts of `path` after the first (none for a single-part file).
 /// Throws aaf::InputError "<path>: <problem>" when the file cannot be read.
